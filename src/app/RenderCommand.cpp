@@ -1,0 +1,122 @@
+#include "app/RenderCommand.h"
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <vector>
+
+#include "app/FramePathPattern.h"
+#include "core/AtomicFile.h"
+#include "core/Errors.h"
+#include "render/FrameLoop.h"
+#include "render/ImageWriter.h"
+#include "scene/SceneLoader.h"
+
+namespace raycache {
+
+namespace {
+
+constexpr int kMaxImageSide = 16384;
+constexpr int kMaxFrames = 1000000;
+
+void checkOptions(const RenderCommandOptions& o) {
+    if (o.width < 1 || o.height < 1 || o.width > kMaxImageSide || o.height > kMaxImageSide)
+        throw InputError("--width/--height must be between 1 and " + std::to_string(kMaxImageSide));
+    if (o.frames && (*o.frames < 1 || *o.frames > kMaxFrames))
+        throw InputError("--frames must be between 1 and " + std::to_string(kMaxFrames));
+    if (o.maxDepth < 1 || o.maxDepth > 64) throw InputError("--max-depth must be between 1 and 64");
+    if (!(o.minWeight >= 0.0f && o.minWeight <= 1.0f)) throw InputError("--min-weight must be in [0, 1]");
+    if (o.threads < 0 || o.threads > 1024) throw InputError("--threads must be between 0 (all) and 1024");
+    if (o.path && *o.path != "static" && *o.path != "orbit" && *o.path != "pan")
+        throw InputError("--path must be static, orbit or pan (got '" + *o.path + "')");
+}
+
+CameraPath chooseCameraPath(const Scene& scene, const std::optional<std::string>& override) {
+    if (!override) return scene.cameraPath;
+    CameraPath path;
+    if (*override == "static") return path;
+    path.kind = *override == "orbit" ? CameraPathKind::Orbit : CameraPathKind::Pan;
+    // Keep the scene's own centre and speed when it already orbits or pans.
+    const bool sceneTurns = scene.cameraPath.kind == CameraPathKind::Orbit || scene.cameraPath.kind == CameraPathKind::Pan;
+    path.center = scene.cameraPath.kind == CameraPathKind::Orbit ? scene.cameraPath.center : scene.camera.lookAt;
+    path.degreesPerFrame = sceneTurns ? scene.cameraPath.degreesPerFrame : 1.0f;
+    return path;
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+nlohmann::json raysJson(const RayCounts& r) {
+    return {{"primary", r.primary}, {"shadow", r.shadow}, {"reflection", r.reflection},
+            {"refraction", r.refraction}, {"total", r.total()}};
+}
+
+}  // namespace
+
+void runRenderCommand(const RenderCommandOptions& options, std::ostream& out) {
+    checkOptions(options);
+    const FramePathPattern outPattern(options.out);
+    if (!options.out.empty()) checkWritableImagePath(outPattern.pathFor(0));
+    if (!options.statsPath.empty()) {
+        const auto parent = std::filesystem::path(options.statsPath).parent_path();
+        if (!parent.empty() && !std::filesystem::is_directory(parent))
+            throw InputError("--stats: directory " + parent.string() + " does not exist");
+    }
+
+    const Scene scene = loadScene(options.scene);
+    const CameraPath path = chooseCameraPath(scene, options.path);
+    const int frames = options.frames.value_or(scene.defaultFrames);
+
+    RenderSettings settings;
+    settings.width = options.width;
+    settings.height = options.height;
+    settings.maxDepth = options.maxDepth;
+    settings.minWeight = options.minWeight;
+    settings.threads = options.threads;
+
+    out << "scene " << scene.name << ": " << scene.objects.size() << " objects, " << scene.lights.size()
+        << " lights, " << settings.width << "x" << settings.height << ", " << frames << " frames\n";
+
+    std::vector<double> times;
+    nlohmann::json frameStats = nlohmann::json::array();
+    RayCounts totalRays;
+    renderFrames(scene, path, settings, frames, [&](const FrameResult& r, const Image& film) {
+        const double mrays = static_cast<double>(r.rays.total()) / (r.milliseconds * 1e3);
+        out << "frame " << (r.frame + 1) << "/" << frames << "  " << std::fixed;
+        out.precision(1);
+        out << r.milliseconds << " ms  rays: primary " << r.rays.primary << ", shadow " << r.rays.shadow
+            << ", reflection " << r.rays.reflection << ", refraction " << r.rays.refraction << "  ";
+        out.precision(2);
+        out << mrays << " Mrays/s" << std::endl;
+        out.unsetf(std::ios::fixed);
+        times.push_back(r.milliseconds);
+        totalRays += r.rays;
+        frameStats.push_back({{"frame", r.frame}, {"ms", r.milliseconds}, {"rays", raysJson(r.rays)},
+                              {"mrays_per_s", mrays}});
+        const bool lastFrame = r.frame + 1 == frames;
+        if (!options.out.empty() && (outPattern.perFrame() || lastFrame)) writeImage(film, outPattern.pathFor(r.frame));
+    });
+
+    const auto [minIt, maxIt] = std::minmax_element(times.begin(), times.end());
+    out << "median " << median(times) << " ms (min " << *minIt << ", max " << *maxIt << ") over " << frames
+        << " frames\n";
+    if (!options.statsPath.empty()) {
+        const nlohmann::json stats = {
+            {"scene", scene.name},
+            {"width", settings.width},
+            {"height", settings.height},
+            {"max_depth", settings.maxDepth},
+            {"min_weight", settings.minWeight},
+            {"threads", settings.threads},
+            {"frames", frameStats},
+            {"summary", {{"median_ms", median(times)}, {"min_ms", *minIt}, {"max_ms", *maxIt},
+                         {"rays", raysJson(totalRays)}}}};
+        writeTextFileAtomically(options.statsPath, stats.dump(2) + "\n");
+    }
+}
+
+}  // namespace raycache

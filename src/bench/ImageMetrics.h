@@ -1,0 +1,15 @@
+#pragma once
+// Image difference metrics. Images are compared as displayed: linear values
+// clamped to [0,1] and encoded to sRGB, so errors weigh as the eye sees them.
+#include "core/Image.h"
+
+namespace raycache {
+
+// Mean absolute difference per channel, in [0,1]. Sizes must match.
+double meanAbsoluteError(const Image& a, const Image& b);
+// Peak signal-to-noise ratio in dB (peak 1); +infinity for identical images.
+double psnr(const Image& a, const Image& b);
+// Number of pixels with a NaN or infinite channel.
+long countNonFinitePixels(const Image& image);
+
+}  // namespace raycache

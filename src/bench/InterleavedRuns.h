@@ -1,0 +1,29 @@
+#pragma once
+// Timing several variants of a job side by side: after warm-up, the variants
+// run in turn (A B C A B C ...) so that machine noise hits them alike, and
+// each variant's times are summarized by median and range.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace raycache {
+
+struct Variant {
+    std::string name;
+    // Runs the job once; returns the work done (e.g. rays traced), reported as-is.
+    std::function<std::uint64_t()> run;
+};
+
+struct VariantTimes {
+    std::string name;
+    std::vector<double> milliseconds;  // one per timed run, in run order
+    std::uint64_t work = 0;            // from the last run
+    double median() const;
+    double min() const;
+    double max() const;
+};
+
+std::vector<VariantTimes> runInterleaved(const std::vector<Variant>& variants, int warmupRounds, int timedRounds);
+
+}  // namespace raycache

@@ -1,0 +1,20 @@
+#pragma once
+// The exact sRGB transfer function (IEC 61966-2-1), for 8-bit image I/O.
+#include <cmath>
+
+namespace raycache {
+
+// Evaluated in double so that 0 and 1 map exactly onto 0 and 1 after rounding to float.
+inline float srgbToLinear(float encoded) {
+    const double v = encoded;
+    if (v <= 0.04045) return static_cast<float>(v / 12.92);
+    return static_cast<float>(std::pow((v + 0.055) / 1.055, 2.4));
+}
+
+inline float linearToSrgb(float linear) {
+    const double v = linear;
+    if (v <= 0.0031308) return static_cast<float>(v * 12.92);
+    return static_cast<float>(1.055 * std::pow(v, 1.0 / 2.4) - 0.055);
+}
+
+}  // namespace raycache

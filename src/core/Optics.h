@@ -1,0 +1,27 @@
+#pragma once
+// Mirror reflection and Snell refraction, in the form given by SPEC §1:
+// `incident` points toward the surface, `normal` is unit length and faces the
+// side the incident ray comes from (dot(incident, normal) <= 0).
+#include <cmath>
+#include <optional>
+
+#include "core/Vec3.h"
+
+namespace raycache {
+
+// r = i + 2 n cos(θi), cos(θi) = -(i·n)
+inline Vec3 reflect(const Vec3& incident, const Vec3& normal) {
+    const float cosI = -dot(incident, normal);
+    return incident + normal * (2.0f * cosI);
+}
+
+// t = η i + (η cos(θi) - sqrt(cos²θt)) n with cos²θt = 1 - η²(1 - cos²θi) and
+// η = η1/η2. Returns nothing on total internal reflection (cos²θt < 0).
+inline std::optional<Vec3> refract(const Vec3& incident, const Vec3& normal, float eta) {
+    const float cosI = -dot(incident, normal);
+    const float cos2T = 1.0f - eta * eta * (1.0f - cosI * cosI);
+    if (cos2T < 0.0f) return std::nullopt;
+    return incident * eta + normal * (eta * cosI - std::sqrt(cos2T));
+}
+
+}  // namespace raycache

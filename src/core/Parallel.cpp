@@ -1,0 +1,41 @@
+#include "core/Parallel.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+namespace raycache {
+
+struct Parallel::Impl {
+    explicit Impl(int threads)
+        : arena(threads > 0 ? threads : tbb::task_arena::automatic) {}
+    tbb::task_arena arena;
+};
+
+Parallel::Parallel(int threads) : impl_(std::make_unique<Impl>(threads)) {}
+Parallel::~Parallel() = default;
+
+int Parallel::threadCount() const { return impl_->arena.max_concurrency(); }
+
+void Parallel::forEachIndex(int count, const std::function<void(int, int)>& body) const {
+    impl_->arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range<int>(0, count, 1), [&](const tbb::blocked_range<int>& r) {
+            const int worker = tbb::this_task_arena::current_thread_index();
+            for (int i = r.begin(); i != r.end(); ++i) body(i, worker);
+        });
+    });
+}
+
+void Parallel::forEachTile(int width, int height, int tileSize,
+                           const std::function<void(const TileRange&, int)>& body) const {
+    const int tilesX = (width + tileSize - 1) / tileSize;
+    const int tilesY = (height + tileSize - 1) / tileSize;
+    forEachIndex(tilesX * tilesY, [&](int i, int worker) {
+        const int tx = i % tilesX, ty = i / tilesX;
+        const TileRange tile{tx * tileSize, ty * tileSize, std::min(width, (tx + 1) * tileSize),
+                             std::min(height, (ty + 1) * tileSize)};
+        body(tile, worker);
+    });
+}
+
+}  // namespace raycache

@@ -1,0 +1,23 @@
+#pragma once
+#include <cstdint>
+
+namespace raycache {
+
+// Rays traced, by kind. Summed per worker and merged at the end of a frame.
+struct RayCounts {
+    std::uint64_t primary = 0;
+    std::uint64_t shadow = 0;
+    std::uint64_t reflection = 0;
+    std::uint64_t refraction = 0;
+
+    std::uint64_t total() const { return primary + shadow + reflection + refraction; }
+    RayCounts& operator+=(const RayCounts& o) {
+        primary += o.primary;
+        shadow += o.shadow;
+        reflection += o.reflection;
+        refraction += o.refraction;
+        return *this;
+    }
+};
+
+}  // namespace raycache

@@ -1,0 +1,37 @@
+#pragma once
+// Affine transform (3x3 linear part + translation) for placing objects.
+#include <array>
+
+#include "core/Vec3.h"
+
+namespace raycache {
+
+class Transform {
+public:
+    Transform() = default;  // identity
+
+    static Transform translate(const Vec3& t);
+    static Transform scale(const Vec3& s);
+    // Rotation about a unit axis by an angle in degrees (right-handed).
+    static Transform rotate(const Vec3& axis, float degrees);
+
+    // Composition: (a * b) applies b first, then a.
+    friend Transform operator*(const Transform& a, const Transform& b);
+
+    Vec3 applyToPoint(const Vec3& p) const;
+    Vec3 applyToVector(const Vec3& v) const;
+    // Normals transform by the inverse transpose of the linear part.
+    Vec3 applyToNormal(const Vec3& n) const;
+
+    Vec3 translation() const { return {m_[0][3], m_[1][3], m_[2][3]}; }
+    // True when the linear part is a rotation times one positive scale factor.
+    bool isSimilarity(float tolerance = 1e-4f) const;
+    // Scale factor of a similarity transform (length of the first column).
+    float uniformScale() const;
+    float determinant() const;
+
+private:
+    std::array<std::array<float, 4>, 3> m_{{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}}};
+};
+
+}  // namespace raycache

@@ -1,0 +1,24 @@
+#pragma once
+// Primary rays of a pinhole camera through pixel centres.
+#include "core/Ray.h"
+#include "scene/Camera.h"
+
+namespace raycache {
+
+class CameraRays {
+public:
+    CameraRays(const Camera& camera, int width, int height);
+
+    // Ray through the centre of pixel (x, y); y = 0 is the top row.
+    Ray ray(int x, int y) const {
+        const float sx = (2.0f * (static_cast<float>(x) + 0.5f) * invWidth_ - 1.0f);
+        const float sy = (1.0f - 2.0f * (static_cast<float>(y) + 0.5f) * invHeight_);
+        return Ray{origin_, normalize(forward_ + right_ * sx + up_ * sy)};
+    }
+
+private:
+    Vec3 origin_, forward_, right_, up_;  // right_/up_ scaled to the image plane at distance 1
+    float invWidth_, invHeight_;
+};
+
+}  // namespace raycache

@@ -1,0 +1,29 @@
+#include "render/FrameLoop.h"
+
+#include <chrono>
+
+#include "core/Parallel.h"
+#include "render/FrameRenderer.h"
+#include "trace/TraceScene.h"
+
+namespace raycache {
+
+void renderFrames(const Scene& scene, const CameraPath& path, const RenderSettings& settings, int frameCount,
+                  const std::function<void(const FrameResult&, const Image&)>& onFrame) {
+    const TraceScene tracer(scene);
+    const Parallel parallel(settings.threads);
+    const FrameRenderer renderer(scene, tracer, settings, parallel);
+    Image film(settings.width, settings.height);
+    for (int frame = 0; frame < frameCount; ++frame) {
+        const Camera camera = path.cameraAt(scene.camera, frame);
+        const auto start = std::chrono::steady_clock::now();
+        FrameResult result;
+        result.frame = frame;
+        result.rays = renderer.render(camera, film);
+        result.milliseconds =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        onFrame(result, film);
+    }
+}
+
+}  // namespace raycache

@@ -1,0 +1,23 @@
+#pragma once
+// Renders a scene along a camera path, frame after frame, timing each frame.
+#include <functional>
+
+#include "core/Image.h"
+#include "core/RayCounts.h"
+#include "render/RenderSettings.h"
+#include "scene/Scene.h"
+
+namespace raycache {
+
+struct FrameResult {
+    int frame = 0;              // 0-based
+    double milliseconds = 0.0;  // wall time of the render, excluding the callback
+    RayCounts rays;
+};
+
+// Builds the acceleration structure once, then renders frames [0, frameCount)
+// with cameras from `path` applied to scene.camera, calling onFrame after each.
+void renderFrames(const Scene& scene, const CameraPath& path, const RenderSettings& settings, int frameCount,
+                  const std::function<void(const FrameResult&, const Image&)>& onFrame);
+
+}  // namespace raycache

@@ -1,0 +1,56 @@
+#include "render/SurfacePoint.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace raycache {
+
+namespace {
+
+void sphereSurface(const Sphere& sphere, SurfacePoint& sp, bool needUv) {
+    const Vec3 n = normalize(sp.position - sphere.center);
+    sp.normal = sp.geometricNormal = n;
+    if (!needUv) return;
+    constexpr float pi = std::numbers::pi_v<float>;
+    sp.u = 0.5f + std::atan2(n.z, n.x) / (2.0f * pi);
+    sp.v = 0.5f + std::asin(std::fmax(-1.0f, std::fmin(1.0f, n.y))) / pi;
+}
+
+void meshSurface(const TriangleMesh& mesh, const TraceHit& hit, SurfacePoint& sp) {
+    const auto& tri = mesh.triangles[static_cast<std::size_t>(hit.primitiveId)];
+    const float w = 1.0f - hit.u - hit.v;
+    const Vec3& p0 = mesh.positions[tri[0]];
+    Vec3 ng = normalize(cross(mesh.positions[tri[1]] - p0, mesh.positions[tri[2]] - p0));
+    Vec3 ns = ng;
+    if (!mesh.normals.empty()) {
+        const Vec3 interpolated =
+            mesh.normals[tri[0]] * w + mesh.normals[tri[1]] * hit.u + mesh.normals[tri[2]] * hit.v;
+        const float len = length(interpolated);
+        if (len > 0.0f) ns = interpolated / len;
+        // Trust the vertex normals for which side is outside: files disagree on winding.
+        if (dot(ng, ns) < 0.0f) ng = -ng;
+    }
+    sp.normal = ns;
+    sp.geometricNormal = ng;
+    if (!mesh.uvs.empty()) {
+        sp.u = mesh.uvs[tri[0]][0] * w + mesh.uvs[tri[1]][0] * hit.u + mesh.uvs[tri[2]][0] * hit.v;
+        sp.v = mesh.uvs[tri[0]][1] * w + mesh.uvs[tri[1]][1] * hit.u + mesh.uvs[tri[2]][1] * hit.v;
+    }
+}
+
+}  // namespace
+
+SurfacePoint surfacePointAt(const SceneObject& object, const Ray& ray, const TraceHit& hit, bool needUv) {
+    SurfacePoint sp;
+    sp.position = ray.origin + ray.direction * hit.t;
+    if (const auto* sphere = std::get_if<Sphere>(&object.shape)) sphereSurface(*sphere, sp, needUv);
+    else meshSurface(*std::get<MeshShape>(object.shape).mesh, hit, sp);
+    sp.frontFace = dot(ray.direction, sp.geometricNormal) < 0.0f;
+    if (!sp.frontFace) {
+        sp.normal = -sp.normal;
+        sp.geometricNormal = -sp.geometricNormal;
+    }
+    return sp;
+}
+
+}  // namespace raycache

@@ -1,0 +1,138 @@
+#include "render/WhittedIntegrator.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "core/Errors.h"
+#include "core/Optics.h"
+
+namespace raycache {
+
+namespace {
+
+float smoothstep(float edge0, float edge1, float x) {
+    if (edge1 <= edge0) return x >= edge1 ? 1.0f : 0.0f;
+    const float t = std::clamp((x - edge0) / (edge1 - edge0), 0.0f, 1.0f);
+    return t * t * (3.0f - 2.0f * t);
+}
+
+float cosDegrees(float degrees) { return std::cos(degrees * std::numbers::pi_v<float> / 180.0f); }
+
+}  // namespace
+
+float surfaceOffset(const Vec3& p) {
+    const float extent = std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z), 1.0f});
+    return 1e-4f * extent;
+}
+
+WhittedIntegrator::WhittedIntegrator(const Scene& scene, const TraceScene& tracer, const RenderSettings& settings)
+    : scene_(scene), tracer_(tracer), settings_(settings) {
+    if (scene.lights.size() > kMaxLights)
+        throw InputError("scene has " + std::to_string(scene.lights.size()) + " lights; at most " +
+                         std::to_string(kMaxLights) + " are supported");
+}
+
+int WhittedIntegrator::shadowQueries(const SurfacePoint& sp, ShadowQuery* out) const {
+    const Vec3 origin = sp.position + sp.geometricNormal * surfaceOffset(sp.position);
+    int count = 0;
+    for (std::size_t i = 0; i < scene_.lights.size(); ++i) {
+        const Light& light = scene_.lights[i];
+        Vec3 toLight;
+        float distance;
+        float strength = 1.0f;
+        if (light.type == LightType::Directional) {
+            toLight = -light.direction;
+            distance = std::numeric_limits<float>::infinity();
+        } else {
+            const Vec3 d = light.position - sp.position;
+            distance = length(d);
+            toLight = d / distance;
+            if (light.type == LightType::Spot)
+                strength = smoothstep(cosDegrees(light.coneAngleDeg),
+                                      cosDegrees(light.coneAngleDeg - light.falloffAngleDeg),
+                                      dot(-toLight, light.direction));
+        }
+        // Lights below the geometric surface would leak through interpolated normals.
+        if (strength <= 0.0f || dot(sp.normal, toLight) <= 0.0f || dot(sp.geometricNormal, toLight) <= 0.0f)
+            continue;
+        out[count++] = ShadowQuery{Ray{origin, toLight, 0.0f, distance}, static_cast<int>(i), strength};
+    }
+    return count;
+}
+
+Rgb WhittedIntegrator::directLight(const Material& material, const SurfacePoint& sp, const Vec3& toViewer,
+                                   std::span<const ShadowQuery> queries,
+                                   std::span<const unsigned char> visible) const {
+    const Rgb albedo = material.albedo(sp.u, sp.v);
+    Rgb color = material.ambient * albedo;
+    for (std::size_t q = 0; q < queries.size(); ++q) {
+        if (!visible[q]) continue;
+        const ShadowQuery& query = queries[q];
+        const Vec3& toLight = query.ray.direction;
+        Rgb lit = albedo * dot(sp.normal, toLight);
+        if (!material.specular.isBlack()) {
+            const float nDotH = std::max(0.0f, dot(sp.normal, normalize(toLight + toViewer)));
+            lit += material.specular * std::pow(nDotH, material.shininess);
+        }
+        color += lit * scene_.lights[static_cast<std::size_t>(query.lightIndex)].intensity * query.strength;
+    }
+    return color;
+}
+
+Rgb WhittedIntegrator::secondaryLight(const Ray& ray, const SurfacePoint& sp, const Material& material, int depth,
+                                      float weight, RayCounts& counts) const {
+    Rgb color;
+    if (depth >= settings_.maxDepth) return color;
+    const float offset = surfaceOffset(sp.position);
+    float reflectWeight = material.reflectivity;
+    if (material.refracts()) {
+        // Entering: air -> material; leaving: material -> air (objects do not nest).
+        const float eta = sp.frontFace ? 1.0f / material.ior : material.ior;
+        if (const auto refracted = refract(ray.direction, sp.normal, eta)) {
+            const float w = weight * material.transmissivity;
+            if (w >= settings_.minWeight) {
+                const Ray r{sp.position - sp.geometricNormal * offset, normalize(*refracted)};
+                color += trace(r, SecondaryKind::Refraction, depth + 1, w, counts) * material.transmissivity;
+            }
+        } else {
+            // Total internal reflection: the transmitted share is reflected.
+            reflectWeight += material.transmissivity;
+        }
+    }
+    if (reflectWeight > 0.0f) {
+        const float w = weight * reflectWeight;
+        if (w >= settings_.minWeight) {
+            const Ray r{sp.position + sp.geometricNormal * offset, normalize(reflect(ray.direction, sp.normal))};
+            color += trace(r, SecondaryKind::Reflection, depth + 1, w, counts) * reflectWeight;
+        }
+    }
+    return color;
+}
+
+Rgb WhittedIntegrator::shade(const Ray& ray, const TraceHit& hit, int depth, float weight,
+                             RayCounts& counts) const {
+    const SceneObject& object = scene_.objects[static_cast<std::size_t>(hit.objectId)];
+    const SurfacePoint sp = surfacePointAt(object, ray, hit, object.material.diffuseTexture.has_value());
+
+    std::array<ShadowQuery, kMaxLights> queries;
+    std::array<unsigned char, kMaxLights> visible;
+    const int count = shadowQueries(sp, queries.data());
+    for (int i = 0; i < count; ++i) visible[i] = tracer_.occluded(queries[i].ray) ? 0 : 1;
+    counts.shadow += static_cast<std::uint64_t>(count);
+    const auto n = static_cast<std::size_t>(count);
+    return directLight(object.material, sp, -ray.direction, {queries.data(), n}, {visible.data(), n}) +
+           secondaryLight(ray, sp, object.material, depth, weight, counts);
+}
+
+Rgb WhittedIntegrator::trace(const Ray& ray, SecondaryKind kind, int depth, float weight,
+                             RayCounts& counts) const {
+    if (kind == SecondaryKind::Reflection) ++counts.reflection;
+    else ++counts.refraction;
+    const TraceHit hit = tracer_.intersect(ray);
+    return hit.hit() ? shade(ray, hit, depth, weight, counts) : background(ray);
+}
+
+}  // namespace raycache

@@ -1,0 +1,320 @@
+#include "scene/BuiltinScenes.h"
+
+#include <array>
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <numbers>
+
+#include "scene/MeshGenerators.h"
+
+namespace raycache {
+
+namespace {
+
+constexpr std::array<int, 7> kBehindCounts{0, 1, 2, 4, 8, 16, 32};
+constexpr std::array<int, 6> kGridCounts{1, 2, 4, 8, 16, 32};
+
+// Distinct, saturated colors for sets of spheres.
+Rgb paletteColor(int i) {
+    static constexpr std::array<Rgb, 8> palette{Rgb{0.85f, 0.2f, 0.2f}, Rgb{0.2f, 0.7f, 0.25f},
+                                                Rgb{0.2f, 0.35f, 0.85f}, Rgb{0.9f, 0.75f, 0.2f},
+                                                Rgb{0.7f, 0.25f, 0.8f}, Rgb{0.2f, 0.75f, 0.8f},
+                                                Rgb{0.95f, 0.5f, 0.15f}, Rgb{0.6f, 0.6f, 0.6f}};
+    return palette[static_cast<std::size_t>(i) % palette.size()];
+}
+
+const CacheSettings kCached{CacheTechnique::Cct, 512};
+
+Material mirror(const Rgb& tint = Rgb{0.1f}, float kr = 0.8f) {
+    Material m;
+    m.ambient = Rgb{0.1f};
+    m.diffuse = tint;
+    m.specular = Rgb{0.8f};
+    m.shininess = 96.0f;
+    m.reflectivity = kr;
+    m.cache = kCached;
+    return m;
+}
+
+Material glass() {
+    Material m;
+    m.ambient = Rgb{0.0f};
+    m.diffuse = Rgb{0.0f};
+    m.specular = Rgb{0.9f};
+    m.shininess = 128.0f;
+    m.reflectivity = 0.1f;
+    m.transmissivity = 0.9f;
+    m.ior = 1.5f;
+    m.cache = kCached;
+    return m;
+}
+
+Material matte(const Rgb& color) {
+    Material m;
+    m.ambient = Rgb{0.15f};
+    m.diffuse = color;
+    m.specular = Rgb{0.2f};
+    m.shininess = 24.0f;
+    return m;
+}
+
+Material checker(const Rgb& even, const Rgb& odd, float squaresPerUnit) {
+    Material m = matte(Rgb{1.0f});
+    m.specular = Rgb{0.0f};
+    m.diffuseTexture = Texture::checkerboard({even, odd, squaresPerUnit});
+    return m;
+}
+
+SceneObject sphere(std::string name, const Vec3& center, float radius, Material material) {
+    return SceneObject{std::move(name), Sphere{center, radius}, std::move(material), center};
+}
+
+// A procedural mesh scaled, turned about y and moved to `at`.
+SceneObject meshObject(std::string name, const TriangleMesh& mesh, const Vec3& at, const Vec3& scale,
+                       float yawDeg, Material material) {
+    const Transform t = Transform::translate(at) * Transform::rotate({0, 1, 0}, yawDeg) * Transform::scale(scale);
+    return SceneObject{std::move(name), MeshShape{std::make_shared<const TriangleMesh>(transformed(mesh, t))},
+                       std::move(material), at};
+}
+
+// Checkerboard floor: a square of side `size` at height y, squares 1 unit wide.
+SceneObject floorObject(float size, float y = 0.0f) {
+    // The plane's uv spans [0,1] over its side, so `size` squares per uv unit gives 1-unit squares.
+    return meshObject("floor", makePlane(), {0, y, 0}, {size, 1, size}, 0.0f,
+                      checker(Rgb{0.85f}, Rgb{0.12f}, size));
+}
+
+// Upright checkered wall of side `size` centred at `center`, facing +z.
+SceneObject wallObject(std::string name, const Vec3& center, float size, Material material) {
+    // The plane is built in xz with normal +y; turning it 90 degrees about x makes the normal +z.
+    const Transform t = Transform::translate(center) * Transform::rotate({1, 0, 0}, 90.0f) *
+                        Transform::scale({size, 1, size});
+    return SceneObject{std::move(name), MeshShape{std::make_shared<const TriangleMesh>(transformed(makePlane(), t))},
+                       std::move(material), center};
+}
+
+Light pointLight(const Vec3& position, float intensity = 1.0f) {
+    Light l;
+    l.type = LightType::Point;
+    l.position = position;
+    l.intensity = Rgb{intensity};
+    return l;
+}
+
+Camera camera(const Vec3& position, const Vec3& lookAt, float fov) {
+    return Camera{position, lookAt, {0, 1, 0}, fov};
+}
+
+CameraPath orbit(const Vec3& center, float degreesPerFrame) {
+    CameraPath p;
+    p.kind = CameraPathKind::Orbit;
+    p.center = center;
+    p.degreesPerFrame = degreesPerFrame;
+    return p;
+}
+
+const Rgb kSky{0.35f, 0.45f, 0.65f};
+
+Scene behindScene(int n) {
+    Scene s;
+    s.name = "behind-" + std::to_string(n);
+    s.objects.push_back(floorObject(200.0f));
+    s.objects.push_back(sphere("main", {0, 2, 0}, 2.0f, mirror()));
+    // A wall of up to 8 x 4 spheres behind the camera (z > 9) facing the main
+    // sphere, so each one shows in its reflection and nowhere else.
+    for (int i = 0; i < n; ++i) {
+        const int row = i / 8, col = i % 8;
+        const Vec3 c{(static_cast<float>(col) - 3.5f) * 3.2f, 1.5f + 3.2f * static_cast<float>(row), 14.0f};
+        s.objects.push_back(sphere("behind" + std::to_string(i), c, 1.4f, mirror(paletteColor(i), 0.5f)));
+    }
+    s.lights.push_back(pointLight({6, 12, 6}));
+    s.environment = Environment::constant(kSky);
+    s.camera = camera({0, 2.5f, 9}, {0, 2, 0}, 40.0f);
+    s.cameraPath = orbit({0, 2, 0}, 1.0f);
+    s.defaultFrames = 30;
+    return s;
+}
+
+// cols x rows with cols a power of two >= rows: 1, 2x1, 2x2, 4x2, 4x4, 8x4.
+Scene gridScene(int n) {
+    Scene s;
+    s.name = "grid-" + std::to_string(n);
+    s.objects.push_back(floorObject(200.0f));
+    const int cols = 1 << ((static_cast<int>(std::log2(n)) + 1) / 2);
+    const int rows = (n + cols - 1) / cols;
+    constexpr float spacing = 2.4f;
+    for (int i = 0; i < n; ++i) {
+        const int row = i / cols, col = i % cols;
+        const Vec3 c{(static_cast<float>(col) - 0.5f * static_cast<float>(cols - 1)) * spacing, 1.0f,
+                     (static_cast<float>(row) - 0.5f * static_cast<float>(rows - 1)) * spacing};
+        s.objects.push_back(sphere("sphere" + std::to_string(i), c, 1.0f, mirror(paletteColor(i), 0.7f)));
+    }
+    s.lights.push_back(pointLight({8, 15, 10}));
+    s.environment = Environment::constant(kSky);
+    s.camera = camera({0, 10, 18}, {0, 0, 0}, 50.0f);
+    s.cameraPath = orbit({0, 0, 0}, 1.0f);
+    s.defaultFrames = 30;
+    return s;
+}
+
+// 8 x 4 wall of spheres facing the camera, framed for 16:9.
+Scene wallOf32(const std::string& name, bool allReflective) {
+    Scene s;
+    s.name = name;
+    s.objects.push_back(floorObject(200.0f, -5.5f));
+    for (int i = 0; i < 32; ++i) {
+        const int row = i / 8, col = i % 8;
+        const Vec3 c{(static_cast<float>(col) - 3.5f) * 2.6f, (1.5f - static_cast<float>(row)) * 2.6f, 0.0f};
+        // In the diffuse variant only one sphere near the middle reflects.
+        const bool reflective = allReflective || i == 11;
+        s.objects.push_back(sphere("sphere" + std::to_string(i), c, 1.1f,
+                                   reflective ? mirror(paletteColor(i), 0.7f) : matte(paletteColor(i))));
+    }
+    s.lights.push_back(pointLight({10, 15, 20}));
+    s.environment = Environment::constant(kSky);
+    s.camera = camera({0, 1, 17}, {0, 0, 0}, 45.0f);
+    s.cameraPath = orbit({0, 0, 0}, 0.5f);
+    s.defaultFrames = 30;
+    return s;
+}
+
+Scene roomScene() {
+    Scene s;
+    s.name = "room";
+    s.objects.push_back(floorObject(60.0f));
+    s.objects.push_back(sphere("mirror-ball", {0, 1.5f, 0}, 1.5f, mirror()));
+    // Ten diffuse objects on a ring of radius 5 around the mirror ball.
+    const TriangleMesh box = makeBox(), cylinder = makeCylinder(), cone = makeCone(), torus = makeTorus();
+    for (int i = 0; i < 10; ++i) {
+        const float a = 2.0f * std::numbers::pi_v<float> * static_cast<float>(i) / 10.0f;
+        const Vec3 at{5.0f * std::cos(a), 0.0f, 5.0f * std::sin(a)};
+        const Material m = matte(paletteColor(i));
+        const std::string name = "object" + std::to_string(i);
+        switch (i % 5) {
+        case 0: s.objects.push_back(sphere(name, at + Vec3{0, 0.8f, 0}, 0.8f, m)); break;
+        case 1: s.objects.push_back(meshObject(name, box, at + Vec3{0, 0.6f, 0}, Vec3{1.2f, 1.2f, 1.2f}, 25.0f, m)); break;
+        case 2: s.objects.push_back(meshObject(name, cylinder, at + Vec3{0, 0.9f, 0}, Vec3{1.2f, 1.8f, 1.2f}, 0.0f, m)); break;
+        case 3: s.objects.push_back(meshObject(name, cone, at + Vec3{0, 1.0f, 0}, Vec3{1.4f, 2.0f, 1.4f}, 0.0f, m)); break;
+        default: s.objects.push_back(meshObject(name, torus, at + Vec3{0, 0.3f, 0}, Vec3{2.0f, 2.0f, 2.0f}, 0.0f, m)); break;
+        }
+    }
+    s.lights.push_back(pointLight({4, 10, 6}, 0.8f));
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.position = {-6, 8, 4};
+    spot.direction = normalize(Vec3{0, 0, 0} - spot.position);
+    spot.intensity = Rgb{0.5f, 0.45f, 0.35f};
+    spot.coneAngleDeg = 35.0f;
+    spot.falloffAngleDeg = 10.0f;
+    s.lights.push_back(spot);
+    s.environment = Environment::constant(kSky);
+    s.camera = camera({0, 4, 12}, {0, 1.2f, 0}, 45.0f);
+    s.cameraPath = orbit({0, 0, 0}, 1.5f);
+    s.defaultFrames = 48;
+    return s;
+}
+
+Scene parallaxScene() {
+    Scene s;
+    s.name = "parallax";
+    s.objects.push_back(floorObject(100.0f));
+    s.objects.push_back(sphere("left-mirror", {-2.5f, 1.5f, 0}, 1.5f, mirror(Rgb{0.1f}, 0.85f)));
+    s.objects.push_back(sphere("right-mirror", {2.5f, 1.5f, 0}, 1.5f, mirror(Rgb{0.1f}, 0.85f)));
+    s.objects.push_back(meshObject("near-box", makeBox(), {0, 0.5f, 2.5f}, {1, 1, 1}, 30.0f,
+                                   matte(Rgb{0.85f, 0.3f, 0.2f})));
+    s.objects.push_back(wallObject("far-wall", {0, 10, -15}, 40.0f,
+                                   checker(Rgb{0.2f, 0.5f, 0.8f}, Rgb{0.9f, 0.9f, 0.8f}, 20.0f)));
+    s.lights.push_back(pointLight({3, 10, 8}));
+    s.environment = Environment::constant(kSky);
+    s.camera = camera({-4, 2.5f, 10}, {0, 1.5f, 0}, 45.0f);
+    CameraPath path;
+    path.kind = CameraPathKind::Keyframes;
+    path.keyframes = {camera({-4, 2.5f, 10}, {0, 1.5f, 0}, 45.0f), camera({4, 2.5f, 10}, {0, 1.5f, 0}, 45.0f)};
+    path.framesPerSegment = 24;
+    s.cameraPath = path;
+    s.defaultFrames = 25;
+    return s;
+}
+
+Scene glassScene() {
+    Scene s;
+    s.name = "glass";
+    s.objects.push_back(floorObject(100.0f));
+    s.objects.push_back(sphere("glass-sphere", {-1.4f, 1.2f, 0}, 1.2f, glass()));
+    s.objects.push_back(meshObject("glass-box", makeBox(), {1.6f, 1.01f, 0.3f}, {1.8f, 2.0f, 1.8f}, 30.0f, glass()));
+    s.objects.push_back(wallObject("background", {0, 6, -5}, 24.0f,
+                                   checker(Rgb{0.9f, 0.3f, 0.2f}, Rgb{0.95f, 0.9f, 0.6f}, 12.0f)));
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.direction = normalize(Vec3{-0.4f, -1.0f, -0.5f});
+    sun.intensity = Rgb{0.9f};
+    s.lights.push_back(sun);
+    s.environment = Environment::constant(kSky);
+    s.camera = camera({0, 2.5f, 8}, {0, 1.2f, 0}, 45.0f);
+    s.cameraPath = orbit({0, 1, 0}, 1.0f);
+    s.defaultFrames = 30;
+    return s;
+}
+
+Scene shapesScene() {
+    Scene s;
+    s.name = "shapes";
+    s.objects.push_back(floorObject(100.0f));
+    s.objects.push_back(meshObject("cone", makeCone(96), {-3, 1.25f, 0}, {2.0f, 2.5f, 2.0f}, 0.0f, mirror()));
+    s.objects.push_back(meshObject("cylinder", makeCylinder(96), {0, 1.25f, -0.5f}, {2.0f, 2.5f, 2.0f}, 0.0f, mirror()));
+    s.objects.push_back(meshObject("torus", makeTorus(0.35f, 0.15f, 96, 48), {3, 0.45f, 0}, {3, 3, 3}, 0.0f, mirror()));
+    s.objects.push_back(sphere("red-ball", {0, 0.6f, 2.5f}, 0.6f, matte(paletteColor(0))));
+    s.objects.push_back(sphere("blue-ball", {-1.8f, 0.5f, 3.0f}, 0.5f, matte(paletteColor(2))));
+    s.lights.push_back(pointLight({4, 10, 8}));
+    s.environment = Environment::constant(kSky);
+    s.camera = camera({0, 4, 10}, {0, 1, 0}, 45.0f);
+    s.cameraPath = orbit({0, 1, 0}, 1.5f);
+    s.defaultFrames = 30;
+    return s;
+}
+
+struct Entry {
+    BuiltinSceneInfo info;
+    std::function<Scene()> make;
+};
+
+std::vector<Entry> registry() {
+    std::vector<Entry> entries;
+    for (int n : kBehindCounts)
+        entries.push_back({{"behind-" + std::to_string(n),
+                            "mirror sphere facing the camera, " + std::to_string(n) +
+                                " mirror spheres behind the camera (Table 5.1)"},
+                           [n] { return behindScene(n); }});
+    for (int n : kGridCounts)
+        entries.push_back({{"grid-" + std::to_string(n),
+                            std::to_string(n) + " mirror spheres in a grid in front of the camera (Table 5.2)"},
+                           [n] { return gridScene(n); }});
+    entries.push_back({{"diffuse-32", "1 mirror + 31 diffuse spheres, framed for 1920x1080 (Table 5.3)"},
+                       [] { return wallOf32("diffuse-32", false); }});
+    entries.push_back({{"reflective-32", "32 mirror spheres, framed for 1920x1080 (Table 5.3)"},
+                       [] { return wallOf32("reflective-32", true); }});
+    entries.push_back({{"room", "checkerboard floor, 10 diffuse objects around a mirror sphere (Fig 5.1)"},
+                       roomScene});
+    entries.push_back({{"parallax", "two facing mirror spheres, a near box and a far wall (Fig 3.5)"},
+                       parallaxScene});
+    entries.push_back({{"glass", "refractive sphere and box before a checkered wall"}, glassScene});
+    entries.push_back({{"shapes", "mirror cone, cylinder and torus (concave) (Fig 5.10/5.11)"}, shapesScene});
+    return entries;
+}
+
+}  // namespace
+
+std::vector<BuiltinSceneInfo> builtinScenes() {
+    std::vector<BuiltinSceneInfo> infos;
+    for (const Entry& e : registry()) infos.push_back(e.info);
+    return infos;
+}
+
+std::optional<Scene> makeBuiltinScene(std::string_view name) {
+    for (const Entry& e : registry())
+        if (e.info.name == name) return e.make();
+    return std::nullopt;
+}
+
+}  // namespace raycache

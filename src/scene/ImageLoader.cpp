@@ -1,0 +1,188 @@
+#include "scene/ImageLoader.h"
+
+#include <stb_image.h>
+#include <tinyexr.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cstddef>
+#include <cstdlib>
+#include <memory>
+#include <string>
+#include <system_error>
+
+#include "core/ColorSpace.h"
+#include "core/Errors.h"
+
+namespace raycache {
+namespace {
+
+enum class ImageFormat { Srgb8, RadianceHdr, OpenExr, Unsupported };
+
+ImageFormat formatOf(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".bmp" || ext == ".tga")
+        return ImageFormat::Srgb8;
+    if (ext == ".hdr") return ImageFormat::RadianceHdr;
+    if (ext == ".exr") return ImageFormat::OpenExr;
+    return ImageFormat::Unsupported;
+}
+
+[[noreturn]] void fail(const std::filesystem::path& path, const std::string& message) {
+    throw InputError(InputLocation{.file = path.string()}, message);
+}
+
+void checkSize(const std::filesystem::path& path, int width, int height) {
+    if (width <= 0 || height <= 0)
+        fail(path, "image has zero size (" + std::to_string(width) + "x" + std::to_string(height) + ")");
+    if (width > maxImageSide || height > maxImageSide)
+        fail(path, "image is " + std::to_string(width) + "x" + std::to_string(height) +
+                       ", larger than the limit of " + std::to_string(maxImageSide) + " per side");
+}
+
+void checkFinite(const std::filesystem::path& path, const Image& image) {
+    for (int y = 0; y < image.height(); ++y)
+        for (int x = 0; x < image.width(); ++x)
+            if (!image.at(x, y).isFinite())
+                fail(path, "pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                               ") is not a finite number");
+}
+
+struct StbFree {
+    void operator()(void* p) const { stbi_image_free(p); }
+};
+
+std::string stbReason() {
+    const char* reason = stbi_failure_reason();
+    return reason ? reason : "unknown error";
+}
+
+// Reads the header first so that a corrupt or huge size is rejected before
+// stb_image allocates for it.
+void checkStbHeader(const std::filesystem::path& path) {
+    int width = 0, height = 0, channels = 0;
+    if (!stbi_info(path.c_str(), &width, &height, &channels))
+        fail(path, "cannot read image: " + stbReason());
+    checkSize(path, width, height);
+}
+
+Image loadSrgb8(const std::filesystem::path& path) {
+    checkStbHeader(path);
+    // stb_image would silently tone-map HDR data to 8 bits; refuse instead.
+    if (stbi_is_hdr(path.c_str())) fail(path, "file holds Radiance HDR data; name it .hdr");
+    int width = 0, height = 0, channels = 0;
+    std::unique_ptr<unsigned char, StbFree> data(stbi_load(path.c_str(), &width, &height, &channels, 3));
+    if (!data) fail(path, "cannot decode image: " + stbReason());
+    checkSize(path, width, height);
+
+    std::array<float, 256> toLinear{};
+    for (std::size_t i = 0; i < toLinear.size(); ++i)
+        toLinear[i] = srgbToLinear(static_cast<float>(i) / 255.0f);
+
+    Image image(width, height);
+    const unsigned char* src = data.get();
+    for (Rgb& px : image.pixels()) {
+        px = Rgb(toLinear[src[0]], toLinear[src[1]], toLinear[src[2]]);
+        src += 3;
+    }
+    return image;
+}
+
+Image loadRadianceHdr(const std::filesystem::path& path) {
+    checkStbHeader(path);
+    // stbi_loadf would accept 8-bit files too, guessing a gamma; only real HDR is linear.
+    if (!stbi_is_hdr(path.c_str())) fail(path, "not a Radiance HDR file");
+    int width = 0, height = 0, channels = 0;
+    std::unique_ptr<float, StbFree> data(stbi_loadf(path.c_str(), &width, &height, &channels, 3));
+    if (!data) fail(path, "cannot decode Radiance HDR image: " + stbReason());
+    checkSize(path, width, height);
+
+    Image image(width, height);
+    const float* src = data.get();
+    for (Rgb& px : image.pixels()) {
+        px = Rgb(src[0], src[1], src[2]);
+        src += 3;
+    }
+    checkFinite(path, image);
+    return image;
+}
+
+// LoadEXR allocates its result with malloc.
+struct MallocFree {
+    void operator()(void* p) const { std::free(p); }
+};
+
+// tinyexr reports errors through a heap string the caller must free.
+std::string takeExrError(const char* err, int code) {
+    std::string message = err ? err : "error code " + std::to_string(code);
+    if (err) FreeEXRErrorMessage(err);
+    while (!message.empty() && std::isspace(static_cast<unsigned char>(message.back()))) message.pop_back();
+    return message;
+}
+
+void checkExrHeader(const std::filesystem::path& path) {
+    EXRVersion version{};
+    int code = ParseEXRVersionFromFile(&version, path.c_str());
+    if (code != TINYEXR_SUCCESS) fail(path, "not an OpenEXR file (" + takeExrError(nullptr, code) + ")");
+    if (version.multipart || version.non_image)
+        fail(path, "multi-part and deep OpenEXR files are not supported");
+    EXRHeader header;
+    InitEXRHeader(&header);
+    const char* err = nullptr;
+    code = ParseEXRHeaderFromFile(&header, &version, path.c_str(), &err);
+    if (code != TINYEXR_SUCCESS) {
+        FreeEXRHeader(&header);
+        fail(path, "cannot read OpenEXR header: " + takeExrError(err, code));
+    }
+    // Widen before subtracting: a corrupt window can overflow int.
+    const long long width = static_cast<long long>(header.data_window.max_x) - header.data_window.min_x + 1;
+    const long long height = static_cast<long long>(header.data_window.max_y) - header.data_window.min_y + 1;
+    FreeEXRHeader(&header);
+    checkSize(path, static_cast<int>(std::clamp(width, -1LL, maxImageSide + 1LL)),
+              static_cast<int>(std::clamp(height, -1LL, maxImageSide + 1LL)));
+}
+
+Image loadOpenExr(const std::filesystem::path& path) {
+    checkExrHeader(path);
+    float* rgba = nullptr;
+    int width = 0, height = 0;
+    const char* err = nullptr;
+    const int code = LoadEXR(&rgba, &width, &height, path.c_str(), &err);
+    std::unique_ptr<float, MallocFree> data(rgba);
+    if (code != TINYEXR_SUCCESS || !data) fail(path, "cannot decode OpenEXR image: " + takeExrError(err, code));
+    checkSize(path, width, height);
+
+    Image image(width, height);
+    const float* src = data.get();
+    for (Rgb& px : image.pixels()) {
+        px = Rgb(src[0], src[1], src[2]);
+        src += 4;
+    }
+    checkFinite(path, image);
+    return image;
+}
+
+}  // namespace
+
+Image loadImageFile(const std::filesystem::path& path) {
+    const ImageFormat format = formatOf(path);
+    if (format == ImageFormat::Unsupported)
+        fail(path, "unsupported image format '" + path.extension().string() +
+                       "' (expected .png, .jpg, .jpeg, .bmp, .tga, .hdr or .exr)");
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) fail(path, "image file not found");
+    if (!std::filesystem::is_regular_file(path, ec)) fail(path, "not a regular file");
+
+    switch (format) {
+        case ImageFormat::Srgb8: return loadSrgb8(path);
+        case ImageFormat::RadianceHdr: return loadRadianceHdr(path);
+        case ImageFormat::OpenExr: return loadOpenExr(path);
+        case ImageFormat::Unsupported: break;
+    }
+    fail(path, "unsupported image format");
+}
+
+}  // namespace raycache

@@ -1,0 +1,779 @@
+#include "scene/SceneFile.h"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <initializer_list>
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/Errors.h"
+#include "core/Transform.h"
+#include "scene/ImageLoader.h"
+#include "scene/JsonPositions.h"
+#include "scene/MeshGenerators.h"
+#include "scene/MeshLoader.h"
+
+namespace raycache {
+
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+using Keys = std::initializer_list<std::string_view>;
+
+// Count limits: far beyond any real scene, low enough that a slipped digit is
+// reported instead of costing minutes or gigabytes.
+constexpr std::size_t kMaxObjects = 100000;
+constexpr std::size_t kMaxMaterials = 10000;
+constexpr std::size_t kMaxKeyframes = 10000;
+constexpr std::size_t kMaxRotations = 64;
+constexpr int kMaxFrames = 1000000;
+constexpr int kMaxFramesPerSegment = 100000;
+constexpr int kMinCacheResolution = 16;
+constexpr int kMaxCacheResolution = 2048;
+// Meshes and images live in their own files, so a scene file is small; a huge
+// one is the wrong file.
+constexpr std::uintmax_t kMaxSceneFileBytes = 64u << 20;
+
+// Shortest text that reads back as the same double ("-1", "0.25", "1e+39"),
+// except that whole numbers are written out ("1000000", not "1e+06").
+std::string formatNumber(double v) {
+    if (v == std::floor(v) && std::fabs(v) < 1e15) return std::to_string(static_cast<long long>(v));
+    std::array<char, 32> buf{};
+    const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), v);
+    return std::string(buf.data(), r.ptr);
+}
+
+// A string as a JSON literal: quoted, and escaped so messages stay one line.
+std::string quote(std::string_view s) {
+    return json(std::string(s)).dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+std::string describeType(const json& v) {
+    switch (v.type()) {
+    case json::value_t::object: return "an object";
+    case json::value_t::array: return "an array";
+    case json::value_t::string: return "a string";
+    case json::value_t::boolean: return "a boolean";
+    case json::value_t::null: return "null";
+    case json::value_t::number_integer:
+    case json::value_t::number_unsigned:
+    case json::value_t::number_float: return "a number";
+    default: return "an unsupported value";
+    }
+}
+
+std::string join(const std::vector<std::string_view>& items) {
+    std::string s;
+    for (const auto& item : items) {
+        if (!s.empty()) s += ", ";
+        s += item;
+    }
+    return s;
+}
+
+// Case-insensitive Levenshtein distance, for "did you mean" suggestions.
+std::size_t editDistance(std::string_view a, std::string_view b) {
+    const auto lower = [](char c) { return static_cast<char>(std::tolower(static_cast<unsigned char>(c))); };
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t above = row[j];
+            const std::size_t substitute = diagonal + (lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1);
+            row[j] = std::min({above + 1, row[j - 1] + 1, substitute});
+            diagonal = above;
+        }
+    }
+    return row[b.size()];
+}
+
+// The candidate closest to `word` if it is close enough to be a likely typo.
+std::optional<std::string_view> closest(std::string_view word, const std::vector<std::string_view>& candidates) {
+    const std::size_t limit = std::max<std::size_t>(1, std::min<std::size_t>(3, word.size() / 3));
+    std::optional<std::string_view> best;
+    std::size_t bestDistance = limit + 1;
+    for (const auto& c : candidates) {
+        const std::size_t d = editDistance(word, c);
+        if (d < bestDistance) {
+            bestDistance = d;
+            best = c;
+        }
+    }
+    return best;
+}
+
+std::string didYouMean(std::string_view word, const std::vector<std::string_view>& candidates) {
+    const auto best = closest(word, candidates);
+    return best ? "did you mean " + quote(*best) + "?" : std::string();
+}
+
+bool contains(Keys keys, std::string_view key) {
+    return std::find(keys.begin(), keys.end(), key) != keys.end();
+}
+
+template <class E>
+struct Choice {
+    std::string_view name;
+    E value;
+};
+
+constexpr std::array<Choice<CameraPathKind>, 4> kPathKinds{{{"static", CameraPathKind::Static},
+                                                           {"orbit", CameraPathKind::Orbit},
+                                                           {"pan", CameraPathKind::Pan},
+                                                           {"keyframes", CameraPathKind::Keyframes}}};
+enum class EnvironmentKind { Color, Equirect, Cube };
+constexpr std::array<Choice<EnvironmentKind>, 3> kEnvironmentKinds{{{"color", EnvironmentKind::Color},
+                                                                    {"equirect", EnvironmentKind::Equirect},
+                                                                    {"cube", EnvironmentKind::Cube}}};
+constexpr std::array<Choice<LightType>, 3> kLightTypes{{{"point", LightType::Point},
+                                                        {"directional", LightType::Directional},
+                                                        {"spot", LightType::Spot}}};
+enum class TextureKind { Image, Checker };
+constexpr std::array<Choice<TextureKind>, 2> kTextureKinds{{{"image", TextureKind::Image},
+                                                            {"checker", TextureKind::Checker}}};
+constexpr std::array<Choice<CacheTechnique>, 3> kCacheTechniques{{{"none", CacheTechnique::None},
+                                                                  {"cct", CacheTechnique::Cct},
+                                                                  {"cdct", CacheTechnique::Cdct}}};
+enum class ShapeKind { Sphere, Mesh, Plane, Box, Cylinder, Cone, Torus, Bowl };
+constexpr std::array<Choice<ShapeKind>, 8> kShapeKinds{{{"sphere", ShapeKind::Sphere},
+                                                        {"mesh", ShapeKind::Mesh},
+                                                        {"plane", ShapeKind::Plane},
+                                                        {"box", ShapeKind::Box},
+                                                        {"cylinder", ShapeKind::Cylinder},
+                                                        {"cone", ShapeKind::Cone},
+                                                        {"torus", ShapeKind::Torus},
+                                                        {"bowl", ShapeKind::Bowl}}};
+
+// A value in the document and its JSON pointer. `value` is null when an
+// optional member is absent.
+struct Node {
+    const json* value = nullptr;
+    std::string ptr;
+
+    explicit operator bool() const { return value != nullptr; }
+    const json& operator*() const { return *value; }
+    const json* operator->() const { return value; }
+};
+
+// Interval a number must lie in; unset ends are unbounded.
+struct Range {
+    std::optional<double> lo, hi;
+    bool loInclusive = true, hiInclusive = true;
+
+    bool contains(double v) const {
+        if (lo && (loInclusive ? v < *lo : v <= *lo)) return false;
+        if (hi && (hiInclusive ? v > *hi : v >= *hi)) return false;
+        return true;
+    }
+    std::string describe() const {
+        if (lo && hi && loInclusive && hiInclusive)
+            return "must be between " + formatNumber(*lo) + " and " + formatNumber(*hi);
+        std::string s = "must be";
+        if (lo) s += std::string(loInclusive ? " >= " : " > ") + formatNumber(*lo);
+        if (lo && hi) s += " and";
+        if (hi) s += std::string(hiInclusive ? " <= " : " < ") + formatNumber(*hi);
+        return s;
+    }
+};
+Range positive() { return {0.0, std::nullopt, false, true}; }
+Range nonNegative() { return {0.0, std::nullopt, true, true}; }
+Range closed(double lo, double hi) { return {lo, hi, true, true}; }
+
+// An object's world transform as written, kept apart so spheres can reject
+// what they cannot represent.
+struct ObjectTransform {
+    Transform matrix;
+    Vec3 translate{0.0f, 0.0f, 0.0f};
+    Node rotate;  // absent when there is no rotation
+    Node scale;   // absent when there is no scale
+    Vec3 scaleFactors{1.0f, 1.0f, 1.0f};
+    bool identity = true;
+};
+
+class SceneFileReader {
+public:
+    SceneFileReader(std::string fileLabel, fs::path baseDir, const JsonPositions& positions)
+        : fileLabel_(std::move(fileLabel)), baseDir_(std::move(baseDir)), positions_(positions) {}
+
+    Scene read(const json& root, const std::string& defaultName) {
+        const Node r{&root, ""};
+        expectObject(r, {"name", "camera", "path", "frames", "environment", "lights", "materials", "objects"});
+        Scene scene;
+        scene.name = defaultName;
+        if (const Node n = child(r, "name")) scene.name = nonEmptyString(n);
+        if (const Node n = child(r, "camera")) scene.camera = camera(n, Camera{});
+
+        int pathFrames = 1;
+        if (const Node n = child(r, "path")) {
+            scene.cameraPath = path(n, scene.camera, pathFrames);
+            if (scene.cameraPath.kind == CameraPathKind::Keyframes) scene.camera = scene.cameraPath.keyframes.front();
+        }
+        scene.defaultFrames = pathFrames;
+        if (const Node n = child(r, "frames")) scene.defaultFrames = integer(n, 1, kMaxFrames);
+
+        if (const Node n = child(r, "environment")) scene.environment = environment(n);
+        if (const Node n = child(r, "lights")) {
+            for (const Node& l : elements(n, 0, kMaxLights, "lights")) scene.lights.push_back(light(l));
+        }
+        if (const Node n = child(r, "materials")) materials(n);
+        objects(required(r, "objects"), scene);
+        return scene;
+    }
+
+private:
+    // ---- errors ---------------------------------------------------------
+
+    [[noreturn]] void fail(const std::string& ptr, const std::string& what, bool atKey = false) const {
+        const TextPosition p = atKey ? positions_.keyAt(ptr) : positions_.valueAt(ptr);
+        std::string oneLine = what;
+        std::replace(oneLine.begin(), oneLine.end(), '\n', ' ');
+        throw InputError(InputLocation{.file = fileLabel_, .line = p.line, .column = p.column, .jsonPath = ptr},
+                         oneLine);
+    }
+    [[noreturn]] void fail(const Node& n, const std::string& what) const { fail(n.ptr, what); }
+    [[noreturn]] void failType(const Node& n, const std::string& expected) const {
+        fail(n, "expected " + expected + ", got " + describeType(*n));
+    }
+
+    // ---- structure ------------------------------------------------------
+
+    Node child(const Node& object, std::string_view key) const {
+        const auto it = object->find(key);
+        return {it == object->end() ? nullptr : &*it, appendJsonPointer(object.ptr, key)};
+    }
+
+    Node required(const Node& object, std::string_view key) const {
+        Node n = child(object, key);
+        if (!n) fail(object, "missing required key " + quote(key));
+        return n;
+    }
+
+    // The first key of object `n`, in file order, that is not in `keys`.
+    // (nlohmann::json keeps members sorted by name, not in file order.)
+    std::optional<std::string> firstKeyNotIn(const Node& n, Keys keys) const {
+        std::optional<std::string> first;
+        std::pair<int, int> firstAt{std::numeric_limits<int>::max(), 0};
+        for (const auto& item : n->items()) {
+            if (contains(keys, item.key())) continue;
+            const TextPosition p = positions_.keyAt(appendJsonPointer(n.ptr, item.key()));
+            if (const std::pair<int, int> at{p.line, p.column}; !first || at < firstAt) {
+                first = item.key();
+                firstAt = at;
+            }
+        }
+        return first;
+    }
+
+    // Checks `n` is an object whose keys are all in `known`.
+    void expectObject(const Node& n, Keys known) const {
+        if (!n->is_object()) failType(n, "an object");
+        if (const auto key = firstKeyNotIn(n, known)) {
+            const std::vector<std::string_view> valid(known);
+            std::string hint = didYouMean(*key, valid);
+            if (hint.empty()) hint = "valid keys: " + join(valid);
+            fail(appendJsonPointer(n.ptr, *key), "unknown key " + quote(*key) + " (" + hint + ")", true);
+        }
+    }
+
+    // Checks that every key of `n` (already checked by expectObject) is used by
+    // its variant, e.g. no "image" in a "color" environment.
+    void expectKeysApply(const Node& n, Keys used, const std::string& variant) const {
+        if (const auto key = firstKeyNotIn(n, used))
+            fail(appendJsonPointer(n.ptr, *key), "key " + quote(*key) + " does not apply to " + variant, true);
+    }
+
+    std::vector<Node> elements(const Node& n, std::size_t minCount, std::size_t maxCount, std::string_view what) const {
+        if (!n->is_array()) failType(n, "an array");
+        const std::size_t count = n->size();
+        if (count < minCount)
+            fail(n, "needs at least " + std::to_string(minCount) + " " + std::string(what) + " (got " +
+                        std::to_string(count) + ")");
+        if (count > maxCount)
+            fail(n, "has " + std::to_string(count) + " " + std::string(what) + ", more than the limit of " +
+                        std::to_string(maxCount));
+        std::vector<Node> out;
+        out.reserve(count);
+        for (std::size_t i = 0; i < count; ++i) out.push_back({&(*n)[i], appendJsonPointer(n.ptr, std::to_string(i))});
+        return out;
+    }
+
+    // ---- scalars --------------------------------------------------------
+
+    double numberValue(const Node& n) const {
+        if (!n->is_number()) failType(n, "a number");
+        const double d = n->get<double>();
+        if (!std::isfinite(d)) fail(n, "must be a finite number");
+        return d;
+    }
+
+    float number(const Node& n, const Range& range = {}) const {
+        const double d = numberValue(n);
+        // Everything downstream is float: a double beyond float range would
+        // silently become infinity.
+        if (std::fabs(d) > static_cast<double>(std::numeric_limits<float>::max()))
+            fail(n, "is too large to be represented (got " + formatNumber(d) + ")");
+        if (!range.contains(d)) fail(n, range.describe() + " (got " + formatNumber(d) + ")");
+        return static_cast<float>(d);
+    }
+
+    int integer(const Node& n, int lo, int hi) const {
+        const double d = numberValue(n);
+        if (d != std::floor(d)) fail(n, "must be a whole number (got " + formatNumber(d) + ")");
+        const Range range = closed(lo, hi);
+        if (!range.contains(d)) fail(n, range.describe() + " (got " + formatNumber(d) + ")");
+        return static_cast<int>(d);
+    }
+
+    std::string nonEmptyString(const Node& n) const {
+        if (!n->is_string()) failType(n, "a string");
+        std::string s = n->get<std::string>();
+        if (s.empty()) fail(n, "must not be empty");
+        return s;
+    }
+
+    template <class E, std::size_t N>
+    E choice(const Node& n, std::string_view what, const std::array<Choice<E>, N>& choices) const {
+        if (!n->is_string()) failType(n, "a string");
+        const std::string s = n->get<std::string>();
+        std::vector<std::string_view> names;
+        for (const auto& c : choices) {
+            if (c.name == s) return c.value;
+            names.push_back(c.name);
+        }
+        std::string message = "unknown " + std::string(what) + " " + quote(s) + " (expected one of: " + join(names);
+        if (const std::string hint = didYouMean(s, names); !hint.empty()) message += "; " + hint;
+        fail(n, message + ")");
+    }
+
+    Vec3 vec3(const Node& n) const {
+        if (!n->is_array() || n->size() != 3) {
+            if (n->is_array()) fail(n, "expected 3 numbers [x, y, z], got " + std::to_string(n->size()));
+            failType(n, "an array of 3 numbers [x, y, z]");
+        }
+        const auto e = elements(n, 3, 3, "numbers");
+        return {number(e[0]), number(e[1]), number(e[2])};
+    }
+
+    Vec3 nonZeroVec3(const Node& n) const {
+        const Vec3 v = vec3(n);
+        if (!(length(v) > 0.0f)) fail(n, "must not be the zero vector");
+        return v;
+    }
+
+    // [r, g, b] or one number for a gray; components are >= 0.
+    Rgb rgb(const Node& n) const {
+        if (n->is_number()) return Rgb(number(n, nonNegative()));
+        if (!n->is_array()) failType(n, "a color ([r, g, b] or a number)");
+        if (n->size() != 3) fail(n, "expected 3 numbers [r, g, b], got " + std::to_string(n->size()));
+        const auto e = elements(n, 3, 3, "numbers");
+        return {number(e[0], nonNegative()), number(e[1], nonNegative()), number(e[2], nonNegative())};
+    }
+
+    // ---- referenced files -----------------------------------------------
+
+    // The file named by string `n`, resolved against the scene file's
+    // directory; fails unless it is an existing regular file.
+    fs::path referencedFile(const Node& n, std::string_view what) const {
+        const std::string written = nonEmptyString(n);
+        const fs::path resolved = baseDir_ / fs::path(written);
+        std::error_code ec;
+        const fs::file_status status = fs::status(resolved, ec);
+        if (!fs::exists(status))
+            fail(n, std::string(what) + " file not found: " + quote(written) + " (looked for " + resolved.string() + ")");
+        if (!fs::is_regular_file(status))
+            fail(n, std::string(what) + " file " + quote(written) + " is not a regular file");
+        return resolved;
+    }
+
+    // Key identifying a file however it was spelled ("a/../m.obj" = "m.obj").
+    static std::string fileKey(const fs::path& p) {
+        std::error_code ec;
+        const fs::path canonical = fs::weakly_canonical(p, ec);
+        return ec ? p.lexically_normal().string() : canonical.string();
+    }
+
+    std::shared_ptr<const Image> image(const Node& n) {
+        const fs::path file = referencedFile(n, "image");
+        std::shared_ptr<const Image>& cached = images_[fileKey(file)];
+        if (!cached) {
+            try {
+                cached = std::make_shared<const Image>(loadImageFile(file));
+            } catch (const InputError& e) {
+                fail(n, "cannot load image " + quote(n->get<std::string>()) + ": " + e.what());
+            }
+        }
+        return cached;
+    }
+
+    std::shared_ptr<const TriangleMesh> meshFile(const Node& n) {
+        const fs::path file = referencedFile(n, "mesh");
+        std::shared_ptr<const TriangleMesh>& cached = meshFiles_[fileKey(file)];
+        if (!cached) {
+            TriangleMesh mesh;
+            try {
+                mesh = loadMeshFile(file);
+            } catch (const InputError& e) {
+                fail(n, "cannot load mesh " + quote(n->get<std::string>()) + ": " + e.what());
+            }
+            if (const std::string problem = validateMesh(mesh); !problem.empty())
+                fail(n, "mesh " + quote(n->get<std::string>()) + " is unusable: " + problem);
+            cached = std::make_shared<const TriangleMesh>(std::move(mesh));
+        }
+        return cached;
+    }
+
+    std::shared_ptr<const TriangleMesh> generatedMesh(ShapeKind kind) {
+        std::shared_ptr<const TriangleMesh>& cached = generated_[kind];
+        if (!cached) {
+            switch (kind) {
+            case ShapeKind::Plane: cached = std::make_shared<const TriangleMesh>(makePlane()); break;
+            case ShapeKind::Box: cached = std::make_shared<const TriangleMesh>(makeBox()); break;
+            case ShapeKind::Cylinder: cached = std::make_shared<const TriangleMesh>(makeCylinder()); break;
+            case ShapeKind::Cone: cached = std::make_shared<const TriangleMesh>(makeCone()); break;
+            case ShapeKind::Torus: cached = std::make_shared<const TriangleMesh>(makeTorus()); break;
+            case ShapeKind::Bowl: cached = std::make_shared<const TriangleMesh>(makeBowl()); break;
+            case ShapeKind::Sphere:
+            case ShapeKind::Mesh: break;  // not generated
+            }
+        }
+        return cached;
+    }
+
+    // ---- sections -------------------------------------------------------
+
+    // A camera; members not given keep `defaults`.
+    Camera camera(const Node& n, const Camera& defaults) const {
+        expectObject(n, {"position", "lookAt", "up", "fov"});
+        Camera c = defaults;
+        const Node position = child(n, "position"), lookAt = child(n, "lookAt"), up = child(n, "up");
+        if (position) c.position = vec3(position);
+        if (lookAt) c.lookAt = vec3(lookAt);
+        if (up) c.up = nonZeroVec3(up);
+        if (const Node fov = child(n, "fov")) c.verticalFovDeg = number(fov, {0.0, 180.0, false, false});
+
+        const Vec3 view = c.lookAt - c.position;
+        if (!(length(view) > 0.0f)) fail(lookAt ? lookAt : position ? position : n, "the camera looks at its own position");
+        const float sine = length(cross(normalize(view), normalize(c.up)));
+        if (!(sine > 1e-4f))
+            fail(up ? up : n, up ? "the up vector is parallel to the viewing direction"
+                                 : "the up vector (default [0, 1, 0]) is parallel to the viewing direction; "
+                                   "give \"up\"");
+        return c;
+    }
+
+    CameraPath path(const Node& n, const Camera& base, int& frames) const {
+        expectObject(n, {"type", "center", "degreesPerFrame", "keyframes", "framesPerSegment"});
+        const Node type = required(n, "type");
+        CameraPath p;
+        p.kind = choice(type, "path type", kPathKinds);
+        const std::string variant = "path type " + quote(type->get<std::string>());
+        switch (p.kind) {
+        case CameraPathKind::Static: expectKeysApply(n, {"type"}, variant); break;
+        case CameraPathKind::Orbit: expectKeysApply(n, {"type", "center", "degreesPerFrame"}, variant); break;
+        case CameraPathKind::Pan: expectKeysApply(n, {"type", "degreesPerFrame"}, variant); break;
+        case CameraPathKind::Keyframes: expectKeysApply(n, {"type", "keyframes", "framesPerSegment"}, variant); break;
+        }
+        if (const Node c = child(n, "center")) p.center = vec3(c);
+        if (const Node d = child(n, "degreesPerFrame")) {
+            p.degreesPerFrame = number(d, closed(-360.0, 360.0));
+            if (p.degreesPerFrame == 0.0f) fail(d, "must not be 0 (use a static path)");
+        }
+        if (const Node f = child(n, "framesPerSegment")) p.framesPerSegment = integer(f, 1, kMaxFramesPerSegment);
+        frames = 1;
+        if (p.kind == CameraPathKind::Orbit || p.kind == CameraPathKind::Pan) {
+            // One full turn.
+            frames = std::max(1, static_cast<int>(std::lround(360.0 / std::fabs(static_cast<double>(p.degreesPerFrame)))));
+        }
+        if (p.kind == CameraPathKind::Keyframes) {
+            for (const Node& k : elements(required(n, "keyframes"), 2, kMaxKeyframes, "keyframes"))
+                p.keyframes.push_back(camera(k, base));
+            const long long length =
+                static_cast<long long>(p.keyframes.size() - 1) * p.framesPerSegment + 1;
+            if (length > kMaxFrames)
+                fail(child(n, "framesPerSegment") ? child(n, "framesPerSegment") : n,
+                     "makes the path " + std::to_string(length) + " frames long, more than the limit of " +
+                         std::to_string(kMaxFrames));
+            frames = static_cast<int>(length);
+        }
+        return p;
+    }
+
+    Environment environment(const Node& n) {
+        expectObject(n, {"type", "color", "image", "faces"});
+        const Node type = required(n, "type");
+        const EnvironmentKind kind = choice(type, "environment type", kEnvironmentKinds);
+        const std::string variant = "environment type " + quote(type->get<std::string>());
+        switch (kind) {
+        case EnvironmentKind::Color:
+            expectKeysApply(n, {"type", "color"}, variant);
+            if (const Node c = child(n, "color")) return Environment::constant(rgb(c));
+            return Environment{};
+        case EnvironmentKind::Equirect:
+            expectKeysApply(n, {"type", "image"}, variant);
+            return Environment::equirectangular(image(required(n, "image")));
+        case EnvironmentKind::Cube: {
+            expectKeysApply(n, {"type", "faces"}, variant);
+            const Node faces = required(n, "faces");
+            if (!faces->is_array()) failType(faces, "an array of 6 image files (+x, -x, +y, -y, +z, -z)");
+            if (faces->size() != 6)
+                fail(faces, "expected 6 image files (+x, -x, +y, -y, +z, -z), got " + std::to_string(faces->size()));
+            std::array<std::shared_ptr<const Image>, 6> images;
+            const auto e = elements(faces, 6, 6, "faces");
+            for (std::size_t i = 0; i < 6; ++i) {
+                images[i] = image(e[i]);
+                const Image& img = *images[i];
+                if (img.width() != img.height())
+                    fail(e[i], "cube face must be square (got " + std::to_string(img.width()) + "x" +
+                                   std::to_string(img.height()) + ")");
+                if (img.width() != images[0]->width())
+                    fail(e[i], "cube faces must all be the same size (this one is " + std::to_string(img.width()) +
+                                   ", face 0 is " + std::to_string(images[0]->width()) + ")");
+            }
+            return Environment::cubeFaces(std::move(images));
+        }
+        }
+        return Environment{};
+    }
+
+    Light light(const Node& n) const {
+        expectObject(n, {"type", "position", "direction", "intensity", "cone", "falloff"});
+        const Node type = required(n, "type");
+        Light l;
+        l.type = choice(type, "light type", kLightTypes);
+        const std::string variant = "light type " + quote(type->get<std::string>());
+        switch (l.type) {
+        case LightType::Point: expectKeysApply(n, {"type", "position", "intensity"}, variant); break;
+        case LightType::Directional: expectKeysApply(n, {"type", "direction", "intensity"}, variant); break;
+        case LightType::Spot: break;  // uses every key
+        }
+        if (l.type != LightType::Directional) l.position = vec3(required(n, "position"));
+        if (l.type != LightType::Point) l.direction = normalize(nonZeroVec3(required(n, "direction")));
+        if (const Node i = child(n, "intensity")) l.intensity = rgb(i);
+        if (l.type == LightType::Spot) {
+            if (const Node c = child(n, "cone")) l.coneAngleDeg = number(c, {0.0, 90.0, false, true});
+            l.falloffAngleDeg = std::min(l.falloffAngleDeg, l.coneAngleDeg);
+            if (const Node f = child(n, "falloff"))
+                l.falloffAngleDeg = number(f, closed(0.0, static_cast<double>(l.coneAngleDeg)));
+        }
+        return l;
+    }
+
+    Material material(const Node& n) {
+        expectObject(n, {"ambient", "diffuse", "texture", "specular", "shininess", "kr", "kt", "ior", "cache"});
+        Material m;
+        if (const Node v = child(n, "ambient")) m.ambient = rgb(v);
+        if (const Node v = child(n, "diffuse")) m.diffuse = rgb(v);
+        if (const Node v = child(n, "texture")) m.diffuseTexture = texture(v);
+        if (const Node v = child(n, "specular")) m.specular = rgb(v);
+        if (const Node v = child(n, "shininess")) m.shininess = number(v, nonNegative());
+        if (const Node v = child(n, "kr")) m.reflectivity = number(v, closed(0.0, 1.0));
+        if (const Node v = child(n, "kt")) m.transmissivity = number(v, closed(0.0, 1.0));
+        if (const Node v = child(n, "ior")) m.ior = number(v, positive());
+        if (const Node v = child(n, "cache")) m.cache = cache(v);
+        return m;
+    }
+
+    Texture texture(const Node& n) {
+        expectObject(n, {"type", "file", "even", "odd", "scale"});
+        const Node type = required(n, "type");
+        const TextureKind kind = choice(type, "texture type", kTextureKinds);
+        const std::string variant = "texture type " + quote(type->get<std::string>());
+        if (kind == TextureKind::Image) {
+            expectKeysApply(n, {"type", "file"}, variant);
+            return Texture::image(image(required(n, "file")));
+        }
+        expectKeysApply(n, {"type", "even", "odd", "scale"}, variant);
+        Checkerboard c;
+        if (const Node v = child(n, "even")) c.even = rgb(v);
+        if (const Node v = child(n, "odd")) c.odd = rgb(v);
+        if (const Node v = child(n, "scale")) c.squaresPerUnit = number(v, positive());
+        return Texture::checkerboard(c);
+    }
+
+    CacheSettings cache(const Node& n) const {
+        expectObject(n, {"technique", "resolution"});
+        CacheSettings c;
+        if (const Node v = child(n, "technique")) c.technique = choice(v, "cache technique", kCacheTechniques);
+        if (const Node v = child(n, "resolution")) c.faceResolution = integer(v, kMinCacheResolution, kMaxCacheResolution);
+        return c;
+    }
+
+    void materials(const Node& n) {
+        if (!n->is_object()) failType(n, "an object mapping material names to materials");
+        if (n->size() > kMaxMaterials)
+            fail(n, "has " + std::to_string(n->size()) + " materials, more than the limit of " +
+                        std::to_string(kMaxMaterials));
+        for (const auto& item : n->items()) {
+            const Node m{&item.value(), appendJsonPointer(n.ptr, item.key())};
+            if (item.key().empty()) fail(m.ptr, "material names must not be empty", true);
+            namedMaterials_.emplace(item.key(), material(m));
+        }
+    }
+
+    Material objectMaterial(const Node& n) {
+        if (n->is_object()) return material(n);
+        if (!n->is_string()) failType(n, "a material name or a material object");
+        const std::string name = n->get<std::string>();
+        const auto it = namedMaterials_.find(name);
+        if (it != namedMaterials_.end()) return it->second;
+        if (namedMaterials_.empty()) fail(n, "unknown material " + quote(name) + " (the file defines no materials)");
+        std::vector<std::string_view> names;
+        for (const auto& [k, v] : namedMaterials_) names.push_back(k);
+        std::string hint = didYouMean(name, names);
+        if (hint.empty()) hint = "defined: " + join(names);
+        fail(n, "unknown material " + quote(name) + " (" + hint + ")");
+    }
+
+    ObjectTransform transform(const Node& n) const {
+        expectObject(n, {"translate", "rotate", "scale"});
+        ObjectTransform t;
+        Transform rotation;
+        if (const Node v = child(n, "translate")) t.translate = vec3(v);
+        if (const Node v = child(n, "rotate")) {
+            t.rotate = v;
+            if (v->is_array()) {
+                // Applied in the order listed: the first entry acts first.
+                for (const Node& r : elements(v, 0, kMaxRotations, "rotations")) rotation = rotate(r) * rotation;
+            } else if (v->is_object()) {
+                rotation = rotate(v);
+            } else {
+                failType(v, "a rotation {\"axis\", \"degrees\"} or an array of them");
+            }
+        }
+        if (const Node v = child(n, "scale")) {
+            t.scale = v;
+            if (v->is_number()) {
+                t.scaleFactors = Vec3(1.0f, 1.0f, 1.0f) * number(v, positive());
+            } else if (v->is_array() && v->size() == 3) {
+                const auto e = elements(v, 3, 3, "numbers");
+                t.scaleFactors = {number(e[0], positive()), number(e[1], positive()), number(e[2], positive())};
+            } else {
+                failType(v, "a number or an array of 3 numbers [x, y, z]");
+            }
+        }
+        t.matrix = Transform::translate(t.translate) * rotation * Transform::scale(t.scaleFactors);
+        t.identity = !t.rotate && t.translate == Vec3{} && t.scaleFactors == Vec3(1.0f, 1.0f, 1.0f);
+        return t;
+    }
+
+    Transform rotate(const Node& n) const {
+        expectObject(n, {"axis", "degrees"});
+        const Vec3 axis = nonZeroVec3(required(n, "axis"));
+        return Transform::rotate(axis, number(required(n, "degrees")));
+    }
+
+    void objects(const Node& n, Scene& scene) {
+        std::unordered_map<std::string, std::string> names;  // name -> pointer of its first use
+        for (const Node& o : elements(n, 0, kMaxObjects, "objects")) {
+            expectObject(o, {"name", "shape", "center", "radius", "file", "transform", "material"});
+            const Node shape = required(o, "shape");
+            const ShapeKind kind = choice(shape, "shape", kShapeKinds);
+            const std::string variant = "shape " + quote(shape->get<std::string>());
+            switch (kind) {
+            case ShapeKind::Sphere:
+                expectKeysApply(o, {"name", "shape", "center", "radius", "transform", "material"}, variant);
+                break;
+            case ShapeKind::Mesh:
+                expectKeysApply(o, {"name", "shape", "file", "transform", "material"}, variant);
+                break;
+            default: expectKeysApply(o, {"name", "shape", "transform", "material"}, variant); break;
+            }
+
+            SceneObject object;
+            const Node name = child(o, "name");
+            // Unnamed objects get a name no hand-written one is likely to clash with.
+            object.name = name ? nonEmptyString(name)
+                               : shape->get<std::string>() + "#" + std::to_string(scene.objects.size());
+            const auto [it, isNew] = names.emplace(object.name, name ? name.ptr : o.ptr);
+            if (!isNew)
+                fail(name ? name : o, "duplicate object name " + quote(object.name) + " (also used by " + it->second + ")");
+
+            ObjectTransform t;
+            if (const Node v = child(o, "transform")) t = transform(v);
+
+            if (kind == ShapeKind::Sphere) {
+                if (t.rotate) fail(t.rotate, "a sphere cannot be rotated (only translate and a uniform scale apply)");
+                const Vec3& s = t.scaleFactors;
+                if (t.scale && !(s.x == s.y && s.y == s.z))
+                    fail(t.scale, "a sphere needs a uniform scale (got [" + formatNumber(s.x) + ", " +
+                                      formatNumber(s.y) + ", " + formatNumber(s.z) + "])");
+                Sphere sphere;
+                if (const Node v = child(o, "center")) sphere.center = vec3(v);
+                if (const Node v = child(o, "radius")) sphere.radius = number(v, positive());
+                sphere.center = t.matrix.applyToPoint(sphere.center);
+                sphere.radius *= s.x;
+                object.shape = sphere;
+                object.origin = sphere.center;
+            } else {
+                std::shared_ptr<const TriangleMesh> mesh =
+                    kind == ShapeKind::Mesh ? meshFile(required(o, "file")) : generatedMesh(kind);
+                // Instances share the untransformed mesh when they can.
+                if (!t.identity) mesh = std::make_shared<const TriangleMesh>(transformed(*mesh, t.matrix));
+                object.shape = MeshShape{std::move(mesh)};
+                object.origin = t.translate;
+            }
+            if (const Node v = child(o, "material")) object.material = objectMaterial(v);
+            scene.objects.push_back(std::move(object));
+        }
+    }
+
+    std::string fileLabel_;
+    fs::path baseDir_;
+    const JsonPositions& positions_;
+    std::map<std::string, Material> namedMaterials_;  // ordered: suggestions list names stably
+    std::unordered_map<std::string, std::shared_ptr<const Image>> images_;
+    std::unordered_map<std::string, std::shared_ptr<const TriangleMesh>> meshFiles_;
+    std::map<ShapeKind, std::shared_ptr<const TriangleMesh>> generated_;
+};
+
+std::string readSceneText(const fs::path& path) {
+    const InputLocation where{.file = path.string()};
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);
+    if (!fs::exists(status)) throw InputError(where, "scene file not found");
+    if (!fs::is_regular_file(status)) throw InputError(where, "scene file is not a regular file");
+    const std::uintmax_t size = fs::file_size(path, ec);
+    if (!ec && size > kMaxSceneFileBytes)
+        throw InputError(where, "scene file is " + std::to_string(size) + " bytes, more than the limit of " +
+                                    std::to_string(kMaxSceneFileBytes));
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(where, "cannot open scene file");
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw InputError(where, "cannot read scene file");
+    return std::move(text).str();
+}
+
+}  // namespace
+
+Scene loadSceneFile(const fs::path& path) {
+    const std::string text = readSceneText(path);
+    const JsonPositions positions(text);
+    if (const auto& e = positions.syntaxError())
+        throw InputError(InputLocation{.file = path.string(), .line = e->position.line,
+                                       .column = e->position.column, .jsonPath = e->pointer},
+                         e->message);
+    const json root = json::parse(text);  // cannot fail: the same text was just indexed
+    SceneFileReader reader(path.string(), path.parent_path(), positions);
+    return reader.read(root, path.stem().string());
+}
+
+}  // namespace raycache

@@ -1,0 +1,37 @@
+#include "scene/TriangleMesh.h"
+
+namespace raycache {
+
+TriangleMesh transformed(const TriangleMesh& mesh, const Transform& t) {
+    TriangleMesh out = mesh;
+    for (Vec3& p : out.positions) p = t.applyToPoint(p);
+    for (Vec3& n : out.normals) n = normalize(t.applyToNormal(n));
+    if (t.determinant() < 0.0f) {
+        // A mirroring transform flips winding; restore counter-clockwise fronts.
+        for (auto& tri : out.triangles) std::swap(tri[1], tri[2]);
+    }
+    return out;
+}
+
+std::string validateMesh(const TriangleMesh& mesh) {
+    if (mesh.triangles.empty()) return "mesh has no triangles";
+    if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size())
+        return "mesh has " + std::to_string(mesh.normals.size()) + " normals for " +
+               std::to_string(mesh.positions.size()) + " vertices";
+    if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size())
+        return "mesh has " + std::to_string(mesh.uvs.size()) + " texture coordinates for " +
+               std::to_string(mesh.positions.size()) + " vertices";
+    for (const Vec3& p : mesh.positions)
+        if (!isFinite(p)) return "mesh has a non-finite vertex position";
+    for (const Vec3& n : mesh.normals)
+        if (!isFinite(n)) return "mesh has a non-finite normal";
+    const auto count = static_cast<std::uint32_t>(mesh.positions.size());
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+        for (std::uint32_t idx : mesh.triangles[i])
+            if (idx >= count)
+                return "triangle " + std::to_string(i) + " uses vertex " + std::to_string(idx) +
+                       " but the mesh has " + std::to_string(count) + " vertices";
+    return {};
+}
+
+}  // namespace raycache

@@ -1,0 +1,289 @@
+#include "trace/TraceScene.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "core/Errors.h"
+
+namespace raycache {
+
+namespace {
+
+void throwOnDeviceError(RTCDevice device, const char* what) {
+    const RTCError err = rtcGetDeviceError(device);
+    if (err != RTC_ERROR_NONE)
+        throw RuntimeError(std::string("Embree failed while ") + what + " (error " +
+                           std::to_string(static_cast<int>(err)) + ")");
+}
+
+// Spheres are Embree user geometry with our own intersection code: it beats
+// Embree's built-in sphere points here (see docs/performance.md), and keeps
+// the arithmetic in one readable place.
+void sphereBounds(const RTCBoundsFunctionArguments* args) {
+    const auto* sphere = static_cast<const Sphere*>(args->geometryUserPtr);
+    args->bounds_o->lower_x = sphere->center.x - sphere->radius;
+    args->bounds_o->lower_y = sphere->center.y - sphere->radius;
+    args->bounds_o->lower_z = sphere->center.z - sphere->radius;
+    args->bounds_o->upper_x = sphere->center.x + sphere->radius;
+    args->bounds_o->upper_y = sphere->center.y + sphere->radius;
+    args->bounds_o->upper_z = sphere->center.z + sphere->radius;
+}
+
+// Nearest root of |o + t d - c| = r inside (tnear, tfar), or a negative value.
+// Solved relative to the centre with the numerically stable quadratic form.
+inline float sphereRoot(const Sphere& s, float ox, float oy, float oz, float dx, float dy, float dz, float tnear,
+                        float tfar) {
+    const float px = ox - s.center.x, py = oy - s.center.y, pz = oz - s.center.z;
+    const float a = dx * dx + dy * dy + dz * dz;
+    const float b = px * dx + py * dy + pz * dz;
+    // c computed as |p - (p.d/a) d|^2 - r^2 loses less precision far from the sphere.
+    const float k = b / a;
+    const float qx = px - k * dx, qy = py - k * dy, qz = pz - k * dz;
+    const float disc = s.radius * s.radius - (qx * qx + qy * qy + qz * qz);
+    if (disc < 0.0f) return -1.0f;
+    const float h = std::sqrt(a * disc);
+    const float q = b > 0.0f ? -(b + h) : -(b - h);
+    float t0 = (b > 0.0f ? q / a : ((px * px + py * py + pz * pz) - s.radius * s.radius) / q);
+    float t1 = (b > 0.0f ? ((px * px + py * py + pz * pz) - s.radius * s.radius) / q : q / a);
+    if (t0 > t1) std::swap(t0, t1);
+    if (t0 >= tnear && t0 <= tfar) return t0;
+    if (t1 >= tnear && t1 <= tfar) return t1;
+    return -1.0f;
+}
+
+void sphereIntersect(const RTCIntersectFunctionNArguments* args) {
+    const auto* sphere = static_cast<const Sphere*>(args->geometryUserPtr);
+    RTCRayHitN* rayhit = args->rayhit;
+    RTCRayN* ray = RTCRayHitN_RayN(rayhit, args->N);
+    RTCHitN* hit = RTCRayHitN_HitN(rayhit, args->N);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (!args->valid[i]) continue;
+        const float t = sphereRoot(*sphere, RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i),
+                                   RTCRayN_org_z(ray, args->N, i), RTCRayN_dir_x(ray, args->N, i),
+                                   RTCRayN_dir_y(ray, args->N, i), RTCRayN_dir_z(ray, args->N, i),
+                                   RTCRayN_tnear(ray, args->N, i), RTCRayN_tfar(ray, args->N, i));
+        if (!(t >= 0.0f)) continue;
+        RTCRayN_tfar(ray, args->N, i) = t;
+        // Geometric normal (unnormalized), as Embree reports for its own primitives.
+        RTCHitN_Ng_x(hit, args->N, i) = RTCRayN_org_x(ray, args->N, i) + t * RTCRayN_dir_x(ray, args->N, i) - sphere->center.x;
+        RTCHitN_Ng_y(hit, args->N, i) = RTCRayN_org_y(ray, args->N, i) + t * RTCRayN_dir_y(ray, args->N, i) - sphere->center.y;
+        RTCHitN_Ng_z(hit, args->N, i) = RTCRayN_org_z(ray, args->N, i) + t * RTCRayN_dir_z(ray, args->N, i) - sphere->center.z;
+        RTCHitN_geomID(hit, args->N, i) = args->geomID;
+        RTCHitN_primID(hit, args->N, i) = args->primID;
+        RTCHitN_u(hit, args->N, i) = 0.0f;
+        RTCHitN_v(hit, args->N, i) = 0.0f;
+        RTCHitN_instID(hit, args->N, i, 0) = RTC_INVALID_GEOMETRY_ID;
+    }
+}
+
+void sphereOccluded(const RTCOccludedFunctionNArguments* args) {
+    const auto* sphere = static_cast<const Sphere*>(args->geometryUserPtr);
+    RTCRayN* ray = args->ray;
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (!args->valid[i]) continue;
+        const float t = sphereRoot(*sphere, RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i),
+                                   RTCRayN_org_z(ray, args->N, i), RTCRayN_dir_x(ray, args->N, i),
+                                   RTCRayN_dir_y(ray, args->N, i), RTCRayN_dir_z(ray, args->N, i),
+                                   RTCRayN_tnear(ray, args->N, i), RTCRayN_tfar(ray, args->N, i));
+        if (t >= 0.0f) RTCRayN_tfar(ray, args->N, i) = -std::numeric_limits<float>::infinity();
+    }
+}
+
+RTCGeometry makeSphereGeometry(RTCDevice device, const Sphere& sphere) {
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(geom, 1);
+    // `sphere` is the TraceScene's own copy, which lives as long as the geometry.
+    rtcSetGeometryUserData(geom, const_cast<Sphere*>(&sphere));
+    rtcSetGeometryBoundsFunction(geom, sphereBounds, nullptr);
+    rtcSetGeometryIntersectFunction(geom, sphereIntersect);
+    rtcSetGeometryOccludedFunction(geom, sphereOccluded);
+    return geom;
+}
+
+RTCGeometry makeMeshGeometry(RTCDevice device, const TriangleMesh& mesh) {
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    // rtcSetNewGeometryBuffer pads the vertex buffer for Embree's 16-byte loads itself.
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+        vertices[3 * i + 0] = mesh.positions[i].x;
+        vertices[3 * i + 1] = mesh.positions[i].y;
+        vertices[3 * i + 2] = mesh.positions[i].z;
+    }
+    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.triangles.size()));
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+        std::copy(mesh.triangles[i].begin(), mesh.triangles[i].end(), indices + 3 * i);
+    return geom;
+}
+
+void toEmbree(const Ray& ray, RTCRayHit& rh) {
+    rh.ray.org_x = ray.origin.x;
+    rh.ray.org_y = ray.origin.y;
+    rh.ray.org_z = ray.origin.z;
+    rh.ray.dir_x = ray.direction.x;
+    rh.ray.dir_y = ray.direction.y;
+    rh.ray.dir_z = ray.direction.z;
+    rh.ray.tnear = ray.tNear;
+    rh.ray.tfar = ray.tFar;
+    rh.ray.time = 0.0f;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+}
+
+TraceHit fromEmbree(const RTCRayHit& rh) {
+    TraceHit h;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
+    h.t = rh.ray.tfar;
+    h.objectId = static_cast<int>(rh.hit.geomID);
+    h.primitiveId = static_cast<int>(rh.hit.primID);
+    h.u = rh.hit.u;
+    h.v = rh.hit.v;
+    return h;
+}
+
+// Loads up to 8 rays into a packet; lanes past rays.size() repeat the last
+// ray and are masked off in `valid`.
+void fillPacket(std::span<const Ray> rays, int* valid, RTCRay8& packet) {
+    const std::size_t count = rays.size();
+    for (std::size_t k = 0; k < 8; ++k) {
+        valid[k] = k < count ? -1 : 0;
+        const Ray& ray = rays[std::min(k, count - 1)];
+        packet.org_x[k] = ray.origin.x;
+        packet.org_y[k] = ray.origin.y;
+        packet.org_z[k] = ray.origin.z;
+        packet.dir_x[k] = ray.direction.x;
+        packet.dir_y[k] = ray.direction.y;
+        packet.dir_z[k] = ray.direction.z;
+        packet.tnear[k] = ray.tNear;
+        packet.tfar[k] = ray.tFar;
+        packet.time[k] = 0.0f;
+        packet.mask[k] = 0xFFFFFFFFu;
+        packet.id[k] = 0;
+        packet.flags[k] = 0;
+    }
+}
+
+}  // namespace
+
+struct TraceScene::Impl {
+    RTCDevice device = nullptr;
+    RTCScene scene = nullptr;
+    // Sphere data read by the intersection callbacks; sized once, never moved.
+    std::vector<Sphere> spheres;
+
+    ~Impl() {
+        if (scene) rtcReleaseScene(scene);
+        if (device) rtcReleaseDevice(device);
+    }
+};
+
+TraceScene::TraceScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
+    impl_->device = rtcNewDevice(nullptr);
+    if (!impl_->device) throw RuntimeError("Embree could not create a device");
+    impl_->scene = rtcNewScene(impl_->device);
+    rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
+    impl_->spheres.resize(scene.objects.size());
+    for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+        const SceneObject& object = scene.objects[i];
+        RTCGeometry geom = nullptr;
+        if (const auto* sphere = std::get_if<Sphere>(&object.shape)) {
+            impl_->spheres[i] = *sphere;
+            geom = makeSphereGeometry(impl_->device, impl_->spheres[i]);
+        } else {
+            geom = makeMeshGeometry(impl_->device, *std::get<MeshShape>(object.shape).mesh);
+        }
+        rtcCommitGeometry(geom);
+        // Geometry ids equal object indices, so hits name objects directly.
+        rtcAttachGeometryByID(impl_->scene, geom, static_cast<unsigned>(i));
+        rtcReleaseGeometry(geom);
+    }
+    rtcCommitScene(impl_->scene);
+    throwOnDeviceError(impl_->device, "building the scene");
+}
+
+TraceScene::~TraceScene() = default;
+
+void* TraceScene::embreeScene() const { return impl_->scene; }
+
+TraceHit TraceScene::intersect(const Ray& ray) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh;
+    toEmbree(ray, rh);
+    rtcIntersect1(impl_->scene, &context, &rh);
+    return fromEmbree(rh);
+}
+
+bool TraceScene::occluded(const Ray& ray) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay r;
+    r.org_x = ray.origin.x;
+    r.org_y = ray.origin.y;
+    r.org_z = ray.origin.z;
+    r.dir_x = ray.direction.x;
+    r.dir_y = ray.direction.y;
+    r.dir_z = ray.direction.z;
+    r.tnear = ray.tNear;
+    r.tfar = ray.tFar;
+    r.time = 0.0f;
+    r.mask = 0xFFFFFFFFu;
+    r.id = 0;
+    r.flags = 0;
+    rtcOccluded1(impl_->scene, &context, &r);
+    // Embree marks an occluded ray by setting tfar to -inf.
+    return r.tfar < 0.0f;
+}
+
+void TraceScene::intersectCoherent(std::span<const Ray> rays, std::span<TraceHit> hits) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    alignas(32) RTCRayHit8 packet;
+    alignas(32) int valid[8];
+    for (std::size_t base = 0; base < rays.size(); base += 8) {
+        const std::size_t count = std::min<std::size_t>(8, rays.size() - base);
+        fillPacket(rays.subspan(base, count), valid, packet.ray);
+        for (std::size_t k = 0; k < 8; ++k) {
+            packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+            packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+        }
+        rtcIntersect8(valid, impl_->scene, &context, &packet);
+        for (std::size_t k = 0; k < count; ++k) {
+            TraceHit& h = hits[base + k];
+            h = TraceHit{};
+            if (packet.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) continue;
+            h.t = packet.ray.tfar[k];
+            h.objectId = static_cast<int>(packet.hit.geomID[k]);
+            h.primitiveId = static_cast<int>(packet.hit.primID[k]);
+            h.u = packet.hit.u[k];
+            h.v = packet.hit.v[k];
+        }
+    }
+}
+
+void TraceScene::occludedCoherent(std::span<const Ray> rays, std::span<unsigned char> occluded) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    alignas(32) RTCRay8 packet;
+    alignas(32) int valid[8];
+    for (std::size_t base = 0; base < rays.size(); base += 8) {
+        const std::size_t count = std::min<std::size_t>(8, rays.size() - base);
+        fillPacket(rays.subspan(base, count), valid, packet);
+        rtcOccluded8(valid, impl_->scene, &context, &packet);
+        // Embree marks an occluded ray by setting tfar to -inf.
+        for (std::size_t k = 0; k < count; ++k) occluded[base + k] = packet.tfar[k] < 0.0f ? 1 : 0;
+    }
+}
+
+}  // namespace raycache

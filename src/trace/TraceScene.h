@@ -1,0 +1,43 @@
+#pragma once
+// The ray tracer's view of a scene: an Embree BVH over every object (spheres
+// as analytic sphere primitives, meshes as triangles). This folder is the only
+// code that includes Embree.
+#include <memory>
+#include <span>
+
+#include "core/Ray.h"
+#include "scene/Scene.h"
+#include "trace/TraceHit.h"
+
+namespace raycache {
+
+class TraceScene {
+public:
+    // Builds the acceleration structure from a copy of the geometry; `scene`
+    // may go away afterwards. Throws RuntimeError if Embree fails.
+    explicit TraceScene(const Scene& scene);
+    ~TraceScene();
+    TraceScene(const TraceScene&) = delete;
+    TraceScene& operator=(const TraceScene&) = delete;
+
+    // Nearest hit in [ray.tNear, ray.tFar]. Thread-safe.
+    TraceHit intersect(const Ray& ray) const;
+    // True if anything lies in [ray.tNear, ray.tFar]. Thread-safe.
+    bool occluded(const Ray& ray) const;
+    // Nearest hits for a batch of coherent rays (e.g. one tile's primary
+    // rays), traced as 8-wide packets. hits.size() must equal rays.size().
+    void intersectCoherent(std::span<const Ray> rays, std::span<TraceHit> hits) const;
+
+    // Occlusion for a batch of coherent rays (e.g. one tile's shadow rays
+    // toward one light), as 8-wide packets: occluded[i] = 1 if rays[i] is blocked.
+    void occludedCoherent(std::span<const Ray> rays, std::span<unsigned char> occluded) const;
+
+    // Escape hatch for code in src/trace/ that needs the raw RTCScene.
+    void* embreeScene() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace raycache

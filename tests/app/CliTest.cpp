@@ -1,0 +1,143 @@
+// The raycache binary as a user meets it: exit codes, one-line errors, and no
+// partial output files.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct RunResult {
+    int exitCode;
+    std::string out;
+    std::string err;
+};
+
+// Runs the raycache binary with `args` (already shell-quoted where needed).
+RunResult runRaycache(const std::string& args, const fs::path& dir) {
+    const fs::path errFile = dir / "stderr.txt";
+    const std::string command = std::string(RAYCACHE_BINARY) + " " + args + " 2>" + errFile.string();
+    RunResult result{};
+    FILE* pipe = popen(command.c_str(), "r");
+    std::array<char, 4096> buffer{};
+    while (pipe && fgets(buffer.data(), buffer.size(), pipe)) result.out += buffer.data();
+    const int status = pipe ? pclose(pipe) : -1;
+    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ifstream in(errFile);
+    result.err.assign(std::istreambuf_iterator<char>(in), {});
+    return result;
+}
+
+int lineCount(const std::string& s) {
+    int lines = 0;
+    for (char c : s) lines += c == '\n';
+    return lines;
+}
+
+class Cli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() /
+               ("raycache-cli-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    // Files in the temp dir other than our captured stderr.
+    std::vector<std::string> outputs() const {
+        std::vector<std::string> names;
+        for (const auto& e : fs::directory_iterator(dir_))
+            if (e.path().filename() != "stderr.txt") names.push_back(e.path().filename().string());
+        return names;
+    }
+    fs::path dir_;
+};
+
+}  // namespace
+
+TEST_F(Cli, ScenesListsOneLinePerBuiltinScene) {
+    const RunResult r = runRaycache("scenes", dir_);
+    EXPECT_EQ(r.exitCode, 0);
+    EXPECT_EQ(lineCount(r.out), 7 + 6 + 2 + 4);  // behind-N, grid-N, the two 32-sphere walls, 4 others
+    EXPECT_NE(r.out.find("behind-32"), std::string::npos);
+    EXPECT_NE(r.out.find("parallax"), std::string::npos);
+}
+
+TEST_F(Cli, HelpWorksForEveryCommand) {
+    for (const char* args : {"--help", "render --help", "scenes --help"}) {
+        const RunResult r = runRaycache(args, dir_);
+        EXPECT_EQ(r.exitCode, 0) << args;
+        EXPECT_NE(r.out.find("Usage"), std::string::npos) << args;
+    }
+}
+
+TEST_F(Cli, RenderWritesTheLastFrameAndPrintsTimings) {
+    const fs::path out = dir_ / "frame.png";
+    const RunResult r = runRaycache("render --scene grid-4 --width 32 --height 24 --frames 3 --out " + out.string() +
+                                        " --stats " + (dir_ / "stats.json").string(),
+                                    dir_);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(fs::exists(out));
+    EXPECT_TRUE(fs::exists(dir_ / "stats.json"));
+    EXPECT_NE(r.out.find("frame 3/3"), std::string::npos);
+    EXPECT_NE(r.out.find("Mrays/s"), std::string::npos);
+    EXPECT_NE(r.out.find("reflection"), std::string::npos);
+    EXPECT_EQ(outputs().size(), 2u);  // no temp files left behind
+}
+
+TEST_F(Cli, FramePatternWritesEveryFrame) {
+    const RunResult r = runRaycache(
+        "render --scene behind-0 --width 16 --height 16 --frames 3 --out " + (dir_ / "f_%04d.exr").string(), dir_);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const char* name : {"f_0000.exr", "f_0001.exr", "f_0002.exr"}) EXPECT_TRUE(fs::exists(dir_ / name)) << name;
+}
+
+TEST_F(Cli, UsageAndInputErrorsExitTwoWithOneLineAndNoOutput) {
+    const std::string png = (dir_ / "x.png").string();
+    const std::array<std::string, 9> cases{
+        "render --scene no-such-scene --out " + png,
+        "render --scene room --width 0 --out " + png,
+        "render --scene room --width abc --out " + png,
+        "render --scene room --frames -3 --out " + png,
+        "render --scene room --path sideways --out " + png,
+        "render --scene room --out " + (dir_ / "x.bmp").string(),
+        "render --scene room --out " + (dir_ / "missing-dir" / "x.png").string(),
+        "render --scene " + (dir_ / "missing.json").string() + " --out " + png,
+        "render --no-such-flag",
+    };
+    for (const std::string& args : cases) {
+        const RunResult r = runRaycache(args, dir_);
+        EXPECT_EQ(r.exitCode, 2) << args;
+        EXPECT_EQ(lineCount(r.err), 1) << args << "\n" << r.err;
+        EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << args << "\n" << r.err;
+        EXPECT_TRUE(outputs().empty()) << args;
+    }
+}
+
+TEST_F(Cli, MalformedSceneFileNamesFileLineAndColumn) {
+    const fs::path scene = dir_ / "bad.json";
+    std::ofstream(scene) << "{\n  \"objects\": [\n    {\"shape\": \"sphere\", \"radius\": -1}\n  ]\n}\n";
+    const RunResult r = runRaycache("render --scene " + scene.string() + " --out " + (dir_ / "x.png").string(), dir_);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("bad.json:3:"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("/objects/0/radius"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "x.png"));
+}
+
+TEST_F(Cli, UnwritableOutputIsARuntimeErrorWithNoPartialFile) {
+    // The target is an existing non-empty directory: rendering succeeds, the
+    // final rename fails, and nothing may be left behind.
+    fs::create_directories(dir_ / "taken.png" / "inside");
+    const RunResult r = runRaycache(
+        "render --scene behind-0 --width 8 --height 8 --frames 1 --out " + (dir_ / "taken.png").string(), dir_);
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_EQ(outputs().size(), 1u);  // only the directory we made
+}

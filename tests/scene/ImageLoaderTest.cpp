@@ -1,0 +1,135 @@
+#include "scene/ImageLoader.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+
+#include "core/ColorSpace.h"
+#include "core/Errors.h"
+#include "render/ImageWriter.h"
+
+namespace raycache {
+namespace {
+
+const std::filesystem::path imageDir = std::filesystem::path(RAYCACHE_TEST_DATA_DIR) / "images";
+
+// A fresh directory under the system temp dir, removed with everything in it.
+class TempDir {
+public:
+    TempDir() {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        path_ = std::filesystem::temp_directory_path() /
+                ("raycache-" + std::string(info->test_suite_name()) + "-" + info->name());
+        std::filesystem::remove_all(path_);
+        std::filesystem::create_directories(path_);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        std::filesystem::remove_all(path_, ec);
+    }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    const std::filesystem::path& path() const { return path_; }
+
+private:
+    std::filesystem::path path_;
+};
+
+void expectInputErrorNamingFile(const std::filesystem::path& path, const std::string& detail = "") {
+    try {
+        loadImageFile(path);
+        FAIL() << "no exception for " << path;
+    } catch (const InputError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find(path.string()), std::string::npos) << what;
+        EXPECT_NE(what.find(detail), std::string::npos) << what;
+        EXPECT_EQ(e.where().file, path.string());
+    }
+}
+
+TEST(ImageLoader, PngIsDecodedFromSrgbAndAlphaIsDropped) {
+    const Image image = loadImageFile(imageDir / "tiny.png");
+    ASSERT_EQ(image.width(), 2);
+    ASSERT_EQ(image.height(), 2);
+    // Row 0 is the top of the picture.
+    EXPECT_EQ(image.at(0, 0), Rgb(1, 0, 0));
+    EXPECT_EQ(image.at(1, 0), Rgb(0, 1, 0));  // alpha 0 there
+    EXPECT_EQ(image.at(0, 1), Rgb(0, 0, 1));
+    const float gray = srgbToLinear(128.0f / 255.0f);
+    EXPECT_NEAR(gray, 0.2158605f, 1e-6f);
+    EXPECT_EQ(image.at(1, 1), Rgb(gray));
+}
+
+TEST(ImageLoader, RadianceHdrIsLinear) {
+    const Image image = loadImageFile(imageDir / "tiny.hdr");
+    ASSERT_EQ(image.width(), 2);
+    ASSERT_EQ(image.height(), 2);
+    EXPECT_EQ(image.at(0, 0), Rgb(1.0f, 0.5f, 2.0f));
+    EXPECT_EQ(image.at(1, 0), Rgb(0.25f, 0.0f, 1.0f));
+    EXPECT_EQ(image.at(0, 1), Rgb(4.0f));
+    EXPECT_EQ(image.at(1, 1), Rgb(0.0f));
+}
+
+TEST(ImageLoader, ExtensionIsCaseInsensitive) {
+    TempDir dir;
+    const auto upper = dir.path() / "TINY.PNG";
+    std::filesystem::copy_file(imageDir / "tiny.png", upper);
+    EXPECT_EQ(loadImageFile(upper).width(), 2);
+}
+
+TEST(ImageLoader, MissingFileThrows) {
+    expectInputErrorNamingFile(imageDir / "no-such-image.png", "not found");
+}
+
+TEST(ImageLoader, UnsupportedExtensionThrows) {
+    TempDir dir;
+    const auto path = dir.path() / "picture.gif";
+    std::ofstream(path) << "GIF89a";
+    expectInputErrorNamingFile(path, "unsupported");
+}
+
+TEST(ImageLoader, CorruptDataThrows) {
+    TempDir dir;
+    for (const char* name : {"corrupt.png", "corrupt.jpg", "corrupt.hdr", "corrupt.exr"}) {
+        const auto path = dir.path() / name;
+        std::ofstream(path) << "this is not an image at all";
+        expectInputErrorNamingFile(path);
+    }
+}
+
+TEST(ImageLoader, TruncatedPngThrows) {
+    TempDir dir;
+    const auto path = dir.path() / "truncated.png";
+    std::filesystem::copy_file(imageDir / "tiny.png", path);
+    std::filesystem::resize_file(path, 40);
+    expectInputErrorNamingFile(path);
+}
+
+TEST(ImageLoader, EightBitDataNamedHdrThrows) {
+    TempDir dir;
+    const auto path = dir.path() / "really-a-png.hdr";
+    std::filesystem::copy_file(imageDir / "tiny.png", path);
+    expectInputErrorNamingFile(path, "Radiance");
+}
+
+TEST(ImageLoader, AbsurdSizeThrows) {
+    TempDir dir;
+    const auto path = dir.path() / "wide.png";
+    writeImage(Image(maxImageSide + 1, 1), path);
+    expectInputErrorNamingFile(path, "larger than the limit");
+}
+
+TEST(ImageLoader, NonFiniteExrPixelThrows) {
+    TempDir dir;
+    const auto path = dir.path() / "nan.exr";
+    Image image(3, 2);
+    image.at(2, 1).g = std::numeric_limits<float>::quiet_NaN();
+    writeImage(image, path);
+    expectInputErrorNamingFile(path, "pixel (2, 1)");
+}
+
+}  // namespace
+}  // namespace raycache
