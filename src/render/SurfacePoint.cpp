@@ -8,7 +8,7 @@ namespace raycache {
 namespace {
 
 void sphereSurface(const Sphere& sphere, SurfacePoint& sp, bool needUv) {
-    const Vec3 n = normalize(sp.position - sphere.center);
+    const Vec3 n = (sp.position - sphere.center) * (1.0f / sphere.radius);
     sp.normal = sp.geometricNormal = n;
     if (!needUv) return;
     constexpr float pi = std::numbers::pi_v<float>;

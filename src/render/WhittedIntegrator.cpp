@@ -48,8 +48,9 @@ int WhittedIntegrator::shadowQueries(const SurfacePoint& sp, ShadowQuery* out) c
             distance = std::numeric_limits<float>::infinity();
         } else {
             const Vec3 d = light.position - sp.position;
-            distance = length(d);
-            toLight = d / distance;
+            const float inverseDistance = 1.0f / std::sqrt(dot(d, d));
+            distance = dot(d, d) * inverseDistance;
+            toLight = d * inverseDistance;
             if (light.type == LightType::Spot)
                 strength = smoothstep(cosDegrees(light.coneAngleDeg),
                                       cosDegrees(light.coneAngleDeg - light.falloffAngleDeg),
