@@ -17,6 +17,14 @@ Texture Texture::image(std::shared_ptr<const Image> pixels) {
 }
 
 namespace {
+// floor() without a libm call: x86-64's baseline has no rounding instruction.
+// Out-of-range and NaN inputs map to 0 instead of overflowing the cast.
+long long floorToInt(float x) {
+    if (!(std::fabs(x) < 1e15f)) return 0;
+    const auto i = static_cast<long long>(x);
+    return static_cast<float>(i) > x ? i - 1 : i;
+}
+
 int wrap(int i, int n) {
     const int m = i % n;
     return m < 0 ? m + n : m;
@@ -25,8 +33,8 @@ int wrap(int i, int n) {
 
 Rgb Texture::sample(float u, float v) const {
     if (!image_) {
-        const auto cu = static_cast<long long>(std::floor(u * checker_.squaresPerUnit));
-        const auto cv = static_cast<long long>(std::floor(v * checker_.squaresPerUnit));
+        const long long cu = floorToInt(u * checker_.squaresPerUnit);
+        const long long cv = floorToInt(v * checker_.squaresPerUnit);
         return ((cu + cv) & 1) == 0 ? checker_.even : checker_.odd;
     }
     const Image& img = *image_;

@@ -71,9 +71,64 @@ Rgb traceBaseline(const BaselineContext& ctx, const Vec3& origin, const Vec3& di
 
 }  // namespace
 
-std::uint64_t renderBaselineWhitted(const Scene& scene, const TraceScene& tracer, const Parallel& parallel,
-                                    int maxDepth, Image& film) {
-    const BaselineContext ctx{scene, static_cast<RTCScene>(tracer.embreeScene()), maxDepth};
+struct BaselineWhitted::Impl {
+    const Scene& scene;
+    RTCDevice device = nullptr;  // only when the baseline owns its scene
+    RTCScene rtcScene = nullptr;
+
+    ~Impl() {
+        if (device) {
+            rtcReleaseScene(rtcScene);
+            rtcReleaseDevice(device);
+        }
+    }
+};
+
+BaselineWhitted::BaselineWhitted(const Scene& scene, const TraceScene* shared)
+    : impl_(new Impl{scene}) {
+    if (shared) {
+        impl_->rtcScene = static_cast<RTCScene>(shared->embreeScene());
+        return;
+    }
+    impl_->device = rtcNewDevice(nullptr);
+    impl_->rtcScene = rtcNewScene(impl_->device);
+    for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+        RTCGeometry geom;
+        if (const auto* sphere = std::get_if<Sphere>(&scene.objects[i].shape)) {
+            geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+            auto* v = static_cast<float*>(
+                rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+            v[0] = sphere->center.x;
+            v[1] = sphere->center.y;
+            v[2] = sphere->center.z;
+            v[3] = sphere->radius;
+        } else {
+            const TriangleMesh& mesh = *std::get<MeshShape>(scene.objects[i].shape).mesh;
+            geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+            auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                                  3 * sizeof(float), mesh.positions.size()));
+            for (std::size_t k = 0; k < mesh.positions.size(); ++k) {
+                v[3 * k] = mesh.positions[k].x;
+                v[3 * k + 1] = mesh.positions[k].y;
+                v[3 * k + 2] = mesh.positions[k].z;
+            }
+            auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+                geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.triangles.size()));
+            for (std::size_t k = 0; k < mesh.triangles.size(); ++k)
+                for (int c = 0; c < 3; ++c) idx[3 * k + static_cast<std::size_t>(c)] = mesh.triangles[k][static_cast<std::size_t>(c)];
+        }
+        rtcCommitGeometry(geom);
+        rtcAttachGeometryByID(impl_->rtcScene, geom, static_cast<unsigned>(i));
+        rtcReleaseGeometry(geom);
+    }
+    rtcCommitScene(impl_->rtcScene);
+}
+
+BaselineWhitted::~BaselineWhitted() = default;
+
+std::uint64_t BaselineWhitted::render(const Parallel& parallel, int maxDepth, Image& film) const {
+    const Scene& scene = impl_->scene;
+    const BaselineContext ctx{scene, impl_->rtcScene, maxDepth};
     const Camera& cam = scene.camera;
     const float tanHalf = std::tan(0.5f * cam.verticalFovDeg * std::numbers::pi_v<float> / 180.0f);
     const float aspect = static_cast<float>(film.width()) / static_cast<float>(film.height());
