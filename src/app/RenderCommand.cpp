@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <vector>
@@ -50,6 +51,12 @@ double median(std::vector<double> v) {
     return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+std::string fixed(double value, int decimals) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
+    return buffer;
+}
+
 nlohmann::json raysJson(const RayCounts& r) {
     return {{"primary", r.primary}, {"shadow", r.shadow}, {"reflection", r.reflection},
             {"refraction", r.refraction}, {"total", r.total()}};
@@ -86,13 +93,10 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out) {
     RayCounts totalRays;
     renderFrames(scene, path, settings, frames, [&](const FrameResult& r, const Image& film) {
         const double mrays = static_cast<double>(r.rays.total()) / (r.milliseconds * 1e3);
-        out << "frame " << (r.frame + 1) << "/" << frames << "  " << std::fixed;
-        out.precision(1);
-        out << r.milliseconds << " ms  rays: primary " << r.rays.primary << ", shadow " << r.rays.shadow
-            << ", reflection " << r.rays.reflection << ", refraction " << r.rays.refraction << "  ";
-        out.precision(2);
-        out << mrays << " Mrays/s" << std::endl;
-        out.unsetf(std::ios::fixed);
+        out << "frame " << (r.frame + 1) << "/" << frames << "  " << fixed(r.milliseconds, 1)
+            << " ms  rays: primary " << r.rays.primary << ", shadow " << r.rays.shadow << ", reflection "
+            << r.rays.reflection << ", refraction " << r.rays.refraction << "  " << fixed(mrays, 2) << " Mrays/s"
+            << std::endl;
         times.push_back(r.milliseconds);
         totalRays += r.rays;
         frameStats.push_back({{"frame", r.frame}, {"ms", r.milliseconds}, {"rays", raysJson(r.rays)},
@@ -102,8 +106,8 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out) {
     });
 
     const auto [minIt, maxIt] = std::minmax_element(times.begin(), times.end());
-    out << "median " << median(times) << " ms (min " << *minIt << ", max " << *maxIt << ") over " << frames
-        << " frames\n";
+    out << "median " << fixed(median(times), 1) << " ms (min " << fixed(*minIt, 1) << ", max " << fixed(*maxIt, 1)
+        << ") over " << frames << " frames\n";
     if (!options.statsPath.empty()) {
         const nlohmann::json stats = {
             {"scene", scene.name},
