@@ -39,6 +39,7 @@ int main(int argc, char** argv) {
         settings.width = settings.height = size;
         settings.maxDepth = maxDepth;
         settings.threads = threads;
+        settings.cache.techniqueOverride = CacheTechnique::None;  // uncached, like the plain loop
         const TraceScene tracer(*scene);
         const FrameRenderer renderer(*scene, tracer, settings, parallel);
         Image film(size, size), baselineFilm(size, size);
@@ -46,7 +47,7 @@ int main(int argc, char** argv) {
         const auto results = runInterleaved(
             {{"plain loop, Embree spheres", [&] { return plainLoop.render(parallel, maxDepth, baselineFilm); }},
              {"plain loop, raycache BVH", [&] { return plainLoopOurBvh.render(parallel, maxDepth, baselineFilm); }},
-             {"raycache", [&] { return renderer.render(scene->camera, film).total(); }}},
+             {"raycache", [&] { return renderer.render(scene->camera, film).rays.total(); }}},
             warmup, rounds);
         for (const VariantTimes& t : results)
             std::printf("| %s | %s | %.1f | %.1f-%.1f | %.1f | %llu | %.2fx |\n", name.c_str(), t.name.c_str(),

@@ -8,6 +8,7 @@ packages=(
   libembree-dev libtbb-dev libassimp-dev nlohmann-json3-dev libcli11-dev
   libstb-dev libtinyexr-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libegl-dev libgl1-mesa-dri libegl-mesa0 libepoxy-dev
 )
 
 missing=()

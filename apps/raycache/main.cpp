@@ -22,6 +22,13 @@ int main(int argc, char** argv) {
     renderCmd->add_option("--max-depth", render.maxDepth, "Longest ray path (primary ray = 1)")->capture_default_str();
     renderCmd->add_option("--min-weight", render.minWeight, "Stop a path when its kr/kt product falls below this")
         ->capture_default_str();
+    renderCmd->add_option("--technique", render.technique,
+                          "Secondary-ray caching for every mirror/glass object: none or cct "
+                          "(default: each material's own setting)");
+    renderCmd->add_option("--cache-res", render.cacheResolution, "Caching-cube face resolution, 16..2048 "
+                                                                 "(default: each material's own, 512 in built-in scenes)");
+    renderCmd->add_flag("--cache-ideal", render.cacheIdeal,
+                        "Benchmark switch: cache misses return black instead of being traced");
     renderCmd->add_option("--out", render.out,
                           "Image to write (.png sRGB 8-bit, .exr linear float); %04d in the name writes every frame");
     renderCmd->add_option("--stats", render.statsPath, "Write per-frame statistics as JSON to this file");

@@ -29,6 +29,11 @@ void checkOptions(const RenderCommandOptions& o) {
     if (o.maxDepth < 1 || o.maxDepth > 64) throw InputError("--max-depth must be between 1 and 64");
     if (!(o.minWeight >= 0.0f && o.minWeight <= 1.0f)) throw InputError("--min-weight must be in [0, 1]");
     if (o.threads < 0 || o.threads > 1024) throw InputError("--threads must be between 0 (all) and 1024");
+    if (o.technique && *o.technique != "none" && *o.technique != "cct")
+        throw InputError("--technique must be none or cct (got '" + *o.technique + "'; cdct is not implemented yet)");
+    if (o.cacheResolution &&
+        (*o.cacheResolution < RayCache::kMinResolution || *o.cacheResolution > RayCache::kMaxResolution))
+        throw InputError("--cache-res must be between 16 and 2048 (got " + std::to_string(*o.cacheResolution) + ")");
     if (o.path && *o.path != "static" && *o.path != "orbit" && *o.path != "pan")
         throw InputError("--path must be static, orbit or pan (got '" + *o.path + "')");
 }
@@ -55,6 +60,16 @@ std::string fixed(double value, int decimals) {
     char buffer[64];
     std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
     return buffer;
+}
+
+nlohmann::json cacheJson(const FrameCacheStats& c) {
+    nlohmann::json objects = nlohmann::json::array();
+    for (const ObjectCacheStats& o : c.objects)
+        objects.push_back({{"object", o.name}, {"resolution", o.resolution}, {"lookups", o.lookups},
+                           {"hits", o.hits}, {"misses", o.misses}, {"stores", o.stores},
+                           {"invalid_percent_before", o.invalidPercentBefore}, {"bytes", o.bytes}});
+    return {{"lookups", c.lookups()}, {"hits", c.hits()}, {"misses", c.misses()}, {"stores", c.stores()},
+            {"invalid_percent_before", c.invalidPercentBefore()}, {"bytes", c.bytes()}, {"objects", objects}};
 }
 
 nlohmann::json raysJson(const RayCounts& r) {
@@ -84,6 +99,10 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out) {
     settings.maxDepth = options.maxDepth;
     settings.minWeight = options.minWeight;
     settings.threads = options.threads;
+    if (options.technique)
+        settings.cache.techniqueOverride = *options.technique == "cct" ? CacheTechnique::Cct : CacheTechnique::None;
+    settings.cache.resolutionOverride = options.cacheResolution;
+    settings.cache.ideal = options.cacheIdeal;
 
     out << "scene " << scene.name << ": " << scene.objects.size() << " objects, " << scene.lights.size()
         << " lights, " << settings.width << "x" << settings.height << ", " << frames << " frames\n";
@@ -92,15 +111,24 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out) {
     nlohmann::json frameStats = nlohmann::json::array();
     RayCounts totalRays;
     renderFrames(scene, path, settings, frames, [&](const FrameResult& r, const Image& film) {
-        const double mrays = static_cast<double>(r.rays.total()) / (r.milliseconds * 1e3);
+        const RayCounts& rays = r.stats.rays;
+        const double mrays = static_cast<double>(rays.total()) / (r.milliseconds * 1e3);
         out << "frame " << (r.frame + 1) << "/" << frames << "  " << fixed(r.milliseconds, 1)
-            << " ms  rays: primary " << r.rays.primary << ", shadow " << r.rays.shadow << ", reflection "
-            << r.rays.reflection << ", refraction " << r.rays.refraction << "  " << fixed(mrays, 2) << " Mrays/s"
-            << std::endl;
+            << " ms  rays: primary " << rays.primary << ", shadow " << rays.shadow << ", reflection "
+            << rays.reflection << ", refraction " << rays.refraction << "  " << fixed(mrays, 2) << " Mrays/s";
+        if (const auto& c = r.stats.cache) {
+            const double hitRate = c->lookups() ? 100.0 * static_cast<double>(c->hits()) / static_cast<double>(c->lookups()) : 0.0;
+            out << "  cache: " << c->objects.size() << " cubes, hits " << fixed(hitRate, 1) << "% of " << c->lookups()
+                << ", stores " << c->stores() << ", invalid before " << fixed(c->invalidPercentBefore(), 1) << "%, "
+                << fixed(static_cast<double>(c->bytes()) / (1024.0 * 1024.0), 1) << " MiB";
+        }
+        out << std::endl;
         times.push_back(r.milliseconds);
-        totalRays += r.rays;
-        frameStats.push_back({{"frame", r.frame}, {"ms", r.milliseconds}, {"rays", raysJson(r.rays)},
-                              {"mrays_per_s", mrays}});
+        totalRays += rays;
+        nlohmann::json frameJson = {{"frame", r.frame}, {"ms", r.milliseconds}, {"rays", raysJson(rays)},
+                                    {"mrays_per_s", mrays}};
+        if (r.stats.cache) frameJson["cache"] = cacheJson(*r.stats.cache);
+        frameStats.push_back(std::move(frameJson));
         const bool lastFrame = r.frame + 1 == frames;
         if (!options.out.empty() && (outPattern.perFrame() || lastFrame)) writeImage(film, outPattern.pathFor(r.frame));
     });

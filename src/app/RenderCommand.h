@@ -16,6 +16,9 @@ struct RenderCommandOptions {
     int threads = 0;
     int maxDepth = 6;
     float minWeight = 0.01f;
+    std::optional<std::string> technique;  // none | cct; default: each material's own setting
+    std::optional<int> cacheResolution;    // default: each material's own setting
+    bool cacheIdeal = false;               // benchmark switch, see RayCacheSettings::ideal
     std::string out;        // image path (.png/.exr), may hold %04d; empty = no image
     std::string statsPath;  // JSON statistics; empty = none
 };

@@ -10,16 +10,17 @@ namespace raycache {
 
 void renderFrames(const Scene& scene, const CameraPath& path, const RenderSettings& settings, int frameCount,
                   const std::function<void(const FrameResult&, const Image&)>& onFrame) {
+    RayCache cache(scene, settings.cache);
     const TraceScene tracer(scene);
     const Parallel parallel(settings.threads);
-    const FrameRenderer renderer(scene, tracer, settings, parallel);
+    const FrameRenderer renderer(scene, tracer, settings, parallel, &cache);
     Image film(settings.width, settings.height);
     for (int frame = 0; frame < frameCount; ++frame) {
         const Camera camera = path.cameraAt(scene.camera, frame);
         const auto start = std::chrono::steady_clock::now();
         FrameResult result;
         result.frame = frame;
-        result.rays = renderer.render(camera, film);
+        result.stats = renderer.render(camera, film);
         result.milliseconds =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         onFrame(result, film);

@@ -3,7 +3,7 @@
 #include <functional>
 
 #include "core/Image.h"
-#include "core/RayCounts.h"
+#include "render/FrameStats.h"
 #include "render/RenderSettings.h"
 #include "scene/Scene.h"
 
@@ -12,11 +12,13 @@ namespace raycache {
 struct FrameResult {
     int frame = 0;              // 0-based
     double milliseconds = 0.0;  // wall time of the render, excluding the callback
-    RayCounts rays;
+    FrameStats stats;
 };
 
-// Builds the acceleration structure once, then renders frames [0, frameCount)
-// with cameras from `path` applied to scene.camera, calling onFrame after each.
+// Builds the acceleration structure and the caches (settings.cache) once,
+// then renders frames [0, frameCount) with cameras from `path` applied to
+// scene.camera, calling onFrame after each. Throws InputError for invalid
+// cache settings before rendering anything.
 void renderFrames(const Scene& scene, const CameraPath& path, const RenderSettings& settings, int frameCount,
                   const std::function<void(const FrameResult&, const Image&)>& onFrame);
 

@@ -29,11 +29,11 @@ struct TileScratch {
 }  // namespace
 
 FrameRenderer::FrameRenderer(const Scene& scene, const TraceScene& tracer, const RenderSettings& settings,
-                             const Parallel& parallel)
+                             const Parallel& parallel, RayCache* cache)
     : scene_(scene), tracer_(tracer), settings_(settings), parallel_(parallel),
-      integrator_(scene, tracer, settings) {}
+      cache_(cache && !cache->empty() ? cache : nullptr), integrator_(scene, tracer, settings, cache_) {}
 
-RayCounts FrameRenderer::render(const Camera& camera, Image& film) const {
+FrameStats FrameRenderer::render(const Camera& camera, Image& film) const {
     if (film.width() != settings_.width || film.height() != settings_.height)
         film = Image(settings_.width, settings_.height);
     const CameraRays cameraRays(camera, settings_.width, settings_.height);
@@ -41,9 +41,16 @@ RayCounts FrameRenderer::render(const Camera& camera, Image& film) const {
     const auto tilePixels = static_cast<std::size_t>(settings_.tileSize) * static_cast<std::size_t>(settings_.tileSize);
     std::vector<TileScratch> scratch(static_cast<std::size_t>(parallel_.threadCount()),
                                      TileScratch(tilePixels, scene_.lights.size()));
+    std::vector<CacheWorker> cacheWorkers;
+    if (cache_) {
+        cacheWorkers = cache_->makeWorkers(parallel_.threadCount());
+        cache_->beginFrame(cacheWorkers);
+    }
 
     parallel_.forEachTile(settings_.width, settings_.height, settings_.tileSize, [&](const TileRange& tile, int worker) {
         TileScratch& s = scratch[static_cast<std::size_t>(worker)];
+        CacheWorker* cacheWorker = cache_ ? &cacheWorkers[static_cast<std::size_t>(worker)] : nullptr;
+        PathContext path{s.counts, cacheWorker};
         const int tileWidth = tile.x1 - tile.x0;
         std::size_t n = 0;
         for (int y = tile.y0; y < tile.y1; ++y)
@@ -75,19 +82,24 @@ RayCounts FrameRenderer::render(const Camera& camera, Image& film) const {
                 film.at(x, y) = integrator_.background(s.rays[i]);
                 continue;
             }
-            const Material& material = scene_.objects[static_cast<std::size_t>(s.hits[i].objectId)].material;
+            const int objectId = s.hits[i].objectId;
+            const Material& material = scene_.objects[static_cast<std::size_t>(objectId)].material;
+            if (cacheWorker)
+                cacheWorker->beginPixel(static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(settings_.width) +
+                                        static_cast<std::uint32_t>(x));
             const auto first = static_cast<std::size_t>(s.firstQuery[i]);
             const auto count = static_cast<std::size_t>(s.firstQuery[i + 1]) - first;
             film.at(x, y) = integrator_.directLight(material, s.points[i], -s.rays[i].direction,
                                                     std::span(s.queries.data() + first, count),
                                                     std::span(s.visible.data() + first, count)) +
-                            integrator_.secondaryLight(s.rays[i], s.points[i], material, 1, 1.0f, s.counts);
+                            integrator_.secondaryLight(s.rays[i], s.points[i], objectId, 1, 1.0f, path);
         }
     });
 
-    RayCounts total;
-    for (const TileScratch& s : scratch) total += s.counts;
-    return total;
+    FrameStats stats;
+    for (const TileScratch& s : scratch) stats.rays += s.counts;
+    if (cache_) stats.cache = cache_->endFrame(cacheWorkers);
+    return stats;
 }
 
 }  // namespace raycache

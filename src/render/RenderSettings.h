@@ -1,4 +1,5 @@
 #pragma once
+#include "cache/RayCache.h"
 
 namespace raycache {
 
@@ -14,6 +15,8 @@ struct RenderSettings {
     float minWeight = 0.01f;
     int threads = 0;  // 0 = all hardware threads
     int tileSize = 16;
+    // Which objects cache their secondary rays, and how (see RayCache).
+    RayCacheSettings cache;
 };
 
 }  // namespace raycache

@@ -28,8 +28,9 @@ float surfaceOffset(const Vec3& p) {
     return 1e-4f * extent;
 }
 
-WhittedIntegrator::WhittedIntegrator(const Scene& scene, const TraceScene& tracer, const RenderSettings& settings)
-    : scene_(scene), tracer_(tracer), settings_(settings) {
+WhittedIntegrator::WhittedIntegrator(const Scene& scene, const TraceScene& tracer, const RenderSettings& settings,
+                                     const RayCache* cache)
+    : scene_(scene), tracer_(tracer), settings_(settings), cache_(cache && !cache->empty() ? cache : nullptr) {
     if (scene.lights.size() > kMaxLights)
         throw InputError("scene has " + std::to_string(scene.lights.size()) + " lights; at most " +
                          std::to_string(kMaxLights) + " are supported");
@@ -83,10 +84,11 @@ Rgb WhittedIntegrator::directLight(const Material& material, const SurfacePoint&
     return color;
 }
 
-Rgb WhittedIntegrator::secondaryLight(const Ray& ray, const SurfacePoint& sp, const Material& material, int depth,
-                                      float weight, RayCounts& counts) const {
+Rgb WhittedIntegrator::secondaryLight(const Ray& ray, const SurfacePoint& sp, int objectId, int depth, float weight,
+                                      PathContext& path) const {
     Rgb color;
     if (depth >= settings_.maxDepth) return color;
+    const Material& material = scene_.objects[static_cast<std::size_t>(objectId)].material;
     const float offset = surfaceOffset(sp.position);
     float reflectWeight = material.reflectivity;
     if (material.refracts()) {
@@ -96,7 +98,11 @@ Rgb WhittedIntegrator::secondaryLight(const Ray& ray, const SurfacePoint& sp, co
             const float w = weight * material.transmissivity;
             if (w >= settings_.minWeight) {
                 const Ray r{sp.position - sp.geometricNormal * offset, normalize(*refracted)};
-                color += trace(r, SecondaryKind::Refraction, depth + 1, w, counts) * material.transmissivity;
+                // A refracted ray that exits the object leaves it for the scene;
+                // one that enters still has the inside to cross.
+                const Rgb seen = sp.frontFace ? trace(r, SecondaryKind::Refraction, depth + 1, w, path)
+                                              : leavingRay(objectId, r, SecondaryKind::Refraction, depth + 1, w, path);
+                color += seen * material.transmissivity;
             }
         } else {
             // Total internal reflection: the transmitted share is reflected.
@@ -107,14 +113,27 @@ Rgb WhittedIntegrator::secondaryLight(const Ray& ray, const SurfacePoint& sp, co
         const float w = weight * reflectWeight;
         if (w >= settings_.minWeight) {
             const Ray r{sp.position + sp.geometricNormal * offset, normalize(reflect(ray.direction, sp.normal))};
-            color += trace(r, SecondaryKind::Reflection, depth + 1, w, counts) * reflectWeight;
+            // Reflection off the outside leaves the object; inside, it stays in.
+            const Rgb seen = sp.frontFace ? leavingRay(objectId, r, SecondaryKind::Reflection, depth + 1, w, path)
+                                          : trace(r, SecondaryKind::Reflection, depth + 1, w, path);
+            color += seen * reflectWeight;
         }
     }
     return color;
 }
 
+Rgb WhittedIntegrator::leavingRay(int objectId, const Ray& ray, SecondaryKind kind, int depth, float weight,
+                                  PathContext& path) const {
+    if (!cache_ || !path.cache || !cache_->cachesObject(objectId)) return trace(ray, kind, depth, weight, path);
+    if (const auto cached = cache_->lookup(objectId, ray.origin, ray.direction, *path.cache)) return *cached;
+    float hitDistance = 0.0f;
+    const Rgb color = trace(ray, kind, depth, weight, path, &hitDistance);
+    cache_->store(objectId, ray.origin, ray.direction, color, hitDistance, *path.cache);
+    return color;
+}
+
 Rgb WhittedIntegrator::shade(const Ray& ray, const TraceHit& hit, int depth, float weight,
-                             RayCounts& counts) const {
+                             PathContext& path) const {
     const SceneObject& object = scene_.objects[static_cast<std::size_t>(hit.objectId)];
     const SurfacePoint sp = surfacePointAt(object, ray, hit, object.material.diffuseTexture.has_value());
 
@@ -122,18 +141,19 @@ Rgb WhittedIntegrator::shade(const Ray& ray, const TraceHit& hit, int depth, flo
     std::array<unsigned char, kMaxLights> visible;
     const int count = shadowQueries(sp, queries.data());
     for (int i = 0; i < count; ++i) visible[i] = tracer_.occluded(queries[i].ray) ? 0 : 1;
-    counts.shadow += static_cast<std::uint64_t>(count);
+    path.counts.shadow += static_cast<std::uint64_t>(count);
     const auto n = static_cast<std::size_t>(count);
     return directLight(object.material, sp, -ray.direction, {queries.data(), n}, {visible.data(), n}) +
-           secondaryLight(ray, sp, object.material, depth, weight, counts);
+           secondaryLight(ray, sp, hit.objectId, depth, weight, path);
 }
 
-Rgb WhittedIntegrator::trace(const Ray& ray, SecondaryKind kind, int depth, float weight,
-                             RayCounts& counts) const {
-    if (kind == SecondaryKind::Reflection) ++counts.reflection;
-    else ++counts.refraction;
+Rgb WhittedIntegrator::trace(const Ray& ray, SecondaryKind kind, int depth, float weight, PathContext& path,
+                             float* hitDistance) const {
+    if (kind == SecondaryKind::Reflection) ++path.counts.reflection;
+    else ++path.counts.refraction;
     const TraceHit hit = tracer_.intersect(ray);
-    return hit.hit() ? shade(ray, hit, depth, weight, counts) : background(ray);
+    if (hitDistance) *hitDistance = hit.hit() ? hit.t : std::numeric_limits<float>::infinity();
+    return hit.hit() ? shade(ray, hit, depth, weight, path) : background(ray);
 }
 
 }  // namespace raycache

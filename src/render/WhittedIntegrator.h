@@ -8,7 +8,8 @@
 // tile of primary hits into coherent packets.
 #include <span>
 
-#include "core/RayCounts.h"
+#include "cache/RayCache.h"
+#include "render/PathContext.h"
 #include "core/Rgb.h"
 #include "render/RenderSettings.h"
 #include "render/SurfacePoint.h"
@@ -28,16 +29,21 @@ struct ShadowQuery {
 
 class WhittedIntegrator {
 public:
-    // Throws InputError if the scene has more than kMaxLights lights.
-    WhittedIntegrator(const Scene& scene, const TraceScene& tracer, const RenderSettings& settings);
+    // With `cache`, secondary rays leaving a caching object are answered by
+    // its cache when it can (CCT, SPEC §2). Throws InputError if the scene has
+    // more than kMaxLights lights.
+    WhittedIntegrator(const Scene& scene, const TraceScene& tracer, const RenderSettings& settings,
+                      const RayCache* cache = nullptr);
 
     // Color arriving along `ray`, whose nearest hit is already known.
     // depth counts the rays on the path so far (1 for a primary ray); weight
     // is the product of kr/kt factors along it.
-    Rgb shade(const Ray& ray, const TraceHit& hit, int depth, float weight, RayCounts& counts) const;
+    Rgb shade(const Ray& ray, const TraceHit& hit, int depth, float weight, PathContext& path) const;
 
-    // Traces `ray` and returns the color it brings back.
-    Rgb trace(const Ray& ray, SecondaryKind kind, int depth, float weight, RayCounts& counts) const;
+    // Traces `ray` and returns the color it brings back; `hitDistance`, when
+    // given, receives the distance to the first hit (infinity for a miss).
+    Rgb trace(const Ray& ray, SecondaryKind kind, int depth, float weight, PathContext& path,
+              float* hitDistance = nullptr) const;
 
     // What a ray that hits nothing sees.
     Rgb background(const Ray& ray) const { return scene_.environment.lookup(ray.direction); }
@@ -49,16 +55,23 @@ public:
     // (visible[i] answers queries[i]).
     Rgb directLight(const Material& material, const SurfacePoint& sp, const Vec3& toViewer,
                     std::span<const ShadowQuery> queries, std::span<const unsigned char> visible) const;
-    // Reflected and refracted light leaving `sp` toward the viewer of `ray`.
-    Rgb secondaryLight(const Ray& ray, const SurfacePoint& sp, const Material& material, int depth, float weight,
-                       RayCounts& counts) const;
+    // Reflected and refracted light leaving `sp` (on object `objectId`)
+    // toward the viewer of `ray`.
+    Rgb secondaryLight(const Ray& ray, const SurfacePoint& sp, int objectId, int depth, float weight,
+                       PathContext& path) const;
 
     const Scene& scene() const { return scene_; }
 
 private:
+    // A secondary ray leaving object `objectId` for the rest of the scene:
+    // answered by the object's cache when it has one, else traced.
+    Rgb leavingRay(int objectId, const Ray& ray, SecondaryKind kind, int depth, float weight,
+                   PathContext& path) const;
+
     const Scene& scene_;
     const TraceScene& tracer_;
     RenderSettings settings_;
+    const RayCache* cache_;
 };
 
 // Offset that lifts a spawned ray's origin off the surface it leaves, scaled

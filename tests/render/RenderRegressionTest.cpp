@@ -27,6 +27,7 @@ Image renderFrame(const Scene& scene, int threads, int size = kSize) {
     settings.width = size;
     settings.height = size;
     settings.threads = threads;
+    settings.cache.techniqueOverride = CacheTechnique::None;  // the uncached ground truth
     const TraceScene tracer(scene);
     const Parallel parallel(threads);
     const FrameRenderer renderer(scene, tracer, settings, parallel);

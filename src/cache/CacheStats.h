@@ -1,0 +1,53 @@
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace raycache {
+
+// One caching object's activity during one frame.
+struct ObjectCacheStats {
+    int objectId = -1;
+    std::string name;
+    int resolution = 0;                 // texels per face side
+    std::uint64_t lookups = 0;          // secondary rays that asked the cache
+    std::uint64_t hits = 0;             // answered from a valid texel
+    std::uint64_t misses = 0;           // texel invalid: the ray was traced
+    std::uint64_t stores = 0;           // texels written at the end of the frame
+    double invalidPercentBefore = 0.0;  // invalid texels when the frame started
+    std::size_t bytes = 0;              // memory of the cube's texels
+};
+
+struct FrameCacheStats {
+    std::vector<ObjectCacheStats> objects;
+
+    std::uint64_t lookups() const { return sum(&ObjectCacheStats::lookups); }
+    std::uint64_t hits() const { return sum(&ObjectCacheStats::hits); }
+    std::uint64_t misses() const { return sum(&ObjectCacheStats::misses); }
+    std::uint64_t stores() const { return sum(&ObjectCacheStats::stores); }
+    std::size_t bytes() const {
+        std::size_t b = 0;
+        for (const auto& o : objects) b += o.bytes;
+        return b;
+    }
+    // Invalid texels over all cubes when the frame started, in percent.
+    double invalidPercentBefore() const {
+        double weighted = 0.0, texels = 0.0;
+        for (const auto& o : objects) {
+            const double n = 6.0 * o.resolution * o.resolution;
+            weighted += o.invalidPercentBefore * n;
+            texels += n;
+        }
+        return texels > 0.0 ? weighted / texels : 0.0;
+    }
+
+private:
+    std::uint64_t sum(std::uint64_t ObjectCacheStats::*field) const {
+        std::uint64_t s = 0;
+        for (const auto& o : objects) s += o.*field;
+        return s;
+    }
+};
+
+}  // namespace raycache

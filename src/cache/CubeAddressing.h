@@ -1,0 +1,31 @@
+#pragma once
+// Which texel of a caching cube a direction addresses: OpenGL's cubemap
+// face selection and nearest-texel rule for a size x size face, computed in
+// float exactly as Mesa's llvmpipe samples a cubemap (proven by a test
+// against real OpenGL).
+#include "core/CubeMapping.h"
+#include "core/Vec3.h"
+
+namespace raycache {
+
+struct CubeTexel {
+    CubeFace face = CubeFace::PosX;
+    int x = 0;  // column, 0 = left of the face image
+    int y = 0;  // row, 0 = top of the face image (GL's t = 0)
+
+    bool operator==(const CubeTexel&) const = default;
+};
+
+// The texel nearest-neighbour sampling would read for `direction` (any
+// length, not all zero) on a cube with `size` texels per face side.
+CubeTexel cubeTexelFromDirection(const Vec3& direction, int size);
+
+// Index of a texel in a face-major array: ((face * size) + y) * size + x.
+inline int cubeTexelIndex(const CubeTexel& t, int size) {
+    return (static_cast<int>(t.face) * size + t.y) * size + t.x;
+}
+
+// A direction that addresses texel (face, x, y): through the texel centre.
+Vec3 cubeTexelCenterDirection(const CubeTexel& texel, int size);
+
+}  // namespace raycache
