@@ -2,9 +2,35 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "app/CacheViewCommand.h"
 #include "app/RenderCommand.h"
 #include "app/ScenesCommand.h"
 #include "core/Errors.h"
+
+namespace {
+
+// The options every rendering command shares: what to render and how.
+void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
+    command.add_option("--scene", job.scene, "Built-in scene name (see `raycache scenes`) or scene .json file")
+        ->capture_default_str();
+    command.add_option("--width", job.width, "Image width in pixels")->capture_default_str();
+    command.add_option("--height", job.height, "Image height in pixels")->capture_default_str();
+    command.add_option("--frames", job.frames, "Frames to render (default: the scene's path length)");
+    command.add_option("--path", job.path, "Camera path: static, orbit or pan (default: the scene's own)");
+    command.add_option("--threads", job.threads, "Worker threads, 0 = all cores")->capture_default_str();
+    command.add_option("--max-depth", job.maxDepth, "Longest ray path (primary ray = 1)")->capture_default_str();
+    command.add_option("--min-weight", job.minWeight, "Stop a path when its kr/kt product falls below this")
+        ->capture_default_str();
+    command.add_option("--technique", job.technique,
+                       "Secondary-ray caching for every mirror/glass object: none or cct "
+                       "(default: each material's own setting)");
+    command.add_option("--cache-res", job.cacheResolution, "Caching-cube face resolution, 16..2048 "
+                                                           "(default: each material's own, 512 in built-in scenes)");
+    command.add_flag("--cache-ideal", job.cacheIdeal,
+                     "Benchmark switch: cache misses return black instead of being traced");
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"raycache: real-time Whitted ray tracing with per-object ray caching"};
@@ -12,26 +38,20 @@ int main(int argc, char** argv) {
 
     raycache::RenderCommandOptions render;
     CLI::App* renderCmd = app.add_subcommand("render", "Render a scene along its camera path");
-    renderCmd->add_option("--scene", render.scene, "Built-in scene name (see `raycache scenes`) or scene .json file")
-        ->capture_default_str();
-    renderCmd->add_option("--width", render.width, "Image width in pixels")->capture_default_str();
-    renderCmd->add_option("--height", render.height, "Image height in pixels")->capture_default_str();
-    renderCmd->add_option("--frames", render.frames, "Frames to render (default: the scene's path length)");
-    renderCmd->add_option("--path", render.path, "Camera path: static, orbit or pan (default: the scene's own)");
-    renderCmd->add_option("--threads", render.threads, "Worker threads, 0 = all cores")->capture_default_str();
-    renderCmd->add_option("--max-depth", render.maxDepth, "Longest ray path (primary ray = 1)")->capture_default_str();
-    renderCmd->add_option("--min-weight", render.minWeight, "Stop a path when its kr/kt product falls below this")
-        ->capture_default_str();
-    renderCmd->add_option("--technique", render.technique,
-                          "Secondary-ray caching for every mirror/glass object: none or cct "
-                          "(default: each material's own setting)");
-    renderCmd->add_option("--cache-res", render.cacheResolution, "Caching-cube face resolution, 16..2048 "
-                                                                 "(default: each material's own, 512 in built-in scenes)");
-    renderCmd->add_flag("--cache-ideal", render.cacheIdeal,
-                        "Benchmark switch: cache misses return black instead of being traced");
+    addRenderJobOptions(*renderCmd, render.job);
     renderCmd->add_option("--out", render.out,
                           "Image to write (.png sRGB 8-bit, .exr linear float); %04d in the name writes every frame");
     renderCmd->add_option("--stats", render.statsPath, "Write per-frame statistics as JSON to this file");
+
+    raycache::CacheViewCommandOptions cacheView;
+    CLI::App* cacheViewCmd = app.add_subcommand(
+        "cache-view", "Render a scene's camera path with caching, then write one object's caching cube as a cross");
+    cacheViewCmd->add_option("--object", cacheView.object, "Name of the caching object whose cube to show")
+        ->required();
+    cacheViewCmd->add_option("--out", cacheView.out,
+                             "Image of the unfolded cube (.png sRGB 8-bit, .exr linear float)")
+        ->required();
+    addRenderJobOptions(*cacheViewCmd, cacheView.job);
 
     app.add_subcommand("scenes", "List the built-in scenes, one per line");
 
@@ -48,6 +68,7 @@ int main(int argc, char** argv) {
 
     try {
         if (renderCmd->parsed()) raycache::runRenderCommand(render, std::cout);
+        else if (cacheViewCmd->parsed()) raycache::runCacheViewCommand(cacheView, std::cout);
         else raycache::runScenesCommand(std::cout);
     } catch (const raycache::InputError& e) {
         std::cerr << "error: " << e.what() << '\n';

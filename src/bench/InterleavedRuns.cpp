@@ -20,6 +20,7 @@ std::vector<VariantTimes> runInterleaved(const std::vector<Variant>& variants, i
     for (std::size_t i = 0; i < variants.size(); ++i) times[i].name = variants[i].name;
     for (int round = 0; round < warmupRounds + timedRounds; ++round) {
         for (std::size_t i = 0; i < variants.size(); ++i) {
+            if (variants[i].prepare) variants[i].prepare();
             const auto start = std::chrono::steady_clock::now();
             times[i].work = variants[i].run();
             const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -13,6 +13,8 @@ struct Variant {
     std::string name;
     // Runs the job once; returns the work done (e.g. rays traced), reported as-is.
     std::function<std::uint64_t()> run;
+    // Optional, untimed, before every run (e.g. emptying caches).
+    std::function<void()> prepare = {};
 };
 
 struct VariantTimes {

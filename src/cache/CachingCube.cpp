@@ -19,7 +19,7 @@ bool CachingCube::writeIfInvalid(int index, std::uint32_t packed) {
 }
 
 void CachingCube::clear() {
-    std::fill(texels_.begin(), texels_.end(), kInvalidTexel);
+    texels_.fill(kInvalidTexel);
     validCount_ = 0;
 }
 

@@ -5,10 +5,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
-#include <vector>
 
 #include "cache/CubeAddressing.h"
 #include "core/Rgb.h"
+#include "core/TexelBuffer.h"
 #include "core/Vec3.h"
 
 namespace raycache {
@@ -41,7 +41,7 @@ public:
     void clear();
 
     // Raw texel words, face-major (see cubeTexelIndex); for views and tests.
-    const std::vector<std::uint32_t>& texels() const { return texels_; }
+    std::span<const std::uint32_t> texels() const { return texels_.words(); }
 
     static std::uint32_t encodeTexel(const Rgb& color);
     static Rgb decodeTexel(std::uint32_t packed);
@@ -50,7 +50,7 @@ public:
 private:
     Vec3 center_;
     int size_;
-    std::vector<std::uint32_t> texels_;
+    TexelBuffer texels_;
     std::size_t validCount_ = 0;
 };
 

@@ -1,8 +1,9 @@
 #pragma once
 // Which texel of a caching cube a direction addresses: OpenGL's cubemap
-// face selection and nearest-texel rule for a size x size face, computed in
-// float exactly as Mesa's llvmpipe samples a cubemap (proven by a test
-// against real OpenGL).
+// face selection (GL 4.6 table 8.19) and nearest-texel rule for a size x size
+// face, computed in float exactly as Mesa's llvmpipe samples a cubemap, so a
+// rasterizer sampling the cube with GL_NEAREST reads the same texel.
+// tests/cache/CubeAddressingGlTest.cpp checks this against real OpenGL.
 #include "core/CubeMapping.h"
 #include "core/Vec3.h"
 
@@ -16,8 +17,10 @@ struct CubeTexel {
     bool operator==(const CubeTexel&) const = default;
 };
 
-// The texel nearest-neighbour sampling would read for `direction` (any
-// length, not all zero) on a cube with `size` texels per face side.
+// The texel GL_NEAREST / GL_CLAMP_TO_EDGE sampling reads for `direction`
+// (finite, any length) on a cube with `size` texels per face side. Ties
+// between |components| and signed zeros are decided as llvmpipe does (see
+// cubeCoordFromDirection); an all-zero direction gives the centre of +z or -z.
 CubeTexel cubeTexelFromDirection(const Vec3& direction, int size);
 
 // Index of a texel in a face-major array: ((face * size) + y) * size + x.

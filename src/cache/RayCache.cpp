@@ -6,6 +6,12 @@
 
 namespace raycache {
 
+CacheTechnique RayCache::techniqueFor(const SceneObject& object, const RayCacheSettings& settings) {
+    const Material& m = object.material;
+    if (!m.reflects() && !m.refracts()) return CacheTechnique::None;
+    return settings.techniqueOverride.value_or(m.cache.technique);
+}
+
 RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings) : ideal_(settings.ideal) {
     if (settings.resolutionOverride &&
         (*settings.resolutionOverride < kMinResolution || *settings.resolutionOverride > kMaxResolution))
@@ -16,8 +22,7 @@ RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings) : ideal
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
         const SceneObject& object = scene.objects[i];
         const Material& m = object.material;
-        if (!m.reflects() && !m.refracts()) continue;
-        const CacheTechnique technique = settings.techniqueOverride.value_or(m.cache.technique);
+        const CacheTechnique technique = techniqueFor(object, settings);
         if (technique == CacheTechnique::None) continue;
         if (technique == CacheTechnique::Cdct)
             throw InputError("object '" + object.name +

@@ -50,6 +50,10 @@ public:
     // outside [16, 2048] or a technique not implemented yet (CDCT).
     RayCache(const Scene& scene, const RayCacheSettings& settings);
 
+    // The technique `object` is cached with under `settings`: None for objects
+    // that neither reflect nor refract. The one rule for which objects get a cube.
+    static CacheTechnique techniqueFor(const SceneObject& object, const RayCacheSettings& settings);
+
     bool empty() const { return cubes_.empty(); }
     bool cachesObject(int objectId) const { return cubeIndexOf(objectId) >= 0; }
     // The object's cube; the object must be cached.

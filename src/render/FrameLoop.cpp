@@ -9,7 +9,7 @@
 namespace raycache {
 
 void renderFrames(const Scene& scene, const CameraPath& path, const RenderSettings& settings, int frameCount,
-                  const std::function<void(const FrameResult&, const Image&)>& onFrame) {
+                  const FrameCallback& onFrame) {
     RayCache cache(scene, settings.cache);
     const TraceScene tracer(scene);
     const Parallel parallel(settings.threads);
@@ -23,7 +23,7 @@ void renderFrames(const Scene& scene, const CameraPath& path, const RenderSettin
         result.stats = renderer.render(camera, film);
         result.milliseconds =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-        onFrame(result, film);
+        onFrame(result, film, cache);
     }
 }
 

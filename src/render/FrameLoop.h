@@ -3,6 +3,7 @@
 #include <functional>
 
 #include "core/Image.h"
+#include "cache/RayCache.h"
 #include "render/FrameStats.h"
 #include "render/RenderSettings.h"
 #include "scene/Scene.h"
@@ -18,8 +19,10 @@ struct FrameResult {
 // Builds the acceleration structure and the caches (settings.cache) once,
 // then renders frames [0, frameCount) with cameras from `path` applied to
 // scene.camera, calling onFrame after each. Throws InputError for invalid
-// cache settings before rendering anything.
+// cache settings before rendering anything. onFrame also sees the caches as
+// they stand after the frame (e.g. to write a view of a cube).
+using FrameCallback = std::function<void(const FrameResult&, const Image& film, const RayCache& caches)>;
 void renderFrames(const Scene& scene, const CameraPath& path, const RenderSettings& settings, int frameCount,
-                  const std::function<void(const FrameResult&, const Image&)>& onFrame);
+                  const FrameCallback& onFrame);
 
 }  // namespace raycache

@@ -136,23 +136,25 @@ Scene behindScene(int n) {
     return s;
 }
 
-// cols x rows with cols a power of two >= rows: 1, 2x1, 2x2, 4x2, 4x4, 8x4.
+// A wall of N mirror spheres facing the camera, cols x rows with cols a power
+// of two >= rows (1, 2x1, 2x2, 4x2, 4x4, 8x4), nearly touching so they reflect
+// one another. The camera is fixed: grid-32 fills the view, grid-1 a 32nd of it.
 Scene gridScene(int n) {
     Scene s;
     s.name = "grid-" + std::to_string(n);
-    s.objects.push_back(floorObject(200.0f));
+    s.objects.push_back(floorObject(200.0f, -5.0f));
     const int cols = 1 << ((static_cast<int>(std::log2(n)) + 1) / 2);
     const int rows = (n + cols - 1) / cols;
-    constexpr float spacing = 2.4f;
+    constexpr float spacing = 2.2f;
     for (int i = 0; i < n; ++i) {
         const int row = i / cols, col = i % cols;
-        const Vec3 c{(static_cast<float>(col) - 0.5f * static_cast<float>(cols - 1)) * spacing, 1.0f,
-                     (static_cast<float>(row) - 0.5f * static_cast<float>(rows - 1)) * spacing};
-        s.objects.push_back(sphere("sphere" + std::to_string(i), c, 1.0f, mirror(paletteColor(i), 0.7f)));
+        const Vec3 c{(static_cast<float>(col) - 0.5f * static_cast<float>(cols - 1)) * spacing,
+                     (0.5f * static_cast<float>(rows - 1) - static_cast<float>(row)) * spacing, 0.0f};
+        s.objects.push_back(sphere("sphere" + std::to_string(i), c, 1.0f, mirror(paletteColor(i), 0.8f)));
     }
-    s.lights.push_back(pointLight({8, 15, 10}));
+    s.lights.push_back(pointLight({6, 12, 16}));
     s.environment = Environment::constant(kSky);
-    s.camera = camera({0, 10, 18}, {0, 0, 0}, 50.0f);
+    s.camera = camera({0, 1, 15}, {0, 0, 0}, 60.0f);
     s.cameraPath = orbit({0, 0, 0}, 1.0f);
     s.defaultFrames = 30;
     return s;

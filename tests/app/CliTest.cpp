@@ -70,7 +70,7 @@ TEST_F(Cli, ScenesListsOneLinePerBuiltinScene) {
 }
 
 TEST_F(Cli, HelpWorksForEveryCommand) {
-    for (const char* args : {"--help", "render --help", "scenes --help"}) {
+    for (const char* args : {"--help", "render --help", "cache-view --help", "scenes --help"}) {
         const RunResult r = runRaycache(args, dir_);
         EXPECT_EQ(r.exitCode, 0) << args;
         EXPECT_NE(r.out.find("Usage"), std::string::npos) << args;
@@ -140,4 +140,56 @@ TEST_F(Cli, UnwritableOutputIsARuntimeErrorWithNoPartialFile) {
     EXPECT_EQ(r.exitCode, 1) << r.err;
     EXPECT_EQ(lineCount(r.err), 1) << r.err;
     EXPECT_EQ(outputs().size(), 1u);  // only the directory we made
+}
+
+TEST_F(Cli, RenderRejectsBadCachingOptionsWithOneLine) {
+    const std::string png = (dir_ / "x.png").string();
+    for (const std::string& args : {"render --scene behind-1 --technique bogus --out " + png,
+                                    "render --scene behind-1 --cache-res 8 --out " + png}) {
+        const RunResult r = runRaycache(args, dir_);
+        EXPECT_EQ(r.exitCode, 2) << args;
+        EXPECT_EQ(lineCount(r.err), 1) << args << "\n" << r.err;
+        EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << args << "\n" << r.err;
+        EXPECT_TRUE(outputs().empty()) << args;
+    }
+}
+
+TEST_F(Cli, CacheViewWritesTheCubeCross) {
+    const fs::path out = dir_ / "cross.png";
+    const RunResult r = runRaycache(
+        "cache-view --scene behind-1 --object main --width 32 --height 32 --frames 2 --cache-res 16 --out " +
+            out.string(),
+        dir_);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(fs::exists(out));
+    EXPECT_NE(r.out.find("frame 2/2"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("% invalid"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("MiB"), std::string::npos) << r.out;
+    EXPECT_EQ(outputs().size(), 1u);  // no temp files left behind
+}
+
+TEST_F(Cli, CacheViewRejectsObjectsWithoutACubeBeforeRendering) {
+    const std::string png = (dir_ / "cross.png").string();
+    struct Case {
+        std::string args;
+        std::string says;  // part of the one error line
+    };
+    const Case cases[] = {
+        {"cache-view --scene behind-2 --object nosuch --out " + png, "caching objects: main, behind0, behind1"},
+        {"cache-view --scene behind-2 --object floor --out " + png, "neither reflective nor refractive"},
+        {"cache-view --scene behind-2 --object main --technique none --out " + png, "technique is none"},
+        {"cache-view --scene behind-2 --object main --out " + (dir_ / "cross.bmp").string(), ".bmp"},
+        {"cache-view --scene behind-2 --object main --out " + (dir_ / "missing-dir" / "x.png").string(),
+         "missing-dir"},
+        {"cache-view --scene behind-2 --object main", "--out"},
+    };
+    for (const Case& c : cases) {
+        const RunResult r = runRaycache(c.args, dir_);
+        EXPECT_EQ(r.exitCode, 2) << c.args;
+        EXPECT_EQ(lineCount(r.err), 1) << c.args << "\n" << r.err;
+        EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << c.args << "\n" << r.err;
+        EXPECT_NE(r.err.find(c.says), std::string::npos) << c.args << "\n" << r.err;
+        EXPECT_TRUE(r.out.find("frame 1/") == std::string::npos) << c.args;  // nothing was rendered
+        EXPECT_TRUE(outputs().empty()) << c.args;
+    }
 }

@@ -50,7 +50,10 @@ PathRender renderPath(const std::string& sceneName, CacheTechnique technique, in
         run.frames.push_back(std::move(film));
     }
     for (std::size_t i = 0; i < scene->objects.size(); ++i)
-        if (cache.cachesObject(static_cast<int>(i))) run.texels.push_back(cache.cube(static_cast<int>(i)).texels());
+        if (cache.cachesObject(static_cast<int>(i))) {
+            const auto words = cache.cube(static_cast<int>(i)).texels();
+            run.texels.emplace_back(words.begin(), words.end());
+        }
     return run;
 }
 

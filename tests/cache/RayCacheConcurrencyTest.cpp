@@ -60,7 +60,10 @@ std::vector<std::vector<std::uint32_t>> run(int threads, int frames, int pixels)
         cache.endFrame(workers);
     }
     std::vector<std::vector<std::uint32_t>> texels;
-    for (int o = 0; o < 3; ++o) texels.push_back(cache.cube(o).texels());
+    for (int o = 0; o < 3; ++o) {
+        const auto words = cache.cube(o).texels();
+        texels.emplace_back(words.begin(), words.end());
+    }
     return texels;
 }
 

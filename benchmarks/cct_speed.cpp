@@ -1,0 +1,133 @@
+// CCT against uncached ray tracing on behind-N and grid-N, side by side:
+//  (a) still camera, caches filled by the warm-up frames (the documents' protocol),
+//      with the "ideal" frame (caching objects trace no secondary rays at all);
+//  (b) the scene's moving camera path from empty caches, as they fill.
+// Usage: cct_speed [--size 1024] [--rounds 7] [--path-frames 10] [--path-rounds 3] [--scenes a,b]
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <memory>
+
+#include "bench/InterleavedRuns.h"
+#include "core/Parallel.h"
+#include "render/FrameRenderer.h"
+#include "scene/BuiltinScenes.h"
+#include "trace/TraceScene.h"
+
+using namespace raycache;
+
+namespace {
+
+RenderSettings settingsFor(int size, int threads, std::optional<CacheTechnique> technique, bool ideal) {
+    RenderSettings s;
+    s.width = s.height = size;
+    s.threads = threads;
+    s.cache.techniqueOverride = technique;
+    s.cache.ideal = ideal;
+    return s;
+}
+
+// The thesis' Table 5.2 speed-ups (plain ray tracing, grid of caching spheres).
+double documentsGridSpeedup(int n) {
+    switch (n) {
+    case 1: return 1.02;
+    case 2: return 1.07;
+    case 4: return 1.15;
+    case 8: return 1.32;
+    case 16: return 1.95;
+    case 32: return 2.68;
+    default: return 0.0;
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"CCT vs uncached ray tracing, interleaved frame timing"};
+    int size = 1024, rounds = 7, warmup = 2, pathFrames = 10, pathRounds = 3, threads = 0;
+    std::vector<std::string> scenes;
+    for (const char* family : {"behind-", "grid-"})
+        for (int n : {1, 2, 4, 8, 16, 32}) scenes.push_back(family + std::to_string(n));
+    app.add_option("--size", size, "Image width and height")->capture_default_str();
+    app.add_option("--rounds", rounds, "Timed still frames per variant")->capture_default_str();
+    app.add_option("--warmup", warmup, "Untimed still frames per variant first (they fill the caches)")
+        ->capture_default_str();
+    app.add_option("--path-frames", pathFrames, "Frames of the moving camera path")->capture_default_str();
+    app.add_option("--path-rounds", pathRounds, "Timed runs of the whole path per variant")->capture_default_str();
+    app.add_option("--threads", threads, "Worker threads, 0 = all")->capture_default_str();
+    app.add_option("--scenes", scenes, "Built-in scenes")->delimiter(',');
+    CLI11_PARSE(app, argc, argv);
+    const Parallel parallel(threads);
+
+    std::printf("## (a) still camera, caches filled\n\n");
+    std::printf("| scene | uncached ms | CCT ms | ideal ms | speed-up | documents | CCT / ideal | cache MiB |\n");
+    std::printf("| --- | --- | --- | --- | --- | --- | --- | --- |\n");
+    struct PathRow {
+        std::string scene;
+        VariantTimes uncached, cct, ideal;
+        double hitPercentLastFrame;
+    };
+    std::vector<PathRow> pathRows;
+    for (const std::string& name : scenes) {
+        const auto scene = makeBuiltinScene(name);
+        if (!scene) {
+            std::fprintf(stderr, "error: unknown scene %s\n", name.c_str());
+            return 2;
+        }
+        const TraceScene tracer(*scene);
+        const RenderSettings plainSettings = settingsFor(size, threads, CacheTechnique::None, false);
+        const RenderSettings cctSettings = settingsFor(size, threads, CacheTechnique::Cct, false);
+        const RenderSettings idealSettings = settingsFor(size, threads, CacheTechnique::Cct, true);
+        const FrameRenderer plain(*scene, tracer, plainSettings, parallel);
+        RayCache cctCache(*scene, cctSettings.cache), idealCache(*scene, idealSettings.cache);
+        const FrameRenderer cct(*scene, tracer, cctSettings, parallel, &cctCache);
+        const FrameRenderer ideal(*scene, tracer, idealSettings, parallel, &idealCache);
+        Image film;
+        const auto still = runInterleaved(
+            {{"uncached", [&] { return plain.render(scene->camera, film).rays.total(); }},
+             {"cct", [&] { return cct.render(scene->camera, film).rays.total(); }},
+             {"ideal", [&] { return ideal.render(scene->camera, film).rays.total(); }}},
+            warmup, rounds);
+        const int n = std::stoi(name.substr(name.find('-') + 1));
+        const double documents = name.rfind("grid-", 0) == 0 ? documentsGridSpeedup(n) : 0.0;
+        char documentsText[32] = "(hybrid, see 5.1)";
+        if (documents > 0) std::snprintf(documentsText, sizeof documentsText, "%.2fx", documents);
+        std::printf("| %s | %.1f (%.1f-%.1f) | %.1f (%.1f-%.1f) | %.1f (%.1f-%.1f) | %.2fx | %s | %.2f | %.1f |\n",
+                    name.c_str(), still[0].median(), still[0].min(), still[0].max(), still[1].median(), still[1].min(),
+                    still[1].max(), still[2].median(), still[2].min(), still[2].max(),
+                    still[0].median() / still[1].median(), documentsText, still[1].median() / still[2].median(),
+                    static_cast<double>(cctCache.bytes()) / (1024.0 * 1024.0));
+        std::fflush(stdout);
+
+        // (b) the moving path from empty caches; each run renders the whole path.
+        double hitPercent = 0.0;
+        const auto pathRun = [&](const FrameRenderer& renderer, bool isCct) {
+            std::uint64_t rays = 0;
+            for (int f = 0; f < pathFrames; ++f) {
+                const FrameStats stats = renderer.render(scene->cameraPath.cameraAt(scene->camera, f), film);
+                rays += stats.rays.total();
+                if (isCct && f + 1 == pathFrames && stats.cache && stats.cache->lookups() > 0)
+                    hitPercent = 100.0 * static_cast<double>(stats.cache->hits()) /
+                                 static_cast<double>(stats.cache->lookups());
+            }
+            return rays;
+        };
+        const auto moving = runInterleaved(
+            {{"uncached", [&] { return pathRun(plain, false); }},
+             {"cct", [&] { return pathRun(cct, true); }, [&] { cctCache.clear(); }},
+             {"ideal", [&] { return pathRun(ideal, false); }, [&] { idealCache.clear(); }}},
+            0, pathRounds);
+        pathRows.push_back({name, moving[0], moving[1], moving[2], hitPercent});
+    }
+
+    std::printf("\n## (b) moving camera path (%d frames from empty caches), ms per frame\n\n", pathFrames);
+    std::printf("| scene | uncached | CCT | ideal | speed-up | CCT hit rate, last frame |\n");
+    std::printf("| --- | --- | --- | --- | --- | --- |\n");
+    for (const PathRow& r : pathRows) {
+        const double f = static_cast<double>(pathFrames);
+        std::printf("| %s | %.1f (%.1f-%.1f) | %.1f (%.1f-%.1f) | %.1f (%.1f-%.1f) | %.2fx | %.1f%% |\n", r.scene.c_str(),
+                    r.uncached.median() / f, r.uncached.min() / f, r.uncached.max() / f, r.cct.median() / f,
+                    r.cct.min() / f, r.cct.max() / f, r.ideal.median() / f, r.ideal.min() / f, r.ideal.max() / f,
+                    r.uncached.median() / r.cct.median(), r.hitPercentLastFrame);
+    }
+    return 0;
+}

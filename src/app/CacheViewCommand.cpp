@@ -1,0 +1,77 @@
+#include "app/CacheViewCommand.h"
+
+#include <ostream>
+#include <vector>
+
+#include "app/FrameReport.h"
+#include "cache/CubeCross.h"
+#include "core/Errors.h"
+#include "render/FrameLoop.h"
+#include "render/ImageWriter.h"
+
+namespace raycache {
+
+namespace {
+
+// Checked before the caches (and their memory) exist, with RayCache's own rule.
+bool hasCache(const SceneObject& object, const RayCacheSettings& settings) {
+    return RayCache::techniqueFor(object, settings) != CacheTechnique::None;
+}
+
+// The id of the object named `name`; InputError if there is none or it has no
+// cache, naming the objects that do.
+int cachedObjectId(const Scene& scene, const RayCacheSettings& settings, const std::string& name) {
+    std::string cachingNames;
+    int id = -1;
+    for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+        const SceneObject& object = scene.objects[i];
+        if (object.name == name && id < 0) id = static_cast<int>(i);
+        if (hasCache(object, settings)) cachingNames += (cachingNames.empty() ? "" : ", ") + object.name;
+    }
+    if (cachingNames.empty()) cachingNames = "none";
+    if (id < 0) throw InputError("--object: no object named '" + name + "'; caching objects: " + cachingNames);
+    const SceneObject& object = scene.objects[static_cast<std::size_t>(id)];
+    if (!object.material.reflects() && !object.material.refracts())
+        throw InputError("--object: object '" + name +
+                         "' has no caching cube: it is neither reflective nor refractive; caching objects: " +
+                         cachingNames);
+    if (!hasCache(object, settings))
+        throw InputError("--object: object '" + name + "' has no caching cube: its caching technique is none" +
+                         (settings.techniqueOverride ? " (--technique none)" : "") +
+                         "; caching objects: " + cachingNames);
+    return id;
+}
+
+}  // namespace
+
+void runCacheViewCommand(const CacheViewCommandOptions& options, std::ostream& out) {
+    validateRenderJobOptions(options.job);
+    if (options.out.empty()) throw InputError("--out is required: the image to write the cube's cross to");
+    checkWritableImagePath(options.out);
+    if (options.object.empty()) throw InputError("--object is required: the name of a caching object");
+
+    const RenderJob job = prepareRenderJob(options.job);
+    const int objectId = cachedObjectId(job.scene, job.settings.cache, options.object);
+
+    out << "scene " << job.scene.name << ": " << job.scene.objects.size() << " objects, " << job.scene.lights.size()
+        << " lights, " << job.settings.width << "x" << job.settings.height << ", " << job.frames
+        << " frames; showing the cube of '" << options.object << "'\n";
+
+    renderFrames(job.scene, job.path, job.settings, job.frames,
+                 [&](const FrameResult& r, const Image&, const RayCache& caches) {
+                     out << formatFrameLine(r, job.frames) << std::endl;
+                     if (r.frame + 1 != job.frames) return;
+                     if (!caches.cachesObject(objectId))
+                         throw RuntimeError("object '" + options.object + "' was not cached");
+                     const CachingCube& cube = caches.cube(objectId);
+                     writeImage(unfoldCubeCross(cube), options.out);
+                     const double invalidPercent = 100.0 * static_cast<double>(cube.texelCount() - cube.validCount()) /
+                                                   static_cast<double>(cube.texelCount());
+                     out << "object " << options.object << ": " << cube.size() << "x" << cube.size()
+                         << " texels per face, " << formatFixed(invalidPercent, 1) << "% invalid, "
+                         << formatFixed(static_cast<double>(cube.bytes()) / (1024.0 * 1024.0), 2) << " MiB\n"
+                         << "wrote " << options.out << "\n";
+                 });
+}
+
+}  // namespace raycache

@@ -1,0 +1,32 @@
+#include "app/FrameReport.h"
+
+#include <cstdio>
+#include <sstream>
+
+namespace raycache {
+
+std::string formatFixed(double value, int decimals) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
+    return buffer;
+}
+
+std::string formatFrameLine(const FrameResult& r, int frameCount) {
+    const RayCounts& rays = r.stats.rays;
+    const double mrays = static_cast<double>(rays.total()) / (r.milliseconds * 1e3);
+    std::ostringstream line;
+    line << "frame " << (r.frame + 1) << "/" << frameCount << "  " << formatFixed(r.milliseconds, 1)
+         << " ms  rays: primary " << rays.primary << ", shadow " << rays.shadow << ", reflection " << rays.reflection
+         << ", refraction " << rays.refraction << "  " << formatFixed(mrays, 2) << " Mrays/s";
+    if (const auto& c = r.stats.cache) {
+        const double hitRate =
+            c->lookups() ? 100.0 * static_cast<double>(c->hits()) / static_cast<double>(c->lookups()) : 0.0;
+        line << "  cache: " << c->objects.size() << " cubes, hits " << formatFixed(hitRate, 1) << "% of "
+             << c->lookups() << ", stores " << c->stores() << ", invalid before "
+             << formatFixed(c->invalidPercentBefore(), 1) << "%, "
+             << formatFixed(static_cast<double>(c->bytes()) / (1024.0 * 1024.0), 1) << " MiB";
+    }
+    return line.str();
+}
+
+}  // namespace raycache

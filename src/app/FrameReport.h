@@ -1,0 +1,17 @@
+#pragma once
+// The progress line every rendering command prints after each frame, so
+// `render` and `cache-view` report frames identically.
+#include <string>
+
+#include "render/FrameLoop.h"
+
+namespace raycache {
+
+// `value` with exactly `decimals` digits after the point ("26.6").
+std::string formatFixed(double value, int decimals);
+
+// "frame 3/48  26.6 ms  rays: primary ..., ...  21.54 Mrays/s[  cache: ...]",
+// without a newline; the cache part appears when the frame used caches.
+std::string formatFrameLine(const FrameResult& result, int frameCount);
+
+}  // namespace raycache

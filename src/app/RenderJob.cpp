@@ -1,0 +1,65 @@
+#include "app/RenderJob.h"
+
+#include "core/Errors.h"
+#include "scene/SceneLoader.h"
+
+namespace raycache {
+
+namespace {
+
+constexpr int kMaxImageSide = 16384;
+constexpr int kMaxFrames = 1000000;
+
+CameraPath chooseCameraPath(const Scene& scene, const std::optional<std::string>& override) {
+    if (!override) return scene.cameraPath;
+    CameraPath path;
+    if (*override == "static") return path;
+    path.kind = *override == "orbit" ? CameraPathKind::Orbit : CameraPathKind::Pan;
+    // Keep the scene's own centre and speed when it already orbits or pans.
+    const bool sceneTurns =
+        scene.cameraPath.kind == CameraPathKind::Orbit || scene.cameraPath.kind == CameraPathKind::Pan;
+    path.center = scene.cameraPath.kind == CameraPathKind::Orbit ? scene.cameraPath.center : scene.camera.lookAt;
+    path.degreesPerFrame = sceneTurns ? scene.cameraPath.degreesPerFrame : 1.0f;
+    return path;
+}
+
+}  // namespace
+
+void validateRenderJobOptions(const RenderJobOptions& o) {
+    if (o.width < 1 || o.height < 1 || o.width > kMaxImageSide || o.height > kMaxImageSide)
+        throw InputError("--width/--height must be between 1 and " + std::to_string(kMaxImageSide));
+    if (o.frames && (*o.frames < 1 || *o.frames > kMaxFrames))
+        throw InputError("--frames must be between 1 and " + std::to_string(kMaxFrames));
+    if (o.maxDepth < 1 || o.maxDepth > 64) throw InputError("--max-depth must be between 1 and 64");
+    if (!(o.minWeight >= 0.0f && o.minWeight <= 1.0f)) throw InputError("--min-weight must be in [0, 1]");
+    if (o.threads < 0 || o.threads > 1024) throw InputError("--threads must be between 0 (all) and 1024");
+    if (o.technique && *o.technique != "none" && *o.technique != "cct")
+        throw InputError("--technique must be none or cct (got '" + *o.technique + "'; cdct is not implemented yet)");
+    if (o.cacheResolution &&
+        (*o.cacheResolution < RayCache::kMinResolution || *o.cacheResolution > RayCache::kMaxResolution))
+        throw InputError("--cache-res must be between 16 and 2048 (got " + std::to_string(*o.cacheResolution) + ")");
+    if (o.path && *o.path != "static" && *o.path != "orbit" && *o.path != "pan")
+        throw InputError("--path must be static, orbit or pan (got '" + *o.path + "')");
+}
+
+RenderJob prepareRenderJob(const RenderJobOptions& options) {
+    validateRenderJobOptions(options);
+    RenderJob job;
+    job.scene = loadScene(options.scene);
+    job.path = chooseCameraPath(job.scene, options.path);
+    job.frames = options.frames.value_or(job.scene.defaultFrames);
+
+    RenderSettings& settings = job.settings;
+    settings.width = options.width;
+    settings.height = options.height;
+    settings.maxDepth = options.maxDepth;
+    settings.minWeight = options.minWeight;
+    settings.threads = options.threads;
+    if (options.technique)
+        settings.cache.techniqueOverride = *options.technique == "cct" ? CacheTechnique::Cct : CacheTechnique::None;
+    settings.cache.resolutionOverride = options.cacheResolution;
+    settings.cache.ideal = options.cacheIdeal;
+    return job;
+}
+
+}  // namespace raycache

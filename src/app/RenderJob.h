@@ -1,0 +1,45 @@
+#pragma once
+// What every rendering command needs before its first frame: a loaded scene,
+// the camera path, the render settings and the frame count, from the options
+// those commands share (scene, size, frames, path, threads, depth, caching).
+#include <optional>
+#include <string>
+
+#include "render/RenderSettings.h"
+#include "scene/CameraPath.h"
+#include "scene/Scene.h"
+
+namespace raycache {
+
+struct RenderJobOptions {
+    std::string scene = "room";
+    int width = 512;
+    int height = 512;
+    std::optional<int> frames;        // default: the scene's path length
+    std::optional<std::string> path;  // static | orbit | pan; default: the scene's own path
+    int threads = 0;
+    int maxDepth = 6;
+    float minWeight = 0.01f;
+    std::optional<std::string> technique;  // none | cct; default: each material's own setting
+    std::optional<int> cacheResolution;    // default: each material's own setting
+    bool cacheIdeal = false;               // benchmark switch, see RayCacheSettings::ideal
+};
+
+struct RenderJob {
+    Scene scene;
+    CameraPath path;
+    RenderSettings settings;
+    int frames = 1;
+};
+
+// Throws InputError for option values out of range, without touching the
+// scene, so commands can check their own options in between and still report
+// errors in a fixed order.
+void validateRenderJobOptions(const RenderJobOptions& options);
+
+// Validates the options (as validateRenderJobOptions), loads the scene and
+// resolves the camera path, settings and frame count. Throws InputError for
+// bad options or scene input; renders nothing.
+RenderJob prepareRenderJob(const RenderJobOptions& options);
+
+}  // namespace raycache
