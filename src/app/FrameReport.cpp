@@ -21,7 +21,7 @@ std::string formatFrameLine(const FrameResult& r, int frameCount) {
     if (const auto& c = r.stats.cache) {
         const double hitRate =
             c->lookups() ? 100.0 * static_cast<double>(c->hits()) / static_cast<double>(c->lookups()) : 0.0;
-        line << "  cache: " << c->objects.size() << " cubes, hits " << formatFixed(hitRate, 1) << "% of "
+        line << "  cache: " << c->objects.size() << (c->objects.size() == 1 ? " cube" : " cubes") << ", hits " << formatFixed(hitRate, 1) << "% of "
              << c->lookups() << ", stores " << c->stores() << ", invalid before "
              << formatFixed(c->invalidPercentBefore(), 1) << "%, "
              << formatFixed(static_cast<double>(c->bytes()) / (1024.0 * 1024.0), 1) << " MiB";

@@ -26,7 +26,9 @@ struct CubeCoord {
 // subnormal input behaves as a zero of the same sign, and a subnormal result
 // becomes +0. Doing it by hand keeps the answers independent of this thread's
 // MXCSR.
-inline float flushSubnormal(float v) { return std::fabs(v) < FLT_MIN ? std::copysign(0.0f, v) : v; }
+inline float flushSubnormal(float v) {
+    return std::fabs(v) < FLT_MIN ? std::copysign(0.0f, v) : v;
+}
 
 // a * b rounded to float on its own. llvmpipe emits a separate multiply and
 // add; GCC would fuse `a * b + c` into one FMA (one rounding) wherever FMA is

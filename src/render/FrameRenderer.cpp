@@ -67,7 +67,7 @@ FrameStats FrameRenderer::render(const Camera& camera, Image& film) const {
             if (!s.hits[i].hit()) continue;
             const SceneObject& object = scene_.objects[static_cast<std::size_t>(s.hits[i].objectId)];
             s.points[i] = surfacePointAt(object, s.rays[i], s.hits[i], object.material.diffuseTexture.has_value());
-            queryCount += static_cast<std::size_t>(integrator_.shadowQueries(s.points[i], &s.queries[queryCount]));
+            queryCount += static_cast<std::size_t>(integrator_.shadowQueries(s.points[i], s.queries.data() + queryCount));
         }
         s.firstQuery[n] = static_cast<int>(queryCount);
         for (std::size_t q = 0; q < queryCount; ++q) s.shadowRays[q] = s.queries[q].ray;

@@ -4,7 +4,6 @@
 // must name the same texel for every one of them.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <array>
 #include <bit>
 #include <chrono>
@@ -13,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -445,12 +445,13 @@ TEST_P(CubeAddressingGl, NearestTexelMatchesOpenGl) {
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    std::printf("[ oracle   ] %s\n[ oracle   ] size %d: %zu directions, %d with s*size or t*size integral; "
-                "%d mismatches; %.2f s\n",
-                gl_->description().c_str(), size, probes.directions.size(), exactBoundaries, mismatches, seconds);
+    std::printf(
+        "[ oracle   ] %s\n[ oracle   ] size %d: %zu directions, %d with s*size or t*size integral; "
+        "%d mismatches; %.2f s\n",
+        gl_->description().c_str(), size, probes.directions.size(), exactBoundaries, mismatches, seconds);
     for (int k = 0; k < static_cast<int>(Kind::kCount); ++k) {
-        std::printf("[ oracle   ]   %-18s %7d directions, %d mismatches\n", kindName(static_cast<Kind>(k)),
-                    perKind[k], mismatchesPerKind[k]);
+        std::printf("[ oracle   ]   %-18s %7d directions, %d mismatches\n", kindName(static_cast<Kind>(k)), perKind[k],
+                    mismatchesPerKind[k]);
     }
     EXPECT_EQ(garbled, 0) << "directions changed on their way into GL";
     EXPECT_EQ(mismatches, 0) << "texels where raycache and OpenGL disagree";

@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <limits>
+#include <cstdint>
 #include <random>
 #include <vector>
 
@@ -42,12 +42,12 @@ TEST(CubeAddressing, FollowsTheSpecTableOnEveryFace) {
         float sc, tc;
     };
     const Case cases[] = {
-        {{1.0f, 0.5f, -0.25f}, CubeFace::PosX, 0.25f, -0.5f},     // sc = -rz, tc = -ry
-        {{-2.0f, 0.5f, -0.25f}, CubeFace::NegX, -0.25f, -0.5f},   // sc = +rz, tc = -ry
-        {{0.5f, 4.0f, -0.25f}, CubeFace::PosY, 0.5f, -0.25f},     // sc = +rx, tc = +rz
-        {{0.5f, -1.0f, -0.25f}, CubeFace::NegY, 0.5f, 0.25f},     // sc = +rx, tc = -rz
-        {{0.5f, 0.25f, 1.0f}, CubeFace::PosZ, 0.5f, -0.25f},      // sc = +rx, tc = -ry
-        {{0.5f, 0.25f, -0.5f}, CubeFace::NegZ, -0.5f, -0.25f},    // sc = -rx, tc = -ry
+        {{1.0f, 0.5f, -0.25f}, CubeFace::PosX, 0.25f, -0.5f},    // sc = -rz, tc = -ry
+        {{-2.0f, 0.5f, -0.25f}, CubeFace::NegX, -0.25f, -0.5f},  // sc = +rz, tc = -ry
+        {{0.5f, 4.0f, -0.25f}, CubeFace::PosY, 0.5f, -0.25f},    // sc = +rx, tc = +rz
+        {{0.5f, -1.0f, -0.25f}, CubeFace::NegY, 0.5f, 0.25f},    // sc = +rx, tc = -rz
+        {{0.5f, 0.25f, 1.0f}, CubeFace::PosZ, 0.5f, -0.25f},     // sc = +rx, tc = -ry
+        {{0.5f, 0.25f, -0.5f}, CubeFace::NegZ, -0.5f, -0.25f},   // sc = -rx, tc = -ry
     };
     for (const Case& c : cases) {
         const float ma = std::fmax(std::fabs(c.d.x), std::fmax(std::fabs(c.d.y), std::fabs(c.d.z)));

@@ -48,7 +48,10 @@ std::unique_ptr<HeadlessGl> HeadlessGl::create(std::string& whyNot) {
     attempts[1].display = eglGetDisplay(EGL_DEFAULT_DISPLAY);
 
     for (const Attempt& attempt : attempts) {
-        if (attempt.display == EGL_NO_DISPLAY) continue;
+        if (attempt.display == EGL_NO_DISPLAY) {
+            if (&attempt == &attempts[1]) whyNot += "default display: eglGetDisplay failed (" + eglErrorText() + "); ";
+            continue;
+        }
         const std::string where = std::string(attempt.name) + ": ";
         EGLint major = 0, minor = 0;
         if (!eglInitialize(attempt.display, &major, &minor)) {
