@@ -59,6 +59,7 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
         settings.cache.techniqueOverride = *options.technique == "cct" ? CacheTechnique::Cct : CacheTechnique::None;
     settings.cache.resolutionOverride = options.cacheResolution;
     settings.cache.ideal = options.cacheIdeal;
+    RayCache::validate(job.scene, settings.cache);
     return job;
 }
 

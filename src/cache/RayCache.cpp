@@ -12,24 +12,30 @@ CacheTechnique RayCache::techniqueFor(const SceneObject& object, const RayCacheS
     return settings.techniqueOverride.value_or(m.cache.technique);
 }
 
-RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings) : ideal_(settings.ideal) {
+void RayCache::validate(const Scene& scene, const RayCacheSettings& settings) {
     if (settings.resolutionOverride &&
         (*settings.resolutionOverride < kMinResolution || *settings.resolutionOverride > kMaxResolution))
         throw InputError("cache resolution must be between " + std::to_string(kMinResolution) + " and " +
                          std::to_string(kMaxResolution) + " (got " + std::to_string(*settings.resolutionOverride) +
                          ")");
+    for (const SceneObject& object : scene.objects) {
+        const CacheTechnique technique = techniqueFor(object, settings);
+        if (technique == CacheTechnique::Cdct)
+            throw InputError("object '" + object.name +
+                             "': caching technique cdct is not implemented yet; use cct or none (--technique)");
+        const int resolution = settings.resolutionOverride.value_or(object.material.cache.faceResolution);
+        if (technique != CacheTechnique::None && (resolution < kMinResolution || resolution > kMaxResolution))
+            throw InputError("object '" + object.name + "': cache resolution must be between 16 and 2048");
+    }
+}
+
+RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings) : ideal_(settings.ideal) {
+    validate(scene, settings);
     cubeOfObject_.assign(scene.objects.size(), -1);
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
         const SceneObject& object = scene.objects[i];
-        const Material& m = object.material;
-        const CacheTechnique technique = techniqueFor(object, settings);
-        if (technique == CacheTechnique::None) continue;
-        if (technique == CacheTechnique::Cdct)
-            throw InputError("object '" + object.name +
-                             "': caching technique cdct is not implemented yet; use cct or none");
-        const int resolution = settings.resolutionOverride.value_or(m.cache.faceResolution);
-        if (resolution < kMinResolution || resolution > kMaxResolution)
-            throw InputError("object '" + object.name + "': cache resolution must be between 16 and 2048");
+        if (techniqueFor(object, settings) == CacheTechnique::None) continue;
+        const int resolution = settings.resolutionOverride.value_or(object.material.cache.faceResolution);
         cubeOfObject_[i] = static_cast<int>(cubes_.size());
         cubes_.push_back(Entry{static_cast<int>(i), object.name, CachingCube(object.origin, resolution)});
     }

@@ -54,6 +54,10 @@ public:
     // that neither reflect nor refract. The one rule for which objects get a cube.
     static CacheTechnique techniqueFor(const SceneObject& object, const RayCacheSettings& settings);
 
+    // Throws the InputError the constructor would throw, without allocating
+    // any cube: lets callers reject bad settings before doing any work.
+    static void validate(const Scene& scene, const RayCacheSettings& settings);
+
     bool empty() const { return cubes_.empty(); }
     bool cachesObject(int objectId) const { return cubeIndexOf(objectId) >= 0; }
     // The object's cube; the object must be cached.

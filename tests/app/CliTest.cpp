@@ -120,6 +120,27 @@ TEST_F(Cli, UsageAndInputErrorsExitTwoWithOneLineAndNoOutput) {
     }
 }
 
+TEST_F(Cli, TheDocumentedExampleSceneRenders) {
+    const RunResult r = runRaycache(std::string("render --scene ") + RAYCACHE_SOURCE_DIR +
+                                        "/examples/scenes/example.json --width 32 --height 24 --frames 2 --out " +
+                                        (dir_ / "example.png").string(),
+                                    dir_);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(fs::exists(dir_ / "example.png"));
+}
+
+TEST_F(Cli, UnimplementedCachingTechniqueIsAnInputErrorBeforeAnyOutput) {
+    const fs::path scene = dir_ / "cdct.json";
+    std::ofstream(scene) << R"({"objects": [{"shape": "sphere", "radius": 1,
+        "material": {"kr": 0.5, "cache": {"technique": "cdct"}}}]})";
+    const RunResult r = runRaycache("render --scene " + scene.string() + " --out " + (dir_ / "x.png").string(), dir_);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("cdct is not implemented yet"), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    EXPECT_FALSE(fs::exists(dir_ / "x.png"));
+}
+
 TEST_F(Cli, MalformedSceneFileNamesFileLineAndColumn) {
     const fs::path scene = dir_ / "bad.json";
     std::ofstream(scene) << "{\n  \"objects\": [\n    {\"shape\": \"sphere\", \"radius\": -1}\n  ]\n}\n";
