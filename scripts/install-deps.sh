@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   libembree-dev libtbb-dev libassimp-dev nlohmann-json3-dev libcli11-dev
   libstb-dev libtinyexr-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev
   libegl-dev libgl1-mesa-dri libegl-mesa0 libepoxy-dev
 )
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "app/FramePathPattern.h"
+#include "bench/SampleSummary.h"
 #include "app/FrameReport.h"
 #include "core/AtomicFile.h"
 #include "core/Errors.h"
@@ -15,12 +16,6 @@
 namespace raycache {
 
 namespace {
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 nlohmann::json cacheJson(const FrameCacheStats& c) {
     nlohmann::json objects = nlohmann::json::array();
@@ -74,9 +69,9 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out) {
         if (!options.out.empty() && (outPattern.perFrame() || lastFrame)) writeImage(film, outPattern.pathFor(r.frame));
     });
 
-    const auto [minIt, maxIt] = std::minmax_element(times.begin(), times.end());
-    out << "median " << formatFixed(median(times), 1) << " ms (min " << formatFixed(*minIt, 1) << ", max "
-        << formatFixed(*maxIt, 1) << ") over " << frames << " frames\n";
+    const SampleSummary summary = summarize(times);
+    out << "median " << formatFixed(summary.median, 1) << " ms (min " << formatFixed(summary.min, 1) << ", max "
+        << formatFixed(summary.max, 1) << ") over " << frames << " frames\n";
     if (!options.statsPath.empty()) {
         const nlohmann::json stats = {
             {"scene", scene.name},
@@ -86,7 +81,7 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out) {
             {"min_weight", settings.minWeight},
             {"threads", settings.threads},
             {"frames", frameStats},
-            {"summary", {{"median_ms", median(times)}, {"min_ms", *minIt}, {"max_ms", *maxIt},
+            {"summary", {{"median_ms", summary.median}, {"min_ms", summary.min}, {"max_ms", summary.max},
                          {"rays", raysJson(totalRays)}}}};
         writeTextFileAtomically(options.statsPath, stats.dump(2) + "\n");
     }

@@ -1,19 +1,15 @@
 #include "bench/InterleavedRuns.h"
 
+#include "bench/SampleSummary.h"
+
 #include <algorithm>
 #include <chrono>
 
 namespace raycache {
 
-double VariantTimes::median() const {
-    std::vector<double> v = milliseconds;
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    if (n == 0) return 0.0;
-    return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-double VariantTimes::min() const { return *std::min_element(milliseconds.begin(), milliseconds.end()); }
-double VariantTimes::max() const { return *std::max_element(milliseconds.begin(), milliseconds.end()); }
+double VariantTimes::median() const { return summarize(milliseconds).median; }
+double VariantTimes::min() const { return summarize(milliseconds).min; }
+double VariantTimes::max() const { return summarize(milliseconds).max; }
 
 std::vector<VariantTimes> runInterleaved(const std::vector<Variant>& variants, int warmupRounds, int timedRounds) {
     std::vector<VariantTimes> times(variants.size());
