@@ -69,22 +69,4 @@ float Transform::determinant() const {
     return dot(c0, cross(c1, c2));
 }
 
-float Transform::uniformScale() const {
-    return length(Vec3{m_[0][0], m_[1][0], m_[2][0]});
-}
-
-bool Transform::isSimilarity(float tolerance) const {
-    const Vec3 c[3] = {{m_[0][0], m_[1][0], m_[2][0]},
-                       {m_[0][1], m_[1][1], m_[2][1]},
-                       {m_[0][2], m_[1][2], m_[2][2]}};
-    const float s = length(c[0]);
-    if (!(s > 0.0f)) return false;
-    for (int i = 0; i < 3; ++i) {
-        if (std::fabs(length(c[i]) - s) > tolerance * s) return false;
-        for (int j = i + 1; j < 3; ++j)
-            if (std::fabs(dot(c[i], c[j])) > tolerance * s * s) return false;
-    }
-    return determinant() > 0.0f;
-}
-
 }  // namespace raycache

@@ -24,10 +24,6 @@ public:
     Vec3 applyToNormal(const Vec3& n) const;
 
     Vec3 translation() const { return {m_[0][3], m_[1][3], m_[2][3]}; }
-    // True when the linear part is a rotation times one positive scale factor.
-    bool isSimilarity(float tolerance = 1e-4f) const;
-    // Scale factor of a similarity transform (length of the first column).
-    float uniformScale() const;
     float determinant() const;
 
 private:

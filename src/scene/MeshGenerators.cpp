@@ -160,24 +160,4 @@ TriangleMesh makeBowl(float wallThickness, int segments) {
     return std::move(b.mesh);
 }
 
-TriangleMesh makeUvSphere(int segments, int rings) {
-    MeshBuilder b;
-    for (int r = 0; r <= rings; ++r) {
-        const float polar = std::numbers::pi_v<float> * static_cast<float>(r) / static_cast<float>(rings);
-        for (int s = 0; s <= segments; ++s) {
-            const float a = kTwoPi * static_cast<float>(s) / static_cast<float>(segments);
-            const Vec3 d{std::sin(polar) * std::cos(a), std::cos(polar), std::sin(polar) * std::sin(a)};
-            b.vertex(d * 0.5f, d, static_cast<float>(s) / static_cast<float>(segments),
-                     1.0f - static_cast<float>(r) / static_cast<float>(rings));
-        }
-    }
-    const auto stride = static_cast<std::uint32_t>(segments + 1);
-    for (std::uint32_t r = 0; r < static_cast<std::uint32_t>(rings); ++r)
-        for (std::uint32_t s = 0; s < static_cast<std::uint32_t>(segments); ++s) {
-            const std::uint32_t a = r * stride + s, c = a + stride;
-            b.quad(a, a + 1, c + 1, c);
-        }
-    return std::move(b.mesh);
-}
-
 }  // namespace raycache

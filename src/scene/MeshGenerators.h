@@ -19,7 +19,5 @@ TriangleMesh makeTorus(float major = 0.35f, float minor = 0.15f, int ringSegment
 // Hemispherical bowl of radius 0.5 opening toward +y (a concave object), with a
 // thin wall so it is closed.
 TriangleMesh makeBowl(float wallThickness = 0.05f, int segments = 64);
-// Latitude-longitude sphere of radius 0.5 (for rasterizers that need triangles).
-TriangleMesh makeUvSphere(int segments = 64, int rings = 32);
 
 }  // namespace raycache

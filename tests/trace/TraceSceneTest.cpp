@@ -97,6 +97,11 @@ TEST(TraceScene, ObjectIdsNameSceneObjectsAndPacketsAgreeWithSingleRays) {
     }
     EXPECT_TRUE(sawSphere);
     EXPECT_TRUE(sawBox);
+    // Occlusion packets agree with single occlusion rays.
+    std::vector<unsigned char> blocked(rays.size());
+    tracer.occludedCoherent(rays, blocked);
+    for (std::size_t i = 0; i < rays.size(); ++i)
+        EXPECT_EQ(blocked[i] != 0, tracer.occluded(rays[i])) << i;
     // The box's front face is at z = -5.
     EXPECT_NEAR(tracer.intersect(Ray{{2, 0, 0}, {0, 0, -1}}).t, 5.0f, 1e-5f);
 }
