@@ -1,5 +1,8 @@
 #include "app/RenderJob.h"
 
+#include <cmath>
+#include <string>
+
 #include "core/Errors.h"
 #include "scene/SceneLoader.h"
 
@@ -33,8 +36,17 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
     if (o.maxDepth < 1 || o.maxDepth > 64) throw InputError("--max-depth must be between 1 and 64");
     if (!(o.minWeight >= 0.0f && o.minWeight <= 1.0f)) throw InputError("--min-weight must be in [0, 1]");
     if (o.threads < 0 || o.threads > 1024) throw InputError("--threads must be between 0 (all) and 1024");
-    if (o.technique && *o.technique != "none" && *o.technique != "cct")
-        throw InputError("--technique must be none or cct (got '" + *o.technique + "'; cdct is not implemented yet)");
+    if (o.technique && *o.technique != "none" && *o.technique != "cct" && *o.technique != "cdct")
+        throw InputError("--technique must be none, cct or cdct (got '" + *o.technique + "')");
+    const auto positive = [](const std::optional<float>& v, const char* flag) {
+        if (v && !(std::isfinite(*v) && *v > 0.0f))
+            throw InputError(std::string(flag) + " must be a finite number > 0");
+    };
+    positive(o.cdctStep, "--cdct-step");
+    positive(o.cdctEpsilon, "--cdct-epsilon");
+    positive(o.cdctMaxDepth, "--cdct-max-depth");
+    if (o.cdctStep && o.cdctEpsilon && !(*o.cdctEpsilon < *o.cdctStep))
+        throw InputError("--cdct-epsilon must be smaller than --cdct-step");
     if (o.cacheResolution &&
         (*o.cacheResolution < RayCache::kMinResolution || *o.cacheResolution > RayCache::kMaxResolution))
         throw InputError("--cache-res must be between 16 and 2048 (got " + std::to_string(*o.cacheResolution) + ")");
@@ -56,7 +68,12 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     settings.minWeight = options.minWeight;
     settings.threads = options.threads;
     if (options.technique)
-        settings.cache.techniqueOverride = *options.technique == "cct" ? CacheTechnique::Cct : CacheTechnique::None;
+        settings.cache.techniqueOverride = *options.technique == "cct"    ? CacheTechnique::Cct
+                                           : *options.technique == "cdct" ? CacheTechnique::Cdct
+                                                                          : CacheTechnique::None;
+    settings.cache.cdctStepOverride = options.cdctStep;
+    settings.cache.cdctEpsilonOverride = options.cdctEpsilon;
+    settings.cache.cdctMaxDepthOverride = options.cdctMaxDepth;
     settings.cache.resolutionOverride = options.cacheResolution;
     settings.cache.ideal = options.cacheIdeal;
     RayCache::validate(job.scene, settings.cache);

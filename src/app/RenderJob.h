@@ -20,7 +20,10 @@ struct RenderJobOptions {
     int threads = 0;
     int maxDepth = 6;
     float minWeight = 0.01f;
-    std::optional<std::string> technique;  // none | cct; default: each material's own setting
+    std::optional<std::string> technique;  // none | cct | cdct; default: each material's own setting
+    std::optional<float> cdctStep;         // CDCT search parameters; default: each material's own
+    std::optional<float> cdctEpsilon;
+    std::optional<float> cdctMaxDepth;
     std::optional<int> cacheResolution;    // default: each material's own setting
     bool cacheIdeal = false;               // benchmark switch, see RayCacheSettings::ideal
 };

@@ -24,6 +24,7 @@ private:
         std::uint32_t cube;    // index into RayCache's cubes
         std::int32_t texel;
         std::uint32_t packed;  // encoded color
+        float depth;           // CDCT: distance from the cube's centre; unused by CCT
     };
     struct Counters {
         std::uint64_t lookups = 0, hits = 0, misses = 0;

@@ -10,16 +10,23 @@ CachingCube::CachingCube(const Vec3& center, int size)
     : center_(center), size_(size), texels_(6u * static_cast<std::size_t>(size) * static_cast<std::size_t>(size),
                                             kInvalidTexel) {}
 
-bool CachingCube::writeIfInvalid(int index, std::uint32_t packed) {
+CachingCube::CachingCube(const Vec3& center, int size, const Vec3& halfSize) : CachingCube(center, size) {
+    halfSize_ = halfSize;
+    depths_.emplace(texels_.size(), std::bit_cast<std::uint32_t>(kInvalidDepth));
+}
+
+bool CachingCube::writeIfInvalid(int index, std::uint32_t packed, float depth) {
     std::uint32_t& texel = texels_[static_cast<std::size_t>(index)];
     if (texel != kInvalidTexel) return false;
     texel = packed;
+    if (depths_) (*depths_)[static_cast<std::size_t>(index)] = std::bit_cast<std::uint32_t>(depth);
     ++validCount_;
     return true;
 }
 
 void CachingCube::clear() {
     texels_.fill(kInvalidTexel);
+    if (depths_) depths_->fill(std::bit_cast<std::uint32_t>(kInvalidDepth));
     validCount_ = 0;
 }
 

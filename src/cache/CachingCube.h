@@ -2,6 +2,10 @@
 // Six square faces around one object, one RGB9E5 word per texel, holding the
 // color that secondary rays leaving the object in each direction brought back
 // (CCT, SPEC §2). Texels start invalid and are written once.
+// A CDCT cube (SPEC §3) also keeps, per texel, the distance from the centre to
+// what the texel shows (a 32-bit float, -1 while invalid), and has a box: the
+// axis-aligned bounds of the object around the centre, where its search starts.
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -15,14 +19,22 @@ namespace raycache {
 
 class CachingCube {
 public:
-    // `size` texels per face side; every texel invalid.
+    static constexpr float kInvalidDepth = -1.0f;
+
+    // A color-only (CCT) cube with `size` texels per face side; every texel invalid.
     CachingCube(const Vec3& center, int size);
+    // A color-and-depth (CDCT) cube whose box spans center ± halfSize (every
+    // component > 0); every texel invalid.
+    CachingCube(const Vec3& center, int size, const Vec3& halfSize);
 
     const Vec3& center() const { return center_; }
     int size() const { return size_; }
+    bool hasDepth() const { return depths_.has_value(); }
+    // Half the box's extent per axis (CDCT cubes only; zero for CCT cubes).
+    const Vec3& halfSize() const { return halfSize_; }
     std::size_t texelCount() const { return texels_.size(); }
     std::size_t validCount() const { return validCount_; }
-    std::size_t bytes() const { return texels_.size() * sizeof(std::uint32_t); }
+    std::size_t bytes() const { return texels_.size() * sizeof(std::uint32_t) * (depths_ ? 2u : 1u); }
 
     // Texel index addressed by a direction from the centre.
     int texelIndexFor(const Vec3& direction) const {
@@ -35,13 +47,20 @@ public:
         return decodeTexel(packed);
     }
     bool isValid(int index) const { return texels_[static_cast<std::size_t>(index)] != kInvalidTexel; }
-    // Writes `packed` if the texel is still invalid; returns whether it wrote.
-    bool writeIfInvalid(int index, std::uint32_t packed);
+    // The stored distance from the centre at `index` (CDCT cubes), kInvalidDepth if invalid.
+    float depth(int index) const { return std::bit_cast<float>((*depths_)[static_cast<std::size_t>(index)]); }
+    // Writes `packed` (and, in a CDCT cube, `depth`) if the texel is still
+    // invalid; returns whether it wrote.
+    bool writeIfInvalid(int index, std::uint32_t packed, float depth = kInvalidDepth);
     // Marks every texel invalid again.
     void clear();
 
     // Raw texel words, face-major (see cubeTexelIndex); for views and tests.
     std::span<const std::uint32_t> texels() const { return texels_.words(); }
+    // Raw depth words (float bits), same order; empty for CCT cubes.
+    std::span<const std::uint32_t> depthWords() const {
+        return depths_ ? depths_->words() : std::span<const std::uint32_t>{};
+    }
 
     static std::uint32_t encodeTexel(const Rgb& color);
     static Rgb decodeTexel(std::uint32_t packed);
@@ -50,7 +69,9 @@ public:
 private:
     Vec3 center_;
     int size_;
+    Vec3 halfSize_{};
     TexelBuffer texels_;
+    std::optional<TexelBuffer> depths_;
     std::size_t validCount_ = 0;
 };
 

@@ -9,10 +9,21 @@ namespace raycache {
 
 enum class CacheTechnique { None, Cct, Cdct };
 
+// The CDCT search (SPEC §3, thesis Algorithm 4), in scene units. The thesis
+// measured step/epsilon pairs 2/0.2, 0.4/0.05, 0.2/0.02 and 0.02/0.002 with
+// depths 0..100; the defaults are its middle pair. Valid: all finite and > 0,
+// epsilon < step.
+struct CdctParameters {
+    float step = 0.4f;        // delta: linear-search step along the ray
+    float epsilon = 0.05f;    // binary search stops once its interval is below this
+    float maxDepth = 100.0f;  // misses and farther hits are stored at this distance from the centre
+};
+
 // How an object's secondary rays are cached (honoured by the cache module).
 struct CacheSettings {
     CacheTechnique technique = CacheTechnique::None;
     int faceResolution = 512;  // texels per cube-face side
+    CdctParameters cdct;       // used when technique is Cdct
 };
 
 struct Material {

@@ -609,10 +609,16 @@ private:
     }
 
     CacheSettings cache(const Node& n) const {
-        expectObject(n, {"technique", "resolution"});
+        expectObject(n, {"technique", "resolution", "step", "epsilon", "maxDepth"});
         CacheSettings c;
         if (const Node v = child(n, "technique")) c.technique = choice(v, "cache technique", kCacheTechniques);
         if (const Node v = child(n, "resolution")) c.faceResolution = integer(v, kMinCacheResolution, kMaxCacheResolution);
+        // CDCT search parameters; RayCache::validate checks the step count.
+        if (const Node v = child(n, "step")) c.cdct.step = number(v, positive());
+        if (const Node v = child(n, "epsilon")) c.cdct.epsilon = number(v, positive());
+        if (const Node v = child(n, "maxDepth")) c.cdct.maxDepth = number(v, positive());
+        if (!(c.cdct.epsilon < c.cdct.step))
+            fail(child(n, "epsilon") ? child(n, "epsilon") : n, "cache epsilon must be smaller than step");
         return c;
     }
 

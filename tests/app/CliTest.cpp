@@ -129,16 +129,23 @@ TEST_F(Cli, TheDocumentedExampleSceneRenders) {
     EXPECT_TRUE(fs::exists(dir_ / "example.png"));
 }
 
-TEST_F(Cli, UnimplementedCachingTechniqueIsAnInputErrorBeforeAnyOutput) {
+TEST_F(Cli, CdctSceneRenders) {
     const fs::path scene = dir_ / "cdct.json";
     std::ofstream(scene) << R"({"objects": [{"shape": "sphere", "radius": 1,
-        "material": {"kr": 0.5, "cache": {"technique": "cdct"}}}]})";
-    const RunResult r = runRaycache("render --scene " + scene.string() + " --out " + (dir_ / "x.png").string(), dir_);
-    EXPECT_EQ(r.exitCode, 2);
-    EXPECT_EQ(lineCount(r.err), 1) << r.err;
-    EXPECT_NE(r.err.find("cdct is not implemented yet"), std::string::npos) << r.err;
-    EXPECT_TRUE(r.out.empty()) << r.out;
-    EXPECT_FALSE(fs::exists(dir_ / "x.png"));
+        "material": {"kr": 0.5, "cache": {"technique": "cdct", "resolution": 16}}}]})";
+    const RunResult r = runRaycache(
+        "render --scene " + scene.string() + " --width 16 --height 16 --frames 2 --out " + (dir_ / "x.png").string(),
+        dir_);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(fs::exists(dir_ / "x.png"));
+    const RunResult flags = runRaycache(
+        "render --scene behind-1 --technique cdct --cache-res 16 --cdct-step 2 "
+        "--cdct-epsilon 0.2 --cdct-max-depth 50 --width 16 --height 16 --frames 2 "
+        "--out " +
+            (dir_ / "y.png").string(),
+        dir_);
+    EXPECT_EQ(flags.exitCode, 0) << flags.err;
+    EXPECT_TRUE(fs::exists(dir_ / "y.png"));
 }
 
 TEST_F(Cli, MalformedSceneFileNamesFileLineAndColumn) {
@@ -166,7 +173,10 @@ TEST_F(Cli, UnwritableOutputIsARuntimeErrorWithNoPartialFile) {
 TEST_F(Cli, RenderRejectsBadCachingOptionsWithOneLine) {
     const std::string png = (dir_ / "x.png").string();
     for (const std::string& args : {"render --scene behind-1 --technique bogus --out " + png,
-                                    "render --scene behind-1 --cache-res 8 --out " + png}) {
+                                    "render --scene behind-1 --cache-res 8 --out " + png,
+                                    "render --scene behind-1 --technique cdct --cdct-step 0 --out " + png,
+                                    "render --scene behind-1 --technique cdct --cdct-max-depth nan --out " + png,
+                                    "render --scene behind-1 --cdct-step 0.1 --cdct-epsilon 0.2 --out " + png}) {
         const RunResult r = runRaycache(args, dir_);
         EXPECT_EQ(r.exitCode, 2) << args;
         EXPECT_EQ(lineCount(r.err), 1) << args << "\n" << r.err;

@@ -1,7 +1,8 @@
-#include "cache/RayCache.h"
-
 #include <gtest/gtest.h>
 
+#include <limits>
+
+#include "cache/RayCache.h"
 #include "core/Errors.h"
 
 using namespace raycache;
@@ -44,7 +45,7 @@ TEST(RayCache, CubesOnlyForReflectiveOrRefractiveObjectsThatAskForThem) {
     EXPECT_TRUE(RayCache(twoMirrorsAndAMatte(), none).empty());
 }
 
-TEST(RayCache, RejectsBadResolutionsAndUnimplementedTechniques) {
+TEST(RayCache, RejectsBadResolutionsAndCdctParameters) {
     RayCacheSettings tiny;
     tiny.resolutionOverride = 8;
     EXPECT_THROW(RayCache(twoMirrorsAndAMatte(), tiny), InputError);
@@ -53,7 +54,48 @@ TEST(RayCache, RejectsBadResolutionsAndUnimplementedTechniques) {
     EXPECT_THROW(RayCache(twoMirrorsAndAMatte(), huge), InputError);
     RayCacheSettings cdct;
     cdct.techniqueOverride = CacheTechnique::Cdct;
-    EXPECT_THROW(RayCache(twoMirrorsAndAMatte(), cdct), InputError);
+    EXPECT_NO_THROW(RayCache(twoMirrorsAndAMatte(), cdct));
+    for (float bad : {0.0f, -1.0f, std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN()}) {
+        RayCacheSettings s = cdct;
+        s.cdctStepOverride = bad;
+        EXPECT_THROW(RayCache::validate(twoMirrorsAndAMatte(), s), InputError) << bad;
+        s = cdct;
+        s.cdctEpsilonOverride = bad;
+        EXPECT_THROW(RayCache::validate(twoMirrorsAndAMatte(), s), InputError) << bad;
+        s = cdct;
+        s.cdctMaxDepthOverride = bad;
+        EXPECT_THROW(RayCache::validate(twoMirrorsAndAMatte(), s), InputError) << bad;
+    }
+    RayCacheSettings epsilonNotBelowStep = cdct;
+    epsilonNotBelowStep.cdctStepOverride = 0.1f;
+    epsilonNotBelowStep.cdctEpsilonOverride = 0.1f;
+    EXPECT_THROW(RayCache::validate(twoMirrorsAndAMatte(), epsilonNotBelowStep), InputError);
+    RayCacheSettings tooManySteps = cdct;
+    tooManySteps.cdctStepOverride = 1e-3f;
+    tooManySteps.cdctEpsilonOverride = 1e-4f;
+    tooManySteps.cdctMaxDepthOverride = 1e6f;
+    EXPECT_THROW(RayCache::validate(twoMirrorsAndAMatte(), tooManySteps), InputError);
+    // Parameters of objects that are not cached with CDCT are not checked.
+    RayCacheSettings cct;
+    cct.cdctStepOverride = -1.0f;
+    EXPECT_NO_THROW(RayCache::validate(twoMirrorsAndAMatte(), cct));
+}
+
+TEST(RayCache, CdctCubesKeepADepthPerTexelAndABoundingBox) {
+    RayCacheSettings cdct;
+    cdct.techniqueOverride = CacheTechnique::Cdct;
+    const RayCache cache(twoMirrorsAndAMatte(), cdct);
+    ASSERT_TRUE(cache.cachesObject(0));
+    EXPECT_TRUE(cache.cube(0).hasDepth());
+    EXPECT_EQ(cache.bytes(), 2u * 6u * 16u * 16u * 8u);  // objects a and c, 8 bytes per texel
+    EXPECT_EQ(cache.cube(0).depthWords().size(), 6u * 16u * 16u);
+    EXPECT_EQ(cache.cube(0).depth(0), CachingCube::kInvalidDepth);
+    const Vec3 half = cache.cube(0).halfSize();
+    EXPECT_NEAR(half.x, 1.0f, 0.01f);
+    EXPECT_GE(half.x, 1.0f);
+    EXPECT_NEAR(half.y, 1.0f, 0.01f);
+    EXPECT_NEAR(half.z, 1.0f, 0.01f);
+    EXPECT_FALSE(RayCache(twoMirrorsAndAMatte(), {}).cube(0).hasDepth());
 }
 
 TEST(RayCache, LookupsSeeTheFrameStartStateAndTheLowestPixelWins) {

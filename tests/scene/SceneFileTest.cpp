@@ -306,6 +306,22 @@ TEST_F(SceneFileTest, CacheResolutionTooLarge) {
                 "/materials/m/cache/resolution", "must be between 16 and 2048 (got 4096)");
 }
 
+TEST_F(SceneFileTest, CdctSearchParameters) {
+    const Scene scene = load(R"({"objects": [{"shape": "sphere", "material": {"kr": 0.5,
+        "cache": {"technique": "cdct", "step": 2, "epsilon": 0.2, "maxDepth": 50}}}]})");
+    const CdctParameters& p = scene.objects[0].material.cache.cdct;
+    EXPECT_EQ(p.step, 2.0f);
+    EXPECT_EQ(p.epsilon, 0.2f);
+    EXPECT_EQ(p.maxDepth, 50.0f);
+    EXPECT_EQ(load(R"({"objects": [{"shape": "sphere"}]})").objects[0].material.cache.cdct.step, 0.4f);
+    expectError("{\"objects\": [{\"shape\": \"sphere\", \"material\": {\"cache\": {\"maxDepth\": @0}}}]}",
+                "/objects/0/material/cache/maxDepth", "must be > 0 (got 0)");
+    expectError(
+        "{\"objects\": [{\"shape\": \"sphere\", \"material\": {\"cache\": "
+        "{\"step\": 0.1, \"epsilon\": @0.5}}}]}",
+        "/objects/0/material/cache/epsilon", "cache epsilon must be smaller than step");
+}
+
 TEST_F(SceneFileTest, FovOfZero) {
     expectError("{\"camera\": {\"fov\": @0}, \"objects\": []}", "/camera/fov", "must be > 0 and < 180 (got 0)");
 }
