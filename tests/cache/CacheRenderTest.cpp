@@ -3,6 +3,8 @@
 // refraction through a caching object, and determinism across thread counts.
 #include <gtest/gtest.h>
 
+#include "PathRender.h"
+
 #include <cstring>
 #include <string>
 #include <vector>
@@ -22,40 +24,6 @@ namespace {
 constexpr double kBehind8MinPsnr = 32.5;  // measured 33.23 dB
 constexpr double kGlassMinPsnr = 24.0;    // measured 24.93 dB
 
-struct PathRender {
-    std::vector<Image> frames;
-    std::vector<FrameStats> stats;
-    std::vector<std::vector<std::uint32_t>> texels;  // every cube's texels after the last frame
-};
-
-// Renders `frames` frames of the scene's own camera path (or a still camera).
-PathRender renderPath(const std::string& sceneName, CacheTechnique technique, int frames, bool still, int size,
-               int threads = 2, int cacheResolution = 512) {
-    const auto scene = makeBuiltinScene(sceneName);
-    EXPECT_TRUE(scene.has_value());
-    RenderSettings settings;
-    settings.width = settings.height = size;
-    settings.threads = threads;
-    settings.cache.techniqueOverride = technique;
-    settings.cache.resolutionOverride = cacheResolution;
-    const TraceScene tracer(*scene);
-    const Parallel parallel(threads);
-    RayCache cache(*scene, settings.cache);
-    const FrameRenderer renderer(*scene, tracer, settings, parallel, &cache);
-    PathRender run;
-    for (int f = 0; f < frames; ++f) {
-        Image film;
-        const Camera camera = still ? scene->camera : scene->cameraPath.cameraAt(scene->camera, f);
-        run.stats.push_back(renderer.render(camera, film));
-        run.frames.push_back(std::move(film));
-    }
-    for (std::size_t i = 0; i < scene->objects.size(); ++i)
-        if (cache.cachesObject(static_cast<int>(i))) {
-            const auto words = cache.cube(static_cast<int>(i)).texels();
-            run.texels.emplace_back(words.begin(), words.end());
-        }
-    return run;
-}
 
 }  // namespace
 

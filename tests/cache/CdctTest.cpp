@@ -3,6 +3,8 @@
 // texels, and renders of the parallax scene against CCT and the uncached image.
 #include <gtest/gtest.h>
 
+#include "PathRender.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -77,41 +79,6 @@ std::vector<Probe> awkwardRays() {
         {{1.5f, 0, 0}, {1, 0, 0}},                       // origin outside the box, moving away
         {{0.3f, 0.2f, 0.1f}, {0.0f, -1.0f, 0.0f}},       // origin inside the object
     };
-}
-
-struct PathRender {
-    std::vector<Image> frames;
-    std::vector<FrameStats> stats;
-    std::vector<std::vector<std::uint32_t>> texels;  // every cube's colors, then depths, after the last frame
-};
-
-PathRender renderPath(const std::string& sceneName, CacheTechnique technique, int frames, bool still, int size,
-                      int threads, int cacheResolution) {
-    const auto scene = makeBuiltinScene(sceneName);
-    EXPECT_TRUE(scene.has_value());
-    RenderSettings settings;
-    settings.width = settings.height = size;
-    settings.threads = threads;
-    settings.cache.techniqueOverride = technique;
-    settings.cache.resolutionOverride = cacheResolution;
-    const TraceScene tracer(*scene);
-    const Parallel parallel(threads);
-    RayCache cache(*scene, settings.cache);
-    const FrameRenderer renderer(*scene, tracer, settings, parallel, &cache);
-    PathRender run;
-    for (int f = 0; f < frames; ++f) {
-        Image film;
-        const Camera camera = still ? scene->camera : scene->cameraPath.cameraAt(scene->camera, f);
-        run.stats.push_back(renderer.render(camera, film));
-        run.frames.push_back(std::move(film));
-    }
-    for (std::size_t i = 0; i < scene->objects.size(); ++i)
-        if (cache.cachesObject(static_cast<int>(i))) {
-            const CachingCube& cube = cache.cube(static_cast<int>(i));
-            run.texels.emplace_back(cube.texels().begin(), cube.texels().end());
-            run.texels.emplace_back(cube.depthWords().begin(), cube.depthWords().end());
-        }
-    return run;
 }
 
 bool allFinite(const Image& image) {

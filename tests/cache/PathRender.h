@@ -1,0 +1,26 @@
+#pragma once
+// Test helper: render a built-in scene's camera path with caching and keep
+// every frame, its stats, and the cubes' contents afterwards.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/Image.h"
+#include "render/FrameStats.h"
+#include "scene/Material.h"
+
+namespace raycache {
+
+struct PathRender {
+    std::vector<Image> frames;
+    std::vector<FrameStats> stats;
+    // Per caching object: its color words, then (CDCT cubes only) its depth words.
+    std::vector<std::vector<std::uint32_t>> texels;
+};
+
+// `frames` frames of the scene's own camera path, or of its first camera when
+// `still`; `technique` and `cacheResolution` override every material.
+PathRender renderPath(const std::string& sceneName, CacheTechnique technique, int frames, bool still, int size,
+                      int threads = 2, int cacheResolution = 512);
+
+}  // namespace raycache
