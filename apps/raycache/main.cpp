@@ -22,14 +22,17 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
     command.add_option("--min-weight", job.minWeight, "Stop a path when its kr/kt product falls below this")
         ->capture_default_str();
     command.add_option("--technique", job.technique,
-                       "Secondary-ray caching for every mirror/glass object: none, cct or cdct "
-                       "(default: each material's own setting)");
+                       "Secondary-ray caching for every mirror/glass object: none, cct, cdct (improved) or "
+                       "cdct-parity (the thesis's search as specified) (default: each material's own setting)");
     command.add_option("--cdct-step", job.cdctStep,
-                       "CDCT linear-search step along the ray, scene units (default: each material's own, 0.4)");
+                       "CDCT parity linear-search step along the ray, scene units (default: each material's own, 0.4)");
     command.add_option("--cdct-epsilon", job.cdctEpsilon,
-                       "CDCT binary-search precision, < step (default: each material's own, 0.05)");
+                       "CDCT parity binary-search precision, < step (default: each material's own, 0.05)");
     command.add_option("--cdct-max-depth", job.cdctMaxDepth,
                        "CDCT depth for misses and farther hits (default: each material's own, 100)");
+    command.add_option("--cdct-tolerance", job.cdctTolerance,
+                       "Improved CDCT error control: trace the ray when the cached point lies farther than this "
+                       "many texels from it (default: each material's own, 2)");
     command.add_option("--cache-res", job.cacheResolution, "Caching-cube face resolution, 16..2048 "
                                                            "(default: each material's own, 512 in built-in scenes)");
     command.add_flag("--cache-ideal", job.cacheIdeal,

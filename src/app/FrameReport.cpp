@@ -17,12 +17,17 @@ std::string formatFrameLine(const FrameResult& r, int frameCount) {
     std::ostringstream line;
     line << "frame " << (r.frame + 1) << "/" << frameCount << "  " << formatFixed(r.milliseconds, 1)
          << " ms  rays: primary " << rays.primary << ", shadow " << rays.shadow << ", reflection " << rays.reflection
-         << ", refraction " << rays.refraction << "  " << formatFixed(mrays, 2) << " Mrays/s";
+         << ", refraction " << rays.refraction;
+    if (rays.prefill) line << ", pre-fill " << rays.prefill;
+    line << "  " << formatFixed(mrays, 2) << " Mrays/s";
     if (const auto& c = r.stats.cache) {
         const double hitRate =
             c->lookups() ? 100.0 * static_cast<double>(c->hits()) / static_cast<double>(c->lookups()) : 0.0;
         line << "  cache: " << c->objects.size() << (c->objects.size() == 1 ? " cube" : " cubes") << ", hits " << formatFixed(hitRate, 1) << "% of "
-             << c->lookups() << ", stores " << c->stores() << ", invalid before "
+             << c->lookups() << ", stores " << c->stores();
+        if (c->rejected()) line << ", rejected " << c->rejected();
+        if (c->prefilledTexels()) line << ", pre-filled " << c->prefilledTexels();
+        line << ", invalid before "
              << formatFixed(c->invalidPercentBefore(), 1) << "%, "
              << formatFixed(static_cast<double>(c->bytes()) / (1024.0 * 1024.0), 1) << " MiB";
     }

@@ -21,15 +21,17 @@ nlohmann::json cacheJson(const FrameCacheStats& c) {
     nlohmann::json objects = nlohmann::json::array();
     for (const ObjectCacheStats& o : c.objects)
         objects.push_back({{"object", o.name}, {"resolution", o.resolution}, {"lookups", o.lookups},
-                           {"hits", o.hits}, {"misses", o.misses}, {"stores", o.stores},
+                           {"hits", o.hits}, {"misses", o.misses}, {"rejected", o.rejected}, {"stores", o.stores},
+                           {"prefilled_texels", o.prefilledTexels},
                            {"invalid_percent_before", o.invalidPercentBefore}, {"bytes", o.bytes}});
-    return {{"lookups", c.lookups()}, {"hits", c.hits()}, {"misses", c.misses()}, {"stores", c.stores()},
+    return {{"lookups", c.lookups()}, {"hits", c.hits()}, {"misses", c.misses()}, {"rejected", c.rejected()},
+            {"stores", c.stores()}, {"prefilled_texels", c.prefilledTexels()},
             {"invalid_percent_before", c.invalidPercentBefore()}, {"bytes", c.bytes()}, {"objects", objects}};
 }
 
 nlohmann::json raysJson(const RayCounts& r) {
     return {{"primary", r.primary}, {"shadow", r.shadow}, {"reflection", r.reflection},
-            {"refraction", r.refraction}, {"total", r.total()}};
+            {"refraction", r.refraction}, {"prefill", r.prefill}, {"total", r.total()}};
 }
 
 }  // namespace

@@ -28,6 +28,14 @@ CameraPath chooseCameraPath(const Scene& scene, const std::optional<std::string>
 
 }  // namespace
 
+std::optional<CacheTechnique> parseTechnique(const std::string& name) {
+    if (name == "none") return CacheTechnique::None;
+    if (name == "cct") return CacheTechnique::Cct;
+    if (name == "cdct") return CacheTechnique::Cdct;
+    if (name == "cdct-parity") return CacheTechnique::CdctParity;
+    return std::nullopt;
+}
+
 void validateRenderJobOptions(const RenderJobOptions& o) {
     if (o.width < 1 || o.height < 1 || o.width > kMaxImageSide || o.height > kMaxImageSide)
         throw InputError("--width/--height must be between 1 and " + std::to_string(kMaxImageSide));
@@ -36,8 +44,8 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
     if (o.maxDepth < 1 || o.maxDepth > 64) throw InputError("--max-depth must be between 1 and 64");
     if (!(o.minWeight >= 0.0f && o.minWeight <= 1.0f)) throw InputError("--min-weight must be in [0, 1]");
     if (o.threads < 0 || o.threads > 1024) throw InputError("--threads must be between 0 (all) and 1024");
-    if (o.technique && *o.technique != "none" && *o.technique != "cct" && *o.technique != "cdct")
-        throw InputError("--technique must be none, cct or cdct (got '" + *o.technique + "')");
+    if (o.technique && !parseTechnique(*o.technique))
+        throw InputError("--technique must be none, cct, cdct or cdct-parity (got '" + *o.technique + "')");
     const auto positive = [](const std::optional<float>& v, const char* flag) {
         if (v && !(std::isfinite(*v) && *v > 0.0f))
             throw InputError(std::string(flag) + " must be a finite number > 0");
@@ -45,6 +53,7 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
     positive(o.cdctStep, "--cdct-step");
     positive(o.cdctEpsilon, "--cdct-epsilon");
     positive(o.cdctMaxDepth, "--cdct-max-depth");
+    positive(o.cdctTolerance, "--cdct-tolerance");
     if (o.cdctStep && o.cdctEpsilon && !(*o.cdctEpsilon < *o.cdctStep))
         throw InputError("--cdct-epsilon must be smaller than --cdct-step");
     if (o.cacheResolution &&
@@ -67,13 +76,11 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     settings.maxDepth = options.maxDepth;
     settings.minWeight = options.minWeight;
     settings.threads = options.threads;
-    if (options.technique)
-        settings.cache.techniqueOverride = *options.technique == "cct"    ? CacheTechnique::Cct
-                                           : *options.technique == "cdct" ? CacheTechnique::Cdct
-                                                                          : CacheTechnique::None;
+    if (options.technique) settings.cache.techniqueOverride = parseTechnique(*options.technique);
     settings.cache.cdctStepOverride = options.cdctStep;
     settings.cache.cdctEpsilonOverride = options.cdctEpsilon;
     settings.cache.cdctMaxDepthOverride = options.cdctMaxDepth;
+    settings.cache.cdctToleranceOverride = options.cdctTolerance;
     settings.cache.resolutionOverride = options.cacheResolution;
     settings.cache.ideal = options.cacheIdeal;
     RayCache::validate(job.scene, settings.cache);

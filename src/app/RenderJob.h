@@ -20,10 +20,11 @@ struct RenderJobOptions {
     int threads = 0;
     int maxDepth = 6;
     float minWeight = 0.01f;
-    std::optional<std::string> technique;  // none | cct | cdct; default: each material's own setting
+    std::optional<std::string> technique;  // none | cct | cdct | cdct-parity; default: each material's own setting
     std::optional<float> cdctStep;         // CDCT search parameters; default: each material's own
     std::optional<float> cdctEpsilon;
     std::optional<float> cdctMaxDepth;
+    std::optional<float> cdctTolerance;    // improved CDCT error control, texels
     std::optional<int> cacheResolution;    // default: each material's own setting
     bool cacheIdeal = false;               // benchmark switch, see RayCacheSettings::ideal
 };
@@ -34,6 +35,10 @@ struct RenderJob {
     RenderSettings settings;
     int frames = 1;
 };
+
+// The technique a --technique name stands for (none, cct, cdct,
+// cdct-parity), or nothing for an unknown name.
+std::optional<CacheTechnique> parseTechnique(const std::string& name);
 
 // Throws InputError for option values out of range, without touching the
 // scene, so commands can check their own options in between and still report

@@ -13,8 +13,10 @@ struct ObjectCacheStats {
     int resolution = 0;                 // texels per face side
     std::uint64_t lookups = 0;          // secondary rays that asked the cache
     std::uint64_t hits = 0;             // answered from a valid texel
-    std::uint64_t misses = 0;           // texel invalid: the ray was traced
+    std::uint64_t misses = 0;           // not answered (invalid texel, CDCT search gave up or rejected): traced
+    std::uint64_t rejected = 0;         // of the misses: improved-CDCT error control found the texel off the ray
     std::uint64_t stores = 0;           // texels written at the end of the frame
+    std::uint64_t prefilledTexels = 0;  // improved CDCT: texels filled from the centre after this frame
     double invalidPercentBefore = 0.0;  // invalid texels when the frame started
     std::size_t bytes = 0;              // memory of the cube's texels
 };
@@ -26,6 +28,8 @@ struct FrameCacheStats {
     std::uint64_t hits() const { return sum(&ObjectCacheStats::hits); }
     std::uint64_t misses() const { return sum(&ObjectCacheStats::misses); }
     std::uint64_t stores() const { return sum(&ObjectCacheStats::stores); }
+    std::uint64_t rejected() const { return sum(&ObjectCacheStats::rejected); }
+    std::uint64_t prefilledTexels() const { return sum(&ObjectCacheStats::prefilledTexels); }
     std::size_t bytes() const {
         std::size_t b = 0;
         for (const auto& o : objects) b += o.bytes;

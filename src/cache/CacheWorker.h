@@ -27,7 +27,7 @@ private:
         float depth;           // CDCT: distance from the cube's centre; unused by CCT
     };
     struct Counters {
-        std::uint64_t lookups = 0, hits = 0, misses = 0;
+        std::uint64_t lookups = 0, hits = 0, misses = 0, rejected = 0;
     };
 
     std::vector<PendingStore> pending_;

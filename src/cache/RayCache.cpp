@@ -12,31 +12,6 @@ namespace raycache {
 
 namespace {
 
-// The ray parameter t >= 0 at which origin + t * direction (unit) is
-// `radius` from `center` on the way out; 0 when the ray never gets that far
-// inside (it starts outside that sphere and does not come back).
-float tAtDistance(const Vec3& center, const Vec3& origin, const Vec3& direction, float radius) {
-    const Vec3 w = origin - center;
-    const double b = dot(w, direction);
-    const double c = static_cast<double>(dot(w, w)) - static_cast<double>(radius) * radius;
-    const double t = -b + std::sqrt(std::max(0.0, b * b - c));
-    return static_cast<float>(std::max(0.0, t));
-}
-
-// The ray parameter at which the line origin + t * direction leaves the box
-// center ± half (the far slab crossing); 0 if it is behind the origin.
-float tLeavingBox(const Vec3& center, const Vec3& half, const Vec3& origin, const Vec3& direction) {
-    float tExit = std::numeric_limits<float>::infinity();
-    for (int a = 0; a < 3; ++a) {
-        const float d = direction[a];
-        if (std::fabs(d) < 1e-12f) continue;  // parallel to this slab pair: it does not bound the exit
-        const float t1 = (center[a] - half[a] - origin[a]) / d;
-        const float t2 = (center[a] + half[a] - origin[a]) / d;
-        tExit = std::min(tExit, std::max(t1, t2));
-    }
-    return std::isfinite(tExit) ? std::max(0.0f, tExit) : 0.0f;
-}
-
 std::string formatNumber(float v) {
     std::ostringstream out;
     out << v;
@@ -50,6 +25,7 @@ CdctParameters RayCache::cdctParametersFor(const SceneObject& object, const RayC
     if (settings.cdctStepOverride) p.step = *settings.cdctStepOverride;
     if (settings.cdctEpsilonOverride) p.epsilon = *settings.cdctEpsilonOverride;
     if (settings.cdctMaxDepthOverride) p.maxDepth = *settings.cdctMaxDepthOverride;
+    if (settings.cdctToleranceOverride) p.tolerance = *settings.cdctToleranceOverride;
     return p;
 }
 
@@ -61,6 +37,9 @@ void RayCache::validateCdct(const CdctParameters& p, const std::string& what) {
     positive(p.step, "step");
     positive(p.epsilon, "epsilon");
     positive(p.maxDepth, "maxDepth");
+    positive(p.tolerance, "tolerance");
+    if (p.tolerance > 1e6f)
+        throw InputError(what + ": cdct tolerance must be at most 1e6 texels (got " + formatNumber(p.tolerance) + ")");
     if (!(p.epsilon < p.step))
         throw InputError(what + ": cdct epsilon (" + formatNumber(p.epsilon) + ") must be smaller than step (" +
                          formatNumber(p.step) + ")");
@@ -102,7 +81,7 @@ void RayCache::validate(const Scene& scene, const RayCacheSettings& settings) {
                          ")");
     for (const SceneObject& object : scene.objects) {
         const CacheTechnique technique = techniqueFor(object, settings);
-        if (technique == CacheTechnique::Cdct)
+        if (technique == CacheTechnique::Cdct || technique == CacheTechnique::CdctParity)
             validateCdct(cdctParametersFor(object, settings), "object '" + object.name + "'");
         const int resolution = settings.resolutionOverride.value_or(object.material.cache.faceResolution);
         if (technique != CacheTechnique::None && (resolution < kMinResolution || resolution > kMaxResolution))
@@ -110,7 +89,8 @@ void RayCache::validate(const Scene& scene, const RayCacheSettings& settings) {
     }
 }
 
-RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings) : ideal_(settings.ideal) {
+RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings)
+    : ideal_(settings.ideal), improvements_(settings.cdctImprovements) {
     validate(scene, settings);
     cubeOfObject_.assign(scene.objects.size(), -1);
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
@@ -119,12 +99,12 @@ RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings) : ideal
         if (technique == CacheTechnique::None) continue;
         const int resolution = settings.resolutionOverride.value_or(object.material.cache.faceResolution);
         cubeOfObject_[i] = static_cast<int>(cubes_.size());
-        if (technique == CacheTechnique::Cdct)
-            cubes_.push_back(Entry{static_cast<int>(i), object.name,
+        if (technique == CacheTechnique::Cct)
+            cubes_.push_back(Entry{static_cast<int>(i), object.name, technique, CachingCube(object.origin, resolution)});
+        else
+            cubes_.push_back(Entry{static_cast<int>(i), object.name, technique,
                                    CachingCube(object.origin, resolution, boundingHalfSize(object)),
                                    cdctParametersFor(object, settings)});
-        else
-            cubes_.push_back(Entry{static_cast<int>(i), object.name, CachingCube(object.origin, resolution)});
     }
 }
 
@@ -135,7 +115,12 @@ std::size_t RayCache::bytes() const {
 }
 
 void RayCache::clear() {
-    for (Entry& e : cubes_) e.cube.clear();
+    for (Entry& e : cubes_) {
+        e.cube.clear();
+        e.prefilled = false;
+        e.farthestSurface = 0.0f;
+        e.pyramid.reset();
+    }
 }
 
 std::vector<CacheWorker> RayCache::makeWorkers(int count) const {
@@ -169,8 +154,12 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers) {
 
     FrameCacheStats stats;
     stats.objects.resize(cubes_.size());
-    for (const auto& p : pending)
-        if (cubes_[p.cube].cube.writeIfInvalid(p.texel, p.packed, p.depth)) ++stats.objects[p.cube].stores;
+    for (const auto& p : pending) {
+        Entry& e = cubes_[p.cube];
+        if (!e.cube.writeIfInvalid(p.texel, p.packed, p.depth)) continue;
+        ++stats.objects[p.cube].stores;
+        if (p.depth < e.cdct.maxDepth) e.farthestSurface = std::max(e.farthestSurface, p.depth);
+    }
 
     for (std::size_t c = 0; c < cubes_.size(); ++c) {
         ObjectCacheStats& s = stats.objects[c];
@@ -179,68 +168,75 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers) {
         s.resolution = cubes_[c].cube.size();
         s.bytes = cubes_[c].cube.bytes();
         s.invalidPercentBefore = cubes_[c].invalidPercentBefore;
+        s.prefilledTexels = cubes_[c].prefilledTexels;
+        cubes_[c].prefilledTexels = 0;
         for (const CacheWorker& w : workers) {
             s.lookups += w.counters_[c].lookups;
             s.hits += w.counters_[c].hits;
             s.misses += w.counters_[c].misses;
+            s.rejected += w.counters_[c].rejected;
         }
     }
     for (CacheWorker& w : workers) w.pending_.clear();
     return stats;
 }
 
-std::optional<Rgb> RayCache::searchCdct(const Entry& entry, const Vec3& origin, const Vec3& direction) const {
-    // Algorithm 4 (thesis §4.5): a linear search along the ray from where its
-    // line leaves the box, then a binary search; bounded in both.
-    if (!isFinite(origin) || !isFinite(direction) || !(dot(direction, direction) > 0.0f)) return std::nullopt;
-    const CachingCube& cube = entry.cube;
-    const CdctParameters& p = entry.cdct;
-    const Vec3 c = cube.center();
-    const Vec3 d = normalize(direction);
-    const float tStart = tLeavingBox(c, cube.halfSize(), origin, d);
-    // Stored depths never exceed maxDepth, so the point at maxDepth ends the search.
-    const float tEnd = std::max(tStart, tAtDistance(c, origin, d, p.maxDepth));
-    const double wanted = std::ceil(static_cast<double>(tEnd - tStart) / p.step);
-    const double cap = std::ceil(2.0 * p.maxDepth / p.step) + 1.0;
-    const int steps = static_cast<int>(std::clamp(wanted, 1.0, cap));
-
-    // The texel addressed by centre -> point at t; -1 if invalid (aborts the search).
-    const auto texelAt = [&](float t, float& distance) {
-        const Vec3 v = origin + d * t - c;
-        distance = length(v);
-        const int texel = cube.texelIndexFor(v);
-        return cube.isValid(texel) ? texel : -1;
-    };
-
-    float previous = tStart;
-    for (int i = 1; i <= steps; ++i) {
-        const float t = i == steps ? tEnd : tStart + static_cast<float>(i) * p.step;
-        float distance;
-        const int texel = texelAt(t, distance);
-        if (texel < 0) return std::nullopt;
-        if (cube.depth(texel) <= distance) {
-            // Crossed between `previous` (in front of the stored surface) and t (at or behind it).
-            float lo = previous, hi = t;
-            int found = texel;
-            for (int k = 0; k < kMaxCdctBinarySteps && hi - lo >= p.epsilon; ++k) {
-                const float mid = 0.5f * (lo + hi);
-                if (!(mid > lo && mid < hi)) break;  // float resolution reached
-                const int midTexel = texelAt(mid, distance);
-                if (midTexel < 0) return std::nullopt;
-                if (cube.depth(midTexel) <= distance) {
-                    hi = mid;
-                    found = midTexel;
-                } else {
-                    lo = mid;
-                }
-            }
-            return cube.read(found);
-        }
-        // Reached maxDepth without crossing (rounding only): what lies there is the environment.
-        if (i == steps) return cube.read(texel);
-        previous = t;
+std::vector<int> RayCache::objectsAwaitingPrefill(std::span<const CacheWorker> workers) const {
+    std::vector<int> objects;
+    for (std::size_t c = 0; c < cubes_.size(); ++c) {
+        if (!fillsByPrefill(cubes_[c]) || cubes_[c].prefilled) continue;
+        const bool asked = std::any_of(workers.begin(), workers.end(),
+                                       [&](const CacheWorker& w) { return w.counters_[c].lookups > 0; });
+        if (asked) objects.push_back(cubes_[c].objectId);
     }
-    return std::nullopt;  // not reached: the last step returns
+    return objects;
+}
+
+Vec3 RayCache::prefillDirection(int objectId, int texel) const {
+    const int n = cube(objectId).size();
+    return normalize(cubeTexelCenterDirection(
+        CubeTexel{static_cast<CubeFace>(texel / (n * n)), texel % n, (texel / n) % n}, n));
+}
+
+void RayCache::completePrefill(int objectId, std::span<const PrefillTexel> texels) {
+    Entry& e = cubes_[static_cast<std::size_t>(cubeIndexOf(objectId))];
+    if (texels.size() != e.cube.texelCount())
+        throw RuntimeError("cache pre-fill of '" + e.name + "': " + std::to_string(texels.size()) + " texels for a cube of " +
+                           std::to_string(e.cube.texelCount()));
+    for (std::size_t i = 0; i < texels.size(); ++i) {
+        // As store(): misses and hits beyond maxDepth are cached at maxDepth.
+        const float distance = texels[i].hitDistance;
+        const float depth = std::isfinite(distance) && distance <= e.cdct.maxDepth ? distance : e.cdct.maxDepth;
+        if (!e.cube.writeIfInvalid(static_cast<int>(i), CachingCube::encodeTexel(texels[i].color), depth)) continue;
+        ++e.prefilledTexels;
+        if (depth < e.cdct.maxDepth) e.farthestSurface = std::max(e.farthestSurface, depth);
+    }
+    e.prefilled = true;
+    // Pre-filled cubes receive no stores, so the pyramid stays current.
+    if (improvements_.skipEmptySpace) e.pyramid.emplace(e.cube);
+}
+
+std::optional<Rgb> RayCache::answer(const Entry& e, const Vec3& origin, const Vec3& direction,
+                                    CacheWorker::Counters& counters) const {
+    switch (e.technique) {
+    case CacheTechnique::Cdct: {
+        // Before its pre-fill the cube holds nothing: the ray is traced.
+        if (fillsByPrefill(e) && !e.prefilled) return std::nullopt;
+        const CdctResult r = searchCdctImproved(e.cube, e.cdct, improvements_, e.farthestSurface,
+                                                e.pyramid ? &*e.pyramid : nullptr, origin, direction);
+        if (r.outcome == CdctOutcome::Rejected) ++counters.rejected;
+        if (r.outcome == CdctOutcome::Found) return r.color;
+        return std::nullopt;
+    }
+    case CacheTechnique::CdctParity: {
+        const CdctResult r = searchCdctParity(e.cube, e.cdct, origin, direction);
+        if (r.outcome == CdctOutcome::Found) return r.color;
+        return std::nullopt;
+    }
+    default:
+        // CCT addresses by the ray's direction only: what lies along it is taken to be far away.
+        return e.cube.read(e.cube.texelIndexFor(direction));
+    }
 }
 
 std::optional<Rgb> RayCache::lookup(int objectId, const Vec3& origin, const Vec3& direction,
@@ -248,10 +244,7 @@ std::optional<Rgb> RayCache::lookup(int objectId, const Vec3& origin, const Vec3
     const auto c = static_cast<std::size_t>(cubeIndexOf(objectId));
     CacheWorker::Counters& counters = worker.counters_[c];
     ++counters.lookups;
-    const CachingCube& cube = cubes_[c].cube;
-    // CCT addresses by the ray's direction only: what lies along it is taken to be far away.
-    if (auto color =
-            cube.hasDepth() ? searchCdct(cubes_[c], origin, direction) : cube.read(cube.texelIndexFor(direction))) {
+    if (auto color = answer(cubes_[c], origin, direction, counters)) {
         ++counters.hits;
         return color;
     }
@@ -263,6 +256,7 @@ std::optional<Rgb> RayCache::lookup(int objectId, const Vec3& origin, const Vec3
 void RayCache::store(int objectId, const Vec3& origin, const Vec3& direction, const Rgb& color, float hitDistance,
                      CacheWorker& worker) const {
     const auto c = static_cast<std::size_t>(cubeIndexOf(objectId));
+    if (fillsByPrefill(cubes_[c])) return;  // its pre-fill writes every texel
     const CachingCube& cube = cubes_[c].cube;
     int texel;
     float depth = CachingCube::kInvalidDepth;
@@ -276,7 +270,7 @@ void RayCache::store(int objectId, const Vec3& origin, const Vec3& direction, co
         Vec3 toHit = origin + d * hitDistance - cube.center();
         depth = length(toHit);
         if (!(std::isfinite(hitDistance) && depth <= maxDepth)) {
-            toHit = origin + d * tAtDistance(cube.center(), origin, d, maxDepth) - cube.center();
+            toHit = origin + d * rayParameterAtDistance(cube.center(), origin, d, maxDepth) - cube.center();
             depth = maxDepth;
         }
         if (!isFinite(toHit)) return;

@@ -26,6 +26,7 @@
 
 #include "cache/CacheStats.h"
 #include "cache/CacheWorker.h"
+#include "cache/CdctSearch.h"
 #include "cache/CachingCube.h"
 #include "scene/Scene.h"
 
@@ -40,6 +41,10 @@ struct RayCacheSettings {
     std::optional<float> cdctStepOverride;
     std::optional<float> cdctEpsilonOverride;
     std::optional<float> cdctMaxDepthOverride;
+    std::optional<float> cdctToleranceOverride;
+    // Which of the improved CDCT's changes are on (benchmark switches: each
+    // is measured on its own in docs/performance.md).
+    CdctImprovements cdctImprovements;
     // Benchmark switch: a miss returns black instead of being traced, giving
     // the cost of a frame in which caching objects trace no secondary rays.
     bool ideal = false;
@@ -52,8 +57,6 @@ public:
     // CDCT: the linear search takes at most ceil(2 * maxDepth / step) steps;
     // parameters asking for more than this are rejected.
     static constexpr double kMaxCdctLinearSteps = 1e6;
-    // CDCT: the binary search halves its interval at most this many times.
-    static constexpr int kMaxCdctBinarySteps = 64;
 
     // One cube per object whose (possibly overridden) technique is not None
     // and that reflects or refracts; CDCT cubes get a box bounding the object
@@ -67,8 +70,8 @@ public:
     // The CDCT search parameters of `object` under `settings`.
     static CdctParameters cdctParametersFor(const SceneObject& object, const RayCacheSettings& settings);
     // Throws InputError unless every parameter is finite and > 0, epsilon <
-    // step and the linear search stays within kMaxCdctLinearSteps. `what`
-    // prefixes the message.
+    // step, the linear search stays within kMaxCdctLinearSteps and the
+    // tolerance is at most 1e6 texels. `what` prefixes the message.
     static void validateCdct(const CdctParameters& parameters, const std::string& what);
     // Half-extent per axis of the axis-aligned box centred on the object's
     // origin that bounds its geometry (every component > 0).
@@ -95,6 +98,26 @@ public:
     // CCT reads the texel addressed by `direction`; CDCT searches the depths
     // along the ray (docs/caching.md), in a bounded number of steps.
     std::optional<Rgb> lookup(int objectId, const Vec3& origin, const Vec3& direction, CacheWorker& worker) const;
+    // Improved CDCT (technique Cdct with prefill on): the objects whose cubes
+    // were asked for during this frame (by `workers`) and are not filled yet.
+    // The renderer fills them after the frame's pixels, before endFrame
+    // (render/CachePrefill.h): one ray per texel from the cube's centre through
+    // prefillDirection(), answered with completePrefill(). Until then their
+    // lookups miss and the rays are traced.
+    std::vector<int> objectsAwaitingPrefill(std::span<const CacheWorker> workers) const;
+    // Direction from the centre of `objectId`'s cube through the centre of
+    // texel `texel` (face-major index, see CachingCube::texels()).
+    Vec3 prefillDirection(int objectId, int texel) const;
+    // What the ray from the centre along prefillDirection(objectId, i) saw:
+    // its color and the distance to its hit (infinity for a miss).
+    struct PrefillTexel {
+        Rgb color;
+        float hitDistance;
+    };
+    // Writes every texel of `objectId`'s cube (texels.size() must equal the
+    // cube's texel count): color, and depth clamped to maxDepth.
+    void completePrefill(int objectId, std::span<const PrefillTexel> texels);
+
     // Queues what a traced ray brought back (`hitDistance` from origin to its
     // first hit, infinity for a miss) for the end of the frame. CDCT stores
     // it at the texel addressed by centre -> hit point, with that distance
@@ -106,12 +129,22 @@ private:
     struct Entry {
         int objectId;
         std::string name;
+        CacheTechnique technique;
         CachingCube cube;
         CdctParameters cdct;  // used by CDCT cubes (cube.hasDepth())
         double invalidPercentBefore = 100.0;
+        std::uint64_t prefilledTexels = 0;  // written by completePrefill since the last endFrame
+        bool prefilled = false;
+        float farthestSurface = 0.0f;       // largest stored depth below cdct.maxDepth
+        std::optional<DepthPyramid> pyramid;  // built when the cube is pre-filled
     };
 
-    std::optional<Rgb> searchCdct(const Entry& entry, const Vec3& origin, const Vec3& direction) const;
+    // Improved CDCT cube that fills itself by pre-filling (not by stores).
+    bool fillsByPrefill(const Entry& e) const {
+        return e.technique == CacheTechnique::Cdct && improvements_.prefill;
+    }
+    std::optional<Rgb> answer(const Entry& entry, const Vec3& origin, const Vec3& direction,
+                              CacheWorker::Counters& counters) const;
 
     int cubeIndexOf(int objectId) const {
         return objectId >= 0 && static_cast<std::size_t>(objectId) < cubeOfObject_.size()
@@ -122,6 +155,7 @@ private:
     std::vector<Entry> cubes_;
     std::vector<int> cubeOfObject_;  // object id -> index into cubes_, -1 if uncached
     bool ideal_ = false;
+    CdctImprovements improvements_;
 };
 
 }  // namespace raycache

@@ -9,13 +9,15 @@ struct RayCounts {
     std::uint64_t shadow = 0;
     std::uint64_t reflection = 0;
     std::uint64_t refraction = 0;
+    std::uint64_t prefill = 0;  // improved CDCT: rays from a cube's centre filling it
 
-    std::uint64_t total() const { return primary + shadow + reflection + refraction; }
+    std::uint64_t total() const { return primary + shadow + reflection + refraction + prefill; }
     RayCounts& operator+=(const RayCounts& o) {
         primary += o.primary;
         shadow += o.shadow;
         reflection += o.reflection;
         refraction += o.refraction;
+        prefill += o.prefill;
         return *this;
     }
 };

@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include "render/CachePrefill.h"
 #include "render/CameraRays.h"
 
 namespace raycache {
@@ -98,7 +99,10 @@ FrameStats FrameRenderer::render(const Camera& camera, Image& film) const {
 
     FrameStats stats;
     for (const TileScratch& s : scratch) stats.rays += s.counts;
-    if (cache_) stats.cache = cache_->endFrame(cacheWorkers);
+    if (cache_) {
+        stats.rays += prefillCaches(*cache_, cacheWorkers, integrator_, parallel_);
+        stats.cache = cache_->endFrame(cacheWorkers);
+    }
     return stats;
 }
 

@@ -156,4 +156,24 @@ Rgb WhittedIntegrator::trace(const Ray& ray, SecondaryKind kind, int depth, floa
     return hit.hit() ? shade(ray, hit, depth, weight, path) : background(ray);
 }
 
+Rgb WhittedIntegrator::traceFromInside(int objectId, const Ray& ray, int depth, PathContext& path,
+                                       float& hitDistance) const {
+    // Enough for any closed mesh a cube centre sits in; past this the ray
+    // counts as seeing the environment.
+    constexpr int kMaxOwnSurfaces = 64;
+    ++path.counts.prefill;
+    Ray r = ray;
+    for (int i = 0; i < kMaxOwnSurfaces; ++i) {
+        const TraceHit hit = tracer_.intersect(r);
+        if (!hit.hit()) break;
+        if (hit.objectId != objectId) {
+            hitDistance = hit.t;
+            return shade(r, hit, depth, 1.0f, path);
+        }
+        r.tNear = hit.t + surfaceOffset(r.origin + r.direction * hit.t);
+    }
+    hitDistance = std::numeric_limits<float>::infinity();
+    return background(ray);
+}
+
 }  // namespace raycache

@@ -45,6 +45,13 @@ public:
     Rgb trace(const Ray& ray, SecondaryKind kind, int depth, float weight, PathContext& path,
               float* hitDistance = nullptr) const;
 
+    // What the ray from inside object `objectId` (a caching cube's centre)
+    // along `ray` sees once past the object itself: the object's own surfaces
+    // are passed through. Counted as a pre-fill ray; `hitDistance` receives
+    // the distance to the hit (infinity for a miss). The path goes on with
+    // `depth` (of the rays that will read the cache) and weight 1.
+    Rgb traceFromInside(int objectId, const Ray& ray, int depth, PathContext& path, float& hitDistance) const;
+
     // What a ray that hits nothing sees.
     Rgb background(const Ray& ray) const { return scene_.environment.lookup(ray.direction); }
 

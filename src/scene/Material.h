@@ -7,23 +7,31 @@
 
 namespace raycache {
 
-enum class CacheTechnique { None, Cct, Cdct };
+// Cct: color only (SPEC §2). CdctParity: color + depth with the thesis's
+// search as specified (SPEC §3). Cdct: the improved color + depth technique
+// (pre-filled cubes, texel-space search, error control; docs/caching.md).
+enum class CacheTechnique { None, Cct, CdctParity, Cdct };
 
 // The CDCT search (SPEC §3, thesis Algorithm 4), in scene units. The thesis
 // measured step/epsilon pairs 2/0.2, 0.4/0.05, 0.2/0.02 and 0.02/0.002 with
 // depths 0..100; the defaults are its middle pair. Valid: all finite and > 0,
 // epsilon < step.
+// step and epsilon drive the parity search only; the improved search steps
+// one texel at a time. tolerance is the improved mode's error control.
 struct CdctParameters {
     float step = 0.4f;        // delta: linear-search step along the ray
     float epsilon = 0.05f;    // binary search stops once its interval is below this
     float maxDepth = 100.0f;  // misses and farther hits are stored at this distance from the centre
+    // A found texel is used only if the point it stores lies within this many
+    // texel footprints (at its depth) of the secondary ray; else the ray is traced.
+    float tolerance = 2.0f;
 };
 
 // How an object's secondary rays are cached (honoured by the cache module).
 struct CacheSettings {
     CacheTechnique technique = CacheTechnique::None;
     int faceResolution = 512;  // texels per cube-face side
-    CdctParameters cdct;       // used when technique is Cdct
+    CdctParameters cdct;       // used when technique is Cdct or CdctParity
 };
 
 struct Material {

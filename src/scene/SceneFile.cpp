@@ -149,9 +149,10 @@ constexpr std::array<Choice<LightType>, 3> kLightTypes{{{"point", LightType::Poi
 enum class TextureKind { Image, Checker };
 constexpr std::array<Choice<TextureKind>, 2> kTextureKinds{{{"image", TextureKind::Image},
                                                             {"checker", TextureKind::Checker}}};
-constexpr std::array<Choice<CacheTechnique>, 3> kCacheTechniques{{{"none", CacheTechnique::None},
+constexpr std::array<Choice<CacheTechnique>, 4> kCacheTechniques{{{"none", CacheTechnique::None},
                                                                   {"cct", CacheTechnique::Cct},
-                                                                  {"cdct", CacheTechnique::Cdct}}};
+                                                                  {"cdct", CacheTechnique::Cdct},
+                                                                  {"cdct-parity", CacheTechnique::CdctParity}}};
 enum class ShapeKind { Sphere, Mesh, Plane, Box, Cylinder, Cone, Torus, Bowl };
 constexpr std::array<Choice<ShapeKind>, 8> kShapeKinds{{{"sphere", ShapeKind::Sphere},
                                                         {"mesh", ShapeKind::Mesh},
@@ -609,7 +610,7 @@ private:
     }
 
     CacheSettings cache(const Node& n) const {
-        expectObject(n, {"technique", "resolution", "step", "epsilon", "maxDepth"});
+        expectObject(n, {"technique", "resolution", "step", "epsilon", "maxDepth", "tolerance"});
         CacheSettings c;
         if (const Node v = child(n, "technique")) c.technique = choice(v, "cache technique", kCacheTechniques);
         if (const Node v = child(n, "resolution")) c.faceResolution = integer(v, kMinCacheResolution, kMaxCacheResolution);
@@ -617,6 +618,7 @@ private:
         if (const Node v = child(n, "step")) c.cdct.step = number(v, positive());
         if (const Node v = child(n, "epsilon")) c.cdct.epsilon = number(v, positive());
         if (const Node v = child(n, "maxDepth")) c.cdct.maxDepth = number(v, positive());
+        if (const Node v = child(n, "tolerance")) c.cdct.tolerance = number(v, positive());
         if (!(c.cdct.epsilon < c.cdct.step))
             fail(child(n, "epsilon") ? child(n, "epsilon") : n, "cache epsilon must be smaller than step");
         return c;

@@ -363,7 +363,7 @@ TEST_F(SceneFileTest, UnknownShapeListsTheValidOnes) {
 TEST_F(SceneFileTest, UnknownCacheTechnique) {
     expectError("{\"objects\": [{\"shape\": \"sphere\", \"material\": {\"cache\": {\"technique\": @\"fast\"}}}]}",
                 "/objects/0/material/cache/technique",
-                "unknown cache technique \"fast\" (expected one of: none, cct, cdct)");
+                "unknown cache technique \"fast\" (expected one of: none, cct, cdct, cdct-parity)");
 }
 
 TEST_F(SceneFileTest, UnknownPathType) {

@@ -31,7 +31,7 @@ Scene oneMirror(int resolution = 16) {
     Scene s;
     Material mirror;
     mirror.reflectivity = 0.8f;
-    mirror.cache.technique = CacheTechnique::Cdct;
+    mirror.cache.technique = CacheTechnique::CdctParity;
     mirror.cache.faceResolution = resolution;
     s.objects.push_back(SceneObject{"m", Sphere{{0, 0, 0}, 1}, mirror, {0, 0, 0}});
     return s;
@@ -216,7 +216,7 @@ TEST(Cdct, StillCameraSecondFrameAnswersFromTheCache) {
     // Parity mode aborts at the first invalid texel its search meets, so it
     // only answers where the cube is densely filled: coarse faces (16^2) for
     // a 128^2 image. With 64^2 faces almost every search meets a hole.
-    const PathRender run = renderPath("parallax", CacheTechnique::Cdct, 2, true, 128, 2, 16);
+    const PathRender run = renderPath("parallax", CacheTechnique::CdctParity, 2, true, 128, 2, 16);
     ASSERT_TRUE(run.stats[1].cache.has_value());
     EXPECT_GT(run.stats[0].cache->stores(), 0u);
     EXPECT_GT(run.stats[1].cache->hits(), 0u);
@@ -241,7 +241,7 @@ TEST(Cdct, ParallaxAlongTheCameraPathAgainstCctAndUncached) {
     const PathRender plain = renderPath("parallax", CacheTechnique::None, kFrames, false, 128, 2, 16);
     for (int resolution : {16, 32, 64, 512}) {
         const PathRender cct = renderPath("parallax", CacheTechnique::Cct, kFrames, false, 128, 2, resolution);
-        const PathRender cdct = renderPath("parallax", CacheTechnique::Cdct, kFrames, false, 128, 2, resolution);
+        const PathRender cdct = renderPath("parallax", CacheTechnique::CdctParity, kFrames, false, 128, 2, resolution);
         const double cctDb = psnr(cct.frames.back(), plain.frames.back());
         const double cdctDb = psnr(cdct.frames.back(), plain.frames.back());
         RecordProperty("cct_psnr_db_" + std::to_string(resolution), std::to_string(cctDb));
@@ -262,8 +262,8 @@ TEST(Cdct, ParallaxAlongTheCameraPathAgainstCctAndUncached) {
 
 TEST(Cdct, ImagesAndCachesBitIdenticalAcrossThreadCounts) {
     // Coarse faces, so that the searches do answer in frames 2 and 3.
-    const PathRender one = renderPath("parallax", CacheTechnique::Cdct, 3, false, 96, 1, 16);
-    const PathRender three = renderPath("parallax", CacheTechnique::Cdct, 3, false, 96, 3, 16);
+    const PathRender one = renderPath("parallax", CacheTechnique::CdctParity, 3, false, 96, 1, 16);
+    const PathRender three = renderPath("parallax", CacheTechnique::CdctParity, 3, false, 96, 3, 16);
     ASSERT_EQ(one.frames.size(), three.frames.size());
     for (std::size_t f = 0; f < one.frames.size(); ++f)
         EXPECT_TRUE(sameImage(one.frames[f], three.frames[f])) << "frame " << f;

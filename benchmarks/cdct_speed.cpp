@@ -1,0 +1,199 @@
+// CDCT measured two ways, side by side in one run:
+//  quality: the `parallax` camera path (from empty caches) against the
+//           uncached frames: PSNR per frame for CCT, CDCT parity and the
+//           improved CDCT with its changes switched on one after another;
+//  speed:   the thesis's Table 5.3 (diffuse-32, reflective-32 at 1920x1080,
+//           still camera, caches filled by the warm-up frames): CCT,
+//           uncached, CDCT parity at the four delta/epsilon pairs and the
+//           improved CDCT, then the improved CDCT's changes one by one.
+// Usage: cdct_speed [--quality-only | --speed-only] [--width 1920 --height 1080] [--rounds 5]
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bench/ImageMetrics.h"
+#include "bench/InterleavedRuns.h"
+#include "core/Parallel.h"
+#include "render/FrameRenderer.h"
+#include "scene/BuiltinScenes.h"
+#include "trace/TraceScene.h"
+
+using namespace raycache;
+
+namespace {
+
+struct CacheVariant {
+    std::string name;
+    CacheTechnique technique;
+    CdctImprovements improvements{};
+    float step = 0.4f, epsilon = 0.05f;  // parity search
+};
+
+// The improved CDCT's changes, switched on one after another (each row adds one).
+std::vector<CacheVariant> improvementLadder() {
+    CdctImprovements i{false, false, false, false, false, false};
+    std::vector<CacheVariant> rows;
+    i.prefill = true;
+    rows.push_back({"+ pre-fill (fixed 0.4/0.05 steps)", CacheTechnique::Cdct, i});
+    i.texelSteps = true;
+    rows.push_back({"+ texel-space steps", CacheTechnique::Cdct, i});
+    i.earlyExit = true;
+    rows.push_back({"+ early exit", CacheTechnique::Cdct, i});
+    i.skipEmptySpace = true;
+    rows.push_back({"+ empty-space skipping", CacheTechnique::Cdct, i});
+    i.errorControl = true;
+    rows.push_back({"+ error control (= cdct)", CacheTechnique::Cdct, i});
+    i.filter = true;
+    rows.push_back({"+ filtering", CacheTechnique::Cdct, i});
+    return rows;
+}
+
+RenderSettings settingsFor(int width, int height, int threads, const CacheVariant& v, std::optional<int> resolution) {
+    RenderSettings s;
+    s.width = width;
+    s.height = height;
+    s.threads = threads;
+    s.cache.techniqueOverride = v.technique;
+    s.cache.cdctImprovements = v.improvements;
+    s.cache.cdctStepOverride = v.step;
+    s.cache.cdctEpsilonOverride = v.epsilon;
+    s.cache.resolutionOverride = resolution;
+    return s;
+}
+
+void quality(int size, int frames, int threads, std::optional<int> resolution, const Parallel& parallel) {
+    const auto scene = makeBuiltinScene("parallax");
+    const TraceScene tracer(*scene);
+    std::vector<CacheVariant> variants{{"CCT", CacheTechnique::Cct}, {"CDCT parity 0.4/0.05", CacheTechnique::CdctParity}};
+    for (const CacheVariant& v : improvementLadder()) variants.push_back(v);
+
+    const CacheVariant none{"uncached", CacheTechnique::None};
+    const RenderSettings plainSettings = settingsFor(size, size, threads, none, resolution);
+    const FrameRenderer plain(*scene, tracer, plainSettings, parallel);
+    std::vector<Image> truth(static_cast<std::size_t>(frames));
+    for (int f = 0; f < frames; ++f) plain.render(scene->cameraPath.cameraAt(scene->camera, f), truth[static_cast<std::size_t>(f)]);
+
+    std::printf("## quality: parallax %dx%d, %d frames of its camera path from empty caches, faces %s\n\n", size, size,
+                frames, resolution ? std::to_string(*resolution).c_str() : "512 (scene)");
+    std::printf("| variant | mean PSNR frames 2-%d (dB) | min | last frame | hit rate | rejected |\n", frames);
+    std::printf("| --- | --- | --- | --- | --- | --- |\n");
+    for (const CacheVariant& v : variants) {
+        const RenderSettings settings = settingsFor(size, size, threads, v, resolution);
+        RayCache cache(*scene, settings.cache);
+        const FrameRenderer renderer(*scene, tracer, settings, parallel, &cache);
+        double sum = 0.0, lowest = 1e9, last = 0.0;
+        std::uint64_t lookups = 0, hits = 0, rejected = 0;
+        for (int f = 0; f < frames; ++f) {
+            Image film;
+            const FrameStats stats = renderer.render(scene->cameraPath.cameraAt(scene->camera, f), film);
+            if (f == 0) continue;  // the first frame traces everything in every variant
+            // Identical frames (nothing answered from the cache) count as 100 dB.
+            const double db = std::min(100.0, psnr(film, truth[static_cast<std::size_t>(f)]));
+            sum += db;
+            lowest = std::min(lowest, db);
+            last = db;
+            lookups += stats.cache->lookups();
+            hits += stats.cache->hits();
+            rejected += stats.cache->rejected();
+        }
+        const double n = static_cast<double>(lookups ? lookups : 1);
+        std::printf("| %s | %.2f | %.2f | %.2f | %.1f%% | %.1f%% |\n", v.name.c_str(), sum / (frames - 1), lowest, last,
+                    100.0 * static_cast<double>(hits) / n, 100.0 * static_cast<double>(rejected) / n);
+        std::fflush(stdout);
+    }
+}
+
+// The thesis's Table 5.3, frames per second.
+struct DocumentsRow {
+    const char* scene;
+    double fps[6];  // CCT, standard RT, CDCT 2/0.2, 0.4/0.05, 0.2/0.02, 0.02/0.002
+};
+constexpr DocumentsRow kTable53[] = {{"diffuse-32", {76.0, 69.6, 49.5, 35.3, 30.7, 19.0}},
+                                     {"reflective-32", {33.9, 30.1, 19.1, 17.0, 13.5, 13.9}}};
+
+void speed(int width, int height, int threads, int warmup, int rounds, std::optional<int> resolution,
+           const Parallel& parallel) {
+    for (const DocumentsRow& row : kTable53) {
+        const auto scene = makeBuiltinScene(row.scene);
+        const TraceScene tracer(*scene);
+        std::vector<CacheVariant> variants{{"CCT", CacheTechnique::Cct},
+                                           {"uncached", CacheTechnique::None},
+                                           {"CDCT parity 2/0.2", CacheTechnique::CdctParity, {}, 2.0f, 0.2f},
+                                           {"CDCT parity 0.4/0.05", CacheTechnique::CdctParity, {}, 0.4f, 0.05f},
+                                           {"CDCT parity 0.2/0.02", CacheTechnique::CdctParity, {}, 0.2f, 0.02f},
+                                           {"CDCT parity 0.02/0.002", CacheTechnique::CdctParity, {}, 0.02f, 0.002f},
+                                           {"CDCT improved (cdct)", CacheTechnique::Cdct}};
+        const std::size_t tableRows = variants.size();
+        for (const CacheVariant& v : improvementLadder()) variants.push_back(v);
+
+        std::vector<RenderSettings> settings;
+        std::vector<std::unique_ptr<RayCache>> caches;
+        std::vector<std::unique_ptr<FrameRenderer>> renderers;
+        std::vector<double> hitPercent(variants.size(), 0.0);
+        std::vector<Variant> runs;
+        Image film;
+        for (std::size_t i = 0; i < variants.size(); ++i) {
+            settings.push_back(settingsFor(width, height, threads, variants[i], resolution));
+        }
+        for (std::size_t i = 0; i < variants.size(); ++i) {
+            caches.push_back(std::make_unique<RayCache>(*scene, settings[i].cache));
+            renderers.push_back(
+                std::make_unique<FrameRenderer>(*scene, tracer, settings[i], parallel, caches[i].get()));
+            runs.push_back({variants[i].name, [&, i] {
+                                const FrameStats stats = renderers[i]->render(scene->camera, film);
+                                if (stats.cache && stats.cache->lookups())
+                                    hitPercent[i] = 100.0 * static_cast<double>(stats.cache->hits()) /
+                                                    static_cast<double>(stats.cache->lookups());
+                                return stats.rays.total();
+                            }});
+        }
+        const auto times = runInterleaved(runs, warmup, rounds);
+        const double uncached = times[1].median();
+        std::printf("\n## speed: %s %dx%d, still camera, caches filled by %d warm-up frames, %d timed rounds\n\n",
+                    row.scene, width, height, warmup, rounds);
+        std::printf("| variant | ms median (min-max) | fps | speed-up vs uncached | hit rate | documents fps | "
+                    "documents speed-up |\n");
+        std::printf("| --- | --- | --- | --- | --- | --- | --- |\n");
+        for (std::size_t i = 0; i < variants.size(); ++i) {
+            if (i == tableRows) std::printf("| *improved CDCT, changes one by one* | | | | | | |\n");
+            char documents[64] = "", documentsRatio[32] = "";
+            if (i < 6) {
+                std::snprintf(documents, sizeof documents, "%.1f", row.fps[i]);
+                std::snprintf(documentsRatio, sizeof documentsRatio, "%.2fx", row.fps[i] / row.fps[1]);
+            }
+            const VariantTimes& t = times[i];
+            std::printf("| %s | %.1f (%.1f-%.1f) | %.1f | %.2fx | %.1f%% | %s | %s |\n", variants[i].name.c_str(),
+                        t.median(), t.min(), t.max(), 1000.0 / t.median(), uncached / t.median(), hitPercent[i],
+                        documents, documentsRatio);
+        }
+        std::fflush(stdout);
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"CDCT: quality on parallax and Table 5.3 speed, every variant side by side"};
+    int width = 1920, height = 1080, rounds = 5, warmup = 2, threads = 0, qualitySize = 256, qualityFrames = 25;
+    std::optional<int> resolution;
+    bool qualityOnly = false, speedOnly = false;
+    app.add_option("--width", width, "Speed: image width")->capture_default_str();
+    app.add_option("--height", height, "Speed: image height")->capture_default_str();
+    app.add_option("--rounds", rounds, "Speed: timed frames per variant")->capture_default_str();
+    app.add_option("--warmup", warmup, "Speed: untimed frames per variant first (they fill the caches)")
+        ->capture_default_str();
+    app.add_option("--quality-size", qualitySize, "Quality: image width and height")->capture_default_str();
+    app.add_option("--quality-frames", qualityFrames, "Quality: frames of the parallax path")->capture_default_str();
+    app.add_option("--cache-res", resolution, "Face resolution for every cube (default: the scenes' own, 512)");
+    app.add_option("--threads", threads, "Worker threads, 0 = all")->capture_default_str();
+    app.add_flag("--quality-only", qualityOnly, "Only the quality table");
+    app.add_flag("--speed-only", speedOnly, "Only the speed tables");
+    CLI11_PARSE(app, argc, argv);
+    const Parallel parallel(threads);
+    if (!speedOnly) quality(qualitySize, qualityFrames, threads, resolution, parallel);
+    if (!qualityOnly) speed(width, height, threads, warmup, rounds, resolution, parallel);
+    return 0;
+}

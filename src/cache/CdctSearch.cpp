@@ -1,0 +1,283 @@
+#include "cache/CdctSearch.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "cache/CubeAddressing.h"
+
+namespace raycache {
+
+namespace {
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
+// The ray parameter at which the line origin + t * direction leaves the box
+// center ± half (the far slab crossing); 0 if it is behind the origin.
+float tLeavingBox(const Vec3& center, const Vec3& half, const Vec3& origin, const Vec3& direction) {
+    float tExit = kInfinity;
+    for (int a = 0; a < 3; ++a) {
+        const float d = direction[a];
+        if (std::fabs(d) < 1e-12f) continue;  // parallel to this slab pair: it does not bound the exit
+        const float t1 = (center[a] - half[a] - origin[a]) / d;
+        const float t2 = (center[a] + half[a] - origin[a]) / d;
+        tExit = std::min(tExit, std::max(t1, t2));
+    }
+    return std::isfinite(tExit) ? std::max(0.0f, tExit) : 0.0f;
+}
+
+bool usable(const Vec3& origin, const Vec3& direction) {
+    return isFinite(origin) && isFinite(direction) && dot(direction, direction) > 0.0f;
+}
+
+// The point texel `index` stands for: centre + (unit texel direction) * stored depth.
+Vec3 storedPoint(const CachingCube& cube, int index) {
+    const int n = cube.size();
+    const CubeTexel texel{static_cast<CubeFace>(index / (n * n)), index % n, (index / n) % n};
+    return cube.center() + normalize(cubeTexelCenterDirection(texel, n)) * cube.depth(index);
+}
+
+// Whether the point texel `index` stores lies within `tolerance` texel
+// footprints (the width of one texel at the point's depth) of the ray.
+bool onRay(const CachingCube& cube, int index, float tolerance, const Vec3& origin, const Vec3& direction) {
+    const Vec3 w = storedPoint(cube, index) - origin;
+    const float along = dot(w, direction);
+    if (!(along > 0.0f)) return false;  // behind the ray's origin
+    const float footprint = cube.depth(index) * 2.0f / static_cast<float>(cube.size());
+    return length(w - direction * along) <= tolerance * footprint;
+}
+
+// Bilinear blend of the (up to) four texels around `v` (a direction from the
+// centre) on the face of `found`, leaving out neighbours whose stored point is
+// off the ray (another surface across a depth edge). Falls back to `found`.
+Rgb filteredColor(const CachingCube& cube, int found, const Vec3& v, float tolerance, const Vec3& origin,
+                  const Vec3& direction) {
+    const int n = cube.size();
+    const CubeCoord coord = cubeCoordFromDirection(v);
+    const Rgb own = *cube.read(found);
+    if (static_cast<int>(coord.face) != found / (n * n)) return own;
+    const float u = coord.s * static_cast<float>(n) - 0.5f;
+    const float w = coord.t * static_cast<float>(n) - 0.5f;
+    const float x0f = std::floor(u), y0f = std::floor(w);
+    const float fx = u - x0f, fy = w - y0f;
+    const int x0 = static_cast<int>(x0f), y0 = static_cast<int>(y0f);
+    const int faceBase = found / (n * n) * n * n;
+    Rgb sum{};
+    float weightSum = 0.0f;
+    for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) {
+            const int x = std::clamp(x0 + i, 0, n - 1), y = std::clamp(y0 + j, 0, n - 1);
+            const int index = faceBase + y * n + x;
+            const float weight = (i ? fx : 1.0f - fx) * (j ? fy : 1.0f - fy);
+            if (weight <= 0.0f || !cube.isValid(index) || !onRay(cube, index, tolerance, origin, direction)) continue;
+            sum += *cube.read(index) * weight;
+            weightSum += weight;
+        }
+    return weightSum > 0.0f ? sum * (1.0f / weightSum) : own;
+}
+
+// The sine of the angle between direction (u, v, 1) of a face (u, v in
+// [-1, 1], from coord) and the nearest edge of the `blockSide`-texel block
+// holding it, a little under. Block edges are great circles (planes u = const
+// through the centre), and the sine of the angle to the plane u = e is
+// |u - e| / (sqrt(1 + u^2 + v^2) * sqrt(1 + e^2)).
+float sineToBlockEdge(const CubeCoord& coord, int n, int blockSide) {
+    const float size = static_cast<float>(n);
+    const float u = 2.0f * coord.s - 1.0f, v = 2.0f * coord.t - 1.0f;
+    const auto distance = [&](float along, float faceCoord) {
+        const int texel = std::clamp(static_cast<int>(faceCoord * size), 0, n - 1);
+        const int first = texel / blockSide * blockSide;
+        const float e0 = 2.0f * static_cast<float>(first) / size - 1.0f;
+        const float e1 = 2.0f * static_cast<float>(std::min(first + blockSide, n)) / size - 1.0f;
+        return std::min((along - e0) / std::sqrt(1.0f + e0 * e0), (e1 - along) / std::sqrt(1.0f + e1 * e1));
+    };
+    const float nearest = std::min(distance(u, coord.s), distance(v, coord.t));
+    // Shaved a little: s and t carry float rounding.
+    return std::max(0.0f, nearest / std::sqrt(1.0f + u * u + v * v) - 1e-5f);
+}
+
+}  // namespace
+
+float rayParameterAtDistance(const Vec3& center, const Vec3& origin, const Vec3& direction, float radius) {
+    const Vec3 w = origin - center;
+    const double b = dot(w, direction);
+    const double c = static_cast<double>(dot(w, w)) - static_cast<double>(radius) * radius;
+    const double t = -b + std::sqrt(std::max(0.0, b * b - c));
+    return static_cast<float>(std::max(0.0, t));
+}
+
+CdctResult searchCdctParity(const CachingCube& cube, const CdctParameters& p, const Vec3& origin,
+                            const Vec3& direction) {
+    // Algorithm 4 (thesis §4.5): a linear search along the ray from where its
+    // line leaves the box, then a binary search; bounded in both.
+    if (!usable(origin, direction)) return {};
+    const Vec3 c = cube.center();
+    const Vec3 d = normalize(direction);
+    const float tStart = tLeavingBox(c, cube.halfSize(), origin, d);
+    // Stored depths never exceed maxDepth, so the point at maxDepth ends the search.
+    const float tEnd = std::max(tStart, rayParameterAtDistance(c, origin, d, p.maxDepth));
+    const double wanted = std::ceil(static_cast<double>(tEnd - tStart) / p.step);
+    const double cap = std::ceil(2.0 * p.maxDepth / p.step) + 1.0;
+    const int steps = static_cast<int>(std::clamp(wanted, 1.0, cap));
+
+    // The texel addressed by centre -> point at t; -1 if invalid (aborts the search).
+    const auto texelAt = [&](float t, float& distance) {
+        const Vec3 v = origin + d * t - c;
+        distance = length(v);
+        const int texel = cube.texelIndexFor(v);
+        return cube.isValid(texel) ? texel : -1;
+    };
+
+    float previous = tStart;
+    for (int i = 1; i <= steps; ++i) {
+        const float t = i == steps ? tEnd : tStart + static_cast<float>(i) * p.step;
+        float distance;
+        const int texel = texelAt(t, distance);
+        if (texel < 0) return {CdctOutcome::Invalid};
+        if (cube.depth(texel) <= distance) {
+            // Crossed between `previous` (in front of the stored surface) and t (at or behind it).
+            float lo = previous, hi = t;
+            int found = texel;
+            for (int k = 0; k < kCdctMaxBinarySteps && hi - lo >= p.epsilon; ++k) {
+                const float mid = 0.5f * (lo + hi);
+                if (!(mid > lo && mid < hi)) break;  // float resolution reached
+                const int midTexel = texelAt(mid, distance);
+                if (midTexel < 0) return {CdctOutcome::Invalid};
+                if (cube.depth(midTexel) <= distance) {
+                    hi = mid;
+                    found = midTexel;
+                } else {
+                    lo = mid;
+                }
+            }
+            return {CdctOutcome::Found, *cube.read(found)};
+        }
+        // Reached maxDepth without crossing (rounding only): what lies there is the environment.
+        if (i == steps) return {CdctOutcome::Found, *cube.read(texel)};
+        previous = t;
+    }
+    return {};  // not reached: the last step returns
+}
+
+CdctResult searchCdctImproved(const CachingCube& cube, const CdctParameters& p, const CdctImprovements& improvements,
+                              float farthestSurface, const DepthPyramid* pyramid, const Vec3& origin,
+                              const Vec3& direction) {
+    if (!usable(origin, direction)) return {};
+    const Vec3 c = cube.center();
+    const Vec3 d = normalize(direction);
+    const float n = static_cast<float>(cube.size());
+    const float tStart = tLeavingBox(c, cube.halfSize(), origin, d);
+    const float tMaxDepth = std::max(tStart, rayParameterAtDistance(c, origin, d, p.maxDepth));
+    float tEnd = tMaxDepth;
+    if (improvements.earlyExit && farthestSurface < p.maxDepth) {
+        // No cached surface lies farther from the centre than farthestSurface:
+        // a ray that gets past it without crossing one sees the environment,
+        // so marching on to maxDepth would only confirm that.
+        const float bound = farthestSurface * (1.0f + 1e-3f) + 1e-6f;
+        tEnd = std::clamp(rayParameterAtDistance(c, origin, d, bound), tStart, tMaxDepth);
+    }
+
+    // One step turns the ray, seen from the centre, by 0.8 / n: 40% of a
+    // texel's width at a face's centre, 98% of the narrowest (at its corners),
+    // so no texel is stepped over.
+    const float stepAngle = 0.8f / n;
+    // Seen from the centre, the ray passes closest at tClosest, at distance
+    // `impact`; the line from the centre to the point at t makes an angle a
+    // with tan a = (t - tClosest) / impact with the closest-approach line. The
+    // ray parameter after a further turn by b, tan b = k, follows from
+    // tan(a + b) = (tan a + k) / (1 - k tan a), exactly and without trigonometry;
+    // infinite when the ray never turns that far.
+    const float tClosest = -dot(origin - c, d);
+    const float impact = length(origin - c + d * tClosest);
+    const auto tAfterTurn = [&](float t, float k) {
+        const float x = t - tClosest;
+        const float denominator = impact - k * x;
+        return denominator > 0.0f ? tClosest + impact * (x + k * impact) / denominator : kInfinity;
+    };
+    const float stepTangent = std::tan(stepAngle);
+    const long maxSteps = improvements.texelSteps
+                              ? static_cast<long>(kCdctTexelStepsPerSide) * cube.size() + 64
+                              : static_cast<long>(std::ceil(2.0 * p.maxDepth / p.step)) + 1;
+
+    struct Sample {
+        int texel;
+        float distance;  // from the centre
+        Vec3 v;          // centre -> point
+        CubeCoord coord;
+        int x, y;        // texel column and row on coord.face
+    };
+    const auto sampleAt = [&](float t) {
+        Sample s;
+        s.v = origin + d * t - c;
+        s.distance = length(s.v);
+        // As cubeTexelFromDirection, keeping the face coordinates for the pyramid.
+        s.coord = cubeCoordFromDirection(s.v);
+        s.x = std::clamp(static_cast<int>(s.coord.s * n), 0, cube.size() - 1);
+        s.y = std::clamp(static_cast<int>(s.coord.t * n), 0, cube.size() - 1);
+        s.texel = cubeTexelIndex(CubeTexel{s.coord.face, s.x, s.y}, cube.size());
+        return s;
+    };
+
+    float previous = tStart, t = tStart;
+    Sample s = sampleAt(t);
+    int found = -1;
+    Vec3 foundV;
+    for (long step = 0;; ++step) {
+        if (!cube.isValid(s.texel)) return {CdctOutcome::Invalid};
+        if (cube.depth(s.texel) <= s.distance) {
+            // Crossed between `previous` (in front of the stored surface) and t.
+            float lo = previous, hi = t;
+            int loTexel = -1;
+            found = s.texel;
+            foundV = s.v;
+            for (int k = 0; k < kCdctMaxBinarySteps && hi > lo; ++k) {
+                if (improvements.texelSteps ? loTexel == found : hi - lo < p.epsilon) break;
+                const float mid = 0.5f * (lo + hi);
+                if (!(mid > lo && mid < hi)) break;  // float resolution reached
+                const Sample m = sampleAt(mid);
+                if (!cube.isValid(m.texel)) return {CdctOutcome::Invalid};
+                if (cube.depth(m.texel) <= m.distance) {
+                    hi = mid;
+                    found = m.texel;
+                    foundV = m.v;
+                } else {
+                    lo = mid;
+                    loTexel = m.texel;
+                }
+            }
+            break;
+        }
+        if (t >= tEnd) {
+            // No crossing up to the end: the environment, cached at maxDepth.
+            const Sample far = sampleAt(tMaxDepth);
+            if (!cube.isValid(far.texel)) return {CdctOutcome::Invalid};
+            found = far.texel;
+            foundV = far.v;
+            break;
+        }
+        if (step >= maxSteps) return {CdctOutcome::Exhausted};
+        previous = t;
+        float next = improvements.texelSteps ? tAfterTurn(t, stepTangent) : t + p.step;
+        if (pyramid && improvements.skipEmptySpace) {
+            // A block all of whose depths exceed the ray's distance, at both
+            // ends of a step that stays inside the block, holds no crossing:
+            // step to where the ray leaves the block or reaches that depth.
+            const int face = static_cast<int>(s.coord.face);
+            for (int level = pyramid->levelCount() - 1; level >= 0; --level) {
+                const float nearest = pyramid->minDepth(level, face, s.x, s.y);
+                if (!(nearest > s.distance)) continue;
+                // The sine of the angle to the block's edge is below its tangent: a safe turn.
+                const float leaves = tAfterTurn(t, sineToBlockEdge(s.coord, cube.size(), pyramid->blockSide(level)));
+                next = std::max(next, std::min(leaves, rayParameterAtDistance(c, origin, d, nearest)));
+            }
+        }
+        t = std::min(tEnd, std::max(next, t + 1e-6f * (1.0f + t)));
+        s = sampleAt(t);
+    }
+
+    if (improvements.errorControl && !onRay(cube, found, p.tolerance, origin, d)) return {CdctOutcome::Rejected};
+    if (improvements.filter) return {CdctOutcome::Found, filteredColor(cube, found, foundV, p.tolerance, origin, d)};
+    return {CdctOutcome::Found, *cube.read(found)};
+}
+
+}  // namespace raycache

@@ -1,0 +1,317 @@
+// Improved CDCT (technique `cdct`): the pre-fill protocol, the texel-space
+// search with empty-space skipping against analytic surfaces, error control,
+// termination on awkward rays, determinism, and the parallax quality margin
+// over CCT with the uncached render as ground truth.
+#include <gtest/gtest.h>
+
+#include "PathRender.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "bench/ImageMetrics.h"
+#include "cache/CdctSearch.h"
+#include "cache/DepthPyramid.h"
+#include "cache/RayCache.h"
+
+using namespace raycache;
+
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// One mirror sphere of radius 1 at the origin, cached with improved CDCT.
+Scene oneMirror(int resolution) {
+    Scene s;
+    Material mirror;
+    mirror.reflectivity = 0.8f;
+    mirror.cache.technique = CacheTechnique::Cdct;
+    mirror.cache.faceResolution = resolution;
+    s.objects.push_back(SceneObject{"m", Sphere{{0, 0, 0}, 1}, mirror, {0, 0, 0}});
+    return s;
+}
+
+// A color telling texels apart.
+Rgb colorOf(int texel) {
+    return Rgb{static_cast<float>(texel % 97) + 1.0f, static_cast<float>(texel / 97) + 1.0f, 0.5f};
+}
+
+// Goes through the pre-fill protocol as a renderer does: a frame asks for the
+// cube, then every texel gets colorOf(texel) at the distance `depthOf` gives
+// for its direction (infinity: a miss).
+void prefill(RayCache& cache, const std::function<float(const Vec3&)>& depthOf) {
+    auto workers = cache.makeWorkers(1);
+    cache.beginFrame(workers);
+    workers[0].beginPixel(0);
+    EXPECT_FALSE(cache.lookup(0, {0, 0, 1.001f}, {0, 0, 1}, workers[0]).has_value()) << "nothing cached yet";
+    const std::vector<int> awaiting = cache.objectsAwaitingPrefill(workers);
+    ASSERT_EQ(awaiting, std::vector<int>{0});
+    std::vector<RayCache::PrefillTexel> texels(cache.cube(0).texelCount());
+    for (std::size_t i = 0; i < texels.size(); ++i) {
+        const Vec3 direction = cache.prefillDirection(0, static_cast<int>(i));
+        EXPECT_NEAR(length(direction), 1.0f, 1e-5f);
+        EXPECT_EQ(cache.cube(0).texelIndexFor(direction), static_cast<int>(i)) << "through the texel's centre";
+        texels[i] = {colorOf(static_cast<int>(i)), depthOf(direction)};
+    }
+    cache.completePrefill(0, texels);
+    const FrameCacheStats stats = cache.endFrame(workers);
+    EXPECT_EQ(stats.objects[0].prefilledTexels, cache.cube(0).texelCount());
+    EXPECT_EQ(cache.cube(0).validCount(), cache.cube(0).texelCount());
+    EXPECT_TRUE(cache.objectsAwaitingPrefill(workers).empty());
+}
+
+struct Probe {
+    Vec3 origin, direction;
+};
+
+// Rays that start on (just off) the sphere and graze the box, run parallel
+// to its faces, or leave through edges and corners.
+std::vector<Probe> awkwardRays() {
+    const float s = 1.0f / std::sqrt(3.0f);
+    return {
+        {{0, 1.0001f, 0}, {1, 0, 0}},                    // parallel to the +y face, on the sphere's top
+        {{0, 1.0001f, 0}, {0, 0, -1}},                   // parallel to the +y face, other axis
+        {{1.0001f, 0, 0}, {0, 1, 0}},                    // tangent, along the +x face
+        {{0, 0, 1.0001f}, {0, 0, 1}},                    // straight out through a face centre (radial)
+        {{s, s, s}, {s, s, s}},                          // out through the box corner
+        {{0.7071f, 0.7071f, 0}, {0.7071f, 0.7071f, 0}},  // out through an edge
+        {{0, -1.0001f, 0}, {1e-7f, 1, 1e-7f}},           // nearly parallel to the x/z faces, pointing back through
+        {{1.5f, 0, 0}, {1, 0, 0}},                       // origin outside the box, moving away
+        {{0.3f, 0.2f, 0.1f}, {0.0f, -1.0f, 0.0f}},       // origin inside the object
+        {{0.6f, 0.8f, 0.0f}, {0.8f, -0.6f, 0.0f}},       // tangent to the sphere
+    };
+}
+
+// Every combination of the search's switches (pre-fill stays on: the tests
+// fill the cube through it).
+std::vector<CdctImprovements> searchVariants() {
+    std::vector<CdctImprovements> variants;
+    for (int bits = 0; bits < 16; ++bits) {
+        CdctImprovements i;
+        i.texelSteps = bits & 1;
+        i.earlyExit = bits & 2;
+        i.skipEmptySpace = bits & 4;
+        i.filter = bits & 8;
+        i.errorControl = true;
+        variants.push_back(i);
+    }
+    return variants;
+}
+
+bool sameImage(const Image& a, const Image& b) {
+    return a.pixels().size() == b.pixels().size() &&
+           std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size() * sizeof(Rgb)) == 0;
+}
+
+}  // namespace
+
+TEST(CdctImproved, DepthPyramidHoldsTheMinimumOfEveryBlock) {
+    RayCache cache(oneMirror(64), {});
+    std::mt19937 random(7);
+    std::uniform_real_distribution<float> uniform(1.5f, 90.0f);
+    prefill(cache, [&](const Vec3&) { return uniform(random); });
+    const CachingCube& cube = cache.cube(0);
+    const DepthPyramid pyramid(cube);
+    ASSERT_EQ(pyramid.levelCount(), 3);  // blocks of 4, 16, 64 texels
+    for (int level = 0; level < pyramid.levelCount(); ++level) {
+        const int side = pyramid.blockSide(level);
+        for (int face = 0; face < 6; ++face)
+            for (int by = 0; by < 64 / side; ++by)
+                for (int bx = 0; bx < 64 / side; ++bx) {
+                    float expected = kInf;
+                    for (int y = by * side; y < (by + 1) * side; ++y)
+                        for (int x = bx * side; x < (bx + 1) * side; ++x)
+                            expected = std::min(expected,
+                                                cube.depth(cubeTexelIndex({static_cast<CubeFace>(face), x, y}, 64)));
+                    // Any texel of the block names the block.
+                    EXPECT_EQ(pyramid.minDepth(level, face, bx * side + side - 1, by * side), expected);
+                }
+    }
+}
+
+TEST(CdctImproved, SearchFindsAnAnalyticSphereWithEverySwitchSetting) {
+    // Every texel holds the surface of a sphere of radius 5 around the centre.
+    for (const CdctImprovements& improvements : searchVariants()) {
+        RayCacheSettings settings;
+        settings.cdctImprovements = improvements;
+        RayCache cache(oneMirror(64), settings);
+        prefill(cache, [](const Vec3&) { return 5.0f; });
+        const CachingCube& cube = cache.cube(0);
+        auto workers = cache.makeWorkers(1);
+        cache.beginFrame(workers);
+        workers[0].beginPixel(0);
+        for (const Probe& p : awkwardRays()) {
+            const Vec3 d = normalize(p.direction);
+            const float b = dot(p.origin, d);
+            const Vec3 onSurface = p.origin + d * (-b + std::sqrt(b * b - dot(p.origin, p.origin) + 25.0f));
+            const auto color = cache.lookup(0, p.origin, p.direction, workers[0]);
+            ASSERT_TRUE(color.has_value()) << improvements.texelSteps << improvements.skipEmptySpace;
+            if (improvements.filter) {
+                // A blend of the texels around the hit: within the range of colours there.
+                EXPECT_TRUE(color->isFinite());
+                continue;
+            }
+            // The texel where the ray meets the sphere, or one next to it.
+            bool near = false;
+            for (float dt : {-0.08f, -0.04f, 0.0f, 0.04f, 0.08f})
+                near = near || *color == colorOf(cube.texelIndexFor(onSurface + d * dt));
+            EXPECT_TRUE(near) << p.direction.x << " " << p.direction.y << " " << p.direction.z << " steps "
+                              << improvements.texelSteps << " skip " << improvements.skipEmptySpace;
+        }
+        const FrameCacheStats stats = cache.endFrame(workers);
+        EXPECT_EQ(stats.objects[0].hits, awkwardRays().size());
+        EXPECT_EQ(stats.objects[0].rejected, 0u);
+    }
+}
+
+TEST(CdctImproved, EnvironmentBeyondTheFarthestSurfaceIsAnsweredFromMaxDepth) {
+    // Upper half: a surface at distance 3; lower half: nothing (environment).
+    for (bool earlyExit : {false, true}) {
+        RayCacheSettings settings;
+        settings.cdctImprovements.earlyExit = earlyExit;
+        settings.cdctImprovements.filter = false;
+        RayCache cache(oneMirror(32), settings);
+        prefill(cache, [](const Vec3& v) { return v.y > 0.0f ? 3.0f : kInf; });
+        auto workers = cache.makeWorkers(1);
+        cache.beginFrame(workers);
+        workers[0].beginPixel(0);
+        const Vec3 origin{0, -1.0001f, 0}, direction = normalize(Vec3{0.3f, -1.0f, 0.2f});
+        const auto color = cache.lookup(0, origin, direction, workers[0]);
+        ASSERT_TRUE(color.has_value()) << earlyExit;
+        // The texel of the ray's point 100 (maxDepth) from the centre.
+        const float t = rayParameterAtDistance({0, 0, 0}, origin, direction, 100.0f);
+        EXPECT_EQ(*color, colorOf(cache.cube(0).texelIndexFor(origin + direction * t))) << earlyExit;
+        cache.endFrame(workers);
+    }
+}
+
+TEST(CdctImproved, ErrorControlRejectsAFoundTexelOffTheRay) {
+    // A near wall (distance 2) fills the directions with x > 0.5 |v|; the
+    // rest holds a far surface (distance 8). The probe enters the wall's
+    // directions already 5 units out, behind the wall as seen from the
+    // centre: the search stops at the wall's edge, whose stored point lies
+    // 0.37 units off the ray, far beyond 2 texel footprints (2 * 2 * 2 / 64).
+    const auto depthOf = [](const Vec3& v) { return v.x > 0.5f * length(v) ? 2.0f : 8.0f; };
+    const Vec3 origin{0, 1.01f, 0}, direction{0.6f, 0.8f, 0.0f};
+    for (bool errorControl : {true, false}) {
+        RayCacheSettings settings;
+        settings.cdctImprovements.errorControl = errorControl;
+        settings.cdctImprovements.filter = false;
+        RayCache cache(oneMirror(64), settings);
+        prefill(cache, depthOf);
+        auto workers = cache.makeWorkers(1);
+        cache.beginFrame(workers);
+        workers[0].beginPixel(0);
+        const auto color = cache.lookup(0, origin, direction, workers[0]);
+        const FrameCacheStats stats = cache.endFrame(workers);
+        if (errorControl) {
+            EXPECT_FALSE(color.has_value()) << "traced instead";
+            EXPECT_EQ(stats.objects[0].rejected, 1u);
+            EXPECT_EQ(stats.objects[0].misses, 1u);
+        } else {
+            // Without it the wall's colour is returned: a texel whose direction has x > 0.5.
+            ASSERT_TRUE(color.has_value());
+            bool wall = false;
+            for (int i = 0; i < static_cast<int>(cache.cube(0).texelCount()); ++i)
+                if (*color == colorOf(i)) wall = wall || depthOf(cache.prefillDirection(0, i)) == 2.0f;
+            EXPECT_TRUE(wall);
+            EXPECT_EQ(stats.objects[0].rejected, 0u);
+        }
+    }
+}
+
+TEST(CdctImproved, AwkwardRaysAndExtremeParametersTerminate) {
+    RayCacheSettings settings;
+    settings.cdctStepOverride = 0.2f;  // the fixed-step variants: 1e6 steps to maxDepth, the limit
+    settings.cdctEpsilonOverride = 1e-9f;
+    settings.cdctMaxDepthOverride = 1e5f;
+    settings.cdctToleranceOverride = 1e6f;
+    const std::vector<std::function<float(const Vec3&)>> surfaces{
+        [](const Vec3&) { return kInf; },                                      // nothing at all
+        [](const Vec3& v) { return v.x > 0.0f ? 1.5f : 1e5f; },               // a discontinuity
+        [](const Vec3& v) { return 1.2f + 50.0f * std::fabs(v.y) / length(v); }};  // steep slopes
+    for (const auto& surface : surfaces) {
+        for (const CdctImprovements& improvements : searchVariants()) {
+            settings.cdctImprovements = improvements;
+            RayCache cache(oneMirror(32), settings);
+            prefill(cache, surface);
+            auto workers = cache.makeWorkers(1);
+            cache.beginFrame(workers);
+            workers[0].beginPixel(0);
+            for (const Probe& p : awkwardRays()) {
+                if (const auto color = cache.lookup(0, p.origin, p.direction, workers[0])) {
+                    EXPECT_TRUE(color->isFinite());
+                }
+            }
+            // Degenerate input never reaches the cube.
+            EXPECT_FALSE(cache.lookup(0, {0, 0, 1}, {0, 0, 0}, workers[0]).has_value());
+            EXPECT_FALSE(cache.lookup(0, {0, 0, kInf}, {0, 0, 1}, workers[0]).has_value());
+            EXPECT_FALSE(cache.lookup(0, {0, 0, 1}, {std::nanf(""), 0, 1}, workers[0]).has_value());
+            cache.endFrame(workers);
+        }
+    }
+}
+
+TEST(CdctImproved, FirstFrameTracesThenPrefillsThenAnswers) {
+    const PathRender run = renderPath("parallax", CacheTechnique::Cdct, 3, true, 96, 2, 32);
+    const PathRender plain = renderPath("parallax", CacheTechnique::None, 1, true, 96, 2, 32);
+    ASSERT_EQ(run.stats.size(), 3u);
+    EXPECT_TRUE(sameImage(run.frames[0], plain.frames[0])) << "frame 1 traces every ray";
+    EXPECT_EQ(run.stats[0].cache->hits(), 0u);
+    EXPECT_EQ(run.stats[0].cache->prefilledTexels(), 2u * 6u * 32u * 32u) << "both mirrors, after frame 1";
+    EXPECT_EQ(run.stats[0].rays.prefill, 2u * 6u * 32u * 32u);
+    EXPECT_EQ(run.stats[1].cache->prefilledTexels(), 0u);
+    EXPECT_EQ(run.stats[1].cache->invalidPercentBefore(), 0.0);
+    EXPECT_GT(run.stats[1].cache->hits(), run.stats[1].cache->lookups() * 9 / 10) << "most lookups answered";
+    EXPECT_LT(run.stats[1].rays.reflection, run.stats[0].rays.reflection / 5);
+}
+
+TEST(CdctImproved, ImagesAndCachesBitIdenticalAcrossThreadCounts) {
+    const PathRender one = renderPath("parallax", CacheTechnique::Cdct, 3, false, 96, 1, 32);
+    const PathRender three = renderPath("parallax", CacheTechnique::Cdct, 3, false, 96, 3, 32);
+    ASSERT_EQ(one.frames.size(), three.frames.size());
+    for (std::size_t f = 0; f < one.frames.size(); ++f)
+        EXPECT_TRUE(sameImage(one.frames[f], three.frames[f])) << "frame " << f;
+    EXPECT_EQ(one.texels, three.texels);
+    EXPECT_GT(one.stats.back().cache->hits(), 0u);
+}
+
+TEST(CdctImproved, ParallaxCloserToUncachedThanCctAlongTheCameraPath) {
+    // The parallax scene's camera slides sideways: CCT, which takes every
+    // reflected ray to start at the mirror's centre, shows the near box and
+    // the wall in the wrong places; CDCT finds them along the actual ray.
+    // Mean PSNR over frames 2..25 (frame 1 traces everything in both), 256x256
+    // image, 64x64 faces (CCT then answers most of its lookups). Measured
+    // 2026-11-21: CCT 22.18 dB (88% hits), CDCT 27.73 dB: +5.55 dB. The
+    // threshold is that margin, rounded down to 5 dB; the goal was 3 dB.
+    constexpr int kFrames = 25;  // the whole path
+    const PathRender plain = renderPath("parallax", CacheTechnique::None, kFrames, false, 256, 2, 64);
+    const PathRender cct = renderPath("parallax", CacheTechnique::Cct, kFrames, false, 256, 2, 64);
+    const PathRender cdct = renderPath("parallax", CacheTechnique::Cdct, kFrames, false, 256, 2, 64);
+    std::uint64_t cctHits = 0, cctLookups = 0;
+    double cctSum = 0.0, cdctSum = 0.0;
+    for (int f = 1; f < kFrames; ++f) {
+        const auto i = static_cast<std::size_t>(f);
+        EXPECT_EQ(countNonFinitePixels(cdct.frames[i]), 0);
+        cctSum += psnr(cct.frames[i], plain.frames[i]);
+        cctHits += cct.stats[i].cache->hits();
+        cctLookups += cct.stats[i].cache->lookups();
+        cdctSum += psnr(cdct.frames[i], plain.frames[i]);
+        EXPECT_GT(cdct.stats[i].cache->hits(), cdct.stats[i].cache->lookups() * 9 / 10) << "frame " << f;
+    }
+    const double cctDb = cctSum / (kFrames - 1), cdctDb = cdctSum / (kFrames - 1);
+    std::printf("parallax 256x256, 64^2 faces, frames 2-%d: CCT %.2f dB (hits %.0f%%), CDCT %.2f dB (+%.2f dB)\n",
+                kFrames, cctDb, 100.0 * static_cast<double>(cctHits) / static_cast<double>(cctLookups), cdctDb,
+                cdctDb - cctDb);
+    // The comparison means something only if CCT answers most of its lookups too.
+    EXPECT_GT(cctHits, cctLookups * 3 / 4);
+    RecordProperty("cct_psnr_db", std::to_string(cctDb));
+    RecordProperty("cdct_psnr_db", std::to_string(cdctDb));
+    EXPECT_GE(cdctDb - cctDb, 5.0);
+}
