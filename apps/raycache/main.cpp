@@ -60,6 +60,10 @@ int main(int argc, char** argv) {
     cacheViewCmd->add_option("--out", cacheView.out,
                              "Image of the unfolded cube (.png sRGB 8-bit, .exr linear float)")
         ->required();
+    cacheViewCmd->add_option("--show", cacheView.show,
+                             "What to draw: color, or depth (CDCT cubes: grey near to far, blue environment, red "
+                             "invalid)")
+        ->capture_default_str();
     addRenderJobOptions(*cacheViewCmd, cacheView.job);
 
     app.add_subcommand("scenes", "List the built-in scenes, one per line");

@@ -49,9 +49,17 @@ void runCacheViewCommand(const CacheViewCommandOptions& options, std::ostream& o
     if (options.out.empty()) throw InputError("--out is required: the image to write the cube's cross to");
     checkWritableImagePath(options.out);
     if (options.object.empty()) throw InputError("--object is required: the name of a caching object");
+    if (options.show != "color" && options.show != "depth")
+        throw InputError("--show must be color or depth (got '" + options.show + "')");
 
     const RenderJob job = prepareRenderJob(options.job);
     const int objectId = cachedObjectId(job.scene, job.settings.cache, options.object);
+    const SceneObject& object = job.scene.objects[static_cast<std::size_t>(objectId)];
+    const CacheTechnique technique = RayCache::techniqueFor(object, job.settings.cache);
+    if (options.show == "depth" && technique != CacheTechnique::Cdct && technique != CacheTechnique::CdctParity)
+        throw InputError("--show depth: object '" + options.object +
+                         "' is cached with CCT, which keeps no depths (use --technique cdct or cdct-parity)");
+    const float maxDepth = RayCache::cdctParametersFor(object, job.settings.cache).maxDepth;
 
     out << "scene " << job.scene.name << ": " << job.scene.objects.size() << " objects, " << job.scene.lights.size()
         << " lights, " << job.settings.width << "x" << job.settings.height << ", " << job.frames
@@ -64,7 +72,8 @@ void runCacheViewCommand(const CacheViewCommandOptions& options, std::ostream& o
                      if (!caches.cachesObject(objectId))
                          throw RuntimeError("object '" + options.object + "' was not cached");
                      const CachingCube& cube = caches.cube(objectId);
-                     writeImage(unfoldCubeCross(cube), options.out);
+                     writeImage(options.show == "depth" ? unfoldCubeDepthCross(cube, maxDepth) : unfoldCubeCross(cube),
+                                options.out);
                      const double invalidPercent = 100.0 * static_cast<double>(cube.texelCount() - cube.validCount()) /
                                                    static_cast<double>(cube.texelCount());
                      out << "object " << options.object << ": " << cube.size() << "x" << cube.size()

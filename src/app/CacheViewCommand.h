@@ -13,6 +13,7 @@ struct CacheViewCommandOptions {
     RenderJobOptions job;  // what to render, shared with `render`
     std::string object;    // name of the object whose cube is shown
     std::string out;       // the cross image (.png/.exr)
+    std::string show = "color";  // color | depth (CDCT cubes)
 };
 
 // Runs the command, printing one progress line per frame and, at the end, the

@@ -25,6 +25,12 @@ inline constexpr float kCubeCrossEmptyGrey = 0.1f;
 // kCubeCrossEmptyGrey. Linear RGB, like a rendered film.
 Image unfoldCubeCross(const CachingCube& cube);
 
+// The same cross for a CDCT cube's depths (CDCT cubes only): distance from
+// the centre as grey, white nearest to black at the farthest surface
+// (logarithmically, so near and far structure both show), texels holding
+// the environment (depth = maxDepth) blue, invalid texels red.
+Image unfoldCubeDepthCross(const CachingCube& cube, float maxDepth);
+
 // The cell (column, row) of `face` in the cross, in units of one face.
 struct CubeCrossCell {
     int column;

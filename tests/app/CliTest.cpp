@@ -9,6 +9,8 @@
 #include <string>
 #include <sys/wait.h>
 
+#include "scene/ImageLoader.h"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -139,13 +141,19 @@ TEST_F(Cli, CdctSceneRenders) {
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_TRUE(fs::exists(dir_ / "x.png"));
     const RunResult flags = runRaycache(
-        "render --scene behind-1 --technique cdct --cache-res 16 --cdct-step 2 "
+        "render --scene behind-1 --technique cdct-parity --cache-res 16 --cdct-step 2 "
         "--cdct-epsilon 0.2 --cdct-max-depth 50 --width 16 --height 16 --frames 2 "
         "--out " +
             (dir_ / "y.png").string(),
         dir_);
     EXPECT_EQ(flags.exitCode, 0) << flags.err;
     EXPECT_TRUE(fs::exists(dir_ / "y.png"));
+    const RunResult improved = runRaycache("render --scene behind-1 --technique cdct --cache-res 16 --cdct-tolerance 3 "
+                                           "--width 16 --height 16 --frames 2 --out " +
+                                               (dir_ / "z.png").string(),
+                                           dir_);
+    EXPECT_EQ(improved.exitCode, 0) << improved.err;
+    EXPECT_NE(improved.out.find("pre-filled 1536"), std::string::npos) << improved.out;  // 6 * 16 * 16 texels
 }
 
 TEST_F(Cli, MalformedSceneFileNamesFileLineAndColumn) {
@@ -176,7 +184,9 @@ TEST_F(Cli, RenderRejectsBadCachingOptionsWithOneLine) {
                                     "render --scene behind-1 --cache-res 8 --out " + png,
                                     "render --scene behind-1 --technique cdct --cdct-step 0 --out " + png,
                                     "render --scene behind-1 --technique cdct --cdct-max-depth nan --out " + png,
-                                    "render --scene behind-1 --cdct-step 0.1 --cdct-epsilon 0.2 --out " + png}) {
+                                    "render --scene behind-1 --cdct-step 0.1 --cdct-epsilon 0.2 --out " + png,
+                                    "render --scene behind-1 --technique cdct --cdct-tolerance -1 --out " + png,
+                                    "render --scene behind-1 --technique cdct --cdct-tolerance 1e9 --out " + png}) {
         const RunResult r = runRaycache(args, dir_);
         EXPECT_EQ(r.exitCode, 2) << args;
         EXPECT_EQ(lineCount(r.err), 1) << args << "\n" << r.err;
@@ -199,6 +209,28 @@ TEST_F(Cli, CacheViewWritesTheCubeCross) {
     EXPECT_EQ(outputs().size(), 1u);  // no temp files left behind
 }
 
+TEST_F(Cli, CacheViewShowsTheDepthsOfAPrefilledCdctCube) {
+    const fs::path out = dir_ / "depth.png";
+    const RunResult r = runRaycache("cache-view --scene parallax --object left-mirror --technique cdct --show depth "
+                                    "--width 32 --height 32 --frames 2 --cache-res 16 --out " +
+                                        out.string(),
+                                    dir_);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("0.0% invalid"), std::string::npos) << r.out;
+    // Pre-filled: no red (invalid) texel; the sky is blue, the floor and wall grey.
+    const raycache::Image cross = raycache::loadImageFile(out);
+    ASSERT_EQ(cross.width(), 64);
+    int red = 0, blue = 0, grey = 0;
+    for (const raycache::Rgb& p : cross.pixels()) {
+        if (p.r > 0.9f && p.g < 0.1f) ++red;
+        else if (p.b > 2.0f * p.r && p.b > 0.2f) ++blue;
+        else if (p.r == p.g && p.g == p.b && p.r > 0.2f) ++grey;
+    }
+    EXPECT_EQ(red, 0);
+    EXPECT_GT(blue, 0);
+    EXPECT_GT(grey, 0);
+}
+
 TEST_F(Cli, CacheViewRejectsObjectsWithoutACubeBeforeRendering) {
     const std::string png = (dir_ / "cross.png").string();
     struct Case {
@@ -213,6 +245,8 @@ TEST_F(Cli, CacheViewRejectsObjectsWithoutACubeBeforeRendering) {
         {"cache-view --scene behind-2 --object main --out " + (dir_ / "missing-dir" / "x.png").string(),
          "missing-dir"},
         {"cache-view --scene behind-2 --object main", "--out"},
+        {"cache-view --scene behind-2 --object main --technique cct --show depth --out " + png, "keeps no depths"},
+        {"cache-view --scene behind-2 --object main --show sideways --out " + png, "--show must be color or depth"},
     };
     for (const Case& c : cases) {
         const RunResult r = runRaycache(c.args, dir_);

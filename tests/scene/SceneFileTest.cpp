@@ -308,8 +308,10 @@ TEST_F(SceneFileTest, CacheResolutionTooLarge) {
 
 TEST_F(SceneFileTest, CdctSearchParameters) {
     const Scene scene = load(R"({"objects": [{"shape": "sphere", "material": {"kr": 0.5,
-        "cache": {"technique": "cdct", "step": 2, "epsilon": 0.2, "maxDepth": 50}}}]})");
+        "cache": {"technique": "cdct-parity", "step": 2, "epsilon": 0.2, "maxDepth": 50, "tolerance": 3}}}]})");
+    EXPECT_EQ(scene.objects[0].material.cache.technique, CacheTechnique::CdctParity);
     const CdctParameters& p = scene.objects[0].material.cache.cdct;
+    EXPECT_EQ(p.tolerance, 3.0f);
     EXPECT_EQ(p.step, 2.0f);
     EXPECT_EQ(p.epsilon, 0.2f);
     EXPECT_EQ(p.maxDepth, 50.0f);
