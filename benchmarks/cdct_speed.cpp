@@ -45,9 +45,9 @@ std::vector<CacheVariant> improvementLadder() {
     i.skipEmptySpace = true;
     rows.push_back({"+ empty-space skipping", CacheTechnique::Cdct, i});
     i.errorControl = true;
-    rows.push_back({"+ error control (= cdct)", CacheTechnique::Cdct, i});
+    rows.push_back({"+ error control", CacheTechnique::Cdct, i});
     i.filter = true;
-    rows.push_back({"+ filtering", CacheTechnique::Cdct, i});
+    rows.push_back({"+ filtering (= cdct)", CacheTechnique::Cdct, i});
     return rows;
 }
 
