@@ -26,6 +26,8 @@ struct RenderJobOptions {
     std::optional<float> cdctMaxDepth;
     std::optional<int> cacheResolution;    // default: each material's own setting
     bool cacheIdeal = false;               // benchmark switch, see RayCacheSettings::ideal
+    std::string pipeline = "ray";          // ray | hybrid (render/FramePipeline.h)
+    std::string gbuffer = "auto";          // hybrid G-buffer source: auto | gl | packets
 };
 
 struct RenderJob {
