@@ -32,8 +32,10 @@ public:
 
     // Shades the frame `camera` sees from `gbuffer` (the settings' size) into
     // `film`; adds its rays to stats.rays, sets stats.cache and the shadows,
-    // secondary and compose times of stats.phases. Images and caches do not
-    // depend on the thread count.
+    // secondary and compose times of stats.phases (the three run per tile in
+    // one parallel pass, whose wall time is split in proportion to the time
+    // the workers spent in each; the cache merge counts as secondary).
+    // Images and caches do not depend on the thread count.
     void shade(const Camera& camera, const GBufferView& gbuffer, Image& film, FrameStats& stats);
 
 private:
@@ -44,7 +46,6 @@ private:
     RayCache* cache_;
     WhittedIntegrator integrator_;
     std::vector<unsigned char> needsSecondary_;  // per object: reflects or refracts, and depth allows it
-    std::vector<Rgb> direct_, secondary_;        // per pixel, kept between frames
 };
 
 }  // namespace raycache
