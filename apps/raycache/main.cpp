@@ -37,6 +37,14 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
                                                            "(default: each material's own, 512 in built-in scenes)");
     command.add_flag("--cache-ideal", job.cacheIdeal,
                      "Benchmark switch: cache misses return black instead of being traced");
+    command.add_option("--pipeline", job.pipeline,
+                       "ray: primary rays per tile; hybrid: G-buffer (OpenGL or primary-ray packets), then "
+                       "deferred shadow and secondary rays")
+        ->capture_default_str();
+    command.add_option("--gbuffer", job.gbuffer,
+                       "Hybrid G-buffer source: auto (OpenGL if a 4.5 context can be made, else packets), gl or "
+                       "packets")
+        ->capture_default_str();
 }
 
 }  // namespace

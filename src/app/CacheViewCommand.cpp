@@ -80,7 +80,8 @@ void runCacheViewCommand(const CacheViewCommandOptions& options, std::ostream& o
                          << " texels per face, " << formatFixed(invalidPercent, 1) << "% invalid, "
                          << formatFixed(static_cast<double>(cube.bytes()) / (1024.0 * 1024.0), 2) << " MiB\n"
                          << "wrote " << options.out << "\n";
-                 });
+                 },
+                 [&](const std::string& pipeline) { out << pipeline << "\n"; });
 }
 
 }  // namespace raycache

@@ -31,6 +31,10 @@ std::string formatFrameLine(const FrameResult& r, int frameCount) {
              << formatFixed(c->invalidPercentBefore(), 1) << "%, "
              << formatFixed(static_cast<double>(c->bytes()) / (1024.0 * 1024.0), 1) << " MiB";
     }
+    if (const auto& p = r.stats.phases)
+        line << "  phases ms: raster " << formatFixed(p->raster, 1) << ", readback " << formatFixed(p->readback, 1)
+             << ", shadows " << formatFixed(p->shadows, 1) << ", secondary " << formatFixed(p->secondary, 1)
+             << ", compose " << formatFixed(p->compose, 1);
     return line.str();
 }
 

@@ -10,8 +10,9 @@ namespace raycache {
 // `value` with exactly `decimals` digits after the point ("26.6").
 std::string formatFixed(double value, int decimals);
 
-// "frame 3/48  26.6 ms  rays: primary ..., ...  21.54 Mrays/s[  cache: ...]",
-// without a newline; the cache part appears when the frame used caches.
+// "frame 3/48  26.6 ms  rays: primary ..., ...  21.54 Mrays/s[  cache: ...][  phases ms: ...]",
+// without a newline; the cache part appears when the frame used caches, the
+// phases (raster, readback, shadows, secondary, compose) for the hybrid pipeline.
 std::string formatFrameLine(const FrameResult& result, int frameCount);
 
 }  // namespace raycache

@@ -29,6 +29,11 @@ nlohmann::json cacheJson(const FrameCacheStats& c) {
             {"invalid_percent_before", c.invalidPercentBefore()}, {"bytes", c.bytes()}, {"objects", objects}};
 }
 
+nlohmann::json phasesJson(const PhaseTimes& p) {
+    return {{"raster_ms", p.raster}, {"readback_ms", p.readback}, {"shadows_ms", p.shadows},
+            {"secondary_ms", p.secondary}, {"compose_ms", p.compose}};
+}
+
 nlohmann::json raysJson(const RayCounts& r) {
     return {{"primary", r.primary}, {"shadow", r.shadow}, {"reflection", r.reflection},
             {"refraction", r.refraction}, {"prefill", r.prefill}, {"total", r.total()}};
@@ -57,6 +62,11 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out) {
     std::vector<double> times;
     nlohmann::json frameStats = nlohmann::json::array();
     RayCounts totalRays;
+    std::string pipelineLine;
+    const auto onPipeline = [&](const std::string& description) {
+        pipelineLine = description;
+        out << description << "\n";
+    };
     renderFrames(scene, job.path, settings, frames, [&](const FrameResult& r, const Image& film, const RayCache&) {
         const RayCounts& rays = r.stats.rays;
         const double mrays = static_cast<double>(rays.total()) / (r.milliseconds * 1e3);
@@ -66,10 +76,11 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out) {
         nlohmann::json frameJson = {{"frame", r.frame}, {"ms", r.milliseconds}, {"rays", raysJson(rays)},
                                     {"mrays_per_s", mrays}};
         if (r.stats.cache) frameJson["cache"] = cacheJson(*r.stats.cache);
+        if (r.stats.phases) frameJson["phases"] = phasesJson(*r.stats.phases);
         frameStats.push_back(std::move(frameJson));
         const bool lastFrame = r.frame + 1 == frames;
         if (!options.out.empty() && (outPattern.perFrame() || lastFrame)) writeImage(film, outPattern.pathFor(r.frame));
-    });
+    }, onPipeline);
 
     const SampleSummary summary = summarize(times);
     out << "median " << formatFixed(summary.median, 1) << " ms (min " << formatFixed(summary.min, 1) << ", max "
@@ -82,6 +93,8 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out) {
             {"max_depth", settings.maxDepth},
             {"min_weight", settings.minWeight},
             {"threads", settings.threads},
+            {"pipeline", settings.pipeline == PipelineKind::Hybrid ? "hybrid" : "ray"},
+            {"pipeline_description", pipelineLine},
             {"frames", frameStats},
             {"summary", {{"median_ms", summary.median}, {"min_ms", summary.min}, {"max_ms", summary.max},
                          {"rays", raysJson(totalRays)}}}};

@@ -59,6 +59,10 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
     if (o.cacheResolution &&
         (*o.cacheResolution < RayCache::kMinResolution || *o.cacheResolution > RayCache::kMaxResolution))
         throw InputError("--cache-res must be between 16 and 2048 (got " + std::to_string(*o.cacheResolution) + ")");
+    if (o.pipeline != "ray" && o.pipeline != "hybrid")
+        throw InputError("--pipeline must be ray or hybrid (got '" + o.pipeline + "')");
+    if (o.gbuffer != "auto" && o.gbuffer != "gl" && o.gbuffer != "packets")
+        throw InputError("--gbuffer must be auto, gl or packets (got '" + o.gbuffer + "')");
     if (o.path && *o.path != "static" && *o.path != "orbit" && *o.path != "pan")
         throw InputError("--path must be static, orbit or pan (got '" + *o.path + "')");
 }
@@ -83,6 +87,10 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     settings.cache.cdctToleranceOverride = options.cdctTolerance;
     settings.cache.resolutionOverride = options.cacheResolution;
     settings.cache.ideal = options.cacheIdeal;
+    settings.pipeline = options.pipeline == "hybrid" ? PipelineKind::Hybrid : PipelineKind::Ray;
+    settings.gbuffer = options.gbuffer == "gl"        ? GBufferSource::OpenGl
+                       : options.gbuffer == "packets" ? GBufferSource::Packets
+                                                      : GBufferSource::Auto;
     RayCache::validate(job.scene, settings.cache);
     return job;
 }

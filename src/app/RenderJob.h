@@ -27,6 +27,8 @@ struct RenderJobOptions {
     std::optional<float> cdctTolerance;    // improved CDCT error control, texels
     std::optional<int> cacheResolution;    // default: each material's own setting
     bool cacheIdeal = false;               // benchmark switch, see RayCacheSettings::ideal
+    std::string pipeline = "ray";          // ray | hybrid (render/FramePipeline.h)
+    std::string gbuffer = "auto";          // hybrid G-buffer source: auto | gl | packets
 };
 
 struct RenderJob {

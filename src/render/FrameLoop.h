@@ -1,6 +1,7 @@
 #pragma once
 // Renders a scene along a camera path, frame after frame, timing each frame.
 #include <functional>
+#include <string>
 
 #include "core/Image.h"
 #include "cache/RayCache.h"
@@ -21,8 +22,11 @@ struct FrameResult {
 // scene.camera, calling onFrame after each. Throws InputError for invalid
 // cache settings before rendering anything. onFrame also sees the caches as
 // they stand after the frame (e.g. to write a view of a cube).
+// onPipeline, when given, is called once before the first frame with the
+// line that says which pipeline renders (render/FramePipeline.h).
 using FrameCallback = std::function<void(const FrameResult&, const Image& film, const RayCache& caches)>;
+using PipelineCallback = std::function<void(const std::string& description)>;
 void renderFrames(const Scene& scene, const CameraPath& path, const RenderSettings& settings, int frameCount,
-                  const FrameCallback& onFrame);
+                  const FrameCallback& onFrame, const PipelineCallback& onPipeline = {});
 
 }  // namespace raycache

@@ -3,6 +3,13 @@
 
 namespace raycache {
 
+// How a frame finds its primary visibility (SPEC §4): primary rays per tile
+// (Ray), or a G-buffer followed by deferred shadow and secondary passes (Hybrid).
+enum class PipelineKind { Ray, Hybrid };
+// Where the hybrid pipeline's G-buffer comes from: OpenGL when a context can
+// be made, else primary-ray packets (Auto); or forced either way.
+enum class GBufferSource { Auto, OpenGl, Packets };
+
 // What one frame is rendered with. Plain data, passed down explicitly.
 struct RenderSettings {
     int width = 512;
@@ -17,6 +24,8 @@ struct RenderSettings {
     int tileSize = 16;
     // Which objects cache their secondary rays, and how (see RayCache).
     RayCacheSettings cache;
+    PipelineKind pipeline = PipelineKind::Ray;
+    GBufferSource gbuffer = GBufferSource::Auto;  // hybrid pipeline only
 };
 
 }  // namespace raycache

@@ -68,7 +68,12 @@ int WhittedIntegrator::shadowQueries(const SurfacePoint& sp, ShadowQuery* out) c
 Rgb WhittedIntegrator::directLight(const Material& material, const SurfacePoint& sp, const Vec3& toViewer,
                                    std::span<const ShadowQuery> queries,
                                    std::span<const unsigned char> visible) const {
-    const Rgb albedo = material.albedo(sp.u, sp.v);
+    return directLight(material, material.albedo(sp.u, sp.v), sp, toViewer, queries, visible);
+}
+
+Rgb WhittedIntegrator::directLight(const Material& material, const Rgb& albedo, const SurfacePoint& sp,
+                                   const Vec3& toViewer, std::span<const ShadowQuery> queries,
+                                   std::span<const unsigned char> visible) const {
     Rgb color = material.ambient * albedo;
     for (std::size_t q = 0; q < queries.size(); ++q) {
         if (!visible[q]) continue;

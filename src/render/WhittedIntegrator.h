@@ -62,6 +62,9 @@ public:
     // (visible[i] answers queries[i]).
     Rgb directLight(const Material& material, const SurfacePoint& sp, const Vec3& toViewer,
                     std::span<const ShadowQuery> queries, std::span<const unsigned char> visible) const;
+    // The same with the diffuse albedo already known (e.g. from a G-buffer).
+    Rgb directLight(const Material& material, const Rgb& albedo, const SurfacePoint& sp, const Vec3& toViewer,
+                    std::span<const ShadowQuery> queries, std::span<const unsigned char> visible) const;
     // Reflected and refracted light leaving `sp` (on object `objectId`)
     // toward the viewer of `ray`.
     Rgb secondaryLight(const Ray& ray, const SurfacePoint& sp, int objectId, int depth, float weight,

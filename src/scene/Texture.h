@@ -21,6 +21,12 @@ public:
     // (u, v) in texture space; repeats outside [0,1). v = 0 is the image's bottom row.
     Rgb sample(float u, float v) const;
 
+    // What the texture is made of, for renderers that sample it themselves
+    // (the OpenGL G-buffer): the image, or null for a checkerboard ...
+    const std::shared_ptr<const Image>& pixels() const { return image_; }
+    // ... and the checkerboard, or null for an image.
+    const Checkerboard* checkerboardPattern() const { return image_ ? nullptr : &checker_; }
+
 private:
     Checkerboard checker_;
     std::shared_ptr<const Image> image_;  // null for the checkerboard

@@ -17,7 +17,9 @@
 #include <string>
 #include <vector>
 
-#include "HeadlessGl.h"
+#include <epoxy/gl.h>
+
+#include "raster/GlContext.h"
 #include "cache/CubeAddressing.h"
 
 namespace raycache {
@@ -388,7 +390,7 @@ protected:
         // cubes with their own arithmetic); keep Mesa off any GPU it finds.
         setenv("LIBGL_ALWAYS_SOFTWARE", "1", /*overwrite=*/0);
         std::string whyNot;
-        gl_ = HeadlessGl::create(whyNot);
+        gl_ = GlContext::create(whyNot);
         if (!gl_) GTEST_SKIP() << "No headless OpenGL 3.3+ context through EGL, so no GL oracle: " << whyNot;
         if (gl_->renderer().find("llvmpipe") == std::string::npos) {
             GTEST_SKIP() << "The oracle is Mesa llvmpipe, but the context renders with '" << gl_->renderer() << "'";
@@ -396,7 +398,7 @@ protected:
     }
     void TearDown() override { gl_.reset(); }
 
-    std::unique_ptr<HeadlessGl> gl_;
+    std::unique_ptr<GlContext> gl_;
 };
 
 TEST_P(CubeAddressingGl, NearestTexelMatchesOpenGl) {

@@ -1,8 +1,13 @@
-#include "HeadlessGl.h"
+#include "raster/GlContext.h"
+
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
 
 #include <cstdio>
 #include <cstring>
 #include <utility>
+
+#include "core/Errors.h"
 
 namespace raycache {
 
@@ -32,7 +37,8 @@ struct Attempt {
 
 }  // namespace
 
-std::unique_ptr<HeadlessGl> HeadlessGl::create(std::string& whyNot) {
+std::unique_ptr<GlContext> GlContext::create(std::string& whyNot, int minMajor, int minMinor) {
+    const int minVersion = minMajor * 10 + minMinor;
     whyNot.clear();
     // Client extensions (EGL_NO_DISPLAY) say whether platform displays exist.
     const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
@@ -58,7 +64,7 @@ std::unique_ptr<HeadlessGl> HeadlessGl::create(std::string& whyNot) {
             whyNot += where + "eglInitialize failed (" + eglErrorText() + "); ";
             continue;
         }
-        std::unique_ptr<HeadlessGl> gl(new HeadlessGl);
+        std::unique_ptr<GlContext> gl(new GlContext);
         gl->display_ = attempt.display;  // from here on the destructor cleans up
         if (!eglBindAPI(EGL_OPENGL_API)) {
             whyNot += where + "no desktop OpenGL API (" + eglErrorText() + "); ";
@@ -72,9 +78,10 @@ std::unique_ptr<HeadlessGl> HeadlessGl::create(std::string& whyNot) {
             whyNot += where + "no OpenGL pbuffer config (" + eglErrorText() + "); ";
             continue;
         }
-        // Newest first: 4.5 core is preferred, 3.3 core is all the tests need.
+        // Newest first: 4.5 core is preferred; callers say what they need at least.
         constexpr std::pair<EGLint, EGLint> kVersions[] = {{4, 5}, {4, 3}, {3, 3}};
         for (const auto& [wantMajor, wantMinor] : kVersions) {
+            if (wantMajor * 10 + wantMinor < minVersion) continue;
             const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
                                              wantMajor,
                                              EGL_CONTEXT_MINOR_VERSION,
@@ -86,10 +93,11 @@ std::unique_ptr<HeadlessGl> HeadlessGl::create(std::string& whyNot) {
             if (gl->context_ != EGL_NO_CONTEXT) break;
         }
         if (gl->context_ == EGL_NO_CONTEXT) {
-            whyNot += where + "no OpenGL 3.3+ core context (" + eglErrorText() + "); ";
+            whyNot += where + "no OpenGL " + std::to_string(minMajor) + "." + std::to_string(minMinor) +
+                      "+ core context (" + eglErrorText() + "); ";
             continue;
         }
-        // Tests render into their own framebuffer objects, so no surface is
+        // Users render into their own framebuffer objects, so no surface is
         // needed where EGL allows that; otherwise a 1x1 pbuffer.
         const bool surfaceless =
             hasExtension(eglQueryString(attempt.display, EGL_EXTENSIONS), "EGL_KHR_surfaceless_context");
@@ -106,11 +114,13 @@ std::unique_ptr<HeadlessGl> HeadlessGl::create(std::string& whyNot) {
             continue;
         }
         const int glVersion = epoxy_gl_version();
-        if (glVersion < 33) {
+        if (glVersion < minVersion) {
             whyNot += where + "context is OpenGL " + std::to_string(glVersion / 10) + "." +
-                      std::to_string(glVersion % 10) + ", need 3.3; ";
+                      std::to_string(glVersion % 10) + ", need " + std::to_string(minMajor) + "." +
+                      std::to_string(minMinor) + "; ";
             continue;
         }
+        gl->version_ = glVersion;
         gl->description_ = std::string("EGL ") + std::to_string(major) + "." + std::to_string(minor) + " " +
                            attempt.name + (surfaceless ? " (no surface)" : " (pbuffer)") + ", OpenGL " +
                            reinterpret_cast<const char*>(glGetString(GL_VERSION)) + ", " + gl->renderer();
@@ -120,9 +130,9 @@ std::unique_ptr<HeadlessGl> HeadlessGl::create(std::string& whyNot) {
     return nullptr;
 }
 
-HeadlessGl::~HeadlessGl() {
+GlContext::~GlContext() {
     if (display_ == EGL_NO_DISPLAY) return;
-    eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    if (eglGetCurrentContext() == context_) eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     if (surface_ != EGL_NO_SURFACE) eglDestroySurface(display_, surface_);
     if (context_ != EGL_NO_CONTEXT) eglDestroyContext(display_, context_);
     // No eglTerminate: an EGL display lives as long as the process anyway, and
@@ -132,7 +142,13 @@ HeadlessGl::~HeadlessGl() {
     eglReleaseThread();
 }
 
-std::string HeadlessGl::renderer() const {
+void GlContext::makeCurrent() const {
+    if (eglGetCurrentContext() == context_) return;
+    if (!eglMakeCurrent(display_, surface_, surface_, context_))
+        throw RuntimeError("OpenGL: cannot make the context current (" + eglErrorText() + ")");
+}
+
+std::string GlContext::renderer() const {
     const auto* text = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     return text != nullptr ? text : "";
 }

@@ -1,0 +1,47 @@
+#include "render/FramePipeline.h"
+
+#include "core/Errors.h"
+#include "raster/GBufferRasterizer.h"
+#include "render/FrameRenderer.h"
+#include "render/HybridPipeline.h"
+
+namespace raycache {
+
+namespace {
+
+class RayPipeline final : public FramePipeline {
+public:
+    RayPipeline(const Scene& scene, const TraceScene& tracer, const RenderSettings& settings,
+                const Parallel& parallel, RayCache* cache)
+        : renderer_(scene, tracer, settings, parallel, cache) {}
+    FrameStats render(const Camera& camera, Image& film) override { return renderer_.render(camera, film); }
+    std::string description() const override { return "pipeline: ray (primary rays as packets)"; }
+
+private:
+    FrameRenderer renderer_;
+};
+
+}  // namespace
+
+std::unique_ptr<FramePipeline> makeFramePipeline(const Scene& scene, const TraceScene& tracer,
+                                                 const RenderSettings& settings, const Parallel& parallel,
+                                                 RayCache* cache) {
+    if (settings.pipeline == PipelineKind::Ray)
+        return std::make_unique<RayPipeline>(scene, tracer, settings, parallel, cache);
+    std::unique_ptr<GBufferRasterizer> rasterizer;
+    std::string reason = "asked for with --gbuffer packets";
+    if (settings.gbuffer != GBufferSource::Packets) {
+        std::string whyNot;
+        rasterizer = GBufferRasterizer::create(scene, whyNot);
+        if (!rasterizer) {
+            while (!whyNot.empty() && (whyNot.back() == ' ' || whyNot.back() == ';')) whyNot.pop_back();
+            if (settings.gbuffer == GBufferSource::OpenGl)
+                throw RuntimeError("no OpenGL 4.5 core context for the G-buffer: " + whyNot);
+            reason = "no OpenGL 4.5 core context: " + whyNot;
+        }
+    }
+    return std::make_unique<HybridPipeline>(scene, tracer, settings, parallel, cache, std::move(rasterizer),
+                                            std::move(reason));
+}
+
+}  // namespace raycache

@@ -1,0 +1,38 @@
+#pragma once
+// The hybrid raster + ray tracing pipeline (SPEC §4): a G-buffer (OpenGL, or
+// primary-ray packets), then the deferred passes (render/DeferredShading.h).
+#include <memory>
+#include <string>
+
+#include "render/DeferredShading.h"
+#include "render/FramePipeline.h"
+#include "render/GBuffer.h"
+#include "render/PacketGBuffer.h"
+
+namespace raycache {
+
+class GBufferRasterizer;
+
+class HybridPipeline final : public FramePipeline {
+public:
+    // `rasterizer` null: the G-buffer comes from primary-ray packets, and
+    // `fallbackReason` says why (for the description).
+    HybridPipeline(const Scene& scene, const TraceScene& tracer, const RenderSettings& settings,
+                   const Parallel& parallel, RayCache* cache, std::unique_ptr<GBufferRasterizer> rasterizer,
+                   std::string fallbackReason);
+    ~HybridPipeline() override;
+
+    FrameStats render(const Camera& camera, Image& film) override;
+    std::string description() const override;
+    bool usesOpenGl() const { return rasterizer_ != nullptr; }
+
+private:
+    RenderSettings settings_;
+    std::unique_ptr<GBufferRasterizer> rasterizer_;
+    std::string fallbackReason_;
+    PacketGBuffer packets_;
+    GBufferStorage storage_;  // the packet G-buffer
+    DeferredShading deferred_;
+};
+
+}  // namespace raycache
