@@ -15,11 +15,11 @@ using namespace raycache;
 
 namespace {
 
-Scene threeMirrors() {
+Scene threeMirrors(CacheTechnique technique) {
     Scene s;
     Material mirror;
     mirror.reflectivity = 0.8f;
-    mirror.cache = {CacheTechnique::Cct, 32};
+    mirror.cache = {technique, 32};
     for (int i = 0; i < 3; ++i) {
         const Vec3 c{static_cast<float>(3 * i), 0, 0};
         s.objects.push_back(SceneObject{"m" + std::to_string(i), Sphere{c, 1}, mirror, c});
@@ -33,10 +33,13 @@ Vec3 directionFor(int pixel, int frame) {
     return {std::cos(a), std::sin(1.7f * a), std::cos(0.3f * a) - 0.2f};
 }
 
-// Renders `frames` fake frames of `pixels` pixels split over `threads` threads.
-std::vector<std::vector<std::uint32_t>> run(int threads, int frames, int pixels) {
-    RayCache cache(threeMirrors(), {});
+// Renders `frames` fake frames of `pixels` pixels split over `threads`
+// threads; returns the cubes' texels and every answer the cache gave.
+std::vector<std::vector<std::uint32_t>> run(int threads, int frames, int pixels,
+                                            CacheTechnique technique = CacheTechnique::Cct) {
+    RayCache cache(threeMirrors(technique), {});
     auto workers = cache.makeWorkers(threads);
+    std::vector<std::uint32_t> answers(static_cast<std::size_t>(frames * pixels * 2), 0u);
     for (int frame = 0; frame < frames; ++frame) {
         cache.beginFrame(workers);
         std::vector<std::thread> pool;
@@ -48,22 +51,39 @@ std::vector<std::vector<std::uint32_t>> run(int threads, int frames, int pixels)
                     for (int bounce = 0; bounce < 2; ++bounce) {
                         const int object = (p + bounce) % 3;
                         const Vec3 d = directionFor(p * 2 + bounce, frame);
-                        if (!cache.lookup(object, {0, 0, 0}, d, worker)) {
+                        // Leaving the sphere's surface (CDCT searches from there).
+                        const Vec3 origin = Vec3{static_cast<float>(3 * object), 0, 0} + normalize(d) * 1.001f;
+                        const auto answer = cache.lookup(object, origin, d, worker);
+                        if (answer)
+                            answers[static_cast<std::size_t>((frame * pixels + p) * 2 + bounce)] =
+                                CachingCube::encodeTexel(*answer);
+                        if (!answer) {
                             // The "traced" color depends on the pixel, so the first writer matters.
                             const Rgb color{static_cast<float>(p % 97) / 97.0f, 0.5f, static_cast<float>(bounce)};
-                            cache.store(object, {0, 0, 0}, d, color, 1.0f, worker);
+                            cache.store(object, origin, d, color, 1.0f, worker);
                         }
                     }
                 }
             });
         for (std::thread& th : pool) th.join();
+        // Improved CDCT: the cubes asked for are filled between frames (a
+        // surface 4 units out, colours telling texels apart).
+        for (const int object : cache.objectsAwaitingPrefill(workers)) {
+            std::vector<RayCache::PrefillTexel> texels(cache.cube(object).texelCount());
+            for (std::size_t i = 0; i < texels.size(); ++i)
+                texels[i] = {Rgb{static_cast<float>(i % 101), static_cast<float>(object), 1.0f}, 4.0f};
+            cache.completePrefill(object, texels);
+        }
         cache.endFrame(workers);
     }
     std::vector<std::vector<std::uint32_t>> texels;
     for (int o = 0; o < 3; ++o) {
         const auto words = cache.cube(o).texels();
         texels.emplace_back(words.begin(), words.end());
+        const auto depths = cache.cube(o).depthWords();
+        texels.emplace_back(depths.begin(), depths.end());
     }
+    texels.push_back(std::move(answers));
     return texels;
 }
 
@@ -72,4 +92,15 @@ std::vector<std::vector<std::uint32_t>> run(int threads, int frames, int pixels)
 TEST(RayCacheConcurrency, ManyThreadsGiveTheSingleThreadedCaches) {
     const auto reference = run(1, 3, 4000);
     for (int threads : {2, 4, 7}) EXPECT_EQ(run(threads, 3, 4000), reference) << threads << " threads";
+}
+
+TEST(RayCacheConcurrency, CdctParityAndImprovedSearchesFromManyThreads) {
+    for (CacheTechnique technique : {CacheTechnique::CdctParity, CacheTechnique::Cdct}) {
+        const auto reference = run(1, 3, 2000, technique);
+        std::size_t answered = 0;
+        for (std::uint32_t a : reference.back()) answered += a != 0u;
+        EXPECT_GT(answered, 0u) << "the searches answer something";
+        for (int threads : {2, 5})
+            EXPECT_EQ(run(threads, 3, 2000, technique), reference) << threads << " threads";
+    }
 }
