@@ -4,6 +4,7 @@
 // over CCT with the uncached render as ground truth.
 #include <gtest/gtest.h>
 
+#include "CdctFixtures.h"
 #include "PathRender.h"
 
 #include <algorithm>
@@ -21,26 +22,13 @@
 #include "cache/RayCache.h"
 
 using namespace raycache;
+using namespace raycache::cdct_test;
 
 namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-// One mirror sphere of radius 1 at the origin, cached with improved CDCT.
-Scene oneMirror(int resolution) {
-    Scene s;
-    Material mirror;
-    mirror.reflectivity = 0.8f;
-    mirror.cache.technique = CacheTechnique::Cdct;
-    mirror.cache.faceResolution = resolution;
-    s.objects.push_back(SceneObject{"m", Sphere{{0, 0, 0}, 1}, mirror, {0, 0, 0}});
-    return s;
-}
-
-// A color telling texels apart.
-Rgb colorOf(int texel) {
-    return Rgb{static_cast<float>(texel % 97) + 1.0f, static_cast<float>(texel / 97) + 1.0f, 0.5f};
-}
+Scene oneMirror(int resolution) { return cdct_test::oneMirror(CacheTechnique::Cdct, resolution); }
 
 // Goes through the pre-fill protocol as a renderer does: a frame asks for the
 // cube, then every texel gets colorOf(texel) at the distance `depthOf` gives
@@ -66,28 +54,6 @@ void prefill(RayCache& cache, const std::function<float(const Vec3&)>& depthOf) 
     EXPECT_TRUE(cache.objectsAwaitingPrefill(workers).empty());
 }
 
-struct Probe {
-    Vec3 origin, direction;
-};
-
-// Rays that start on (just off) the sphere and graze the box, run parallel
-// to its faces, or leave through edges and corners.
-std::vector<Probe> awkwardRays() {
-    const float s = 1.0f / std::sqrt(3.0f);
-    return {
-        {{0, 1.0001f, 0}, {1, 0, 0}},                    // parallel to the +y face, on the sphere's top
-        {{0, 1.0001f, 0}, {0, 0, -1}},                   // parallel to the +y face, other axis
-        {{1.0001f, 0, 0}, {0, 1, 0}},                    // tangent, along the +x face
-        {{0, 0, 1.0001f}, {0, 0, 1}},                    // straight out through a face centre (radial)
-        {{s, s, s}, {s, s, s}},                          // out through the box corner
-        {{0.7071f, 0.7071f, 0}, {0.7071f, 0.7071f, 0}},  // out through an edge
-        {{0, -1.0001f, 0}, {1e-7f, 1, 1e-7f}},           // nearly parallel to the x/z faces, pointing back through
-        {{1.5f, 0, 0}, {1, 0, 0}},                       // origin outside the box, moving away
-        {{0.3f, 0.2f, 0.1f}, {0.0f, -1.0f, 0.0f}},       // origin inside the object
-        {{0.6f, 0.8f, 0.0f}, {0.8f, -0.6f, 0.0f}},       // tangent to the sphere
-    };
-}
-
 // Every combination of the search's switches (pre-fill stays on: the tests
 // fill the cube through it).
 std::vector<CdctImprovements> searchVariants() {
@@ -102,11 +68,6 @@ std::vector<CdctImprovements> searchVariants() {
         variants.push_back(i);
     }
     return variants;
-}
-
-bool sameImage(const Image& a, const Image& b) {
-    return a.pixels().size() == b.pixels().size() &&
-           std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size() * sizeof(Rgb)) == 0;
 }
 
 }  // namespace

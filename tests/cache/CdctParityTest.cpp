@@ -3,6 +3,7 @@
 // texels, and renders of the parallax scene against CCT and the uncached image.
 #include <gtest/gtest.h>
 
+#include "CdctFixtures.h"
 #include "PathRender.h"
 
 #include <algorithm>
@@ -21,26 +22,13 @@
 #include "trace/TraceScene.h"
 
 using namespace raycache;
+using namespace raycache::cdct_test;
 
 namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-// One mirror sphere of radius 1 at the origin, cached with CDCT.
-Scene oneMirror(int resolution = 16) {
-    Scene s;
-    Material mirror;
-    mirror.reflectivity = 0.8f;
-    mirror.cache.technique = CacheTechnique::CdctParity;
-    mirror.cache.faceResolution = resolution;
-    s.objects.push_back(SceneObject{"m", Sphere{{0, 0, 0}, 1}, mirror, {0, 0, 0}});
-    return s;
-}
-
-// A color telling texels apart.
-Rgb colorOf(int texel) {
-    return Rgb{static_cast<float>(texel % 97) + 1.0f, static_cast<float>(texel / 97) + 1.0f, 0.5f};
-}
+Scene oneMirror(int resolution = 16) { return cdct_test::oneMirror(CacheTechnique::CdctParity, resolution); }
 
 // Makes every texel valid: stores from the centre along each texel's centre
 // direction, with hit distance `depth` (infinity: a miss, stored at maxDepth).
@@ -60,36 +48,10 @@ void fillCube(RayCache& cache, float depth) {
     ASSERT_EQ(cache.cube(0).validCount(), cache.cube(0).texelCount());
 }
 
-struct Probe {
-    Vec3 origin, direction;
-};
-
-// Rays that start on (just off) the sphere and graze the box, run parallel
-// to its faces, or leave through edges and corners.
-std::vector<Probe> awkwardRays() {
-    const float s = 1.0f / std::sqrt(3.0f);
-    return {
-        {{0, 1.0001f, 0}, {1, 0, 0}},                    // parallel to the +y face, on the sphere's top
-        {{0, 1.0001f, 0}, {0, 0, -1}},                   // parallel to the +y face, other axis
-        {{1.0001f, 0, 0}, {0, 1, 0}},                    // tangent, along the +x face
-        {{0, 0, 1.0001f}, {0, 0, 1}},                    // straight out through a face centre
-        {{s, s, s}, {s, s, s}},                          // out through the box corner
-        {{0.7071f, 0.7071f, 0}, {0.7071f, 0.7071f, 0}},  // out through an edge
-        {{0, -1.0001f, 0}, {1e-7f, 1, 1e-7f}},           // nearly parallel to the x/z faces, pointing back through
-        {{1.5f, 0, 0}, {1, 0, 0}},                       // origin outside the box, moving away
-        {{0.3f, 0.2f, 0.1f}, {0.0f, -1.0f, 0.0f}},       // origin inside the object
-    };
-}
-
 bool allFinite(const Image& image) {
     for (const Rgb& p : image.pixels())
         if (!p.isFinite()) return false;
     return true;
-}
-
-bool sameImage(const Image& a, const Image& b) {
-    return a.pixels().size() == b.pixels().size() &&
-           std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size() * sizeof(Rgb)) == 0;
 }
 
 }  // namespace
