@@ -1,0 +1,42 @@
+#include "app/ViewCommand.h"
+
+#include <cmath>
+
+#include "core/Errors.h"
+#include "render/ImageWriter.h"
+#include "viewer/TechniqueChoice.h"
+#include "viewer/Viewer.h"
+
+namespace raycache {
+
+void runViewCommand(const ViewCommandOptions& options, std::ostream& out) {
+    validateRenderJobOptions(options.job);
+    if (!options.screenshotPath.empty()) checkWritableImagePath(options.screenshotPath);
+    if (options.warmupFrames < 0) throw InputError("--warmup must be >= 0");
+    if (!(std::isfinite(options.movingScale) && options.movingScale >= 0.1f && options.movingScale <= 1.0f))
+        throw InputError("--moving-scale must be between 0.1 and 1");
+    if (options.job.cacheIdeal) throw InputError("--cache-ideal is a benchmark switch; the viewer does not take it");
+
+    RenderJob job = prepareRenderJob(options.job);
+    ViewerRenderConfig config;
+    // The command line's choices become the panel's starting values.
+    config.technique = techniqueChoiceIndex(options.job.technique.value_or(""));
+    if (config.technique < 0) throw InputError("--technique: the viewer has no '" + *options.job.technique + "'");
+    config.cacheResolution = options.job.cacheResolution;
+    config.cdctStep = options.job.cdctStep;
+    config.cdctEpsilon = options.job.cdctEpsilon;
+    config.maxDepth = options.job.maxDepth;
+
+    ViewerOptions viewer;
+    // Without --frames the viewer is interactive; the frame count then only
+    // matters to RenderJob's validation.
+    if (options.job.frames) viewer.scriptedFrames = job.frames;
+    viewer.warmupFrames = options.warmupFrames;
+    viewer.screenshotPath = options.screenshotPath;
+    viewer.hideUi = options.hideUi;
+    viewer.vsync = !options.noVsync;
+    viewer.movingScale = options.movingScale;
+    Viewer(std::move(job), config, viewer).run(out);
+}
+
+}  // namespace raycache
