@@ -81,6 +81,10 @@ int main(int argc, char** argv) {
     viewCmd->add_option("--warmup", view.warmupFrames, "Scripted: frames left out of the timing summary")
         ->capture_default_str();
     viewCmd->add_flag("--no-vsync", view.noVsync, "Interactive: do not wait for the display's refresh");
+    viewCmd->add_flag("--difference", view.difference,
+                      "Start showing the difference to the uncached image as a heat map (key X toggles)");
+    viewCmd->add_option("--inspect", view.inspectObject,
+                        "Start with this caching object's cube unfolded in the cache inspector");
     viewCmd->add_option("--moving-scale", view.movingScale,
                         "Resolution factor while the camera moves, 0.1..1")
         ->capture_default_str();

@@ -1,9 +1,11 @@
 #include "app/ViewCommand.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/Errors.h"
 #include "render/ImageWriter.h"
+#include "cache/RayCache.h"
 #include "viewer/TechniqueChoice.h"
 #include "viewer/Viewer.h"
 
@@ -36,6 +38,18 @@ void runViewCommand(const ViewCommandOptions& options, std::ostream& out) {
     viewer.hideUi = options.hideUi;
     viewer.vsync = !options.noVsync;
     viewer.movingScale = options.movingScale;
+    viewer.difference = options.difference;
+    if (!options.inspectObject.empty()) {
+        const auto& objects = job.scene.objects;
+        const auto found = std::find_if(objects.begin(), objects.end(),
+                                        [&](const SceneObject& o) { return o.name == options.inspectObject; });
+        if (found == objects.end())
+            throw InputError("--inspect: scene " + job.scene.name + " has no object '" + options.inspectObject + "'");
+        const RenderSettings settings = applyViewerRenderConfig(job.settings, config);
+        if (RayCache::techniqueFor(*found, settings.cache) == CacheTechnique::None)
+            throw InputError("--inspect: object '" + options.inspectObject + "' has no caching cube under this technique");
+        viewer.inspectObject = static_cast<int>(found - objects.begin());
+    }
     Viewer(std::move(job), config, viewer).run(out);
 }
 

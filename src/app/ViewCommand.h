@@ -15,6 +15,8 @@ struct ViewCommandOptions {
     int warmupFrames = 0;        // --warmup (scripted runs)
     bool noVsync = false;        // --no-vsync
     float movingScale = 0.5f;    // --moving-scale
+    bool difference = false;     // --difference
+    std::string inspectObject;   // --inspect: object name
 };
 
 // Checks every option (InputError) before opening a window, then runs the

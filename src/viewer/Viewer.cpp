@@ -129,6 +129,11 @@ void Viewer::run(std::ostream& out) {
     state.movingScale = options_.movingScale;
     state.showUi = !options_.hideUi;
     state.playPath = scripted;
+    state.difference = options_.difference;
+    if (options_.inspectObject) {
+        state.inspectObject = *options_.inspectObject;
+        state.showInspector = true;
+    }
     ViewerCamera camera(job_.path.cameraAt(scene.camera, 0));
     std::uint64_t clearCount = 0, pathRestartCount = 0;
     Clock::time_point lastMotion = Clock::now() - std::chrono::seconds(1);
@@ -185,6 +190,7 @@ void Viewer::run(std::ostream& out) {
 
         // 2. Input and panel.
         const Clock::time_point uiStart = Clock::now();
+        const std::vector<int> keyPresses = window.takeKeyPresses();
         window.beginUiFrame();
         ImGuiIO& io = ImGui::GetIO();
         ViewerActions actions;
@@ -243,14 +249,20 @@ void Viewer::run(std::ostream& out) {
                     camera.fly(f * speed, r * speed, u * speed);
                     moved = true;
                 }
-                if (ImGui::IsKeyPressed(GLFW_KEY_R, false)) actions.resetCamera = true;
-                if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) state.playPath = !state.playPath;
-                if (ImGui::IsKeyPressed(GLFW_KEY_C, false)) actions.clearCaches = true;
-                if (ImGui::IsKeyPressed(GLFW_KEY_X, false)) state.difference = !state.difference;
-                if (ImGui::IsKeyPressed(GLFW_KEY_TAB, false)) state.showUi = !state.showUi;
-                if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) actions.quit = true;
             }
-            if (ImGui::IsKeyPressed(GLFW_KEY_F12, false)) actions.screenshot = true;
+            for (int key : keyPresses) {
+                if (key == GLFW_KEY_F12) actions.screenshot = true;
+                if (io.WantCaptureKeyboard) continue;  // typing into a field
+                switch (key) {
+                case GLFW_KEY_R: actions.resetCamera = true; break;
+                case GLFW_KEY_SPACE: state.playPath = !state.playPath; break;
+                case GLFW_KEY_C: actions.clearCaches = true; break;
+                case GLFW_KEY_X: state.difference = !state.difference; break;
+                case GLFW_KEY_TAB: state.showUi = !state.showUi; break;
+                case GLFW_KEY_ESCAPE: actions.quit = true; break;
+                default: break;
+                }
+            }
         }
         const bool wasPlaying = state.playPath;
         if (state.showUi) {

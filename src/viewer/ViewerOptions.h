@@ -15,6 +15,8 @@ struct ViewerOptions {
     bool hideUi = false;         // start with the panel hidden (the window shows the frame only)
     bool vsync = true;           // interactive only; scripted runs never wait for the display
     float movingScale = 0.5f;    // resolution factor while the camera moves
+    bool difference = false;     // start showing the difference to the uncached image
+    std::optional<int> inspectObject;  // start with this object's cube in the inspector
 };
 
 }  // namespace raycache

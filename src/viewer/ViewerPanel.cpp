@@ -16,7 +16,7 @@ namespace {
 constexpr std::array kFaceResolutions = {0, 64, 128, 256, 512, 1024};  // 0: the scene's own
 
 void drawCameraSection(const ViewerPanelInput& in, ViewerUiState& state, ViewerActions& actions) {
-    if (!ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    if (!ImGui::CollapsingHeader("Camera")) return;
     ImGui::TextWrapped("Left drag: orbit   right drag: look   middle drag: pan   wheel: zoom   "
                        "WASD/QE: fly (shift: faster)   click: inspect an object's cache");
     if (ImGui::Button("Reset (R)")) actions.resetCamera = true;
@@ -170,9 +170,9 @@ void drawViewerPanel(const ViewerPanelInput& in, ViewerUiState& state, ViewerAct
                          ImVec2(ImGui::GetContentRegionAvail().x, 60.0f));
         ImGui::Text("render %.1f  encode %.1f  diff %.1f | upload %.2f  ui %.2f  present %.2f ms", f.renderMs,
                     f.encodeMs, f.differenceMs, in.uiTimes.uploadMs, in.uiTimes.uiMs, in.uiTimes.presentMs);
-        drawCameraSection(in, state, actions);
-        drawRenderingSection(in, state, actions);
         drawStatisticsSection(in);
+        drawRenderingSection(in, state, actions);
+        drawCameraSection(in, state, actions);
         drawDifferenceSection(in, state);
         drawInspector(in, state);
         ImGui::TextDisabled("Tab: hide panel   Esc: quit");

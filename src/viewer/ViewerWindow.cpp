@@ -39,6 +39,9 @@ ViewerWindow::ViewerWindow(int width, int height, const char* title, bool vsync)
     }
     glfwMakeContextCurrent(window_);
     glfwSwapInterval(vsync ? 1 : 0);
+    // Installed before ImGui's callbacks, which call it in turn.
+    glfwSetWindowUserPointer(window_, this);
+    glfwSetKeyCallback(window_, &ViewerWindow::onKey);
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
@@ -61,6 +64,17 @@ void ViewerWindow::requestClose() { glfwSetWindowShouldClose(window_, GLFW_TRUE)
 void ViewerWindow::waitEvents(double timeoutSeconds) { glfwWaitEventsTimeout(timeoutSeconds); }
 void ViewerWindow::wake() { glfwPostEmptyEvent(); }
 void ViewerWindow::framebufferSize(int& width, int& height) const { glfwGetFramebufferSize(window_, &width, &height); }
+
+void ViewerWindow::onKey(GLFWwindow* window, int key, int, int action, int) {
+    if (action != GLFW_PRESS) return;
+    static_cast<ViewerWindow*>(glfwGetWindowUserPointer(window))->keyPresses_.push_back(key);
+}
+
+std::vector<int> ViewerWindow::takeKeyPresses() {
+    std::vector<int> keys;
+    keys.swap(keyPresses_);
+    return keys;
+}
 
 void ViewerWindow::beginUiFrame() {
     ImGui_ImplOpenGL3_NewFrame();
