@@ -10,6 +10,10 @@ pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
 # Headless OpenGL through EGL (Mesa llvmpipe without a GPU): cube-addressing oracle, later the raster G-buffer.
 pkg_check_modules(EPOXY REQUIRED IMPORTED_TARGET epoxy)
 pkg_check_modules(EGL REQUIRED IMPORTED_TARGET egl)
+# The interactive viewer (`raycache view`): GLFW window, Dear ImGui panel (Debian's libimgui-dev
+# is a static library with the GLFW and OpenGL3 backends built in).
+pkg_check_modules(GLFW REQUIRED IMPORTED_TARGET glfw3)
+pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)
 if(RAYCACHE_BUILD_TESTS)
   find_package(GTest REQUIRED)
 endif()

@@ -9,6 +9,7 @@ packages=(
   libstb-dev libtinyexr-dev
   libgtest-dev libgmock-dev
   libegl-dev libgl1-mesa-dri libegl-mesa0 libepoxy-dev
+  libglfw3-dev libimgui-dev xvfb xauth
 )
 
 missing=()

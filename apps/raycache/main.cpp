@@ -5,6 +5,7 @@
 #include "app/CacheViewCommand.h"
 #include "app/RenderCommand.h"
 #include "app/ScenesCommand.h"
+#include "app/ViewCommand.h"
 #include "core/Errors.h"
 
 namespace {
@@ -76,6 +77,33 @@ int main(int argc, char** argv) {
 
     app.add_subcommand("scenes", "List the built-in scenes, one per line");
 
+    // `view`: the interactive viewer (docs/viewer.md).
+    raycache::ViewCommandOptions view;
+    view.job.width = 960;
+    view.job.height = 540;
+    CLI::App* viewCmd = app.add_subcommand(
+        "view", "Walk through a scene in a window; with --frames, play its camera path, print timings and exit");
+    viewCmd->add_option("scene-name", view.job.scene, "Built-in scene name or scene .json file (same as --scene)");
+    addRenderJobOptions(*viewCmd, view.job);
+    viewCmd->get_option("--width")->description("Window and film width in pixels");
+    viewCmd->get_option("--height")->description("Window and film height in pixels");
+    viewCmd->get_option("--frames")->description(
+        "Scripted run: show this many frames of the camera path, print per-frame timings, exit");
+    viewCmd->add_option("--screenshot", view.screenshotPath,
+                        "Scripted: write the window after the last frame here (.png/.exr); interactive: where F12 "
+                        "writes (default raycache-<scene>-NNNN.png)");
+    viewCmd->add_flag("--hide-ui", view.hideUi, "Start with the panel hidden: the window shows the frame only");
+    viewCmd->add_option("--warmup", view.warmupFrames, "Scripted: frames left out of the timing summary")
+        ->capture_default_str();
+    viewCmd->add_flag("--no-vsync", view.noVsync, "Interactive: do not wait for the display's refresh");
+    viewCmd->add_flag("--difference", view.difference,
+                      "Start showing the difference to the uncached image as a heat map (key X toggles)");
+    viewCmd->add_option("--inspect", view.inspectObject,
+                        "Start with this caching object's cube unfolded in the cache inspector");
+    viewCmd->add_option("--moving-scale", view.movingScale,
+                        "Resolution factor while the camera moves, 0.1..1")
+        ->capture_default_str();
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -90,6 +118,7 @@ int main(int argc, char** argv) {
     try {
         if (renderCmd->parsed()) raycache::runRenderCommand(render, std::cout);
         else if (cacheViewCmd->parsed()) raycache::runCacheViewCommand(cacheView, std::cout);
+        else if (viewCmd->parsed()) raycache::runViewCommand(view, std::cout);
         else raycache::runScenesCommand(std::cout);
     } catch (const raycache::InputError& e) {
         std::cerr << "error: " << e.what() << '\n';

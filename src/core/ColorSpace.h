@@ -1,5 +1,6 @@
 #pragma once
 // The exact sRGB transfer function (IEC 61966-2-1), for 8-bit image I/O.
+#include <algorithm>
 #include <cmath>
 
 namespace raycache {
@@ -15,6 +16,15 @@ inline float linearToSrgb(float linear) {
     const double v = linear;
     if (v <= 0.0031308) return static_cast<float>(v * 12.92);
     return static_cast<float>(1.055 * std::pow(v, 1.0 / 2.4) - 0.055);
+}
+
+// The 8-bit sRGB code of a linear value, as PNG files and the viewer show it:
+// clamped to [0, 1], NaN as 0.
+inline unsigned char linearToSrgb8(float linear) {
+    // NaN would make the conversion to an integer undefined; treat it as black.
+    if (!(linear > 0.0f)) return 0;
+    const float encoded = std::min(linearToSrgb(linear), 1.0f);
+    return static_cast<unsigned char>(std::lround(encoded * 255.0f));
 }
 
 }  // namespace raycache

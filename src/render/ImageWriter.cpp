@@ -26,21 +26,14 @@ std::string lowerExtension(const std::filesystem::path& path) {
     return ext;
 }
 
-unsigned char toSrgb8(float linear) {
-    // NaN would make the conversion to an integer undefined; treat it as black.
-    if (!(linear > 0.0f)) return 0;
-    const float encoded = std::min(linearToSrgb(linear), 1.0f);
-    return static_cast<unsigned char>(std::lround(encoded * 255.0f));
-}
-
 // Returns an error message, empty on success.
 std::string savePng(const Image& image, const std::filesystem::path& file) {
     std::vector<unsigned char> bytes;
     bytes.reserve(image.pixels().size() * 3);
     for (const Rgb& px : image.pixels()) {
-        bytes.push_back(toSrgb8(px.r));
-        bytes.push_back(toSrgb8(px.g));
-        bytes.push_back(toSrgb8(px.b));
+        bytes.push_back(linearToSrgb8(px.r));
+        bytes.push_back(linearToSrgb8(px.g));
+        bytes.push_back(linearToSrgb8(px.b));
     }
     if (!stbi_write_png(file.c_str(), image.width(), image.height(), 3, bytes.data(), image.width() * 3))
         return "cannot write PNG data";

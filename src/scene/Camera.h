@@ -10,6 +10,8 @@ struct Camera {
     Vec3 lookAt{0.0f, 0.0f, 0.0f};
     Vec3 up{0.0f, 1.0f, 0.0f};
     float verticalFovDeg = 45.0f;
+
+    bool operator==(const Camera&) const = default;
 };
 
 }  // namespace raycache

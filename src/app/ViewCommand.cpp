@@ -1,0 +1,58 @@
+#include "app/ViewCommand.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/Errors.h"
+#include "render/ImageWriter.h"
+#include "cache/RayCache.h"
+#include "viewer/TechniqueChoice.h"
+#include "viewer/Viewer.h"
+
+namespace raycache {
+
+void runViewCommand(const ViewCommandOptions& options, std::ostream& out) {
+    validateRenderJobOptions(options.job);
+    if (!options.screenshotPath.empty()) checkWritableImagePath(options.screenshotPath);
+    if (options.warmupFrames < 0) throw InputError("--warmup must be >= 0");
+    if (!(std::isfinite(options.movingScale) && options.movingScale >= 0.1f && options.movingScale <= 1.0f))
+        throw InputError("--moving-scale must be between 0.1 and 1");
+    if (options.job.cacheIdeal) throw InputError("--cache-ideal is a benchmark switch; the viewer does not take it");
+
+    RenderJob job = prepareRenderJob(options.job);
+    ViewerRenderConfig config;
+    // The command line's choices become the panel's starting values.
+    config.technique = techniqueChoiceIndex(options.job.technique.value_or(""));
+    if (config.technique < 0) throw InputError("--technique: the viewer has no '" + *options.job.technique + "'");
+    config.cacheResolution = options.job.cacheResolution;
+    config.cdctStep = options.job.cdctStep;
+    config.cdctEpsilon = options.job.cdctEpsilon;
+    config.maxDepth = options.job.maxDepth;
+    // The viewer's hybrid pipeline always takes its G-buffer from packets (viewer/PipelineChoice.h).
+    config.pipeline = options.job.pipeline == "hybrid" ? 1 : 0;
+
+    ViewerOptions viewer;
+    // Without --frames the viewer is interactive; the frame count then only
+    // matters to RenderJob's validation.
+    if (options.job.frames) viewer.scriptedFrames = job.frames;
+    viewer.warmupFrames = options.warmupFrames;
+    viewer.screenshotPath = options.screenshotPath;
+    viewer.hideUi = options.hideUi;
+    viewer.vsync = !options.noVsync;
+    viewer.movingScale = options.movingScale;
+    viewer.difference = options.difference;
+    if (!options.inspectObject.empty()) {
+        const auto& objects = job.scene.objects;
+        const auto found = std::find_if(objects.begin(), objects.end(),
+                                        [&](const SceneObject& o) { return o.name == options.inspectObject; });
+        if (found == objects.end())
+            throw InputError("--inspect: scene " + job.scene.name + " has no object '" + options.inspectObject + "'");
+        const RenderSettings settings = applyViewerRenderConfig(job.settings, config);
+        if (RayCache::techniqueFor(*found, settings.cache) == CacheTechnique::None)
+            throw InputError("--inspect: object '" + options.inspectObject + "' has no caching cube under this technique");
+        viewer.inspectObject = static_cast<int>(found - objects.begin());
+    }
+    Viewer(std::move(job), config, viewer).run(out);
+}
+
+}  // namespace raycache

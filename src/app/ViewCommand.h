@@ -1,0 +1,27 @@
+#pragma once
+// `raycache view`: walk through a scene in a window, or (--frames) play its
+// camera path in the window, print per-frame timings, write a screenshot and exit.
+#include <iosfwd>
+#include <string>
+
+#include "app/RenderJob.h"
+
+namespace raycache {
+
+struct ViewCommandOptions {
+    RenderJobOptions job;        // scene, window/film size, path, threads, depth, caching
+    std::string screenshotPath;  // --screenshot (.png/.exr)
+    bool hideUi = false;         // --hide-ui
+    int warmupFrames = 0;        // --warmup (scripted runs)
+    bool noVsync = false;        // --no-vsync
+    float movingScale = 0.5f;    // --moving-scale
+    bool difference = false;     // --difference
+    std::string inspectObject;   // --inspect: object name
+};
+
+// Checks every option (InputError) before opening a window, then runs the
+// viewer: interactive without --frames, scripted with it. Throws
+// RuntimeError when no window can be opened (no display) or rendering fails.
+void runViewCommand(const ViewCommandOptions& options, std::ostream& out);
+
+}  // namespace raycache

@@ -1,0 +1,45 @@
+#pragma once
+// One rendered frame on its way from the render thread to the screen, with
+// everything the panel shows about it. Its buffers are reused frame after
+// frame (see FrameHandoff).
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "render/FrameStats.h"
+#include "scene/Camera.h"
+
+namespace raycache {
+
+struct DisplayFrame {
+    std::uint64_t serial = 0;        // 1, 2, ... in render order; 0 = no frame yet
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint8_t> rgba;  // what to show, 8-bit sRGB RGBA, row 0 at the top
+    Camera camera;                   // the camera it was rendered with
+    int pathFrame = -1;              // frame of the camera path, or -1 for the interactive camera
+    bool reducedResolution = false;  // rendered smaller while the camera moves
+    FrameStats stats;
+    std::size_t cacheBytes = 0;      // memory of all caching cubes
+
+    // Time on the render thread, milliseconds.
+    double renderMs = 0.0;      // the ray traced frame
+    double encodeMs = 0.0;      // film -> 8-bit sRGB, inspector picture
+    double differenceMs = 0.0;  // the uncached render and heat map (difference view only)
+
+    // Difference view: rgba holds the heat map against the uncached render.
+    bool showsDifference = false;
+    double meanDifference = 0.0;  // mean absolute difference of the displayed channels, [0, 1]
+
+    // Cache inspector: the inspected object's cube unfolded (see CubeInspectorImage).
+    int inspectedObject = -1;  // -1: none (rgba below is empty)
+    int inspectorWidth = 0;
+    int inspectorHeight = 0;
+    std::vector<std::uint8_t> inspectorRgba;
+    double inspectedInvalidPercent = 0.0;  // after this frame
+
+    std::string configError;  // why the last requested settings were rejected; empty if they were used
+};
+
+}  // namespace raycache

@@ -1,0 +1,30 @@
+#pragma once
+// What the UI thread asks the render thread to draw next. The newest
+// request wins; counters (not flags) carry one-off actions so none is lost
+// when requests replace each other.
+#include <cstdint>
+
+#include "scene/Camera.h"
+#include "viewer/ViewerRenderConfig.h"
+
+namespace raycache {
+
+struct RenderRequest {
+    Camera camera;           // ignored while playing the camera path
+    int width = 1;           // film size for this frame
+    int height = 1;
+    bool reducedResolution = false;  // the size is lowered because the camera moves
+    ViewerRenderConfig config;
+    std::uint64_t clearCount = 0;        // a change clears every cache
+    bool playPath = false;               // take cameras from the path, one path frame per render
+    std::uint64_t pathRestartCount = 0;  // a change restarts the path at frame 0
+    bool continuous = true;              // keep rendering when nothing changes (caches keep filling)
+    bool difference = false;             // show the heat map against the uncached render
+    float differenceGain = 1.0f;
+    int inspectObject = -1;              // object whose cube to unfold, -1 = none
+    int inspectorFaceSize = 128;
+
+    bool operator==(const RenderRequest&) const = default;
+};
+
+}  // namespace raycache

@@ -1,0 +1,91 @@
+#pragma once
+// The viewer's render thread: owns the caches, renders what the newest
+// RenderRequest asks for, and hands each finished frame to the UI thread
+// through a FrameHandoff. The UI thread never waits for a render.
+#include <condition_variable>
+#include <cstdint>
+#include <exception>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "cache/RayCache.h"
+#include "core/Image.h"
+#include "core/Parallel.h"
+#include "render/RenderSettings.h"
+#include "scene/CameraPath.h"
+#include "scene/Scene.h"
+#include "trace/TraceScene.h"
+#include "viewer/FrameHandoff.h"
+#include "viewer/RenderRequest.h"
+#include "viewer/Srgb8Encoder.h"
+
+namespace raycache {
+
+struct RenderWorkerSetup {
+    const Scene* scene = nullptr;         // outlives the worker
+    const TraceScene* tracer = nullptr;   // outlives the worker
+    CameraPath path;
+    RenderSettings base;                  // threads, min weight, command-line cache overrides
+    // Scripted run: render path frames 0 .. frames-1 exactly once each, every
+    // one handed over (lossless), then stop. Empty: interactive.
+    std::optional<int> scriptedFrames;
+    std::function<void()> onPublished;    // called after each handed-over frame (wakes the UI loop)
+};
+
+class RenderWorker {
+public:
+    // Starts the thread; it waits for the first request.
+    RenderWorker(RenderWorkerSetup setup, FrameHandoff& handoff);
+    // Stops and joins the thread (a frame in flight is finished first).
+    ~RenderWorker();
+    RenderWorker(const RenderWorker&) = delete;
+    RenderWorker& operator=(const RenderWorker&) = delete;
+
+    // Replaces the pending request. Never waits for a render.
+    void submit(const RenderRequest& request);
+    // True once a scripted run has handed over its last frame, or the thread
+    // stopped on an error.
+    bool finished() const;
+    // What stopped the thread, if it failed (rethrow on the UI thread).
+    std::exception_ptr error() const;
+
+private:
+    void run();
+    void renderOne(const RenderRequest& request, DisplayFrame& frame);
+    void applyConfig(const ViewerRenderConfig& config, DisplayFrame& frame);
+    void encode(const Image& film, std::vector<std::uint8_t>& rgba) const;
+
+    RenderWorkerSetup setup_;
+    FrameHandoff& handoff_;
+    Parallel parallel_;
+    Srgb8Encoder encoder_;
+
+    // Render-thread state.
+    std::optional<ViewerRenderConfig> config_;  // in use; empty before the first frame
+    RenderSettings settings_;
+    std::unique_ptr<RayCache> cache_;
+    std::string configError_;
+    std::uint64_t clearCount_ = 0;
+    std::uint64_t pathRestartCount_ = 0;
+    int pathFrame_ = 0;
+    std::uint64_t serial_ = 0;
+    Image film_;
+    Image uncachedFilm_;
+    std::vector<std::uint8_t> uncachedRgba_;
+
+    // Shared with the UI thread.
+    mutable std::mutex mutex_;
+    std::condition_variable wake_;
+    std::optional<RenderRequest> request_;
+    std::uint64_t requestSerial_ = 0;  // bumped when the request changes
+    bool stop_ = false;
+    bool finished_ = false;
+    std::exception_ptr error_;
+
+    std::thread thread_;  // last: starts after everything above exists
+};
+
+}  // namespace raycache

@@ -1,0 +1,22 @@
+#pragma once
+// How `raycache view` runs, besides what it renders (RenderJob).
+#include <optional>
+#include <string>
+
+namespace raycache {
+
+struct ViewerOptions {
+    // Scripted run: render this many frames of the camera path, each shown
+    // once, print per-frame timings, write the screenshot if asked, exit.
+    // Empty: interactive until the window closes.
+    std::optional<int> scriptedFrames;
+    int warmupFrames = 0;        // scripted: frames left out of the summary
+    std::string screenshotPath;  // scripted: written after the last frame; interactive: what F12 writes
+    bool hideUi = false;         // start with the panel hidden (the window shows the frame only)
+    bool vsync = true;           // interactive only; scripted runs never wait for the display
+    float movingScale = 0.5f;    // resolution factor while the camera moves
+    bool difference = false;     // start showing the difference to the uncached image
+    std::optional<int> inspectObject;  // start with this object's cube in the inspector
+};
+
+}  // namespace raycache

@@ -1,0 +1,184 @@
+#include "viewer/ViewerPanel.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <imgui.h>
+#include <string>
+
+#include "viewer/PipelineChoice.h"
+#include "viewer/TechniqueChoice.h"
+
+namespace raycache {
+
+namespace {
+
+constexpr std::array kFaceResolutions = {0, 64, 128, 256, 512, 1024};  // 0: the scene's own
+
+void drawCameraSection(const ViewerPanelInput& in, ViewerUiState& state, ViewerActions& actions) {
+    if (!ImGui::CollapsingHeader("Camera")) return;
+    ImGui::TextWrapped("Left drag: orbit   right drag: look   middle drag: pan   wheel: zoom   "
+                       "WASD/QE: fly (shift: faster)   click: inspect an object's cache");
+    if (ImGui::Button("Reset (R)")) actions.resetCamera = true;
+    ImGui::SameLine();
+    if (ImGui::Button(state.playPath ? "Pause path (space)" : "Play path (space)")) state.playPath = !state.playPath;
+    ImGui::SameLine();
+    if (ImGui::Button("Restart path")) actions.restartPath = true;
+    const Camera& c = in.frame->camera;
+    if (in.frame->pathFrame >= 0) ImGui::Text("path frame %d", in.frame->pathFrame);
+    ImGui::Text("position %.2f %.2f %.2f  looking at %.2f %.2f %.2f", static_cast<double>(c.position.x),
+                static_cast<double>(c.position.y), static_cast<double>(c.position.z), static_cast<double>(c.lookAt.x),
+                static_cast<double>(c.lookAt.y), static_cast<double>(c.lookAt.z));
+}
+
+void drawRenderingSection(const ViewerPanelInput& in, ViewerUiState& state, ViewerActions& actions) {
+    if (!ImGui::CollapsingHeader("Rendering", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    ViewerRenderConfig& config = state.config;
+    const char* technique = kTechniqueChoices[static_cast<std::size_t>(config.technique)].label;
+    if (ImGui::BeginCombo("technique", technique)) {
+        for (std::size_t i = 0; i < kTechniqueChoices.size(); ++i)
+            if (ImGui::Selectable(kTechniqueChoices[i].label, static_cast<int>(i) == config.technique))
+                config.technique = static_cast<int>(i);
+        ImGui::EndCombo();
+    }
+    if (ImGui::BeginCombo("pipeline", kPipelineChoices[static_cast<std::size_t>(config.pipeline)].label)) {
+        for (std::size_t i = 0; i < kPipelineChoices.size(); ++i)
+            if (ImGui::Selectable(kPipelineChoices[i].label, static_cast<int>(i) == config.pipeline))
+                config.pipeline = static_cast<int>(i);
+        ImGui::EndCombo();
+    }
+    const int resolution = config.cacheResolution.value_or(0);
+    const std::string resolutionLabel = resolution == 0 ? "scene" : std::to_string(resolution);
+    if (ImGui::BeginCombo("face resolution", resolutionLabel.c_str())) {
+        for (int r : kFaceResolutions) {
+            const std::string label = r == 0 ? "scene" : std::to_string(r);
+            if (ImGui::Selectable(label.c_str(), r == resolution))
+                config.cacheResolution = r == 0 ? std::nullopt : std::optional<int>(r);
+        }
+        ImGui::EndCombo();
+    }
+    // CDCT search: edited as a pair, applied when valid (epsilon < step).
+    float step = config.cdctStep.value_or(0.4f);
+    float epsilon = config.cdctEpsilon.value_or(0.05f);
+    bool cdctEdited = ImGui::InputFloat("CDCT step (delta)", &step, 0.05f, 0.5f, "%.3f");
+    cdctEdited |= ImGui::InputFloat("CDCT epsilon", &epsilon, 0.005f, 0.05f, "%.4f");
+    if (cdctEdited) {
+        config.cdctStep = std::max(step, 1e-4f);
+        config.cdctEpsilon = std::max(epsilon, 1e-5f);
+    }
+    ImGui::SliderInt("max depth", &config.maxDepth, 1, 16);
+    ImGui::SliderFloat("resolution scale", &state.resolutionScale, 0.1f, 1.0f, "%.2f");
+    ImGui::SliderFloat("while moving", &state.movingScale, 0.1f, 1.0f, "%.2f");
+    ImGui::Checkbox("render continuously", &state.continuous);
+    if (ImGui::Button("Clear caches (C)")) actions.clearCaches = true;
+    ImGui::SameLine();
+    if (ImGui::Button("Screenshot (F12)")) actions.screenshot = true;
+    if (!in.frame->configError.empty())
+        ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "not applied: %s", in.frame->configError.c_str());
+}
+
+void drawStatisticsSection(const ViewerPanelInput& in) {
+    if (!ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    const DisplayFrame& f = *in.frame;
+    const RayCounts& r = f.stats.rays;
+    ImGui::Text("rays: primary %llu  shadow %llu", static_cast<unsigned long long>(r.primary),
+                static_cast<unsigned long long>(r.shadow));
+    ImGui::Text("      reflection %llu  refraction %llu", static_cast<unsigned long long>(r.reflection),
+                static_cast<unsigned long long>(r.refraction));
+    const double mrays = f.renderMs > 0.0 ? static_cast<double>(r.total()) / (f.renderMs * 1e3) : 0.0;
+    ImGui::Text("      total %llu  %.2f Mrays/s", static_cast<unsigned long long>(r.total()), mrays);
+    if (f.stats.cache && !f.stats.cache->objects.empty()) {
+        const FrameCacheStats& c = *f.stats.cache;
+        const double hitRate = c.lookups() ? 100.0 * static_cast<double>(c.hits()) / static_cast<double>(c.lookups()) : 0.0;
+        ImGui::Text("cache: %zu cubes, hits %.1f%% of %llu lookups, stores %llu", c.objects.size(), hitRate,
+                    static_cast<unsigned long long>(c.lookups()), static_cast<unsigned long long>(c.stores()));
+        ImGui::Text("       invalid texels %.1f%% (before the frame), memory %.1f MiB", c.invalidPercentBefore(),
+                    static_cast<double>(f.cacheBytes) / (1024.0 * 1024.0));
+    } else {
+        ImGui::TextUnformatted("cache: none (no object caches under this technique)");
+    }
+}
+
+void drawDifferenceSection(const ViewerPanelInput& in, ViewerUiState& state) {
+    if (!ImGui::CollapsingHeader("Difference to the uncached image", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    ImGui::Checkbox("show heat map (X)", &state.difference);
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(120.0f);
+    ImGui::SliderFloat("gain", &state.differenceGain, 1.0f, 32.0f, "x%.0f", ImGuiSliderFlags_Logarithmic);
+    if (in.frame->showsDifference)
+        ImGui::Text("mean |difference| %.5f  (blue = same, red = totally different)", in.frame->meanDifference);
+}
+
+void drawInspector(const ViewerPanelInput& in, ViewerUiState& state) {
+    if (!ImGui::CollapsingHeader("Cache inspector", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    if (in.cachedObjects.empty()) {
+        ImGui::TextUnformatted("no caching objects under this technique");
+        return;
+    }
+    const auto nameOf = [&](int id) {
+        return id >= 0 ? in.scene->objects[static_cast<std::size_t>(id)].name.c_str() : "(none)";
+    };
+    if (ImGui::BeginCombo("object", nameOf(state.inspectObject))) {
+        if (ImGui::Selectable("(none)", state.inspectObject < 0)) state.inspectObject = -1;
+        for (int id : in.cachedObjects)
+            if (ImGui::Selectable(nameOf(id), id == state.inspectObject)) state.inspectObject = id;
+        ImGui::EndCombo();
+    }
+    state.showInspector = state.inspectObject >= 0;
+    if (in.frame->stats.cache)
+        for (const ObjectCacheStats& o : in.frame->stats.cache->objects)
+            if (o.objectId == state.inspectObject)
+                ImGui::Text("%d^2 per face, hits %llu of %llu, stores %llu, %.1f MiB", o.resolution,
+                            static_cast<unsigned long long>(o.hits), static_cast<unsigned long long>(o.lookups),
+                            static_cast<unsigned long long>(o.stores),
+                            static_cast<double>(o.bytes) / (1024.0 * 1024.0));
+}
+
+void drawInspectorWindow(const ViewerPanelInput& in, ViewerUiState& state) {
+    if (!state.showInspector || in.frame->inspectedObject < 0 || in.inspectorWidth == 0) return;
+    ImGui::SetNextWindowSize(ImVec2(420.0f, 360.0f), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 430.0f, 10.0f), ImGuiCond_FirstUseEver);
+    const std::string title =
+        "Cube of " + in.scene->objects[static_cast<std::size_t>(in.frame->inspectedObject)].name + "###inspector";
+    if (ImGui::Begin(title.c_str(), &state.showInspector)) {
+        ImGui::Text("invalid texels %.2f%%  (black: invalid; +Y above +Z; -X +Z +X -Z; -Y below)",
+                    in.frame->inspectedInvalidPercent);
+        const float width = std::max(ImGui::GetContentRegionAvail().x, 64.0f);
+        const float height = width * static_cast<float>(in.inspectorHeight) / static_cast<float>(in.inspectorWidth);
+        ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(in.inspectorTexture)),
+                     ImVec2(width, height));
+    }
+    ImGui::End();
+    if (!state.showInspector) state.inspectObject = -1;
+}
+
+}  // namespace
+
+void drawViewerPanel(const ViewerPanelInput& in, ViewerUiState& state, ViewerActions& actions) {
+    ImGui::SetNextWindowPos(ImVec2(10.0f, 10.0f), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(400.0f, 0.0f), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowBgAlpha(0.85f);
+    if (ImGui::Begin("raycache")) {
+        const DisplayFrame& f = *in.frame;
+        ImGui::Text("%s: %zu objects, %zu lights", in.scene->name.c_str(), in.scene->objects.size(),
+                    in.scene->lights.size());
+        ImGui::Text("%.1f fps  %.1f ms/frame   %dx%d%s", in.intervals->fps(), in.intervals->medianMs(), f.width,
+                    f.height, f.reducedResolution ? " (moving)" : "");
+        const std::vector<float> times = in.intervals->chronological();
+        const float top = std::max(33.4f, static_cast<float>(in.intervals->maxMs()) * 1.1f);
+        ImGui::PlotLines("##frametimes", times.data(), static_cast<int>(times.size()), 0, "frame time (ms)", 0.0f, top,
+                         ImVec2(ImGui::GetContentRegionAvail().x, 60.0f));
+        ImGui::Text("render %.1f  encode %.1f  diff %.1f | upload %.2f  ui %.2f  present %.2f ms", f.renderMs,
+                    f.encodeMs, f.differenceMs, in.uiTimes.uploadMs, in.uiTimes.uiMs, in.uiTimes.presentMs);
+        drawStatisticsSection(in);
+        drawRenderingSection(in, state, actions);
+        drawCameraSection(in, state, actions);
+        drawDifferenceSection(in, state);
+        drawInspector(in, state);
+        ImGui::TextDisabled("Tab: hide panel   Esc: quit");
+    }
+    ImGui::End();
+    drawInspectorWindow(in, state);
+}
+
+}  // namespace raycache

@@ -1,0 +1,32 @@
+#pragma once
+// Everything the panel edits, and the one-off actions it asks for. Plain
+// data owned by the Viewer.
+#include <cstdint>
+
+#include "viewer/ViewerRenderConfig.h"
+
+namespace raycache {
+
+struct ViewerUiState {
+    ViewerRenderConfig config;   // what the panel shows and edits
+    float resolutionScale = 1.0f;
+    float movingScale = 0.5f;    // extra factor while the camera moves
+    bool continuous = true;
+    bool playPath = false;
+    bool difference = false;
+    float differenceGain = 1.0f;
+    int inspectObject = -1;
+    int inspectorFaceSize = 128;
+    bool showUi = true;
+    bool showInspector = false;
+};
+
+struct ViewerActions {
+    bool resetCamera = false;
+    bool restartPath = false;
+    bool clearCaches = false;
+    bool screenshot = false;
+    bool quit = false;
+};
+
+}  // namespace raycache

@@ -1,0 +1,133 @@
+// `raycache view` as a user meets it: a scripted run in a real X server
+// (Xvfb, Mesa) whose window shows exactly the offline render of the same
+// camera, and one-line errors for bad input or no display.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <sys/wait.h>
+
+#include "bench/ImageMetrics.h"
+#include "scene/ImageLoader.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct RunResult {
+    int exitCode;
+    std::string out;
+    std::string err;
+};
+
+// Runs `command` (a shell command line) capturing stdout and stderr.
+RunResult run(const std::string& command, const fs::path& dir) {
+    const fs::path errFile = dir / "stderr.txt";
+    RunResult result{};
+    FILE* pipe = popen((command + " 2>" + errFile.string()).c_str(), "r");
+    std::array<char, 4096> buffer{};
+    while (pipe && fgets(buffer.data(), buffer.size(), pipe)) result.out += buffer.data();
+    const int status = pipe ? pclose(pipe) : -1;
+    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ifstream in(errFile);
+    result.err.assign(std::istreambuf_iterator<char>(in), {});
+    return result;
+}
+
+int lineCount(const std::string& s) {
+    int lines = 0;
+    for (char c : s) lines += c == '\n';
+    return lines;
+}
+
+bool haveXvfbRun() { return std::system("command -v xvfb-run >/dev/null 2>&1") == 0; }
+
+// xvfb-run starts a private X server (-a: a free display number).
+std::string underXvfb(const std::string& args) {
+    return "xvfb-run -a -s '-screen 0 1280x1024x24' " + std::string(RAYCACHE_BINARY) + " " + args;
+}
+
+class ViewCli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() /
+               ("raycache-view-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    fs::path dir_;
+};
+
+// The same scene, size, path frames, threads and caching for both commands.
+const std::string kJob = "--scene room --width 320 --height 180 --frames 6 --threads 2 --technique cct";
+
+}  // namespace
+
+TEST_F(ViewCli, ScriptedRunShowsTheOfflineRenderOfTheSameCamera) {
+    if (!haveXvfbRun()) GTEST_SKIP() << "xvfb-run is not installed (scripts/install-deps.sh installs xvfb)";
+    const fs::path shot = dir_ / "view.png", offline = dir_ / "offline.png";
+    const RunResult view = run(underXvfb("view " + kJob + " --hide-ui --screenshot " + shot.string()), dir_);
+    ASSERT_EQ(view.exitCode, 0) << view.err << view.out;
+    EXPECT_NE(view.out.find("frame 6/6"), std::string::npos) << view.out;
+    EXPECT_NE(view.out.find("screenshot " + shot.string() + " (320x180)"), std::string::npos) << view.out;
+    const RunResult render =
+        run(std::string(RAYCACHE_BINARY) + " render " + kJob + " --out " + offline.string(), dir_);
+    ASSERT_EQ(render.exitCode, 0) << render.err;
+
+    // The screenshot is read back from the window's framebuffer: it went
+    // through the texture upload and the blit on Mesa's OpenGL.
+    const raycache::Image shown = raycache::loadImageFile(shot);
+    const raycache::Image reference = raycache::loadImageFile(offline);
+    ASSERT_EQ(shown.width(), 320);
+    ASSERT_EQ(shown.height(), 180);
+    const double psnr = raycache::psnr(shown, reference);
+    std::printf("view vs render: PSNR %.2f dB\n", psnr);
+    EXPECT_GE(psnr, 40.0);
+}
+
+TEST_F(ViewCli, TheScreenshotIsTheWindowPanelIncluded) {
+    if (!haveXvfbRun()) GTEST_SKIP() << "xvfb-run is not installed (scripts/install-deps.sh installs xvfb)";
+    const fs::path withPanel = dir_ / "panel.png", withoutPanel = dir_ / "frame.png";
+    ASSERT_EQ(run(underXvfb("view " + kJob + " --screenshot " + withPanel.string()), dir_).exitCode, 0);
+    ASSERT_EQ(run(underXvfb("view " + kJob + " --hide-ui --screenshot " + withoutPanel.string()), dir_).exitCode, 0);
+    // The panel covers much of a 320x180 window: far from the bare frame.
+    EXPECT_LT(raycache::psnr(raycache::loadImageFile(withPanel), raycache::loadImageFile(withoutPanel)), 25.0);
+}
+
+TEST_F(ViewCli, BadInputIsOneLineAndExitTwoWithoutAWindow) {
+    // No X server here: input is checked before a window is opened.
+    for (const std::string& args :
+         {std::string("view --scene no-such-scene --frames 2"), std::string("view no-such-file.json"),
+          std::string("view --scene room --frames 2 --screenshot ") + (dir_ / "shot.bmp").string(),
+          std::string("view --scene room --frames 2 --screenshot ") + (dir_ / "missing-dir" / "s.png").string(),
+          std::string("view --scene room --moving-scale 0"), std::string("view --scene room --max-depth 0")}) {
+        const RunResult r = run("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(RAYCACHE_BINARY) + " " + args, dir_);
+        EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.err;
+        EXPECT_EQ(lineCount(r.err), 1) << args << "\n" << r.err;
+        EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << r.err;
+    }
+    EXPECT_FALSE(fs::exists(dir_ / "shot.bmp"));
+}
+
+TEST_F(ViewCli, NoDisplayIsOneLineAndExitOne) {
+    const RunResult r = run("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(RAYCACHE_BINARY) +
+                                " view --scene room --frames 1 --screenshot " + (dir_ / "s.png").string(),
+                            dir_);
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("error: cannot open a window"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "s.png"));
+}
+
+TEST_F(ViewCli, HelpListsTheViewerOptions) {
+    const RunResult r = run(std::string(RAYCACHE_BINARY) + " view --help", dir_);
+    EXPECT_EQ(r.exitCode, 0);
+    for (const char* option : {"--screenshot", "--frames", "--hide-ui", "--technique", "--moving-scale"})
+        EXPECT_NE(r.out.find(option), std::string::npos) << option;
+}

@@ -1,0 +1,145 @@
+// The viewer's render thread renders what the offline renderer renders:
+// the same path frames with the same caches give the same 8-bit codes.
+#include "viewer/RenderWorker.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "core/ColorSpace.h"
+#include "render/FrameLoop.h"
+#include "scene/BuiltinScenes.h"
+#include "viewer/TechniqueChoice.h"
+
+using namespace raycache;
+
+namespace {
+
+std::vector<std::uint8_t> srgb8(const Image& film) {
+    std::vector<std::uint8_t> out;
+    for (const Rgb& p : film.pixels()) {
+        out.push_back(linearToSrgb8(p.r));
+        out.push_back(linearToSrgb8(p.g));
+        out.push_back(linearToSrgb8(p.b));
+        out.push_back(255);
+    }
+    return out;
+}
+
+RenderSettings smallSettings() {
+    RenderSettings s;
+    s.width = 96;
+    s.height = 64;
+    s.threads = 2;
+    s.cache.resolutionOverride = 64;
+    return s;
+}
+
+// Takes frames until `done` says stop (or a generous timeout).
+template <typename Done>
+void takeFrames(FrameHandoff& handoff, RenderWorker& worker, Done&& done) {
+    DisplayFrame frame;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (std::chrono::steady_clock::now() < deadline) {
+        if (auto error = worker.error()) std::rethrow_exception(error);
+        if (handoff.take(frame)) {
+            if (done(frame)) return;
+        } else {
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        }
+    }
+    FAIL() << "no frame in time";
+}
+
+}  // namespace
+
+TEST(RenderWorker, ScriptedRunShowsEveryPathFrameAsTheOfflineRendererDoes) {
+    const Scene scene = *makeBuiltinScene("room");  // a mirror ball that caches (CCT)
+    const TraceScene tracer(scene);
+    RenderSettings settings = smallSettings();
+    settings.cache.techniqueOverride = CacheTechnique::Cct;
+    constexpr int kFrames = 5;
+
+    std::vector<std::vector<std::uint8_t>> offline;
+    renderFrames(scene, scene.cameraPath, settings, kFrames,
+                 [&](const FrameResult&, const Image& film, const RayCache&) { offline.push_back(srgb8(film)); });
+
+    FrameHandoff handoff;
+    RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, smallSettings(), kFrames, {}};
+    RenderWorker worker(setup, handoff);
+    RenderRequest request;
+    request.width = settings.width;
+    request.height = settings.height;
+    request.config.technique = techniqueChoiceIndex("cct");
+    request.inspectObject = 1;  // the mirror ball
+    request.inspectorFaceSize = 16;
+    worker.submit(request);
+    int next = 0;
+    double lastInvalid = 101.0;
+    takeFrames(handoff, worker, [&](const DisplayFrame& f) {
+        EXPECT_EQ(f.pathFrame, next);
+        EXPECT_EQ(f.rgba, offline[static_cast<std::size_t>(next)]) << "frame " << next;
+        EXPECT_TRUE(f.stats.cache.has_value());
+        EXPECT_EQ(f.inspectedObject, 1);
+        EXPECT_EQ(f.inspectorWidth, 64);
+        EXPECT_LT(f.inspectedInvalidPercent, lastInvalid);  // the cube fills
+        lastInvalid = f.inspectedInvalidPercent;
+        ++next;
+        return next == kFrames;
+    });
+    EXPECT_EQ(next, kFrames);
+    // Wait for the worker to stop on its own.
+    for (int i = 0; i < 1000 && !worker.finished(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    EXPECT_TRUE(worker.finished());
+    EXPECT_FALSE(worker.error());
+}
+
+TEST(RenderWorker, DifferenceToTheUncachedImageIsZeroWithoutCaching) {
+    const Scene scene = *makeBuiltinScene("room");
+    const TraceScene tracer(scene);
+    FrameHandoff handoff;
+    RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, smallSettings(), std::nullopt, {}};
+    RenderWorker worker(setup, handoff);
+    RenderRequest request;
+    request.camera = scene.camera;
+    request.width = 48;
+    request.height = 32;
+    request.config.technique = techniqueChoiceIndex("none");
+    request.difference = true;
+    worker.submit(request);
+    takeFrames(handoff, worker, [&](const DisplayFrame& f) {
+        EXPECT_TRUE(f.showsDifference);
+        EXPECT_EQ(f.width, 48);
+        EXPECT_EQ(f.meanDifference, 0.0);
+        std::size_t notBlue = 0;
+        for (std::size_t i = 0; i < f.rgba.size(); i += 4) notBlue += f.rgba[i] != 0 || f.rgba[i + 2] != 255;
+        EXPECT_EQ(notBlue, 0u);
+        return true;
+    });
+}
+
+TEST(RenderWorker, RejectedSettingsKeepTheLastGoodOnesAndSayWhy) {
+    const Scene scene = *makeBuiltinScene("room");
+    const TraceScene tracer(scene);
+    FrameHandoff handoff;
+    RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, smallSettings(), std::nullopt, {}};
+    RenderWorker worker(setup, handoff);
+    RenderRequest request;
+    request.camera = scene.camera;
+    request.width = 32;
+    request.height = 32;
+    request.config.technique = techniqueChoiceIndex("cct");
+    request.continuous = false;
+    worker.submit(request);
+    takeFrames(handoff, worker, [&](const DisplayFrame& f) { return f.configError.empty() && f.stats.cache; });
+    request.config.technique = techniqueChoiceIndex("cdct");
+    request.config.cdctStep = 0.1f;
+    request.config.cdctEpsilon = 0.2f;  // not below the step
+    worker.submit(request);
+    takeFrames(handoff, worker, [&](const DisplayFrame& f) {
+        EXPECT_NE(f.configError.find("epsilon"), std::string::npos);
+        EXPECT_TRUE(f.stats.cache.has_value());  // still rendering, with CCT
+        return true;
+    });
+}
