@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "app/CacheViewCommand.h"
+#include "app/DiffCommand.h"
 #include "app/RenderCommand.h"
 #include "app/ScenesCommand.h"
 #include "core/Errors.h"
@@ -61,6 +62,16 @@ int main(int argc, char** argv) {
 
     app.add_subcommand("scenes", "List the built-in scenes, one per line");
 
+    // raycache diff: image difference metrics and heat map.
+    raycache::DiffCommandOptions diff;
+    CLI::App* diffCmd = app.add_subcommand("diff", "Compare two images: MAE, PSNR and SSIM of the displayed images");
+    diffCmd->add_option("first", diff.first, "First image (.png, .exr, .hdr, .jpg, .bmp, .tga)")->required();
+    diffCmd->add_option("second", diff.second, "Second image, same size")->required();
+    diffCmd->add_option("--heatmap", diff.heatmap,
+                        "Write the per-pixel difference as a heat map with a color bar (.png or .exr)");
+    diffCmd->add_option("--heatmap-max", diff.heatmapMax, "Difference shown as full red, in (0, 1]")
+        ->capture_default_str();
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -75,6 +86,7 @@ int main(int argc, char** argv) {
     try {
         if (renderCmd->parsed()) raycache::runRenderCommand(render, std::cout);
         else if (cacheViewCmd->parsed()) raycache::runCacheViewCommand(cacheView, std::cout);
+        else if (diffCmd->parsed()) raycache::runDiffCommand(diff, std::cout);
         else raycache::runScenesCommand(std::cout);
     } catch (const raycache::InputError& e) {
         std::cerr << "error: " << e.what() << '\n';
