@@ -69,7 +69,7 @@ int textWidth(std::string_view text, int scale) { return static_cast<int>(text.s
 
 std::string formatLabel(double v) {
     char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%.2f", v);
+    std::snprintf(buffer, sizeof buffer, "%.3f", v);
     std::string s = buffer;
     while (s.back() == '0') s.pop_back();
     if (s.back() == '.') s.pop_back();

@@ -56,7 +56,14 @@ std::string tickLabel(double v, double step) {
 
 std::string SvgPlot::toSvg() const {
     if (bars && categories.empty()) throw InputError("a bar chart needs categories");
-    const double left = 72, right = 200, top = 40, bottom = 56;
+    // Long category labels are drawn slanted, which needs room below the axis.
+    std::size_t longestCategory = 0;
+    for (const std::string& c : categories) longestCategory = std::max(longestCategory, c.size());
+    const bool slanted =
+        !categories.empty() &&
+        7.0 * static_cast<double>(longestCategory) > (width - 72.0 - 250.0) / static_cast<double>(categories.size());
+    const double left = 72, right = 250, top = 40;
+    const double bottom = slanted ? 56 + 5.0 * static_cast<double>(std::min<std::size_t>(longestCategory, 24)) : 56;
     const double plotW = width - left - right, plotH = height - top - bottom;
 
     // Data ranges.
@@ -93,7 +100,7 @@ std::string SvgPlot::toSvg() const {
       << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
       << "\" viewBox=\"0 0 " << width << " " << height << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
       << "<rect x=\"0\" y=\"0\" width=\"" << width << "\" height=\"" << height << "\" fill=\"white\"/>\n"
-      << "<text x=\"" << num(left + plotW / 2) << "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">"
+      << "<text x=\"" << num(width / 2.0) << "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">"
       << escapeXml(title) << "</text>\n";
 
     // Grid and y ticks.
@@ -106,9 +113,15 @@ std::string SvgPlot::toSvg() const {
     }
     // X ticks.
     if (categorical) {
-        for (std::size_t i = 0; i < categories.size(); ++i)
-            o << "<text x=\"" << num(sx(static_cast<double>(i))) << "\" y=\"" << num(top + plotH + 18)
-              << "\" text-anchor=\"middle\">" << escapeXml(categories[i]) << "</text>\n";
+        for (std::size_t i = 0; i < categories.size(); ++i) {
+            const std::string x = num(sx(static_cast<double>(i))), y = num(top + plotH + 18);
+            if (slanted)
+                o << "<text x=\"" << x << "\" y=\"" << y << "\" text-anchor=\"end\" transform=\"rotate(-30 " << x << " "
+                  << y << ")\">" << escapeXml(categories[i]) << "</text>\n";
+            else
+                o << "<text x=\"" << x << "\" y=\"" << y << "\" text-anchor=\"middle\">" << escapeXml(categories[i])
+                  << "</text>\n";
+        }
     } else {
         const double xStep = niceStep(x1 - x0);
         for (double v = std::ceil(x0 / xStep - 1e-9) * xStep; v <= x1 + xStep * 1e-6; v += xStep)

@@ -37,7 +37,7 @@ struct SvgPlot {
     std::optional<double> yMax;        // default: a little above the highest value
     std::optional<double> referenceY;  // a dashed horizontal line, e.g. speed-up 1
     std::vector<PlotSeries> series;
-    int width = 720;
+    int width = 860;
     int height = 420;
 
     // The whole SVG document. Throws InputError if a bar chart has no categories.

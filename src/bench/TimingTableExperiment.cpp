@@ -256,8 +256,9 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
             headers.push_back(compared.label + " hit rate, last moving frame");
         }
         MarkdownTable t(headers);
-        PlotSeries ours{"raycache, still camera (caches filled)", {}}, oursMoving{"raycache, moving camera", {}},
-            documents{"documents (" + spec_.documents.source + ")", {}};
+        const std::string& source = spec_.documents.source;
+        PlotSeries ours{"raycache, caches filled", {}}, oursMoving{"raycache, moving camera", {}},
+            documents{"documents (" + source.substr(source.rfind(", ") + 2) + ")", {}};
         documents.dashed = true;
         for (std::size_t si = 0; si < table.size(); ++si) {
             const auto& r = table[si];
@@ -321,6 +322,7 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
         speedPlot.title = spec_.name + ": frame rate relative to " + baseline.label + " (higher is faster)";
         speedPlot.yLabel = "× " + baseline.label + " frame rate";
         speedPlot.bars = true;
+        speedPlot.height = 480;
         for (const TimingVariant& v : spec_.variants) speedPlot.categories.push_back(v.label);
         std::vector<PlotSeries> oursSeries(table.size()), docsSeries(table.size());
         for (std::size_t si = 0; si < table.size(); ++si) {
