@@ -109,7 +109,7 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
             s.height = size.height;
             s.threads = context.settings.threads;
             s.cache.techniqueOverride = v.technique;
-            s.cache.resolutionOverride = spec_.cacheResolution;
+            s.cache.resolutionOverride = size.cacheResolution;
             if (v.cdct) {
                 s.cache.cdctStepOverride = v.cdct->step;
                 s.cache.cdctEpsilonOverride = v.cdct->epsilon;
@@ -215,7 +215,7 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
     out.caveats = spec_.caveats;
     std::string md = spec_.description + "\n\n";
     md += "Size `" + toString(context.settings.size) + "`: " + std::to_string(size.width) + "x" +
-          std::to_string(size.height) + ", " + std::to_string(spec_.cacheResolution) + "² cache faces, " +
+          std::to_string(size.height) + ", " + std::to_string(size.cacheResolution) + "² cache faces, " +
           std::to_string(size.warmupFrames) + " warm-up + " + std::to_string(size.timedFrames) +
           " timed frames per variant (still camera, variants interleaved)";
     if (size.movingFrames > 0)
@@ -387,7 +387,7 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
         {"settings",
          {{"width", size.width},
           {"height", size.height},
-          {"cache_resolution", spec_.cacheResolution},
+          {"cache_resolution", size.cacheResolution},
           {"warmup_frames", size.warmupFrames},
           {"timed_frames", size.timedFrames},
           {"moving_frames", size.movingFrames},

@@ -44,6 +44,7 @@ struct TimingSize {
     int movingFrames = 0;  // 0 = no moving-camera run
     int movingRounds = 0;  // each renders the whole path per variant
     int scenes = 0;        // how many of the table's scenes to run (0 = all)
+    int cacheResolution = 512;  // cube face side (the documents': 512)
 };
 
 struct TimingTableSpec {
@@ -58,7 +59,6 @@ struct TimingTableSpec {
     // Rows = scenes with the baseline and variants[1] side by side (5.1, 5.2);
     // otherwise rows = variants with a column group per scene (5.3).
     bool rowsAreScenes = true;
-    int cacheResolution = 512;
     TimingSize tiny, quick, full;
     std::string pipeline = "ray";  // recorded in results.json
     // Applied to every variant's settings (e.g. choosing the render pipeline).
