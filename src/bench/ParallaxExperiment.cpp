@@ -156,7 +156,8 @@ public:
             out.headlines.push_back("parallax " + variants[vi].label + ": median MAE " +
                                     cellNumber(summarize(mae).median, 5) + ", median PSNR " +
                                     (peak.empty() ? std::string("∞") : cellNumber(summarize(peak).median, 2) + " dB") +
-                                    " over " + std::to_string(frames) + " frames");
+                                    " over " + std::to_string(frames) + " frames, cache hit rate " +
+                                    cellNumber(hit[vi].back(), 1) + "% in the last frame");
             variantsJson.push_back({{"key", variants[vi].key}, {"label", variants[vi].label}, {"frames", perFrame}});
             maePlot.series.push_back(std::move(maeSeries));
             psnrPlot.series.push_back(std::move(psnrSeries));

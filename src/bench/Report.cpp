@@ -14,7 +14,7 @@ std::string sizeDescription(BenchSize size) {
     case BenchSize::Quick:
         return "**Size: quick** — lower resolution and fewer frames than the documents (512×512 instead of "
                "1024×1024 for the speed tables and quality, 960×540 instead of 1920×1080 for Table 5.3, fewer "
-               "timed frames and one moving-camera run per variant); the fill-rate experiment keeps the "
+               "warm-up and timed frames, one moving-camera run per variant); the fill-rate experiment keeps the "
                "documents' 1024×1024. Ratios are indicative; run `raycache bench all --full` for the documents' "
                "sizes.";
     case BenchSize::Tiny:
@@ -43,7 +43,8 @@ std::string reportMarkdown(const ReportInput& in) {
     env.addRow({"build", e.buildType + ", " + e.compiler});
     env.addRow({"raycache", e.raycacheVersion + ", commit " + e.gitCommit});
     env.addRow({"libraries", "Embree " + e.embreeVersion + ", oneTBB " + e.tbbVersion});
-    env.addRow({"started", e.startedAt});
+    env.addRow({"started", e.startedAt + ", load average " + e.loadAverage + " (1, 5, 15 min) on " +
+                               std::to_string(e.hardwareThreads) + " hardware threads"});
     s += env.toMarkdown() + "\n";
 
     s += "## Findings at a glance\n\n";

@@ -13,7 +13,7 @@ nlohmann::json toJson(const RunEnvironment& e) {
             {"build_type", e.buildType},       {"compiler", e.compiler},
             {"git_commit", e.gitCommit},       {"raycache_version", e.raycacheVersion},
             {"embree_version", e.embreeVersion}, {"tbb_version", e.tbbVersion},
-            {"started_at", e.startedAt}};
+            {"started_at", e.startedAt},       {"load_average_at_start", e.loadAverage}};
 }
 
 nlohmann::json toJson(const VariantTimes& t) {

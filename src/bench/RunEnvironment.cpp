@@ -1,6 +1,7 @@
 #include "bench/RunEnvironment.h"
 
 #include <chrono>
+#include <cstdio>
 #include <ctime>
 #include <fstream>
 #include <sys/utsname.h>
@@ -35,6 +36,15 @@ std::string cpuModel() {
         return value;
     }
     return "unknown";
+}
+
+std::string loadAverage() {
+    std::ifstream in("/proc/loadavg");
+    double one = 0, five = 0, fifteen = 0;
+    if (!(in >> one >> five >> fifteen)) return "unknown";
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.2f, %.2f, %.2f", one, five, fifteen);
+    return buffer;
 }
 
 std::string compilerName() {
@@ -72,6 +82,7 @@ RunEnvironment currentRunEnvironment(int workerThreads) {
     e.embreeVersion = embreeVersion();
     e.tbbVersion = Parallel::libraryVersion();
     e.startedAt = utcNow();
+    e.loadAverage = loadAverage();
     return e;
 }
 

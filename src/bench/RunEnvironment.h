@@ -17,6 +17,7 @@ struct RunEnvironment {
     std::string embreeVersion;
     std::string tbbVersion;
     std::string startedAt;     // UTC, ISO 8601
+    std::string loadAverage;   // /proc/loadavg's 1, 5, 15 minute figures at the start: how busy the machine was
 };
 
 // Collects the environment of this process; `workerThreads` as the renderer runs.

@@ -16,7 +16,7 @@ std::unique_ptr<Experiment> makeTable52Experiment() {
     spec.documents = paperTable52();
     spec.documentsSpeedupColumn = "speedup";
     spec.full = {1024, 1024, 2, 7, 10, 3, 0};
-    spec.quick = {512, 512, 2, 5, 10, 1, 0};
+    spec.quick = {512, 512, 1, 5, 10, 1, 0};
     spec.tiny = {32, 32, 1, 2, 2, 1, 2, 32};
     return std::make_unique<TimingTableExperiment>(std::move(spec));
 }

@@ -43,7 +43,7 @@ std::unique_ptr<Experiment> makeTable53Experiment() {
     spec.documents = paperTable53();
     spec.rowsAreScenes = false;
     spec.full = {1920, 1080, 2, 5, 0, 0, 0};
-    spec.quick = {960, 540, 2, 5, 0, 0, 0};
+    spec.quick = {960, 540, 1, 4, 0, 0, 0};
     spec.tiny = {48, 27, 1, 1, 0, 0, 0, 32};
     return std::make_unique<TimingTableExperiment>(std::move(spec));
 }

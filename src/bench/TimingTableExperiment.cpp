@@ -357,7 +357,8 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
                     out.headlines.push_back(spec_.name + " " + spec_.scenes[si].label + ": " + v.label + " " +
                                             cellNumber(rel, 2) + "× " + baseline.label + " (documents " +
                                             (std::isfinite(docFps / docBase) ? cellNumber(docFps / docBase, 2) + "×" : "–") +
-                                            ")");
+                                            "), cache hit rate " +
+                                            cellNumber(hitPercent(table[si][vi].stillCache), 1) + "%");
             }
             t.addRow(row);
         }
