@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
+#include <unistd.h>
 
 #include "XmlCheck.h"
 #include "app/BenchCommand.h"
@@ -69,7 +70,8 @@ int checkMarkdownTables(const std::string& md, const std::string& file) {
 class Experiments : public ::testing::Test {
 protected:
     static void SetUpTestSuite() {
-        dir_ = fs::temp_directory_path() / "raycache-bench-tiny";
+        // One directory per process: ctest runs the test cases as parallel processes.
+        dir_ = fs::temp_directory_path() / ("raycache-bench-tiny-" + std::to_string(getpid()));
         fs::remove_all(dir_);
         BenchCommandOptions options;
         options.experiments = {"all"};
