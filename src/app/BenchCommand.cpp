@@ -62,8 +62,10 @@ void runBenchCommand(const BenchCommandOptions& options, std::ostream& out) {
     out << "finished in " << ProgressBar::formatDuration(report.wallSeconds) << std::endl;
     if (wholeReport) {
         report.command = "raycache bench all";
-        if (settings.size != BenchSize::Quick) report.command += " --" + toString(settings.size);
-        else report.command += " --quick";
+        if (settings.size != BenchSize::Quick)
+            report.command += " --" + toString(settings.size);
+        else
+            report.command += " --quick";
         if (options.threads > 0) report.command += " --threads " + std::to_string(options.threads);
         const std::filesystem::path path = settings.outDir / "report.md";
         writeTextFileAtomically(path, reportMarkdown(report));

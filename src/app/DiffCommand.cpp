@@ -22,8 +22,8 @@ void runDiffCommand(const DiffCommandOptions& options, std::ostream& out) {
     const Image b = loadImageFile(options.second);
     if (a.width() != b.width() || a.height() != b.height())
         throw InputError("images differ in size: " + options.first + " is " + std::to_string(a.width()) + "x" +
-                         std::to_string(a.height()) + ", " + options.second + " is " + std::to_string(b.width()) +
-                         "x" + std::to_string(b.height()));
+                         std::to_string(a.height()) + ", " + options.second + " is " + std::to_string(b.width()) + "x" +
+                         std::to_string(b.height()));
 
     const double mae = meanAbsoluteError(a, b);
     const double peak = psnr(a, b);
@@ -38,7 +38,8 @@ void runDiffCommand(const DiffCommandOptions& options, std::ostream& out) {
     out << "PSNR  " << (std::isinf(peak) ? std::string("inf (identical)") : formatFixed(peak, 2) + " dB") << "\n";
     out << "SSIM  " << formatFixed(structural, 5) << "\n";
     out << "max pixel difference " << formatFixed(maxDiff, 4) << ", pixels differing by more than half an 8-bit step "
-        << formatFixed(100.0 * static_cast<double>(differing) / static_cast<double>(std::max<std::size_t>(1, diff.size())), 2)
+        << formatFixed(
+               100.0 * static_cast<double>(differing) / static_cast<double>(std::max<std::size_t>(1, diff.size())), 2)
         << "%\n";
     if (!options.heatmap.empty()) {
         writeImage(renderHeatmap(a, b, {options.heatmapMax}), options.heatmap);

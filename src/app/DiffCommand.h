@@ -10,8 +10,8 @@ namespace raycache {
 struct DiffCommandOptions {
     std::string first;
     std::string second;
-    std::string heatmap;             // image to write; empty = none
-    double heatmapMax = 1.0;         // difference drawn as full red
+    std::string heatmap;      // image to write; empty = none
+    double heatmapMax = 1.0;  // difference drawn as full red
 };
 
 // Prints the metrics to `out`. Throws InputError for unreadable or

@@ -4,9 +4,12 @@ namespace raycache {
 
 std::string toString(BenchSize size) {
     switch (size) {
-    case BenchSize::Tiny: return "tiny";
-    case BenchSize::Quick: return "quick";
-    case BenchSize::Full: return "full";
+        case BenchSize::Tiny:
+            return "tiny";
+        case BenchSize::Quick:
+            return "quick";
+        case BenchSize::Full:
+            return "full";
     }
     return "unknown";
 }

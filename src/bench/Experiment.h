@@ -39,9 +39,9 @@ struct ExperimentContext {
 struct ExperimentOutput {
     std::string name;
     std::string title;
-    std::string markdown;               // the body of results.md (also placed in the report)
-    std::vector<std::string> plots;     // SVG files, relative to the experiment's dir
-    std::vector<std::string> images;    // PNG files, relative to the experiment's dir
+    std::string markdown;                // the body of results.md (also placed in the report)
+    std::vector<std::string> plots;      // SVG files, relative to the experiment's dir
+    std::vector<std::string> images;     // PNG files, relative to the experiment's dir
     std::vector<std::string> headlines;  // one-line findings, printed at the end
     std::vector<std::string> caveats;    // what is not comparable or not available, said plainly
 };

@@ -15,11 +15,13 @@ namespace raycache {
 
 namespace {
 
-constexpr int kSteps = 9;                   // camera moves after the first frame
+constexpr int kSteps = 9;  // camera moves after the first frame
 constexpr float kDegreesPerStep = 10.0f / 3.0f;
 constexpr int kResolutions[] = {128, 256, 512};
 
-int imageSide(BenchSize size) { return size == BenchSize::Tiny ? 48 : 1024; }
+int imageSide(BenchSize size) {
+    return size == BenchSize::Tiny ? 48 : 1024;
+}
 
 class FillRateExperiment : public Experiment {
 public:
@@ -60,19 +62,18 @@ public:
             settings.cache.resolutionOverride = resolution;
             std::vector<double> before, ms, hits;
             double afterLast = 100.0;
-            renderFrames(*scene, path, settings, kSteps + 1,
-                         [&](const FrameResult& r, const Image&, const RayCache& caches) {
-                             const FrameCacheStats& c = *r.stats.cache;
-                             before.push_back(c.invalidPercentBefore());
-                             ms.push_back(r.milliseconds);
-                             hits.push_back(c.lookups() ? 100.0 * static_cast<double>(c.hits()) /
-                                                              static_cast<double>(c.lookups())
-                                                        : 0.0);
-                             const CachingCube& cube = caches.cube(mainObjectId(*scene));
-                             afterLast = 100.0 * static_cast<double>(cube.texelCount() - cube.validCount()) /
-                                         static_cast<double>(cube.texelCount());
-                             context.progress.advance(frameWork);
-                         });
+            renderFrames(
+                *scene, path, settings, kSteps + 1, [&](const FrameResult& r, const Image&, const RayCache& caches) {
+                    const FrameCacheStats& c = *r.stats.cache;
+                    before.push_back(c.invalidPercentBefore());
+                    ms.push_back(r.milliseconds);
+                    hits.push_back(
+                        c.lookups() ? 100.0 * static_cast<double>(c.hits()) / static_cast<double>(c.lookups()) : 0.0);
+                    const CachingCube& cube = caches.cube(mainObjectId(*scene));
+                    afterLast = 100.0 * static_cast<double>(cube.texelCount() - cube.validCount()) /
+                                static_cast<double>(cube.texelCount());
+                    context.progress.advance(frameWork);
+                });
             std::vector<double> after(before.begin(), before.end());
             after.push_back(afterLast);  // after k frames, k = 0..10
             invalid.push_back(after);
@@ -98,15 +99,15 @@ public:
         out.title = title();
         std::string md =
             "behind-0's main mirror sphere in front of the camera, " + std::to_string(side) + "x" +
-            std::to_string(side) + " pixels; the camera orbits the sphere's centre by 10/3° per frame (frame 1 "
+            std::to_string(side) +
+            " pixels; the camera orbits the sphere's centre by 10/3° per frame (frame 1 "
             "plus 9 steps, 30° in all), caches starting empty. Invalid texels of the sphere's cube after each "
             "frame (= before the next).\n\n";
         MarkdownTable first({"face resolution", "documents: invalid after frame 1", "raycache: invalid after frame 1",
                              "raycache: after frame 5", "raycache: after frame 10"});
         for (std::size_t i = 0; i < std::size(kResolutions); ++i) {
             const std::string res = std::to_string(kResolutions[i]);
-            first.addRow({res + "²",
-                          cellNumber(documents.value(res, "invalid-after-frame-1").value(), 0) + "%",
+            first.addRow({res + "²", cellNumber(documents.value(res, "invalid-after-frame-1").value(), 0) + "%",
                           cellNumber(invalid[i][1], 1) + "%", cellNumber(invalid[i][5], 1) + "%",
                           cellNumber(invalid[i][10], 1) + "%"});
             out.headlines.push_back("fill-rate " + res + "²: " + cellNumber(invalid[i][1], 1) +
@@ -123,20 +124,19 @@ public:
         out.markdown = md;
         out.plots = {"invalid-texels.svg"};
 
-        writeJsonFile(context.dir / "results.json",
-                      {{"experiment", name()},
-                       {"title", title()},
-                       {"size", toString(context.settings.size)},
-                       {"settings",
-                        {{"scene", "behind-0"},
-                         {"width", side},
-                         {"height", side},
-                         {"frames", kSteps + 1},
-                         {"degrees_per_frame", kDegreesPerStep},
-                         {"resolutions", kResolutions}}},
-                       {"environment", toJson(context.environment)},
-                       {"documents", toJson(documents)},
-                       {"series", series}});
+        writeJsonFile(context.dir / "results.json", {{"experiment", name()},
+                                                     {"title", title()},
+                                                     {"size", toString(context.settings.size)},
+                                                     {"settings",
+                                                      {{"scene", "behind-0"},
+                                                       {"width", side},
+                                                       {"height", side},
+                                                       {"frames", kSteps + 1},
+                                                       {"degrees_per_frame", kDegreesPerStep},
+                                                       {"resolutions", kResolutions}}},
+                                                     {"environment", toJson(context.environment)},
+                                                     {"documents", toJson(documents)},
+                                                     {"series", series}});
         writeTextFileAtomically(context.dir / "results.md", experimentMarkdown(out));
         return out;
     }
@@ -151,6 +151,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Experiment> makeFillRateExperiment() { return std::make_unique<FillRateExperiment>(); }
+std::unique_ptr<Experiment> makeFillRateExperiment() {
+    return std::make_unique<FillRateExperiment>();
+}
 
 }  // namespace raycache

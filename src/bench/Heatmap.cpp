@@ -14,7 +14,9 @@ namespace raycache {
 
 namespace {
 
-float display(float linear) { return linearToSrgb(std::clamp(linear, 0.0f, 1.0f)); }
+float display(float linear) {
+    return linearToSrgb(std::clamp(linear, 0.0f, 1.0f));
+}
 
 Rgb toLinear(const Rgb& display) {
     return {srgbToLinear(display.r), srgbToLinear(display.g), srgbToLinear(display.b)};
@@ -24,28 +26,50 @@ Rgb toLinear(const Rgb& display) {
 // of SAME and DIFFERENT. Each row is 3 bits, most significant on the left.
 std::array<std::uint8_t, 5> glyph(char c) {
     switch (c) {
-    case '0': return {7, 5, 5, 5, 7};
-    case '1': return {2, 6, 2, 2, 7};
-    case '2': return {7, 1, 7, 4, 7};
-    case '3': return {7, 1, 7, 1, 7};
-    case '4': return {5, 5, 7, 1, 1};
-    case '5': return {7, 4, 7, 1, 7};
-    case '6': return {7, 4, 7, 5, 7};
-    case '7': return {7, 1, 1, 1, 1};
-    case '8': return {7, 5, 7, 5, 7};
-    case '9': return {7, 5, 7, 1, 7};
-    case '.': return {0, 0, 0, 0, 2};
-    case 'A': return {2, 5, 7, 5, 5};
-    case 'D': return {6, 5, 5, 5, 6};
-    case 'E': return {7, 4, 6, 4, 7};
-    case 'F': return {7, 4, 6, 4, 4};
-    case 'I': return {7, 2, 2, 2, 7};
-    case 'M': return {5, 7, 7, 5, 5};
-    case 'N': return {5, 7, 7, 7, 5};
-    case 'R': return {6, 5, 6, 5, 5};
-    case 'S': return {7, 4, 7, 1, 7};
-    case 'T': return {7, 2, 2, 2, 2};
-    default: return {0, 0, 0, 0, 0};
+        case '0':
+            return {7, 5, 5, 5, 7};
+        case '1':
+            return {2, 6, 2, 2, 7};
+        case '2':
+            return {7, 1, 7, 4, 7};
+        case '3':
+            return {7, 1, 7, 1, 7};
+        case '4':
+            return {5, 5, 7, 1, 1};
+        case '5':
+            return {7, 4, 7, 1, 7};
+        case '6':
+            return {7, 4, 7, 5, 7};
+        case '7':
+            return {7, 1, 1, 1, 1};
+        case '8':
+            return {7, 5, 7, 5, 7};
+        case '9':
+            return {7, 5, 7, 1, 7};
+        case '.':
+            return {0, 0, 0, 0, 2};
+        case 'A':
+            return {2, 5, 7, 5, 5};
+        case 'D':
+            return {6, 5, 5, 5, 6};
+        case 'E':
+            return {7, 4, 6, 4, 7};
+        case 'F':
+            return {7, 4, 6, 4, 4};
+        case 'I':
+            return {7, 2, 2, 2, 7};
+        case 'M':
+            return {5, 7, 7, 5, 5};
+        case 'N':
+            return {5, 7, 7, 7, 5};
+        case 'R':
+            return {6, 5, 6, 5, 5};
+        case 'S':
+            return {7, 4, 7, 1, 7};
+        case 'T':
+            return {7, 2, 2, 2, 2};
+        default:
+            return {0, 0, 0, 0, 0};
     }
 }
 
@@ -65,7 +89,9 @@ void drawText(Image& image, int x, int y, int scale, std::string_view text, cons
     }
 }
 
-int textWidth(std::string_view text, int scale) { return static_cast<int>(text.size()) * 4 * scale - scale; }
+int textWidth(std::string_view text, int scale) {
+    return static_cast<int>(text.size()) * 4 * scale - scale;
+}
 
 std::string formatLabel(double v) {
     char buffer[32];
@@ -95,8 +121,7 @@ std::vector<float> pixelDifferences(const Image& a, const Image& b) {
 
 Rgb heatColorDisplay(double t) {
     // Blue, cyan, green, yellow, red at 0, 1/4, 1/2, 3/4, 1, linear in between.
-    static constexpr std::array<std::array<float, 3>, 5> stops{
-        {{0, 0, 1}, {0, 1, 1}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}}};
+    static constexpr std::array<std::array<float, 3>, 5> stops{{{0, 0, 1}, {0, 1, 1}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}}};
     const double u = std::clamp(std::isfinite(t) ? t : 1.0, 0.0, 1.0) * 4.0;
     const int i = std::min(3, static_cast<int>(u));
     const float f = static_cast<float>(u - i);
@@ -128,8 +153,8 @@ Image renderHeatmap(const Image& a, const Image& b, const HeatmapSettings& setti
     std::fill(out.pixels().begin(), out.pixels().end(), background);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
-            out.at(x, y) = toLinear(heatColorDisplay(
-                static_cast<double>(diff[static_cast<std::size_t>(y * w + x)]) / settings.maxDifference));
+            out.at(x, y) = toLinear(heatColorDisplay(static_cast<double>(diff[static_cast<std::size_t>(y * w + x)]) /
+                                                     settings.maxDifference));
 
     const int barX = w + pad, barTop = pad, barBottom = height - pad;  // bar spans [barTop, barBottom)
     const int barHeight = barBottom - barTop;

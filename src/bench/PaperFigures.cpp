@@ -40,8 +40,7 @@ PaperTable paperTable53() {
     return {"Ruff, MSc thesis (UFF 2013), Table 5.3",
             "1920x1080, 32 spheres, GPU (OptiX); CDCT columns are step/epsilon",
             {"cct", "standard", "cdct-2/0.2", "cdct-0.4/0.05", "cdct-0.2/0.02", "cdct-0.02/0.002"},
-            {{"Diffuse", {76.0, 69.6, 49.5, 35.3, 30.7, 19.0}},
-             {"Reflective", {68.2, 30.1, 13.5, 12.7, 12.1, 9.5}}}};
+            {{"Diffuse", {76.0, 69.6, 49.5, 35.3, 30.7, 19.0}}, {"Reflective", {68.2, 30.1, 13.5, 12.7, 12.1, 9.5}}}};
 }
 
 PaperTable paperFigure59() {
@@ -51,6 +50,8 @@ PaperTable paperFigure59() {
             {{"128", {3}}, {"256", {31}}, {"512", {73}}}};
 }
 
-std::string paperFigure59Later() { return "about 0-1 % invalid after 7-8 frames at every resolution"; }
+std::string paperFigure59Later() {
+    return "about 0-1 % invalid after 7-8 frames at every resolution";
+}
 
 }  // namespace raycache

@@ -11,13 +11,13 @@
 namespace raycache {
 
 struct PaperRow {
-    std::string label;          // e.g. "0" (N) or "Diffuse"
+    std::string label;           // e.g. "0" (N) or "Diffuse"
     std::vector<double> values;  // one per PaperTable::columns
 };
 
 struct PaperTable {
-    std::string source;               // where in the documents
-    std::string conditions;           // resolution, pipeline, GPU
+    std::string source;                // where in the documents
+    std::string conditions;            // resolution, pipeline, GPU
     std::vector<std::string> columns;  // keys, e.g. "standard", "cct", "speedup"
     std::vector<PaperRow> rows;
 

@@ -35,8 +35,12 @@ std::vector<CachedVariant> parallaxVariants() {
 }
 // ========================================================================
 
-int imageSide(BenchSize size) { return size == BenchSize::Full ? 1024 : size == BenchSize::Quick ? 512 : 32; }
-int frameCount(BenchSize size) { return size == BenchSize::Tiny ? 3 : 25; }
+int imageSide(BenchSize size) {
+    return size == BenchSize::Full ? 1024 : size == BenchSize::Quick ? 512 : 32;
+}
+int frameCount(BenchSize size) {
+    return size == BenchSize::Tiny ? 3 : 25;
+}
 
 class ParallaxExperiment : public Experiment {
 public:
@@ -73,15 +77,16 @@ public:
             s.cache.cdctEpsilonOverride = 0.05f;
             s.cache.cdctMaxDepthOverride = 100.0f;
             caches.push_back(std::make_unique<RayCache>(scene, s.cache));
-            renderers.push_back(std::make_unique<FrameRenderer>(scene, tracer, s, context.parallel, caches.back().get()));
+            renderers.push_back(
+                std::make_unique<FrameRenderer>(scene, tracer, s, context.parallel, caches.back().get()));
         }
 
         context.progress.step("parallax: " + std::to_string(frames) + " frames");
         const auto timed = [](const auto& render) {
             const auto start = std::chrono::steady_clock::now();
             FrameStats stats = render();
-            return std::pair{stats, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                                        .count()};
+            return std::pair{
+                stats, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()};
         };
         std::vector<double> referenceMs;
         std::vector<std::vector<double>> ms(variants.size()), hit(variants.size());
@@ -166,20 +171,25 @@ public:
         writeSvgPlot(psnrPlot, (context.dir / "psnr-per-frame.svg").string());
         out.plots = {"error-per-frame.svg", "psnr-per-frame.svg"};
         out.markdown =
-            "The parallax scene at " + std::to_string(side) + "x" + std::to_string(side) + ": two facing mirror "
+            "The parallax scene at " + std::to_string(side) + "x" + std::to_string(side) +
+            ": two facing mirror "
             "spheres, a near box and a far checkered wall; the camera slides sideways over " +
-            std::to_string(frames) + " frames. Caches start empty and fill as the camera moves; every frame is "
+            std::to_string(frames) +
+            " frames. Caches start empty and fill as the camera moves; every frame is "
             "rendered uncached (the reference), then with each cached variant, and compared. CCT looks cached "
             "colors up by direction only, so near objects seen in a mirror appear where they were when cached; "
             "CDCT searches the cached depths along the ray.\n\n" +
-            table.toMarkdown() +
-            "\nThe documents show parallax in pictures (Fig 3.5) without numbers.\n";
+            table.toMarkdown() + "\nThe documents show parallax in pictures (Fig 3.5) without numbers.\n";
         writeJsonFile(context.dir / "results.json",
                       {{"experiment", name()},
                        {"title", title()},
                        {"size", toString(context.settings.size)},
-                       {"settings", {{"scene", "parallax"}, {"width", side}, {"height", side}, {"frames", frames},
-                                     {"cdct", {{"step", 0.4}, {"epsilon", 0.05}, {"max_depth", 100}}}}},
+                       {"settings",
+                        {{"scene", "parallax"},
+                         {"width", side},
+                         {"height", side},
+                         {"frames", frames},
+                         {"cdct", {{"step", 0.4}, {"epsilon", 0.05}, {"max_depth", 100}}}}},
                        {"environment", toJson(context.environment)},
                        {"reference_ms", referenceMs},
                        {"variants", variantsJson}});
@@ -190,6 +200,8 @@ public:
 
 }  // namespace
 
-std::unique_ptr<Experiment> makeParallaxExperiment() { return std::make_unique<ParallaxExperiment>(); }
+std::unique_ptr<Experiment> makeParallaxExperiment() {
+    return std::make_unique<ParallaxExperiment>();
+}
 
 }  // namespace raycache

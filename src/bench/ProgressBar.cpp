@@ -1,10 +1,11 @@
 #include "bench/ProgressBar.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ostream>
-#include <unistd.h>
 
 namespace raycache {
 
@@ -12,18 +13,22 @@ ProgressBar::ProgressBar(std::ostream& out, bool interactive, double totalWork, 
     : out_(out), interactive_(interactive), total_(std::max(totalWork, 1e-9)), clock_(std::move(clock)) {
     if (!clock_) {
         const auto origin = std::chrono::steady_clock::now();
-        clock_ = [origin] {
-            return std::chrono::duration<double>(std::chrono::steady_clock::now() - origin).count();
-        };
+        clock_ = [origin] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - origin).count(); };
     }
     start_ = clock_();
 }
 
-bool ProgressBar::stdoutIsTerminal() { return isatty(fileno(stdout)) == 1; }
+bool ProgressBar::stdoutIsTerminal() {
+    return isatty(fileno(stdout)) == 1;
+}
 
-double ProgressBar::fractionDone() const { return std::clamp(done_ / total_, 0.0, 1.0); }
+double ProgressBar::fractionDone() const {
+    return std::clamp(done_ / total_, 0.0, 1.0);
+}
 
-double ProgressBar::elapsedSeconds() const { return clock_() - start_; }
+double ProgressBar::elapsedSeconds() const {
+    return clock_() - start_;
+}
 
 double ProgressBar::etaSeconds() const {
     const double f = fractionDone();
@@ -34,9 +39,12 @@ double ProgressBar::etaSeconds() const {
 std::string ProgressBar::formatDuration(double seconds) {
     const long s = std::lround(std::max(0.0, seconds));
     char buffer[32];
-    if (s >= 3600) std::snprintf(buffer, sizeof buffer, "%ldh%02ldm", s / 3600, (s % 3600) / 60);
-    else if (s >= 60) std::snprintf(buffer, sizeof buffer, "%ldm%02lds", s / 60, s % 60);
-    else std::snprintf(buffer, sizeof buffer, "%lds", s);
+    if (s >= 3600)
+        std::snprintf(buffer, sizeof buffer, "%ldh%02ldm", s / 3600, (s % 3600) / 60);
+    else if (s >= 60)
+        std::snprintf(buffer, sizeof buffer, "%ldm%02lds", s / 60, s % 60);
+    else
+        std::snprintf(buffer, sizeof buffer, "%lds", s);
     return buffer;
 }
 

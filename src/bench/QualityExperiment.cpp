@@ -39,7 +39,9 @@ std::vector<Protocol> fillProtocols() {
             {"orbit", "along an orbit (8 frames, 1.5°/frame)", "orbit fill", true, kOrbitFillFrames}};
 }
 
-int imageSide(BenchSize size) { return size == BenchSize::Full ? 1024 : size == BenchSize::Quick ? 512 : 40; }
+int imageSide(BenchSize size) {
+    return size == BenchSize::Full ? 1024 : size == BenchSize::Quick ? 512 : 40;
+}
 
 struct View {
     std::string key;
@@ -77,8 +79,8 @@ public:
         out.name = name();
         out.title = title();
         nlohmann::json rows = nlohmann::json::array();
-        MarkdownTable table({"view", "cube filled", "face resolution", "MAE", "PSNR (dB)", "SSIM", "hit rate", "heat map",
-                             "heat map ×4"});
+        MarkdownTable table({"view", "cube filled", "face resolution", "MAE", "PSNR (dB)", "SSIM", "hit rate",
+                             "heat map", "heat map ×4"});
         SvgPlot plot;
         plot.title = "quality: PSNR of CCT against the uncached render";
         plot.xLabel = "cube face resolution";
@@ -152,12 +154,12 @@ public:
                          {"heatmap", stem + "-heatmap.png"},
                          {"heatmap_x4", stem + "-heatmap-x4.png"}});
                     series.points.push_back({static_cast<double>(ri), c.psnr});
-                    psnrs += (psnrs.empty() ? "" : " / ") +
-                             (std::isinf(c.psnr) ? std::string("∞") : cellNumber(c.psnr, 1));
+                    psnrs +=
+                        (psnrs.empty() ? "" : " / ") + (std::isinf(c.psnr) ? std::string("∞") : cellNumber(c.psnr, 1));
                     ssims += (ssims.empty() ? "" : " / ") + cellNumber(c.ssim, 3);
                 }
-                out.headlines.push_back("quality " + view.label + ", cube filled " + protocol.label +
-                                        ": PSNR " + psnrs + " dB, SSIM " + ssims + " at 128² / 256² / 512²");
+                out.headlines.push_back("quality " + view.label + ", cube filled " + protocol.label + ": PSNR " +
+                                        psnrs + " dB, SSIM " + ssims + " at 128² / 256² / 512²");
                 plot.series.push_back(std::move(series));
             }
         }
@@ -177,19 +179,18 @@ public:
             table.toMarkdown() +
             "\nThe documents show these differences as pictures only (Figs 5.1, 5.4, 5.5): visible at "
             "silhouettes, checkerboard edges in reflections and in close-ups (nearest-neighbour pixelation).\n";
-        writeJsonFile(context.dir / "results.json",
-                      {{"experiment", name()},
-                       {"title", title()},
-                       {"size", toString(context.settings.size)},
-                       {"settings",
-                        {{"scene", "room"},
-                         {"width", side},
-                         {"height", side},
-                         {"resolutions", kResolutions},
-                         {"orbit_fill_frames", kOrbitFillFrames},
-                         {"orbit_degrees_per_frame", kOrbitDegreesPerFrame}}},
-                       {"environment", toJson(context.environment)},
-                       {"rows", rows}});
+        writeJsonFile(context.dir / "results.json", {{"experiment", name()},
+                                                     {"title", title()},
+                                                     {"size", toString(context.settings.size)},
+                                                     {"settings",
+                                                      {{"scene", "room"},
+                                                       {"width", side},
+                                                       {"height", side},
+                                                       {"resolutions", kResolutions},
+                                                       {"orbit_fill_frames", kOrbitFillFrames},
+                                                       {"orbit_degrees_per_frame", kOrbitDegreesPerFrame}}},
+                                                     {"environment", toJson(context.environment)},
+                                                     {"rows", rows}});
         writeTextFileAtomically(context.dir / "results.md", experimentMarkdown(out));
         return out;
     }
@@ -197,6 +198,8 @@ public:
 
 }  // namespace
 
-std::unique_ptr<Experiment> makeQualityExperiment() { return std::make_unique<QualityExperiment>(); }
+std::unique_ptr<Experiment> makeQualityExperiment() {
+    return std::make_unique<QualityExperiment>();
+}
 
 }  // namespace raycache

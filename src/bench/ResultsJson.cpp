@@ -8,12 +8,12 @@
 namespace raycache {
 
 nlohmann::json toJson(const RunEnvironment& e) {
-    return {{"cpu_model", e.cpuModel},         {"hardware_threads", e.hardwareThreads},
+    return {{"cpu_model", e.cpuModel},           {"hardware_threads", e.hardwareThreads},
             {"worker_threads", e.workerThreads}, {"os", e.os},
-            {"build_type", e.buildType},       {"compiler", e.compiler},
-            {"git_commit", e.gitCommit},       {"raycache_version", e.raycacheVersion},
+            {"build_type", e.buildType},         {"compiler", e.compiler},
+            {"git_commit", e.gitCommit},         {"raycache_version", e.raycacheVersion},
             {"embree_version", e.embreeVersion}, {"tbb_version", e.tbbVersion},
-            {"started_at", e.startedAt},       {"load_average_at_start", e.loadAverage}};
+            {"started_at", e.startedAt},         {"load_average_at_start", e.loadAverage}};
 }
 
 nlohmann::json toJson(const VariantTimes& t) {
@@ -37,7 +37,9 @@ nlohmann::json toJson(const PaperTable& table) {
     return {{"source", table.source}, {"conditions", table.conditions}, {"rows", rows}};
 }
 
-nlohmann::json finiteOrNull(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); }
+nlohmann::json finiteOrNull(double value) {
+    return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json();
+}
 
 void writeJsonFile(const std::filesystem::path& path, const nlohmann::json& json) {
     writeTextFileAtomically(path, json.dump(2) + "\n");

@@ -1,10 +1,11 @@
 #include "bench/RunEnvironment.h"
 
+#include <sys/utsname.h>
+
 #include <chrono>
 #include <cstdio>
 #include <ctime>
 #include <fstream>
-#include <sys/utsname.h>
 #include <thread>
 
 #include "core/Parallel.h"

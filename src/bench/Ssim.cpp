@@ -86,8 +86,7 @@ double ssim(const Image& a, const Image& b, const SsimSettings& settings) {
         const std::vector<double> weights(static_cast<std::size_t>(w) * static_cast<std::size_t>(h),
                                           1.0 / (static_cast<double>(w) * h));
         for (int channel = 0; channel < 3; ++channel)
-            sum += windowSsim(displayChannel(a, channel), displayChannel(b, channel), w, 0, 0, w, h, weights,
-                              settings);
+            sum += windowSsim(displayChannel(a, channel), displayChannel(b, channel), w, 0, 0, w, h, weights, settings);
         return sum / 3.0;
     }
 
@@ -102,14 +101,16 @@ double ssim(const Image& a, const Image& b, const SsimSettings& settings) {
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < ow; ++x) {
                 double s = 0.0;
-                for (int k = 0; k < n; ++k) s += taps[static_cast<std::size_t>(k)] * image[static_cast<std::size_t>(y * w + x + k)];
+                for (int k = 0; k < n; ++k)
+                    s += taps[static_cast<std::size_t>(k)] * image[static_cast<std::size_t>(y * w + x + k)];
                 rows[static_cast<std::size_t>(y * ow + x)] = s;
             }
         std::vector<double> out(static_cast<std::size_t>(ow) * static_cast<std::size_t>(oh));
         for (int y = 0; y < oh; ++y)
             for (int x = 0; x < ow; ++x) {
                 double s = 0.0;
-                for (int k = 0; k < n; ++k) s += taps[static_cast<std::size_t>(k)] * rows[static_cast<std::size_t>((y + k) * ow + x)];
+                for (int k = 0; k < n; ++k)
+                    s += taps[static_cast<std::size_t>(k)] * rows[static_cast<std::size_t>((y + k) * ow + x)];
                 out[static_cast<std::size_t>(y * ow + x)] = s;
             }
         return out;

@@ -20,11 +20,20 @@ std::string escapeXml(const std::string& s) {
     std::string out;
     for (char c : s) {
         switch (c) {
-        case '&': out += "&amp;"; break;
-        case '<': out += "&lt;"; break;
-        case '>': out += "&gt;"; break;
-        case '"': out += "&quot;"; break;
-        default: out += c;
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            default:
+                out += c;
         }
     }
     return out;
@@ -59,9 +68,8 @@ std::string SvgPlot::toSvg() const {
     // Long category labels are drawn slanted, which needs room below the axis.
     std::size_t longestCategory = 0;
     for (const std::string& c : categories) longestCategory = std::max(longestCategory, c.size());
-    const bool slanted =
-        !categories.empty() &&
-        7.0 * static_cast<double>(longestCategory) > (width - 72.0 - 250.0) / static_cast<double>(categories.size());
+    const bool slanted = !categories.empty() && 7.0 * static_cast<double>(longestCategory) >
+                                                    (width - 72.0 - 250.0) / static_cast<double>(categories.size());
     const double left = 72, right = 250, top = 40;
     const double bottom = slanted ? 56 + 5.0 * static_cast<double>(std::min<std::size_t>(longestCategory, 24)) : 56;
     const double plotW = width - left - right, plotH = height - top - bottom;
@@ -100,8 +108,8 @@ std::string SvgPlot::toSvg() const {
       << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
       << "\" viewBox=\"0 0 " << width << " " << height << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
       << "<rect x=\"0\" y=\"0\" width=\"" << width << "\" height=\"" << height << "\" fill=\"white\"/>\n"
-      << "<text x=\"" << num(width / 2.0) << "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">"
-      << escapeXml(title) << "</text>\n";
+      << "<text x=\"" << num(width / 2.0) << "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">" << escapeXml(title)
+      << "</text>\n";
 
     // Grid and y ticks.
     for (double v = y0; v <= y1 + yStep * 1e-6; v += yStep) {
@@ -125,18 +133,18 @@ std::string SvgPlot::toSvg() const {
     } else {
         const double xStep = niceStep(x1 - x0);
         for (double v = std::ceil(x0 / xStep - 1e-9) * xStep; v <= x1 + xStep * 1e-6; v += xStep)
-            o << "<line x1=\"" << num(sx(v)) << "\" y1=\"" << num(top + plotH) << "\" x2=\"" << num(sx(v))
-              << "\" y2=\"" << num(top + plotH + 5) << "\" stroke=\"black\"/>\n"
+            o << "<line x1=\"" << num(sx(v)) << "\" y1=\"" << num(top + plotH) << "\" x2=\"" << num(sx(v)) << "\" y2=\""
+              << num(top + plotH + 5) << "\" stroke=\"black\"/>\n"
               << "<text x=\"" << num(sx(v)) << "\" y=\"" << num(top + plotH + 18) << "\" text-anchor=\"middle\">"
               << tickLabel(v, xStep) << "</text>\n";
     }
     // Axes and labels.
     o << "<line x1=\"" << num(left) << "\" y1=\"" << num(top) << "\" x2=\"" << num(left) << "\" y2=\""
       << num(top + plotH) << "\" stroke=\"black\"/>\n"
-      << "<line x1=\"" << num(left) << "\" y1=\"" << num(top + plotH) << "\" x2=\"" << num(left + plotW)
-      << "\" y2=\"" << num(top + plotH) << "\" stroke=\"black\"/>\n"
-      << "<text x=\"" << num(left + plotW / 2) << "\" y=\"" << num(height - 14.0)
-      << "\" text-anchor=\"middle\">" << escapeXml(xLabel) << "</text>\n"
+      << "<line x1=\"" << num(left) << "\" y1=\"" << num(top + plotH) << "\" x2=\"" << num(left + plotW) << "\" y2=\""
+      << num(top + plotH) << "\" stroke=\"black\"/>\n"
+      << "<text x=\"" << num(left + plotW / 2) << "\" y=\"" << num(height - 14.0) << "\" text-anchor=\"middle\">"
+      << escapeXml(xLabel) << "</text>\n"
       << "<text x=\"18\" y=\"" << num(top + plotH / 2) << "\" text-anchor=\"middle\" transform=\"rotate(-90 18 "
       << num(top + plotH / 2) << ")\">" << escapeXml(yLabel) << "</text>\n";
     if (referenceY)
@@ -183,8 +191,8 @@ std::string SvgPlot::toSvg() const {
         // Legend entry.
         const double ly = top + 10 + 20.0 * static_cast<double>(si), lx = left + plotW + 16;
         if (bars)
-            o << "<rect x=\"" << num(lx) << "\" y=\"" << num(ly - 6) << "\" width=\"22\" height=\"12\" fill=\""
-              << color << "\"" << (s.dashed ? " fill-opacity=\"0.45\"" : "") << "/>\n";
+            o << "<rect x=\"" << num(lx) << "\" y=\"" << num(ly - 6) << "\" width=\"22\" height=\"12\" fill=\"" << color
+              << "\"" << (s.dashed ? " fill-opacity=\"0.45\"" : "") << "/>\n";
         else
             o << "<line x1=\"" << num(lx) << "\" y1=\"" << num(ly) << "\" x2=\"" << num(lx + 22) << "\" y2=\""
               << num(ly) << "\" stroke=\"" << color << "\" stroke-width=\"2\""
@@ -197,6 +205,8 @@ std::string SvgPlot::toSvg() const {
     return o.str();
 }
 
-void writeSvgPlot(const SvgPlot& plot, const std::string& path) { writeTextFileAtomically(path, plot.toSvg()); }
+void writeSvgPlot(const SvgPlot& plot, const std::string& path) {
+    writeTextFileAtomically(path, plot.toSvg());
+}
 
 }  // namespace raycache

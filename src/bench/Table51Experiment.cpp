@@ -11,7 +11,9 @@ namespace {
 // merged: set kHybridPipelineAvailable to true and select it in
 // selectTable51Pipeline (e.g. `settings.pipeline = Pipeline::Hybrid;`).
 constexpr bool kHybridPipelineAvailable = false;
-void selectTable51Pipeline(RenderSettings& settings) { static_cast<void>(settings); }
+void selectTable51Pipeline(RenderSettings& settings) {
+    static_cast<void>(settings);
+}
 // ==========================================================================
 
 // As in the documents, only the main sphere caches; the N spheres behind the
@@ -43,8 +45,9 @@ std::unique_ptr<Experiment> makeTable51Experiment() {
     spec.configure = selectTable51Pipeline;
     spec.pipeline = kHybridPipelineAvailable ? "hybrid" : "ray";
     if (!kHybridPipelineAvailable)
-        spec.caveats.push_back("hybrid pipeline not available in this build: measured with the ray pipeline, not "
-                               "comparable to Table 5.1");
+        spec.caveats.push_back(
+            "hybrid pipeline not available in this build: measured with the ray pipeline, not "
+            "comparable to Table 5.1");
     return std::make_unique<TimingTableExperiment>(std::move(spec));
 }
 

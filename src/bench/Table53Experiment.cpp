@@ -6,7 +6,9 @@ namespace raycache {
 
 namespace {
 
-CdctParameters cdct(float step, float epsilon) { return {step, epsilon, 100.0f}; }
+CdctParameters cdct(float step, float epsilon) {
+    return {step, epsilon, 100.0f};
+}
 
 // ===================== MERGE SWITCH: improved CDCT =====================
 // The variants of Table 5.3. In this build technique `cdct` is the thesis'

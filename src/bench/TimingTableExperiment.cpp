@@ -18,14 +18,19 @@ namespace raycache {
 
 namespace {
 
-double megapixels(const TimingSize& s) { return static_cast<double>(s.width) * s.height / 1e6; }
+double megapixels(const TimingSize& s) {
+    return static_cast<double>(s.width) * s.height / 1e6;
+}
 
 std::string techniqueName(const std::optional<CacheTechnique>& t) {
     if (!t) return "scene materials";
     switch (*t) {
-    case CacheTechnique::None: return "none";
-    case CacheTechnique::Cct: return "cct";
-    case CacheTechnique::Cdct: return "cdct";
+        case CacheTechnique::None:
+            return "none";
+        case CacheTechnique::Cct:
+            return "cct";
+        case CacheTechnique::Cdct:
+            return "cdct";
     }
     return "unknown";
 }
@@ -34,8 +39,8 @@ std::string techniqueName(const std::optional<CacheTechnique>& t) {
 struct VariantResult {
     const TimingVariant* variant = nullptr;
     VariantTimes still;
-    std::optional<FrameCacheStats> stillCache;  // last timed still frame
-    VariantTimes moving;                        // one entry per whole-path run (ms per frame, averaged)
+    std::optional<FrameCacheStats> stillCache;       // last timed still frame
+    VariantTimes moving;                             // one entry per whole-path run (ms per frame, averaged)
     std::vector<std::vector<double>> movingFrameMs;  // per round, every frame of the path
     std::optional<FrameCacheStats> movingLastCache;  // last frame of the last path run
     bool measured() const { return variant->unavailable.empty(); }
@@ -56,7 +61,9 @@ double hitPercent(const std::optional<FrameCacheStats>& c) {
     return 100.0 * static_cast<double>(c->hits()) / static_cast<double>(c->lookups());
 }
 
-double ratio(double baselineMs, double ms) { return ms > 0.0 && baselineMs > 0.0 ? baselineMs / ms : std::nan(""); }
+double ratio(double baselineMs, double ms) {
+    return ms > 0.0 && baselineMs > 0.0 ? baselineMs / ms : std::nan("");
+}
 
 }  // namespace
 
@@ -66,8 +73,9 @@ const TimingSize& TimingTableExperiment::sizeFor(BenchSize size) const {
 
 double TimingTableExperiment::estimatedWork(const BenchSettings& settings) const {
     const TimingSize& s = sizeFor(settings.size);
-    const std::size_t scenes = s.scenes > 0 ? std::min<std::size_t>(spec_.scenes.size(), static_cast<std::size_t>(s.scenes))
-                                            : spec_.scenes.size();
+    const std::size_t scenes = s.scenes > 0
+                                   ? std::min<std::size_t>(spec_.scenes.size(), static_cast<std::size_t>(s.scenes))
+                                   : spec_.scenes.size();
     double perScene = 0.0;
     for (const TimingVariant& v : spec_.variants) {
         if (!v.unavailable.empty()) continue;
@@ -161,8 +169,7 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
                                       results[vi].movingFrameMs.push_back(std::move(frameMs));
                                       return rays;
                                   },
-                                  [&, vi] { caches[vi]->clear(); },
-                                  [&, work] { context.progress.advance(work); }});
+                                  [&, vi] { caches[vi]->clear(); }, [&, work] { context.progress.advance(work); }});
             }
             const std::vector<VariantTimes> movingTimes = runInterleaved(moving, 0, size.movingRounds);
             for (std::size_t k = 0; k < measuredIndex.size(); ++k) {
@@ -179,8 +186,8 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
         for (const VariantResult& r : results) {
             nlohmann::json v = {{"label", r.variant->label},
                                 {"technique", techniqueName(r.variant->technique)},
-                                {"documents_fps", finiteOrNull(spec_.documents.value(ts.label, r.variant->key)
-                                                                   .value_or(std::nan("")))}};
+                                {"documents_fps",
+                                 finiteOrNull(spec_.documents.value(ts.label, r.variant->key).value_or(std::nan("")))}};
             if (r.variant->cdct)
                 v["cdct"] = {{"step", r.variant->cdct->step},
                              {"epsilon", r.variant->cdct->epsilon},
@@ -219,10 +226,11 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
           std::to_string(size.warmupFrames) + " warm-up + " + std::to_string(size.timedFrames) +
           " timed frames per variant (still camera, variants interleaved)";
     if (size.movingFrames > 0)
-        md += "; moving camera: the scene's path, " + std::to_string(size.movingFrames) + " frames from empty caches, " +
-              std::to_string(size.movingRounds) + " run(s) per variant";
-    md += ". Times are ms per frame, median (min–max); speed-up = uncached median / variant median. "
-          "The documents' figures are GPU frame rates: compare speed-ups, not frame rates.\n\n";
+        md += "; moving camera: the scene's path, " + std::to_string(size.movingFrames) +
+              " frames from empty caches, " + std::to_string(size.movingRounds) + " run(s) per variant";
+    md +=
+        ". Times are ms per frame, median (min–max); speed-up = uncached median / variant median. "
+        "The documents' figures are GPU frame rates: compare speed-ups, not frame rates.\n\n";
 
     SvgPlot speedPlot;
     speedPlot.referenceY = 1.0;
@@ -244,13 +252,10 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
     if (spec_.rowsAreScenes) {
         const TimingVariant& compared = spec_.variants.at(1);
         const bool hasMoving = size.movingFrames > 0 && size.movingRounds > 0;
-        std::vector<std::string> headers{spec_.rowHeader,
-                                         "documents: " + baseline.label + " fps",
-                                         "documents: " + compared.label + " fps",
-                                         "documents: speed-up",
-                                         "raycache: " + baseline.label + " ms",
-                                         "raycache: " + compared.label + " ms",
-                                         "raycache: speed-up"};
+        std::vector<std::string> headers{
+            spec_.rowHeader,       "documents: " + baseline.label + " fps", "documents: " + compared.label + " fps",
+            "documents: speed-up", "raycache: " + baseline.label + " ms",   "raycache: " + compared.label + " ms",
+            "raycache: speed-up"};
         if (hasMoving) {
             headers.push_back("moving camera: speed-up");
             headers.push_back(compared.label + " hit rate, last moving frame");
@@ -265,17 +270,23 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
             const std::string& label = spec_.scenes[si].label;
             const double docBase = spec_.documents.value(label, baseline.key).value_or(std::nan(""));
             const double docComp = spec_.documents.value(label, compared.key).value_or(std::nan(""));
-            const double docSpeed = spec_.documentsSpeedupColumn.empty()
-                                        ? docComp / docBase
-                                        : spec_.documents.value(label, spec_.documentsSpeedupColumn).value_or(std::nan(""));
+            const double docSpeed =
+                spec_.documentsSpeedupColumn.empty()
+                    ? docComp / docBase
+                    : spec_.documents.value(label, spec_.documentsSpeedupColumn).value_or(std::nan(""));
             const SampleSummary b = summarize(r[0].still.milliseconds), c = summarize(r[1].still.milliseconds);
             const double speed = ratio(b.median, c.median);
-            std::vector<std::string> row{label,          cellNumber(docBase, 1),  cellNumber(docComp, 1),
+            std::vector<std::string> row{label,
+                                         cellNumber(docBase, 1),
+                                         cellNumber(docComp, 1),
                                          cellNumber(docSpeed, 2) + (std::isfinite(docSpeed) ? "×" : ""),
-                                         cellRange(b, 1), cellRange(c, 1), cellNumber(speed, 2) + "×"};
+                                         cellRange(b, 1),
+                                         cellRange(c, 1),
+                                         cellNumber(speed, 2) + "×"};
             double movingSpeed = std::nan("");
             if (hasMoving) {
-                movingSpeed = ratio(summarize(r[0].moving.milliseconds).median, summarize(r[1].moving.milliseconds).median);
+                movingSpeed =
+                    ratio(summarize(r[0].moving.milliseconds).median, summarize(r[1].moving.milliseconds).median);
                 row.push_back(cellNumber(movingSpeed, 2) + "×");
                 row.push_back(cellNumber(hitPercent(r[1].movingLastCache), 1) + "%");
             }
@@ -297,16 +308,18 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
                                        summarize(table.front()[1].still.milliseconds).median);
             const double last = ratio(summarize(table.back()[0].still.milliseconds).median,
                                       summarize(table.back()[1].still.milliseconds).median);
-            out.headlines.push_back(spec_.name + ": " + compared.label + " speed-up " + cellNumber(first, 2) + "× (" +
-                                    spec_.rowHeader + " = " + spec_.scenes.front().label + ") to " +
-                                    cellNumber(last, 2) + "× (" + spec_.rowHeader + " = " +
-                                    spec_.scenes[table.size() - 1].label + "), caches filled; documents " +
-                                    cellNumber(spec_.documents.value(spec_.scenes.front().label,
-                                                                     spec_.documentsSpeedupColumn).value_or(std::nan("")), 2) +
-                                    "× to " +
-                                    cellNumber(spec_.documents.value(spec_.scenes[table.size() - 1].label,
-                                                                     spec_.documentsSpeedupColumn).value_or(std::nan("")), 2) +
-                                    "×");
+            out.headlines.push_back(
+                spec_.name + ": " + compared.label + " speed-up " + cellNumber(first, 2) + "× (" + spec_.rowHeader +
+                " = " + spec_.scenes.front().label + ") to " + cellNumber(last, 2) + "× (" + spec_.rowHeader + " = " +
+                spec_.scenes[table.size() - 1].label + "), caches filled; documents " +
+                cellNumber(spec_.documents.value(spec_.scenes.front().label, spec_.documentsSpeedupColumn)
+                               .value_or(std::nan("")),
+                           2) +
+                "× to " +
+                cellNumber(spec_.documents.value(spec_.scenes[table.size() - 1].label, spec_.documentsSpeedupColumn)
+                               .value_or(std::nan("")),
+                           2) +
+                "×");
         }
     } else {
         std::vector<std::string> headers{"variant"};
@@ -351,14 +364,15 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
                 const double rel = ratio(summarize(table[si][0].still.milliseconds).median, s.median);
                 row.push_back(cellRange(s, 1));
                 row.push_back(cellNumber(rel, 2) + "×");
-                row.push_back(table[si][vi].stillCache ? cellNumber(hitPercent(table[si][vi].stillCache), 1) + "%" : "–");
+                row.push_back(table[si][vi].stillCache ? cellNumber(hitPercent(table[si][vi].stillCache), 1) + "%"
+                                                       : "–");
                 oursSeries[si].points.push_back({static_cast<double>(vi), rel});
                 if (vi > 0)
-                    out.headlines.push_back(spec_.name + " " + spec_.scenes[si].label + ": " + v.label + " " +
-                                            cellNumber(rel, 2) + "× " + baseline.label + " (documents " +
-                                            (std::isfinite(docFps / docBase) ? cellNumber(docFps / docBase, 2) + "×" : "–") +
-                                            "), cache hit rate " +
-                                            cellNumber(hitPercent(table[si][vi].stillCache), 1) + "%");
+                    out.headlines.push_back(
+                        spec_.name + " " + spec_.scenes[si].label + ": " + v.label + " " + cellNumber(rel, 2) + "× " +
+                        baseline.label + " (documents " +
+                        (std::isfinite(docFps / docBase) ? cellNumber(docFps / docBase, 2) + "×" : "–") +
+                        "), cache hit rate " + cellNumber(hitPercent(table[si][vi].stillCache), 1) + "%");
             }
             t.addRow(row);
         }
@@ -379,27 +393,28 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
 
     nlohmann::json variantsSpec = nlohmann::json::array();
     for (const TimingVariant& v : spec_.variants)
-        variantsSpec.push_back({{"key", v.key}, {"label", v.label}, {"technique", techniqueName(v.technique)},
+        variantsSpec.push_back({{"key", v.key},
+                                {"label", v.label},
+                                {"technique", techniqueName(v.technique)},
                                 {"available", v.unavailable.empty()}});
-    const nlohmann::json root = {
-        {"experiment", spec_.name},
-        {"title", spec_.title},
-        {"size", toString(context.settings.size)},
-        {"settings",
-         {{"width", size.width},
-          {"height", size.height},
-          {"cache_resolution", size.cacheResolution},
-          {"warmup_frames", size.warmupFrames},
-          {"timed_frames", size.timedFrames},
-          {"moving_frames", size.movingFrames},
-          {"moving_rounds", size.movingRounds},
-          {"max_depth", RenderSettings{}.maxDepth},
-          {"pipeline", spec_.pipeline},
-          {"variants", variantsSpec}}},
-        {"environment", toJson(context.environment)},
-        {"documents", toJson(spec_.documents)},
-        {"caveats", out.caveats},
-        {"rows", rowsJson}};
+    const nlohmann::json root = {{"experiment", spec_.name},
+                                 {"title", spec_.title},
+                                 {"size", toString(context.settings.size)},
+                                 {"settings",
+                                  {{"width", size.width},
+                                   {"height", size.height},
+                                   {"cache_resolution", size.cacheResolution},
+                                   {"warmup_frames", size.warmupFrames},
+                                   {"timed_frames", size.timedFrames},
+                                   {"moving_frames", size.movingFrames},
+                                   {"moving_rounds", size.movingRounds},
+                                   {"max_depth", RenderSettings{}.maxDepth},
+                                   {"pipeline", spec_.pipeline},
+                                   {"variants", variantsSpec}}},
+                                 {"environment", toJson(context.environment)},
+                                 {"documents", toJson(spec_.documents)},
+                                 {"caveats", out.caveats},
+                                 {"rows", rowsJson}};
     writeJsonFile(context.dir / "results.json", root);
     writeTextFileAtomically(context.dir / "results.md", experimentMarkdown(out));
     return out;

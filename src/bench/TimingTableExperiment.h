@@ -41,17 +41,17 @@ struct TimingSize {
     int height = 0;
     int warmupFrames = 0;  // untimed, fill the caches
     int timedFrames = 0;
-    int movingFrames = 0;  // 0 = no moving-camera run
-    int movingRounds = 0;  // each renders the whole path per variant
-    int scenes = 0;        // how many of the table's scenes to run (0 = all)
+    int movingFrames = 0;       // 0 = no moving-camera run
+    int movingRounds = 0;       // each renders the whole path per variant
+    int scenes = 0;             // how many of the table's scenes to run (0 = all)
     int cacheResolution = 512;  // cube face side (the documents': 512)
 };
 
 struct TimingTableSpec {
     std::string name;
     std::string title;
-    std::string description;      // what is measured, in a few sentences (goes into results.md)
-    std::string rowHeader;        // "N" or "scene"
+    std::string description;  // what is measured, in a few sentences (goes into results.md)
+    std::string rowHeader;    // "N" or "scene"
     std::vector<TimingScene> scenes;
     std::vector<TimingVariant> variants;  // variants[0] is the baseline speed-ups are relative to
     PaperTable documents;

@@ -4,6 +4,8 @@
 
 namespace raycache {
 
-std::string embreeVersion() { return RTC_VERSION_STRING; }
+std::string embreeVersion() {
+    return RTC_VERSION_STRING;
+}
 
 }  // namespace raycache

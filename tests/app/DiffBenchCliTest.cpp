@@ -1,13 +1,13 @@
 // `raycache diff` and `raycache bench` as a user meets them: printed metrics
 // of known images, exit codes, one-line errors, and no partial output.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <sys/wait.h>
 
 #include "core/Image.h"
 #include "render/ImageWriter.h"

@@ -3,13 +3,13 @@
 // keys), Markdown tables, SVG plots, images, and a report whose links all
 // resolve. Tiny numbers mean nothing; only the shape and invariants are checked.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
-#include <unistd.h>
 
 #include "XmlCheck.h"
 #include "app/BenchCommand.h"

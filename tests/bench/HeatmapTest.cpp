@@ -23,7 +23,7 @@ TEST(Heatmap, ColorScaleRunsFromBlueToRed) {
 TEST(Heatmap, PixelDifferenceIsTheMeanAbsoluteChannelDifference) {
     Image a(2, 1), b(2, 1);
     b.at(0, 0) = Rgb{1.0f, 0.0f, 0.0f};  // one channel of three fully different
-    b.at(1, 0) = Rgb{1.0f};               // all three
+    b.at(1, 0) = Rgb{1.0f};              // all three
     const std::vector<float> d = pixelDifferences(a, b);
     ASSERT_EQ(d.size(), 2u);
     EXPECT_NEAR(d[0], 1.0f / 3.0f, 1e-7);
@@ -35,7 +35,7 @@ TEST(Heatmap, PictureAndColorBar) {
     b.at(5, 5) = Rgb{1.0f};  // one totally different pixel
     const Image map = renderHeatmap(a, b);
     ASSERT_GE(map.height(), 30);  // taller when the bar needs room for its labels
-    ASSERT_GT(map.width(), 40);  // the color bar sits on the right
+    ASSERT_GT(map.width(), 40);   // the color bar sits on the right
     // Same pixels blue, the different one red (display colors 0/1 are exact in linear).
     EXPECT_EQ(map.at(0, 0).b, 1.0f);
     EXPECT_EQ(map.at(0, 0).r, 0.0f);

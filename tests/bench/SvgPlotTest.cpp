@@ -58,4 +58,6 @@ TEST(SvgPlot, NumericAxisAndBars) {
     EXPECT_THROW(broken.toSvg(), InputError);
 }
 
-TEST(SvgPlot, EmptyPlotIsStillWellFormed) { EXPECT_EQ(xmlProblem(SvgPlot{}.toSvg()), ""); }
+TEST(SvgPlot, EmptyPlotIsStillWellFormed) {
+    EXPECT_EQ(xmlProblem(SvgPlot{}.toSvg()), "");
+}
