@@ -1,11 +1,15 @@
 #!/usr/bin/env bash
 # The main job on a fresh machine: install dependencies, build (release), then
-# render the default built-in scene along its camera path. Extra arguments go
-# to `raycache render` (e.g. --scene grid-32 --width 1024 --height 1024).
+# reproduce the documents' experiments at quick size (a few minutes on 2 cores):
+# tables, plots, difference images and results/report.md.
+# Extra arguments go to `raycache bench`: `scripts/run.sh --full` (the documents'
+# sizes), `scripts/run.sh table-5.2 fill-rate` (some experiments only).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 cmake --preset release >/dev/null
 cmake --build --preset release --target raycache
-mkdir -p out
-exec build/release/apps/raycache/raycache render --scene room --out 'out/room_%04d.png' --stats out/room-stats.json "$@"
+if [ $# -eq 0 ] || [[ "$1" == -* ]]; then
+  set -- all "$@"   # no experiment named: all of them, with the report
+fi
+exec build/release/apps/raycache/raycache bench "$@"

@@ -2,10 +2,13 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "app/BenchCommand.h"
 #include "app/CacheViewCommand.h"
+#include "app/DiffCommand.h"
 #include "app/RenderCommand.h"
 #include "app/ScenesCommand.h"
 #include "app/ViewCommand.h"
+#include "bench/ProgressBar.h"
 #include "core/Errors.h"
 
 namespace {
@@ -104,6 +107,29 @@ int main(int argc, char** argv) {
                         "Resolution factor while the camera moves, 0.1..1")
         ->capture_default_str();
 
+    // raycache diff: image difference metrics and heat map.
+    raycache::DiffCommandOptions diff;
+    CLI::App* diffCmd = app.add_subcommand("diff", "Compare two images: MAE, PSNR and SSIM of the displayed images");
+    diffCmd->add_option("first", diff.first, "First image (.png, .exr, .hdr, .jpg, .bmp, .tga)")->required();
+    diffCmd->add_option("second", diff.second, "Second image, same size")->required();
+    diffCmd->add_option("--heatmap", diff.heatmap,
+                        "Write the per-pixel difference as a heat map with a color bar (.png or .exr)");
+    diffCmd->add_option("--heatmap-max", diff.heatmapMax, "Difference shown as full red, in (0, 1]")
+        ->capture_default_str();
+
+    // raycache bench: the documents' experiments.
+    raycache::BenchCommandOptions bench;
+    CLI::App* benchCmd = app.add_subcommand(
+        "bench", "Reproduce the documents' experiments: tables, plots, images and results/report.md");
+    benchCmd->add_option("experiments", bench.experiments,
+                         "table-5.1, table-5.2, table-5.3, fill-rate, quality, parallax, or all (writes report.md)");
+    benchCmd->add_flag("--quick", bench.quick, "Lower resolution, fewer frames: all in a few minutes (default)");
+    benchCmd->add_flag("--full", bench.full, "The documents' resolutions and frame counts (long)");
+    benchCmd->add_flag("--tiny", bench.tiny, "A few dozen pixels, seconds: a smoke test, numbers meaningless");
+    benchCmd->add_option("--threads", bench.threads, "Worker threads, 0 = all cores")->capture_default_str();
+    benchCmd->add_option("--out", bench.outDir, "Results directory")->capture_default_str();
+    benchCmd->add_flag("--list", bench.list, "List the experiments and exit");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -119,6 +145,11 @@ int main(int argc, char** argv) {
         if (renderCmd->parsed()) raycache::runRenderCommand(render, std::cout);
         else if (cacheViewCmd->parsed()) raycache::runCacheViewCommand(cacheView, std::cout);
         else if (viewCmd->parsed()) raycache::runViewCommand(view, std::cout);
+        else if (diffCmd->parsed()) raycache::runDiffCommand(diff, std::cout);
+        else if (benchCmd->parsed()) {
+            bench.interactive = raycache::ProgressBar::stdoutIsTerminal();
+            raycache::runBenchCommand(bench, std::cout);
+        }
         else raycache::runScenesCommand(std::cout);
     } catch (const raycache::InputError& e) {
         std::cerr << "error: " << e.what() << '\n';

@@ -29,10 +29,8 @@ CameraPath chooseCameraPath(const Scene& scene, const std::optional<std::string>
 }  // namespace
 
 std::optional<CacheTechnique> parseTechnique(const std::string& name) {
-    if (name == "none") return CacheTechnique::None;
-    if (name == "cct") return CacheTechnique::Cct;
-    if (name == "cdct") return CacheTechnique::Cdct;
-    if (name == "cdct-parity") return CacheTechnique::CdctParity;
+    for (CacheTechnique t : {CacheTechnique::None, CacheTechnique::Cct, CacheTechnique::Cdct, CacheTechnique::CdctParity})
+        if (name == cacheTechniqueName(t)) return t;
     return std::nullopt;
 }
 

@@ -20,7 +20,8 @@ std::vector<VariantTimes> runInterleaved(const std::vector<Variant>& variants, i
             const auto start = std::chrono::steady_clock::now();
             times[i].work = variants[i].run();
             const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-            if (round >= warmupRounds) times[i].milliseconds.push_back(ms);
+            (round >= warmupRounds ? times[i].milliseconds : times[i].warmupMilliseconds).push_back(ms);
+            if (variants[i].finish) variants[i].finish();
         }
     }
     return times;

@@ -15,11 +15,14 @@ struct Variant {
     std::function<std::uint64_t()> run;
     // Optional, untimed, before every run (e.g. emptying caches).
     std::function<void()> prepare = {};
+    // Optional, untimed, after every run (e.g. recording per-frame results, progress).
+    std::function<void()> finish = {};
 };
 
 struct VariantTimes {
     std::string name;
     std::vector<double> milliseconds;  // one per timed run, in run order
+    std::vector<double> warmupMilliseconds;  // the untimed warm-up runs, for the record
     std::uint64_t work = 0;            // from the last run
     double median() const;
     double min() const;

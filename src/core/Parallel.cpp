@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#include <tbb/version.h>
 
 namespace raycache {
 
@@ -16,6 +17,8 @@ Parallel::Parallel(int threads) : impl_(std::make_unique<Impl>(threads)) {}
 Parallel::~Parallel() = default;
 
 int Parallel::threadCount() const { return impl_->arena.max_concurrency(); }
+
+std::string Parallel::libraryVersion() { return TBB_runtime_version(); }
 
 void Parallel::forEachIndex(int count, const std::function<void(int, int)>& body) const {
     impl_->arena.execute([&] {

@@ -3,6 +3,7 @@
 // loop over screen tiles. Callers never see TBB types.
 #include <functional>
 #include <memory>
+#include <string>
 
 namespace raycache {
 
@@ -19,6 +20,9 @@ public:
     Parallel& operator=(const Parallel&) = delete;
 
     int threadCount() const;
+
+    // The oneTBB version the program runs with ("2021.8"), for reports.
+    static std::string libraryVersion();
 
     // Calls body(tile, workerIndex) once per tile of size tileSize covering
     // width x height; workerIndex in [0, threadCount()) identifies per-thread

@@ -1,0 +1,158 @@
+#include "bench/FillRateExperiment.h"
+
+#include <cmath>
+
+#include "bench/MarkdownTable.h"
+#include "bench/PaperFigures.h"
+#include "bench/ResultsJson.h"
+#include "bench/SvgPlot.h"
+#include "core/AtomicFile.h"
+#include "core/Errors.h"
+#include "render/FrameLoop.h"
+#include "scene/BuiltinScenes.h"
+
+namespace raycache {
+
+namespace {
+
+constexpr int kSteps = 9;  // camera moves after the first frame
+constexpr float kDegreesPerStep = 10.0f / 3.0f;
+constexpr int kResolutions[] = {128, 256, 512};
+
+int imageSide(BenchSize size) {
+    return size == BenchSize::Tiny ? 48 : 1024;
+}
+
+class FillRateExperiment : public Experiment {
+public:
+    std::string name() const override { return "fill-rate"; }
+    std::string title() const override {
+        return "Figure 5.9: invalid texels before each frame, camera moving around one caching sphere";
+    }
+    double estimatedWork(const BenchSettings& settings) const override {
+        const double mp = std::pow(imageSide(settings.size), 2) / 1e6;
+        return 3.0 * (kSteps + 1) * mp * 1.3;
+    }
+
+    ExperimentOutput run(ExperimentContext& context) const override {
+        const int side = imageSide(context.settings.size);
+        const double frameWork = static_cast<double>(side) * side / 1e6 * 1.3;
+        std::optional<Scene> scene = makeBuiltinScene("behind-0");
+        if (!scene) throw RuntimeError("built-in scene behind-0 is missing");
+        CameraPath path;
+        path.kind = CameraPathKind::Orbit;
+        path.center = scene->camera.lookAt;  // the main sphere's centre
+        path.degreesPerFrame = kDegreesPerStep;
+
+        const PaperTable documents = paperFigure59();
+        nlohmann::json series = nlohmann::json::array();
+        std::vector<std::vector<double>> invalid;  // [resolution][k] = invalid % after k frames (k = 0..10)
+        SvgPlot plot;
+        plot.title = "fill-rate: invalid texels after each frame (camera moving 10/3° per frame)";
+        plot.xLabel = "frames rendered";
+        plot.yLabel = "invalid texels (%)";
+        plot.yMin = 0.0;
+        plot.yMax = 100.0;
+        for (int resolution : kResolutions) {
+            context.progress.step("fill-rate: " + std::to_string(resolution) + "² faces");
+            RenderSettings settings;
+            settings.width = settings.height = side;
+            settings.threads = context.settings.threads;
+            settings.cache.techniqueOverride = CacheTechnique::Cct;
+            settings.cache.resolutionOverride = resolution;
+            std::vector<double> before, ms, hits;
+            double afterLast = 100.0;
+            renderFrames(
+                *scene, path, settings, kSteps + 1, [&](const FrameResult& r, const Image&, const RayCache& caches) {
+                    const FrameCacheStats& c = *r.stats.cache;
+                    before.push_back(c.invalidPercentBefore());
+                    ms.push_back(r.milliseconds);
+                    hits.push_back(
+                        c.lookups() ? 100.0 * static_cast<double>(c.hits()) / static_cast<double>(c.lookups()) : 0.0);
+                    const CachingCube& cube = caches.cube(mainObjectId(*scene));
+                    afterLast = 100.0 * static_cast<double>(cube.texelCount() - cube.validCount()) /
+                                static_cast<double>(cube.texelCount());
+                    context.progress.advance(frameWork);
+                });
+            std::vector<double> after(before.begin(), before.end());
+            after.push_back(afterLast);  // after k frames, k = 0..10
+            invalid.push_back(after);
+            series.push_back({{"resolution", resolution},
+                              {"invalid_percent_before_frame", before},
+                              {"invalid_percent_after_last_frame", afterLast},
+                              {"frame_ms", ms},
+                              {"hit_percent", hits}});
+            PlotSeries s{"raycache " + std::to_string(resolution) + "²", {}};
+            for (std::size_t k = 0; k < after.size(); ++k) s.points.push_back({static_cast<double>(k), after[k]});
+            plot.series.push_back(std::move(s));
+        }
+        PlotSeries docs{"documents, after frame 1 (Fig 5.9)", {}};
+        docs.line = false;
+        docs.dashed = true;
+        for (int resolution : kResolutions)
+            docs.points.push_back({1.0, documents.value(std::to_string(resolution), "invalid-after-frame-1").value()});
+        plot.series.push_back(std::move(docs));
+        writeSvgPlot(plot, (context.dir / "invalid-texels.svg").string());
+
+        ExperimentOutput out;
+        out.name = name();
+        out.title = title();
+        std::string md =
+            "behind-0's main mirror sphere in front of the camera, " + std::to_string(side) + "x" +
+            std::to_string(side) +
+            " pixels; the camera orbits the sphere's centre by 10/3° per frame (frame 1 "
+            "plus 9 steps, 30° in all), caches starting empty. Invalid texels of the sphere's cube after each "
+            "frame (= before the next).\n\n";
+        MarkdownTable first({"face resolution", "documents: invalid after frame 1", "raycache: invalid after frame 1",
+                             "raycache: after frame 5", "raycache: after frame 10"});
+        for (std::size_t i = 0; i < std::size(kResolutions); ++i) {
+            const std::string res = std::to_string(kResolutions[i]);
+            first.addRow({res + "²", cellNumber(documents.value(res, "invalid-after-frame-1").value(), 0) + "%",
+                          cellNumber(invalid[i][1], 1) + "%", cellNumber(invalid[i][5], 1) + "%",
+                          cellNumber(invalid[i][10], 1) + "%"});
+            out.headlines.push_back("fill-rate " + res + "²: " + cellNumber(invalid[i][1], 1) +
+                                    "% invalid after frame 1 (documents " +
+                                    cellNumber(documents.value(res, "invalid-after-frame-1").value(), 0) + "%), " +
+                                    cellNumber(invalid[i][10], 1) + "% after frame 10");
+        }
+        md += first.toMarkdown() + "\nThe documents: " + paperFigure59Later() + ".\n\n";
+        MarkdownTable all({"frames rendered", "128²", "256²", "512²"});
+        for (std::size_t k = 0; k < invalid[0].size(); ++k)
+            all.addRow({std::to_string(k), cellNumber(invalid[0][k], 1) + "%", cellNumber(invalid[1][k], 1) + "%",
+                        cellNumber(invalid[2][k], 1) + "%"});
+        md += "Invalid texels after each frame:\n\n" + all.toMarkdown();
+        out.markdown = md;
+        out.plots = {"invalid-texels.svg"};
+
+        writeJsonFile(context.dir / "results.json", {{"experiment", name()},
+                                                     {"title", title()},
+                                                     {"size", toString(context.settings.size)},
+                                                     {"settings",
+                                                      {{"scene", "behind-0"},
+                                                       {"width", side},
+                                                       {"height", side},
+                                                       {"frames", kSteps + 1},
+                                                       {"degrees_per_frame", kDegreesPerStep},
+                                                       {"resolutions", kResolutions}}},
+                                                     {"environment", toJson(context.environment)},
+                                                     {"documents", toJson(documents)},
+                                                     {"series", series}});
+        writeTextFileAtomically(context.dir / "results.md", experimentMarkdown(out));
+        return out;
+    }
+
+private:
+    static int mainObjectId(const Scene& scene) {
+        for (std::size_t i = 0; i < scene.objects.size(); ++i)
+            if (scene.objects[i].name == "main") return static_cast<int>(i);
+        throw RuntimeError("behind-0 has no object named main");
+    }
+};
+
+}  // namespace
+
+std::unique_ptr<Experiment> makeFillRateExperiment() {
+    return std::make_unique<FillRateExperiment>();
+}
+
+}  // namespace raycache

@@ -1,0 +1,24 @@
+#pragma once
+// results/report.md: every experiment's findings in one page, readable on
+// its own — what was run, on what, how big, the documents' figures beside
+// ours, the caveats, and links to every table, plot and image.
+#include <string>
+#include <vector>
+
+#include "bench/Experiment.h"
+#include "bench/RunEnvironment.h"
+
+namespace raycache {
+
+struct ReportInput {
+    BenchSettings settings;
+    RunEnvironment environment;
+    double wallSeconds = 0.0;
+    std::string command;  // how it was run, e.g. "raycache bench all --quick"
+    std::vector<ExperimentOutput> experiments;
+};
+
+// The Markdown text; links are relative to the results directory.
+std::string reportMarkdown(const ReportInput& input);
+
+}  // namespace raycache

@@ -1,0 +1,168 @@
+// `raycache diff` and `raycache bench` as a user meets them: printed metrics
+// of known images, exit codes, one-line errors, and no partial output.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "core/Image.h"
+#include "render/ImageWriter.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct RunResult {
+    int exitCode;
+    std::string out;
+    std::string err;
+};
+
+RunResult runRaycache(const std::string& args, const fs::path& dir) {
+    const fs::path errFile = dir.parent_path() / (dir.filename().string() + "-stderr.txt");
+    const std::string command = std::string(RAYCACHE_BINARY) + " " + args + " 2>" + errFile.string();
+    RunResult result{};
+    FILE* pipe = popen(command.c_str(), "r");
+    std::array<char, 4096> buffer{};
+    while (pipe && fgets(buffer.data(), buffer.size(), pipe)) result.out += buffer.data();
+    const int status = pipe ? pclose(pipe) : -1;
+    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ifstream in(errFile);
+    result.err.assign(std::istreambuf_iterator<char>(in), {});
+    fs::remove(errFile);
+    return result;
+}
+
+int lineCount(const std::string& s) {
+    int lines = 0;
+    for (char c : s) lines += c == '\n';
+    return lines;
+}
+
+class DiffBenchCli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() /
+               ("raycache-diffbench-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+        raycache::Image black(8, 8), white(8, 8), half(8, 8), other(9, 8);
+        for (raycache::Rgb& p : white.pixels()) p = raycache::Rgb{1.0f};
+        for (int x = 0; x < 8; ++x)
+            for (int y = 0; y < 4; ++y) half.at(x, y) = raycache::Rgb{1.0f};
+        raycache::writeImage(black, dir_ / "black.png");
+        raycache::writeImage(white, dir_ / "white.png");
+        raycache::writeImage(half, dir_ / "half.png");
+        raycache::writeImage(other, dir_ / "other-size.png");
+        inputs_ = fileCount();
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    std::string path(const char* name) const { return (dir_ / name).string(); }
+    std::size_t fileCount() const {
+        return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()));
+    }
+    fs::path dir_;
+    std::size_t inputs_ = 0;
+};
+
+}  // namespace
+
+TEST_F(DiffBenchCli, DiffPrintsMetricsOfKnownImages) {
+    // Black against half white: MSE 0.5 -> PSNR 10 log10(2) = 3.01 dB, MAE 0.5.
+    const RunResult r = runRaycache("diff " + path("black.png") + " " + path("half.png"), dir_);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("MAE   0.500000"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("PSNR  3.01 dB"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("SSIM  "), std::string::npos) << r.out;
+
+    // Identical: infinite PSNR, SSIM 1.
+    const RunResult same = runRaycache("diff " + path("white.png") + " " + path("white.png"), dir_);
+    ASSERT_EQ(same.exitCode, 0) << same.err;
+    EXPECT_NE(same.out.find("PSNR  inf (identical)"), std::string::npos) << same.out;
+    EXPECT_NE(same.out.find("SSIM  1.00000"), std::string::npos) << same.out;
+
+    // Black against white (constant): SSIM = C1 / (1 + C1) = 0.0001 / 1.0001.
+    const RunResult bw = runRaycache("diff " + path("black.png") + " " + path("white.png"), dir_);
+    ASSERT_EQ(bw.exitCode, 0) << bw.err;
+    EXPECT_NE(bw.out.find("PSNR  0.00 dB"), std::string::npos) << bw.out;
+    EXPECT_NE(bw.out.find("SSIM  0.00010"), std::string::npos) << bw.out;
+    EXPECT_EQ(fileCount(), inputs_);  // no heat map unless asked
+}
+
+TEST_F(DiffBenchCli, DiffWritesAHeatmap) {
+    const RunResult r =
+        runRaycache("diff " + path("black.png") + " " + path("half.png") + " --heatmap " + path("map.png"), dir_);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(fs::exists(dir_ / "map.png"));
+    EXPECT_EQ(fileCount(), inputs_ + 1);  // no temporary file left
+}
+
+TEST_F(DiffBenchCli, DiffBadInputIsOneLineExitTwoAndNoHeatmap) {
+    const std::string map = " --heatmap " + path("map.png");
+    const std::array<std::string, 7> cases{
+        "diff " + path("black.png") + " " + path("missing.png") + map,
+        "diff " + path("black.png") + " " + path("other-size.png") + map,
+        "diff " + path("black.png") + " " + path("white.png") + " --heatmap " + path("map.bmp"),
+        "diff " + path("black.png") + " " + path("white.png") + " --heatmap " + (dir_ / "no-dir" / "m.png").string(),
+        "diff " + path("black.png") + " " + path("white.png") + map + " --heatmap-max 0",
+        "diff " + path("black.png") + map,
+        "diff " + path("black.png") + " " + path("black.png") + " --no-such-flag",
+    };
+    for (const std::string& args : cases) {
+        const RunResult r = runRaycache(args, dir_);
+        EXPECT_EQ(r.exitCode, 2) << args;
+        EXPECT_EQ(lineCount(r.err), 1) << args << "\n" << r.err;
+        EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << args << "\n" << r.err;
+        EXPECT_EQ(fileCount(), inputs_) << args;
+    }
+}
+
+TEST_F(DiffBenchCli, BenchListsAndRejectsBadOptionsBeforeRunning) {
+    const RunResult list = runRaycache("bench --list", dir_);
+    ASSERT_EQ(list.exitCode, 0) << list.err;
+    EXPECT_EQ(lineCount(list.out), 6);
+    for (const char* name : {"table-5.1", "table-5.2", "table-5.3", "fill-rate", "quality", "parallax"})
+        EXPECT_NE(list.out.find(name), std::string::npos) << name;
+
+    const std::string out = " --out " + (dir_ / "results").string();
+    for (const std::string& args : {"bench no-such-experiment" + out, "bench table-5.1 --quick --full" + out,
+                                    "bench" + out, "bench all --threads -1" + out}) {
+        const RunResult r = runRaycache(args, dir_);
+        EXPECT_EQ(r.exitCode, 2) << args;
+        EXPECT_EQ(lineCount(r.err), 1) << args << "\n" << r.err;
+        EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << args << "\n" << r.err;
+        EXPECT_FALSE(fs::exists(dir_ / "results")) << args;
+    }
+}
+
+TEST_F(DiffBenchCli, BenchRunsOneExperimentWithPlainProgressLines) {
+    // Not a terminal: plain lines, no carriage returns or escape codes.
+    const RunResult r = runRaycache("bench fill-rate --tiny --threads 2 --out " + (dir_ / "results").string(), dir_);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.out.find('\r'), std::string::npos);
+    EXPECT_EQ(r.out.find('\033'), std::string::npos);
+    EXPECT_NE(r.out.find("[  0%] fill-rate: 128"), std::string::npos) << r.out;
+    EXPECT_TRUE(fs::exists(dir_ / "results" / "fill-rate" / "results.json"));
+    EXPECT_TRUE(fs::exists(dir_ / "results" / "fill-rate" / "invalid-texels.svg"));
+    EXPECT_FALSE(fs::exists(dir_ / "results" / "report.md"));  // only `bench all` writes the report
+}
+
+TEST_F(DiffBenchCli, HelpForDiffAndBench) {
+    for (const char* args : {"diff --help", "bench --help"}) {
+        const RunResult r = runRaycache(args, dir_);
+        EXPECT_EQ(r.exitCode, 0) << args;
+        EXPECT_NE(r.out.find("Usage"), std::string::npos) << args;
+    }
+}
+
+TEST_F(DiffBenchCli, BenchResultsDirectoryThatIsAFileIsARuntimeError) {
+    std::ofstream(dir_ / "taken") << "not a directory";
+    const RunResult r = runRaycache("bench fill-rate --tiny --out " + (dir_ / "taken").string(), dir_);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << r.err;
+}

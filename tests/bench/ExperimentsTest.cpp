@@ -1,0 +1,212 @@
+// Every experiment at tiny size, through the bench command as a user runs
+// it: well-formed results.json (parsed back, finite numbers, the expected
+// keys), Markdown tables, SVG plots, images, and a report whose links all
+// resolve. Tiny numbers mean nothing; only the shape and invariants are checked.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+
+#include "XmlCheck.h"
+#include "app/BenchCommand.h"
+#include "bench/ExperimentRegistry.h"
+
+namespace fs = std::filesystem;
+using namespace raycache;
+
+namespace {
+
+std::string readFile(const fs::path& p) {
+    std::ifstream in(p);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// Every number in the document is finite (JSON cannot hold NaN/inf; nlohmann
+// writes them as null, which the bench only does on purpose via finiteOrNull).
+void expectFiniteNumbers(const nlohmann::json& j, const std::string& where, int& count) {
+    if (j.is_number()) {
+        ++count;
+        EXPECT_TRUE(std::isfinite(j.get<double>())) << where;
+    } else if (j.is_object()) {
+        for (auto it = j.begin(); it != j.end(); ++it) expectFiniteNumbers(it.value(), where + "/" + it.key(), count);
+    } else if (j.is_array()) {
+        for (std::size_t i = 0; i < j.size(); ++i) expectFiniteNumbers(j[i], where + "/" + std::to_string(i), count);
+    }
+}
+
+// Each Markdown table has a separator line and every row has as many cells as its header.
+int checkMarkdownTables(const std::string& md, const std::string& file) {
+    std::istringstream in(md);
+    std::string line;
+    int tables = 0, headerCells = -1;
+    std::string previous;
+    const auto cells = [](const std::string& l) {
+        int n = 0;
+        for (std::size_t i = 0; i < l.size(); ++i)
+            if (l[i] == '|' && (i == 0 || l[i - 1] != '\\')) ++n;
+        return n - 1;
+    };
+    while (std::getline(in, line)) {
+        if (line.rfind("| ---", 0) == 0) {
+            ++tables;
+            headerCells = cells(previous);
+            EXPECT_EQ(cells(line), headerCells) << file << ": " << line;
+        } else if (line.rfind("|", 0) == 0 && headerCells > 0 && previous.rfind("|", 0) == 0) {
+            EXPECT_EQ(cells(line), headerCells) << file << ": " << line;
+        } else if (line.rfind("|", 0) != 0) {
+            headerCells = -1;
+        }
+        previous = line;
+    }
+    return tables;
+}
+
+class Experiments : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        // One directory per process: ctest runs the test cases as parallel processes.
+        dir_ = fs::temp_directory_path() / ("raycache-bench-tiny-" + std::to_string(getpid()));
+        fs::remove_all(dir_);
+        BenchCommandOptions options;
+        options.experiments = {"all"};
+        options.tiny = true;
+        options.threads = 2;
+        options.outDir = dir_.string();
+        std::ostringstream log;
+        runBenchCommand(options, log);
+        log_ = log.str();
+    }
+    static void TearDownTestSuite() { fs::remove_all(dir_); }
+
+    static nlohmann::json results(const std::string& name) {
+        return nlohmann::json::parse(readFile(dir_ / name / "results.json"));
+    }
+
+    static fs::path dir_;
+    static std::string log_;
+};
+
+fs::path Experiments::dir_;
+std::string Experiments::log_;
+
+}  // namespace
+
+TEST_F(Experiments, EveryExperimentWritesWellFormedJsonMarkdownAndSvg) {
+    for (const auto& e : allExperiments()) {
+        const fs::path d = dir_ / e->name();
+        SCOPED_TRACE(e->name());
+        ASSERT_TRUE(fs::exists(d / "results.json"));
+        const nlohmann::json j = results(e->name());
+        EXPECT_EQ(j.at("experiment"), e->name());
+        EXPECT_EQ(j.at("size"), "tiny");
+        for (const char* key : {"cpu_model", "compiler", "build_type", "git_commit", "embree_version", "tbb_version"})
+            EXPECT_FALSE(j.at("environment").at(key).get<std::string>().empty()) << key;
+        EXPECT_EQ(j.at("environment").at("worker_threads"), 2);
+        int numbers = 0;
+        expectFiniteNumbers(j, e->name(), numbers);
+        EXPECT_GT(numbers, 10);
+
+        const std::string md = readFile(d / "results.md");
+        EXPECT_GE(checkMarkdownTables(md, e->name()), 1);
+        int plots = 0;
+        for (const auto& f : fs::directory_iterator(d)) {
+            if (f.path().extension() != ".svg") continue;
+            ++plots;
+            const std::string svg = readFile(f.path());
+            EXPECT_EQ(raycache::test::xmlProblem(svg), "") << f.path();
+            EXPECT_GE(raycache::test::countOccurrences(svg, "class=\"series\""), 1) << f.path();
+            EXPECT_NE(md.find("(" + f.path().filename().string() + ")"), std::string::npos)
+                << "results.md links " << f.path().filename();
+        }
+        EXPECT_GE(plots, 1);
+        EXPECT_NE(log_.find(e->title()), std::string::npos);
+    }
+}
+
+TEST_F(Experiments, TimingTablesRecordEveryFrameAndSayWhatIsMissing) {
+    for (const char* name : {"table-5.1", "table-5.2", "table-5.3"}) {
+        SCOPED_TRACE(name);
+        const nlohmann::json j = results(name);
+        const int timed = j.at("settings").at("timed_frames");
+        const int moving = j.at("settings").at("moving_frames");
+        ASSERT_FALSE(j.at("rows").empty());
+        for (const auto& row : j.at("rows")) {
+            for (const auto& [key, v] : row.at("variants").items()) {
+                if (!v.at("available").get<bool>()) {
+                    EXPECT_FALSE(v.at("unavailable_reason").get<std::string>().empty());
+                    continue;
+                }
+                const auto& frames = v.at("still").at("frame_ms");
+                ASSERT_EQ(static_cast<int>(frames.size()), timed) << key;
+                for (const auto& ms : frames) EXPECT_GT(ms.get<double>(), 0.0);
+                EXPECT_LE(v.at("still").at("min_ms").get<double>(), v.at("still").at("median_ms").get<double>());
+                if (moving > 0) {
+                    EXPECT_EQ(static_cast<int>(v.at("moving").at("frame_ms_per_round").at(0).size()), moving);
+                }
+            }
+        }
+    }
+    // Table 5.1 is measured in the hybrid pipeline, as the documents did.
+    EXPECT_EQ(results("table-5.1").at("settings").at("pipeline"), "hybrid");
+    // Table 5.3 measures the improved CDCT beside the parity rows.
+    const nlohmann::json t53 = results("table-5.3");
+    EXPECT_TRUE(t53.at("rows").at(0).at("variants").at("cdct-improved").at("available").get<bool>());
+    EXPECT_EQ(t53.at("rows").at(0).at("variants").at("cdct-0.02/0.002").at("cdct").at("step"), 0.02f);
+    // The documents' figures sit beside ours.
+    EXPECT_DOUBLE_EQ(t53.at("rows").at(1).at("variants").at("cct").at("documents_fps").get<double>(), 68.2);
+}
+
+TEST_F(Experiments, FillRateStartsEmptyAndNeverLosesTexels) {
+    const nlohmann::json j = results("fill-rate");
+    ASSERT_EQ(j.at("series").size(), 3u);
+    for (const auto& s : j.at("series")) {
+        const auto& before = s.at("invalid_percent_before_frame");
+        ASSERT_EQ(before.size(), 10u);
+        EXPECT_DOUBLE_EQ(before.at(0).get<double>(), 100.0);
+        double previous = 100.0;
+        for (const auto& v : before) {
+            EXPECT_LE(v.get<double>(), previous);
+            previous = v.get<double>();
+        }
+        EXPECT_LE(s.at("invalid_percent_after_last_frame").get<double>(), previous);
+    }
+}
+
+TEST_F(Experiments, QualityAndParallaxMetricsAreInRange) {
+    const nlohmann::json q = results("quality");
+    ASSERT_EQ(q.at("rows").size(), 2u * 2u * 3u);  // views x fill protocols x resolutions
+    for (const auto& row : q.at("rows")) {
+        const auto& m = row.at("metrics");
+        EXPECT_GE(m.at("mae").get<double>(), 0.0);
+        EXPECT_LE(m.at("mae").get<double>(), 1.0);
+        EXPECT_LE(m.at("ssim").get<double>(), 1.0);
+        EXPECT_GE(m.at("ssim").get<double>(), -1.0);
+        EXPECT_TRUE(m.at("psnr_db").is_null() || m.at("psnr_db").get<double>() > 0.0);
+        for (const char* image : {"image", "heatmap", "heatmap_x4"})
+            EXPECT_TRUE(fs::exists(dir_ / "quality" / row.at(image).get<std::string>())) << row.at(image);
+    }
+    const nlohmann::json p = results("parallax");
+    ASSERT_GE(p.at("variants").size(), 2u);
+    for (const auto& v : p.at("variants")) EXPECT_EQ(v.at("frames").size(), p.at("settings").at("frames"));
+}
+
+TEST_F(Experiments, ReportLinksResolveAndStateTheSize) {
+    const std::string report = readFile(dir_ / "report.md");
+    EXPECT_NE(report.find("Size: tiny"), std::string::npos);
+    EXPECT_NE(report.find("Machine and build"), std::string::npos);
+    for (const auto& e : allExperiments()) EXPECT_NE(report.find("## " + e->title()), std::string::npos);
+    const std::regex link(R"(\]\(([^)]+)\))");
+    int links = 0;
+    for (auto it = std::sregex_iterator(report.begin(), report.end(), link); it != std::sregex_iterator(); ++it) {
+        ++links;
+        EXPECT_TRUE(fs::exists(dir_ / (*it)[1].str())) << (*it)[1].str();
+    }
+    EXPECT_GT(links, 20);
+    checkMarkdownTables(report, "report.md");
+}
