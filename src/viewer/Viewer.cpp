@@ -356,7 +356,7 @@ void Viewer::run(std::ostream& out) {
             result.frame = shown.pathFrame;
             result.milliseconds = shown.renderMs;
             result.stats = shown.stats;
-            out << formatFrameLine(result, frames) << "  | encode " << formatFixed(shown.encodeMs, 2) << " upload "
+            out << formatFrameLine(result, frames) << "  | interval " << formatFixed(lastIntervalMs, 1) << " encode " << formatFixed(shown.encodeMs, 2) << " upload "
                 << formatFixed(uiTimes.uploadMs, 2) << " ui " << formatFixed(uiTimes.uiMs, 2) << " present "
                 << formatFixed(uiTimes.presentMs, 2) << " ms" << std::endl;
             if (lastScriptedFrame) break;
