@@ -1,5 +1,6 @@
 #include "viewer/RenderWorker.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "core/Errors.h"

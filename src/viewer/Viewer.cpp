@@ -1,7 +1,10 @@
 #include "viewer/Viewer.h"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <ostream>
 #include <vector>
@@ -340,9 +343,19 @@ void Viewer::run(std::ostream& out) {
             const std::filesystem::path path = scripted || !options_.screenshotPath.empty()
                                                    ? std::filesystem::path(options_.screenshotPath)
                                                    : nextScreenshotPath(scene.name, screenshotCounter);
-            writeScreenshot(fbw, fbh, path);
-            out << "screenshot " << path.string() << " (" << fbw << "x" << fbh << ")" << std::endl;
             screenshotPending = false;
+            if (scripted) {
+                writeScreenshot(fbw, fbh, path);  // a failure fails the run
+                out << "screenshot " << path.string() << " (" << fbw << "x" << fbh << ")" << std::endl;
+            } else {
+                // A key press must not end an interactive session.
+                try {
+                    writeScreenshot(fbw, fbh, path);
+                    out << "screenshot " << path.string() << " (" << fbw << "x" << fbh << ")" << std::endl;
+                } catch (const std::exception& e) {
+                    out << "screenshot not written: " << e.what() << std::endl;
+                }
+            }
         }
         const Clock::time_point presentStart = Clock::now();
         window.swapBuffers();
@@ -356,7 +369,7 @@ void Viewer::run(std::ostream& out) {
             result.frame = shown.pathFrame;
             result.milliseconds = shown.renderMs;
             result.stats = shown.stats;
-            out << formatFrameLine(result, frames) << "  | encode " << formatFixed(shown.encodeMs, 2) << " upload "
+            out << formatFrameLine(result, frames) << "  | interval " << formatFixed(lastIntervalMs, 1) << " encode " << formatFixed(shown.encodeMs, 2) << " upload "
                 << formatFixed(uiTimes.uploadMs, 2) << " ui " << formatFixed(uiTimes.uiMs, 2) << " present "
                 << formatFixed(uiTimes.presentMs, 2) << " ms" << std::endl;
             if (lastScriptedFrame) break;

@@ -136,13 +136,15 @@ void drawInspector(const ViewerPanelInput& in, ViewerUiState& state) {
 
 void drawInspectorWindow(const ViewerPanelInput& in, ViewerUiState& state) {
     if (!state.showInspector || in.frame->inspectedObject < 0 || in.inspectorWidth == 0) return;
-    ImGui::SetNextWindowSize(ImVec2(420.0f, 360.0f), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 430.0f, 10.0f), ImGuiCond_FirstUseEver);
+    // Bottom right, clear of the panel and of the middle of the view.
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowSize(ImVec2(360.0f, 300.0f), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowPos(ImVec2(display.x - 370.0f, display.y - 310.0f), ImGuiCond_FirstUseEver);
     const std::string title =
         "Cube of " + in.scene->objects[static_cast<std::size_t>(in.frame->inspectedObject)].name + "###inspector";
     if (ImGui::Begin(title.c_str(), &state.showInspector)) {
-        ImGui::Text("invalid texels %.2f%%  (black: invalid; +Y above +Z; -X +Z +X -Z; -Y below)",
-                    in.frame->inspectedInvalidPercent);
+        ImGui::Text("invalid texels %.2f%% (black)", in.frame->inspectedInvalidPercent);
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("+Y above +Z; -X, +Z, +X, -Z in the middle row; -Y below +Z");
         const float width = std::max(ImGui::GetContentRegionAvail().x, 64.0f);
         const float height = width * static_cast<float>(in.inspectorHeight) / static_cast<float>(in.inspectorWidth);
         ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(in.inspectorTexture)),
