@@ -3,43 +3,23 @@
 #include <gtest/gtest.h>
 
 #include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <sys/wait.h>
 
+#include "ShellRun.h"
 #include "scene/ImageLoader.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct RunResult {
-    int exitCode;
-    std::string out;
-    std::string err;
-};
+using raycache::test::lineCount;
+using raycache::test::RunResult;
 
 // Runs the raycache binary with `args` (already shell-quoted where needed).
 RunResult runRaycache(const std::string& args, const fs::path& dir) {
-    const fs::path errFile = dir / "stderr.txt";
-    const std::string command = std::string(RAYCACHE_BINARY) + " " + args + " 2>" + errFile.string();
-    RunResult result{};
-    FILE* pipe = popen(command.c_str(), "r");
-    std::array<char, 4096> buffer{};
-    while (pipe && fgets(buffer.data(), buffer.size(), pipe)) result.out += buffer.data();
-    const int status = pipe ? pclose(pipe) : -1;
-    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream in(errFile);
-    result.err.assign(std::istreambuf_iterator<char>(in), {});
-    return result;
-}
-
-int lineCount(const std::string& s) {
-    int lines = 0;
-    for (char c : s) lines += c == '\n';
-    return lines;
+    return raycache::test::runShell(std::string(RAYCACHE_BINARY) + " " + args, dir / "stderr.txt");
 }
 
 class Cli : public ::testing::Test {

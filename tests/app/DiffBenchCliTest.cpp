@@ -1,14 +1,13 @@
 // `raycache diff` and `raycache bench` as a user meets them: printed metrics
 // of known images, exit codes, one-line errors, and no partial output.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "ShellRun.h"
 #include "core/Image.h"
 #include "render/ImageWriter.h"
 
@@ -16,31 +15,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct RunResult {
-    int exitCode;
-    std::string out;
-    std::string err;
-};
+using raycache::test::lineCount;
+using raycache::test::RunResult;
 
 RunResult runRaycache(const std::string& args, const fs::path& dir) {
     const fs::path errFile = dir.parent_path() / (dir.filename().string() + "-stderr.txt");
-    const std::string command = std::string(RAYCACHE_BINARY) + " " + args + " 2>" + errFile.string();
-    RunResult result{};
-    FILE* pipe = popen(command.c_str(), "r");
-    std::array<char, 4096> buffer{};
-    while (pipe && fgets(buffer.data(), buffer.size(), pipe)) result.out += buffer.data();
-    const int status = pipe ? pclose(pipe) : -1;
-    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream in(errFile);
-    result.err.assign(std::istreambuf_iterator<char>(in), {});
+    RunResult result = raycache::test::runShell(std::string(RAYCACHE_BINARY) + " " + args, errFile);
     fs::remove(errFile);
     return result;
-}
-
-int lineCount(const std::string& s) {
-    int lines = 0;
-    for (char c : s) lines += c == '\n';
-    return lines;
 }
 
 class DiffBenchCli : public ::testing::Test {

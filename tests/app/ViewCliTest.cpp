@@ -8,10 +8,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <string>
-#include <sys/wait.h>
 
+#include "ShellRun.h"
 #include "bench/ImageMetrics.h"
 #include "scene/ImageLoader.h"
 
@@ -19,30 +18,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct RunResult {
-    int exitCode;
-    std::string out;
-    std::string err;
-};
+using raycache::test::lineCount;
+using raycache::test::RunResult;
 
 // Runs `command` (a shell command line) capturing stdout and stderr.
 RunResult run(const std::string& command, const fs::path& dir) {
-    const fs::path errFile = dir / "stderr.txt";
-    RunResult result{};
-    FILE* pipe = popen((command + " 2>" + errFile.string()).c_str(), "r");
-    std::array<char, 4096> buffer{};
-    while (pipe && fgets(buffer.data(), buffer.size(), pipe)) result.out += buffer.data();
-    const int status = pipe ? pclose(pipe) : -1;
-    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream in(errFile);
-    result.err.assign(std::istreambuf_iterator<char>(in), {});
-    return result;
-}
-
-int lineCount(const std::string& s) {
-    int lines = 0;
-    for (char c : s) lines += c == '\n';
-    return lines;
+    return raycache::test::runShell(command, dir / "stderr.txt");
 }
 
 bool haveXvfbRun() { return std::system("command -v xvfb-run >/dev/null 2>&1") == 0; }
