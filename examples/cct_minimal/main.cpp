@@ -99,7 +99,7 @@ void run(int width, int height, int frames, const std::string& outPath) {
         cache.beginFrame(workers);
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x) {
-                workers[0].beginPixel(static_cast<std::uint32_t>(y * width + x));
+                workers[0].beginBatch(static_cast<std::uint32_t>(y * width + x));
                 image.at(x, y) = mini.trace(pinholeRay(camera, x, y, width, height), 1, workers[0]);
             }
         const FrameCacheStats s = cache.endFrame(workers);

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "cache/CubeAddressing.h"
 #include "core/Rgb.h"
@@ -42,11 +43,21 @@ public:
     }
     // The cached color at `index`, or nothing if the texel is invalid.
     std::optional<Rgb> read(int index) const {
-        const std::uint32_t packed = texels_[static_cast<std::size_t>(index)];
-        if (packed == kInvalidTexel) return std::nullopt;
-        return decodeTexel(packed);
+        if (!isValid(index)) return std::nullopt;
+        return decodeTexel(texels_[static_cast<std::size_t>(index)]);
     }
-    bool isValid(int index) const { return texels_[static_cast<std::size_t>(index)] != kInvalidTexel; }
+    // Answered from a bit per texel (1/32 of the texels' memory), so asking
+    // about an invalid texel never touches the large texel array.
+    bool isValid(int index) const {
+        const auto i = static_cast<std::size_t>(index);
+        return (validBits_[i >> 6] >> (i & 63)) & 1u;
+    }
+    // Where the validity bit and the texel word of `index` live, for callers
+    // that prefetch a batch of lookups before reading them.
+    const std::uint64_t* validWordOf(int index) const { return &validBits_[static_cast<std::size_t>(index) >> 6]; }
+    const std::uint32_t* texelWordOf(int index) const { return &texels_[static_cast<std::size_t>(index)]; }
+    // The decoded color of a texel known to be valid.
+    Rgb readValid(int index) const { return decodeTexel(texels_[static_cast<std::size_t>(index)]); }
     // The stored distance from the centre at `index` (CDCT cubes), kInvalidDepth if invalid.
     float depth(int index) const { return std::bit_cast<float>((*depths_)[static_cast<std::size_t>(index)]); }
     // Writes `packed` (and, in a CDCT cube, `depth`) if the texel is still
@@ -72,6 +83,7 @@ private:
     Vec3 halfSize_{};
     TexelBuffer texels_;
     std::optional<TexelBuffer> depths_;
+    std::vector<std::uint64_t> validBits_;  // bit i: texel i valid
     std::size_t validCount_ = 0;
 };
 

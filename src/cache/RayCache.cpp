@@ -1,6 +1,7 @@
 #include "cache/RayCache.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -135,30 +136,43 @@ void RayCache::beginFrame(std::span<CacheWorker> workers) {
             100.0 * static_cast<double>(e.cube.texelCount() - e.cube.validCount()) / static_cast<double>(e.cube.texelCount());
     for (CacheWorker& w : workers) {
         w.pending_.clear();
+        w.batches_.clear();
         w.counters_.assign(cubes_.size(), CacheWorker::Counters{});
     }
 }
 
 FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers) {
-    std::vector<CacheWorker::PendingStore> pending;
-    std::size_t count = 0;
-    for (const CacheWorker& w : workers) count += w.pending_.size();
-    pending.reserve(count);
-    for (const CacheWorker& w : workers) pending.insert(pending.end(), w.pending_.begin(), w.pending_.end());
-    // Fixed order: by cube, texel, then the thread-independent (pixel, sequence) key.
-    std::sort(pending.begin(), pending.end(), [](const auto& a, const auto& b) {
-        if (a.cube != b.cube) return a.cube < b.cube;
-        if (a.texel != b.texel) return a.texel < b.texel;
-        return a.order < b.order;
+    // Batches in key order; only their boundaries are sorted (one per tile),
+    // never the stores themselves.
+    mergeOrder_.clear();
+    for (std::size_t w = 0; w < workers.size(); ++w) {
+        workers[w].closeBatch();
+        for (const CacheWorker::Batch& b : workers[w].batches_)
+            if (b.end > b.begin) mergeOrder_.push_back({b.key, w, b.begin, b.end});
+    }
+    std::sort(mergeOrder_.begin(), mergeOrder_.end(), [](const BatchRef& a, const BatchRef& b) {
+        return a.key != b.key ? a.key < b.key : a.worker < b.worker;
     });
 
     FrameCacheStats stats;
     stats.objects.resize(cubes_.size());
-    for (const auto& p : pending) {
-        Entry& e = cubes_[p.cube];
-        if (!e.cube.writeIfInvalid(p.texel, p.packed, p.depth)) continue;
-        ++stats.objects[p.cube].stores;
-        if (p.depth < e.cdct.maxDepth) e.farthestSurface = std::max(e.farthestSurface, p.depth);
+    // Stores land on scattered texels of large cubes: the validity word of a
+    // store a little ahead is prefetched so the misses overlap.
+    constexpr std::size_t kAhead = 16;
+    for (const BatchRef& b : mergeOrder_) {
+        const auto& pending = workers[b.worker].pending_;
+        for (std::size_t i = b.begin; i < b.end; ++i) {
+            if (i + kAhead < b.end) {
+                const auto& ahead = pending[i + kAhead];
+                __builtin_prefetch(cubes_[ahead.cube].cube.validWordOf(ahead.texel), 1);
+                __builtin_prefetch(cubes_[ahead.cube].cube.texelWordOf(ahead.texel), 1);
+            }
+            const auto& p = pending[i];
+            Entry& e = cubes_[p.cube];
+            if (!e.cube.writeIfInvalid(p.texel, p.packed, p.depth)) continue;
+            ++stats.objects[p.cube].stores;
+            if (p.depth < e.cdct.maxDepth) e.farthestSurface = std::max(e.farthestSurface, p.depth);
+        }
     }
 
     for (std::size_t c = 0; c < cubes_.size(); ++c) {
@@ -177,7 +191,10 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers) {
             s.rejected += w.counters_[c].rejected;
         }
     }
-    for (CacheWorker& w : workers) w.pending_.clear();
+    for (CacheWorker& w : workers) {
+        w.pending_.clear();
+        w.batches_.clear();
+    }
     return stats;
 }
 
@@ -280,12 +297,54 @@ void RayCache::store(int objectId, const Vec3& origin, const Vec3& direction, co
     }
     // Lookups read the frame-start state, so only texels invalid then are worth queuing.
     if (cube.isValid(texel)) return;
-    // The sequence saturates rather than wrapping; only a path with more than
-    // 16 M cached stores could tie, far beyond any depth/weight limit in use.
-    constexpr std::uint32_t kMaxSequence = (1u << 24) - 1u;
-    const std::uint64_t order = (static_cast<std::uint64_t>(worker.pixel_) << 24) | worker.sequence_;
-    if (worker.sequence_ < kMaxSequence) ++worker.sequence_;
-    worker.pending_.push_back({order, static_cast<std::uint32_t>(c), texel, CachingCube::encodeTexel(color), depth});
+    worker.queue({static_cast<std::uint32_t>(c), texel, CachingCube::encodeTexel(color), depth});
+}
+
+void RayCache::lookupBatch(std::span<const Query> queries, std::span<Rgb> colors, std::span<unsigned char> found,
+                           CacheWorker& worker) const {
+    // Chunks small enough for the texel indices to stay on the stack and the
+    // prefetched lines to stay in L1/L2 until they are read.
+    constexpr std::size_t kChunk = 64;
+    std::array<int, kChunk> texel;
+    for (std::size_t base = 0; base < queries.size(); base += kChunk) {
+        const std::size_t count = std::min(kChunk, queries.size() - base);
+        for (std::size_t k = 0; k < count; ++k) {
+            const Query& q = queries[base + k];
+            const Entry& e = cubes_[static_cast<std::size_t>(cubeIndexOf(q.objectId))];
+            texel[k] = -1;
+            if (e.technique != CacheTechnique::Cct) continue;
+            texel[k] = e.cube.texelIndexFor(q.direction);
+            __builtin_prefetch(e.cube.validWordOf(texel[k]));
+        }
+        for (std::size_t k = 0; k < count; ++k) {
+            if (texel[k] < 0) continue;
+            const CachingCube& cube = cubes_[static_cast<std::size_t>(cubeIndexOf(queries[base + k].objectId))].cube;
+            if (cube.isValid(texel[k])) __builtin_prefetch(cube.texelWordOf(texel[k]));
+        }
+        for (std::size_t k = 0; k < count; ++k) {
+            const Query& q = queries[base + k];
+            const std::size_t i = base + k;
+            if (texel[k] < 0) {
+                const auto color = lookup(q.objectId, q.origin, q.direction, worker);
+                found[i] = color ? 1 : 0;
+                if (color) colors[i] = *color;
+                continue;
+            }
+            const auto c = static_cast<std::size_t>(cubeIndexOf(q.objectId));
+            CacheWorker::Counters& counters = worker.counters_[c];
+            ++counters.lookups;
+            const CachingCube& cube = cubes_[c].cube;
+            if (cube.isValid(texel[k])) {
+                ++counters.hits;
+                colors[i] = cube.readValid(texel[k]);
+                found[i] = 1;
+            } else {
+                ++counters.misses;
+                found[i] = ideal_ ? 1 : 0;
+                if (ideal_) colors[i] = Rgb{};
+            }
+        }
+    }
 }
 
 }  // namespace raycache

@@ -3,22 +3,23 @@
 // object o at point p in direction s bring back?", when an earlier frame
 // already traced it.
 //
-// How a renderer uses it (see examples/cct_minimal for a whole loop):
+// How a renderer uses it (see examples/cct_minimal for a whole loop; the
+// renderer's own frames go through render/CacheFrame and render/TileKernel):
 //
 //   RayCache cache(scene, settings);
 //   std::vector<CacheWorker> workers = cache.makeWorkers(threadCount);
 //   cache.beginFrame(workers);
-//   ... in worker w, for pixel i: workers[w].beginPixel(i); then for each
-//       secondary ray leaving a caching object o:
+//   ... in worker w, for each unit of work with a frame-unique key k (a tile):
+//       workers[w].beginBatch(k); then for each secondary ray leaving a caching object o:
 //         if (auto color = cache.lookup(o, p, s, workers[w])) use *color;
 //         else { color = trace(...); cache.store(o, p, s, color, hitDistance, workers[w]); }
 //   FrameCacheStats stats = cache.endFrame(workers);
 //
 // Determinism: lookups during a frame read the caches as they stood when the
-// frame began (stores are only queued); endFrame merges the queued stores in
-// a fixed order — by texel, then by (pixel, sequence in the pixel's path) —
-// and the first store to an invalid texel wins. Images and cache contents
-// therefore do not depend on the thread count or scheduling.
+// frame began (stores are only queued); endFrame applies the queued stores
+// batch by batch in increasing key order, and the first store to an invalid
+// texel wins. Images and cache contents therefore do not depend on the
+// thread count or scheduling.
 #include <optional>
 #include <span>
 #include <string>
@@ -98,6 +99,20 @@ public:
     // CCT reads the texel addressed by `direction`; CDCT searches the depths
     // along the ray (docs/caching.md), in a bounded number of steps.
     std::optional<Rgb> lookup(int objectId, const Vec3& origin, const Vec3& direction, CacheWorker& worker) const;
+
+    // A secondary ray leaving a caching object, as a batch lookup sees it.
+    struct Query {
+        int objectId;
+        Vec3 origin;
+        Vec3 direction;
+    };
+    // lookup() for a batch: found[i] = 1 and colors[i] set when queries[i]
+    // is answered, found[i] = 0 otherwise. The same answers and counters as
+    // one lookup() per query, but CCT's validity bits and texels are
+    // prefetched for many queries before any is read, so their memory
+    // latencies overlap instead of adding up.
+    void lookupBatch(std::span<const Query> queries, std::span<Rgb> colors, std::span<unsigned char> found,
+                     CacheWorker& worker) const;
     // Improved CDCT (technique Cdct with prefill on): the objects whose cubes
     // were asked for during this frame (by `workers`) and are not filled yet.
     // The renderer fills them after the frame's pixels, before endFrame
@@ -153,7 +168,14 @@ private:
     }
 
     std::vector<Entry> cubes_;
-    std::vector<int> cubeOfObject_;  // object id -> index into cubes_, -1 if uncached
+    std::vector<int> cubeOfObject_;
+    // endFrame's batches in merge order; kept to reuse its memory.
+    struct BatchRef {
+        std::uint64_t key;
+        std::size_t worker;
+        std::size_t begin, end;
+    };
+    std::vector<BatchRef> mergeOrder_;  // object id -> index into cubes_, -1 if uncached
     bool ideal_ = false;
     CdctImprovements improvements_;
 };

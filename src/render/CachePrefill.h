@@ -7,17 +7,18 @@
 #include "cache/RayCache.h"
 #include "core/Parallel.h"
 #include "core/RayCounts.h"
-#include "render/WhittedIntegrator.h"
 
 namespace raycache {
 
+class TileKernel;
+
 // Traces one ray per texel from the centre of every cube `cache` reports as
-// awaiting its pre-fill after the frame `workers` rendered, shades what they
-// hit with `integrator` (uncached, so the result depends only on the scene),
-// and hands the cubes their contents. Call after the frame's pixels and
-// before RayCache::endFrame. Returns the rays traced. Deterministic: each
+// awaiting its pre-fill after the frame `workers` rendered, through the tile
+// kernel's pre-fill stage (uncached, so the result depends only on the
+// scene), and hands the cubes their contents. Call after the frame's pixels
+// and before RayCache::endFrame. Returns the rays traced. Deterministic: each
 // texel is computed on its own, whatever the thread count.
-RayCounts prefillCaches(RayCache& cache, std::span<const CacheWorker> workers, const WhittedIntegrator& integrator,
+RayCounts prefillCaches(RayCache& cache, std::span<const CacheWorker> workers, const TileKernel& kernel,
                         const Parallel& parallel);
 
 }  // namespace raycache

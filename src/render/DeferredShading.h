@@ -1,27 +1,18 @@
 #pragma once
 // The deferred passes of the hybrid pipeline (SPEC §4 steps 2-4), shared by
-// both G-buffer producers: shadow rays only for pixels that hold a surface,
-// reflection/refraction rays only for pixels whose material needs them
-// (traced by the same integrator and answered by the same caches as in the
-// ray pipeline), then composition into the film.
-#include <vector>
-
+// both G-buffer producers: the tile kernel (render/TileKernel.h) starting from
+// the G-buffer's surfaces, so shadow rays go only to pixels that hold a
+// surface and reflection/refraction rays only to pixels whose material needs
+// them, answered by the same caches as in the ray pipeline; then composition.
 #include "core/Image.h"
 #include "core/Parallel.h"
 #include "render/FrameStats.h"
 #include "render/GBuffer.h"
 #include "render/RenderSettings.h"
-#include "render/WhittedIntegrator.h"
+#include "render/TileKernel.h"
 #include "scene/Camera.h"
 
 namespace raycache {
-
-// The surface the ray pipeline would have built from the same hit: position
-// and shading normal from the G-buffer, the triangle's geometric normal, and
-// both turned toward the camera. Texture coordinates are not rebuilt (the
-// G-buffer carries the albedo). Pixel i must hold a surface.
-SurfacePoint surfacePointFromGBuffer(const Scene& scene, const GBufferView& gbuffer, std::size_t i,
-                                     const Vec3& rayDirection);
 
 class DeferredShading {
 public:
@@ -32,20 +23,18 @@ public:
 
     // Shades the frame `camera` sees from `gbuffer` (the settings' size) into
     // `film`; adds its rays to stats.rays, sets stats.cache and the shadows,
-    // secondary and compose times of stats.phases (the three run per tile in
-    // one parallel pass, whose wall time is split in proportion to the time
-    // the workers spent in each; the cache merge counts as secondary).
+    // secondary and compose times of stats.phases (the kernel's first bounce,
+    // its later bounces and the film writes; they run per tile in one
+    // parallel pass, whose wall time is split in proportion to the time the
+    // workers spent in each; the cache's frame end counts as secondary).
     // Images and caches do not depend on the thread count.
     void shade(const Camera& camera, const GBufferView& gbuffer, Image& film, FrameStats& stats);
 
 private:
-    const Scene& scene_;
-    const TraceScene& tracer_;
     RenderSettings settings_;
     const Parallel& parallel_;
     RayCache* cache_;
-    WhittedIntegrator integrator_;
-    std::vector<unsigned char> needsSecondary_;  // per object: reflects or refracts, and depth allows it
+    TileKernel kernel_;
 };
 
 }  // namespace raycache

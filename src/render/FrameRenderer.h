@@ -1,11 +1,12 @@
 #pragma once
-// Renders one frame: primary rays per 16x16 tile as coherent packets, then
-// Whitted shading per pixel, tiles spread over the worker threads.
+// The ray pipeline's frame: every 16x16 tile goes through the tile kernel
+// (render/TileKernel.h) starting from its camera rays, tiles spread over the
+// worker threads.
 #include "core/Image.h"
 #include "core/Parallel.h"
 #include "render/FrameStats.h"
 #include "render/RenderSettings.h"
-#include "render/WhittedIntegrator.h"
+#include "render/TileKernel.h"
 #include "scene/Camera.h"
 
 namespace raycache {
@@ -23,12 +24,16 @@ public:
     FrameStats render(const Camera& camera, Image& film) const;
 
 private:
-    const Scene& scene_;
-    const TraceScene& tracer_;
     RenderSettings settings_;
     const Parallel& parallel_;
     RayCache* cache_;
-    WhittedIntegrator integrator_;
+    TileKernel kernel_;
 };
+
+// The key that orders a tile's cache stores: its index in row-major tile order.
+inline std::uint64_t tileKey(const TileRange& tile, int width, int tileSize) {
+    const auto tilesPerRow = static_cast<std::uint64_t>((width + tileSize - 1) / tileSize);
+    return static_cast<std::uint64_t>(tile.y0 / tileSize) * tilesPerRow + static_cast<std::uint64_t>(tile.x0 / tileSize);
+}
 
 }  // namespace raycache

@@ -17,11 +17,45 @@ struct PhaseTimes {
     double compose = 0.0;    // direct + secondary, background where there is no surface
 };
 
+// CPU time the tile kernel's stages took in one frame, summed over the
+// workers, in milliseconds (RenderSettings::stageTimes; render/TileKernel.h).
+struct StageTimes {
+    double firstHits = 0.0;       // camera rays as packets, a G-buffer read, or pre-fill rays
+    double surfaces = 0.0;        // the surface at every hit
+    double shadowRays = 0.0;      // shadow queries and their rays
+    double directShading = 0.0;   // Blinn-Phong of every hit
+    double secondaryRays = 0.0;   // reflected and refracted rays spawned
+    double reuseLookups = 0.0;    // cache lookups of rays leaving caching objects
+    double traceSecondary = 0.0;  // the rays no cache answered, traced together
+    double resolve = 0.0;         // colours gathered up the ray trees, cache stores queued
+    double compose = 0.0;         // colours written to the film
+    double cacheFrameEnd = 0.0;   // wall time: pre-fill and the merge of queued stores
+
+    double total() const {
+        return firstHits + surfaces + shadowRays + directShading + secondaryRays + reuseLookups + traceSecondary +
+               resolve + compose + cacheFrameEnd;
+    }
+    StageTimes& operator+=(const StageTimes& o) {
+        firstHits += o.firstHits;
+        surfaces += o.surfaces;
+        shadowRays += o.shadowRays;
+        directShading += o.directShading;
+        secondaryRays += o.secondaryRays;
+        reuseLookups += o.reuseLookups;
+        traceSecondary += o.traceSecondary;
+        resolve += o.resolve;
+        compose += o.compose;
+        cacheFrameEnd += o.cacheFrameEnd;
+        return *this;
+    }
+};
+
 // What one rendered frame did.
 struct FrameStats {
     RayCounts rays;
     std::optional<FrameCacheStats> cache;  // present when caches were in use
     std::optional<PhaseTimes> phases;      // present for the hybrid pipeline
+    std::optional<StageTimes> stages;      // present when RenderSettings::stageTimes is set
 };
 
 }  // namespace raycache

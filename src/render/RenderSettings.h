@@ -26,6 +26,9 @@ struct RenderSettings {
     RayCacheSettings cache;
     PipelineKind pipeline = PipelineKind::Ray;
     GBufferSource gbuffer = GBufferSource::Auto;  // hybrid pipeline only
+    // Time every stage of the tile kernel (FrameStats::stages): two clock
+    // reads per stage and wave, so off unless a profile is wanted.
+    bool stageTimes = false;
 };
 
 }  // namespace raycache

@@ -7,6 +7,25 @@ namespace raycache {
 
 namespace {
 
+// A triangle's unit geometric normal, on the side of the shading normal `ns`
+// when the mesh has vertex normals: files disagree on winding, so the vertex
+// normals are trusted for which side is outside.
+Vec3 triangleNormal(const TriangleMesh& mesh, int primitiveId, const Vec3& ns, bool hasShadingNormal) {
+    const auto& tri = mesh.triangles[static_cast<std::size_t>(primitiveId)];
+    const Vec3& p0 = mesh.positions[tri[0]];
+    const Vec3 ng = normalize(cross(mesh.positions[tri[1]] - p0, mesh.positions[tri[2]] - p0));
+    return hasShadingNormal && dot(ng, ns) < 0.0f ? -ng : ng;
+}
+
+// Turns both normals toward the side `rayDirection` came from.
+void faceToward(SurfacePoint& sp, const Vec3& rayDirection) {
+    sp.frontFace = dot(rayDirection, sp.geometricNormal) < 0.0f;
+    if (!sp.frontFace) {
+        sp.normal = -sp.normal;
+        sp.geometricNormal = -sp.geometricNormal;
+    }
+}
+
 void sphereSurface(const Sphere& sphere, SurfacePoint& sp, bool needUv) {
     const Vec3 n = (sp.position - sphere.center) * (1.0f / sphere.radius);
     sp.normal = sp.geometricNormal = n;
@@ -19,19 +38,19 @@ void sphereSurface(const Sphere& sphere, SurfacePoint& sp, bool needUv) {
 void meshSurface(const TriangleMesh& mesh, const TraceHit& hit, SurfacePoint& sp) {
     const auto& tri = mesh.triangles[static_cast<std::size_t>(hit.primitiveId)];
     const float w = 1.0f - hit.u - hit.v;
-    const Vec3& p0 = mesh.positions[tri[0]];
-    Vec3 ng = normalize(cross(mesh.positions[tri[1]] - p0, mesh.positions[tri[2]] - p0));
-    Vec3 ns = ng;
+    Vec3 ns;
+    bool hasShadingNormal = false;
     if (!mesh.normals.empty()) {
         const Vec3 interpolated =
             mesh.normals[tri[0]] * w + mesh.normals[tri[1]] * hit.u + mesh.normals[tri[2]] * hit.v;
         const float len = length(interpolated);
-        if (len > 0.0f) ns = interpolated / len;
-        // Trust the vertex normals for which side is outside: files disagree on winding.
-        if (dot(ng, ns) < 0.0f) ng = -ng;
+        if (len > 0.0f) {
+            ns = interpolated / len;
+            hasShadingNormal = true;
+        }
     }
-    sp.normal = ns;
-    sp.geometricNormal = ng;
+    sp.geometricNormal = triangleNormal(mesh, hit.primitiveId, ns, hasShadingNormal);
+    sp.normal = hasShadingNormal ? ns : sp.geometricNormal;
     if (!mesh.uvs.empty()) {
         sp.u = mesh.uvs[tri[0]][0] * w + mesh.uvs[tri[1]][0] * hit.u + mesh.uvs[tri[2]][0] * hit.v;
         sp.v = mesh.uvs[tri[0]][1] * w + mesh.uvs[tri[1]][1] * hit.u + mesh.uvs[tri[2]][1] * hit.v;
@@ -45,11 +64,25 @@ SurfacePoint surfacePointAt(const SceneObject& object, const Ray& ray, const Tra
     sp.position = ray.origin + ray.direction * hit.t;
     if (const auto* sphere = std::get_if<Sphere>(&object.shape)) sphereSurface(*sphere, sp, needUv);
     else meshSurface(*std::get<MeshShape>(object.shape).mesh, hit, sp);
-    sp.frontFace = dot(ray.direction, sp.geometricNormal) < 0.0f;
-    if (!sp.frontFace) {
-        sp.normal = -sp.normal;
-        sp.geometricNormal = -sp.geometricNormal;
+    faceToward(sp, ray.direction);
+    return sp;
+}
+
+SurfacePoint surfacePointFromGBuffer(const Scene& scene, const GBufferView& gbuffer, std::size_t i,
+                                     const Vec3& rayDirection) {
+    SurfacePoint sp;
+    sp.position = gbuffer.position(i);
+    sp.normal = gbuffer.normalAt(i);
+    const SceneObject& object = scene.objects[static_cast<std::size_t>(gbuffer.objectId(i))];
+    if (const auto* shape = std::get_if<MeshShape>(&object.shape)) {
+        const TriangleMesh& mesh = *shape->mesh;
+        const bool hasShadingNormal = !mesh.normals.empty() && dot(sp.normal, sp.normal) != 0.0f;
+        sp.geometricNormal = triangleNormal(mesh, gbuffer.primitiveId(i), sp.normal, hasShadingNormal);
+        if (!hasShadingNormal) sp.normal = sp.geometricNormal;
+    } else {
+        sp.geometricNormal = sp.normal;
     }
+    faceToward(sp, rayDirection);
     return sp;
 }
 

@@ -1,6 +1,9 @@
 #pragma once
-// Geometry at a ray hit, oriented toward the side the ray came from.
+// Geometry at a ray hit, oriented toward the side the ray came from: the one
+// rule every first stage and bounce of the tile kernel uses, whether the hit
+// comes from the tracer or from a G-buffer.
 #include "core/Ray.h"
+#include "render/GBuffer.h"
 #include "scene/Scene.h"
 #include "trace/TraceHit.h"
 
@@ -17,5 +20,12 @@ struct SurfacePoint {
 // Texture coordinates cost trigonometry on spheres, so they are computed only
 // when `needUv` is set (the material has a texture); otherwise they stay 0.
 SurfacePoint surfacePointAt(const SceneObject& object, const Ray& ray, const TraceHit& hit, bool needUv);
+
+// The surface the tracer's hit would give, from G-buffer pixel i (which must
+// hold a surface): position and shading normal from the G-buffer, the
+// triangle's geometric normal, both turned toward the camera ray as above.
+// Texture coordinates are not rebuilt (the G-buffer carries the albedo).
+SurfacePoint surfacePointFromGBuffer(const Scene& scene, const GBufferView& gbuffer, std::size_t i,
+                                     const Vec3& rayDirection);
 
 }  // namespace raycache

@@ -150,11 +150,17 @@ TraceHit fromEmbree(const RTCRayHit& rh) {
     return h;
 }
 
-// Loads up to 8 rays into a packet; lanes past rays.size() repeat the last
-// ray and are masked off in `valid`.
-void fillPacket(std::span<const Ray> rays, int* valid, RTCRay8& packet) {
+// Coherent rays go to Embree as packets of this width: 16 matches the AVX-512
+// kernels of this machine's Embree (docs/performance.md compares 8 and 16).
+constexpr std::size_t kPacketWidth = 16;
+using RayPacket = RTCRay16;
+using RayHitPacket = RTCRayHit16;
+
+// Loads up to kPacketWidth rays into a packet; lanes past rays.size() repeat
+// the last ray and are masked off in `valid`.
+void fillPacket(std::span<const Ray> rays, int* valid, RayPacket& packet) {
     const std::size_t count = rays.size();
-    for (std::size_t k = 0; k < 8; ++k) {
+    for (std::size_t k = 0; k < kPacketWidth; ++k) {
         valid[k] = k < count ? -1 : 0;
         const Ray& ray = rays[std::min(k, count - 1)];
         packet.org_x[k] = ray.origin.x;
@@ -170,6 +176,21 @@ void fillPacket(std::span<const Ray> rays, int* valid, RTCRay8& packet) {
         packet.id[k] = 0;
         packet.flags[k] = 0;
     }
+}
+
+void toEmbree(const Ray& ray, RTCRay& r) {
+    r.org_x = ray.origin.x;
+    r.org_y = ray.origin.y;
+    r.org_z = ray.origin.z;
+    r.dir_x = ray.direction.x;
+    r.dir_y = ray.direction.y;
+    r.dir_z = ray.direction.z;
+    r.tnear = ray.tNear;
+    r.tfar = ray.tFar;
+    r.time = 0.0f;
+    r.mask = 0xFFFFFFFFu;
+    r.id = 0;
+    r.flags = 0;
 }
 
 }  // namespace
@@ -248,16 +269,16 @@ void TraceScene::intersectCoherent(std::span<const Ray> rays, std::span<TraceHit
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    alignas(32) RTCRayHit8 packet;
-    alignas(32) int valid[8];
-    for (std::size_t base = 0; base < rays.size(); base += 8) {
-        const std::size_t count = std::min<std::size_t>(8, rays.size() - base);
+    alignas(64) RayHitPacket packet;
+    alignas(64) int valid[kPacketWidth];
+    for (std::size_t base = 0; base < rays.size(); base += kPacketWidth) {
+        const std::size_t count = std::min(kPacketWidth, rays.size() - base);
         fillPacket(rays.subspan(base, count), valid, packet.ray);
-        for (std::size_t k = 0; k < 8; ++k) {
+        for (std::size_t k = 0; k < kPacketWidth; ++k) {
             packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
             packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
         }
-        rtcIntersect8(valid, impl_->scene, &context, &packet);
+        rtcIntersect16(valid, impl_->scene, &context, &packet);
         for (std::size_t k = 0; k < count; ++k) {
             TraceHit& h = hits[base + k];
             h = TraceHit{};
@@ -275,14 +296,38 @@ void TraceScene::occludedCoherent(std::span<const Ray> rays, std::span<unsigned 
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    alignas(32) RTCRay8 packet;
-    alignas(32) int valid[8];
-    for (std::size_t base = 0; base < rays.size(); base += 8) {
-        const std::size_t count = std::min<std::size_t>(8, rays.size() - base);
+    alignas(64) RayPacket packet;
+    alignas(64) int valid[kPacketWidth];
+    for (std::size_t base = 0; base < rays.size(); base += kPacketWidth) {
+        const std::size_t count = std::min(kPacketWidth, rays.size() - base);
         fillPacket(rays.subspan(base, count), valid, packet);
-        rtcOccluded8(valid, impl_->scene, &context, &packet);
+        rtcOccluded16(valid, impl_->scene, &context, &packet);
         // Embree marks an occluded ray by setting tfar to -inf.
         for (std::size_t k = 0; k < count; ++k) occluded[base + k] = packet.tfar[k] < 0.0f ? 1 : 0;
+    }
+}
+
+void TraceScene::intersectIncoherent(std::span<const Ray> rays, std::span<TraceHit> hits) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        RTCRayHit rh;
+        toEmbree(rays[i], rh.ray);
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(impl_->scene, &context, &rh);
+        hits[i] = fromEmbree(rh);
+    }
+}
+
+void TraceScene::occludedIncoherent(std::span<const Ray> rays, std::span<unsigned char> occluded) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        RTCRay r;
+        toEmbree(rays[i], r);
+        rtcOccluded1(impl_->scene, &context, &r);
+        occluded[i] = r.tfar < 0.0f ? 1 : 0;
     }
 }
 

@@ -25,12 +25,18 @@ public:
     // True if anything lies in [ray.tNear, ray.tFar]. Thread-safe.
     bool occluded(const Ray& ray) const;
     // Nearest hits for a batch of coherent rays (e.g. one tile's primary
-    // rays), traced as 8-wide packets. hits.size() must equal rays.size().
+    // rays), traced as packets. hits.size() must equal rays.size().
     void intersectCoherent(std::span<const Ray> rays, std::span<TraceHit> hits) const;
 
     // Occlusion for a batch of coherent rays (e.g. one tile's shadow rays
-    // toward one light), as 8-wide packets: occluded[i] = 1 if rays[i] is blocked.
+    // toward one light), as packets: occluded[i] = 1 if rays[i] is blocked.
     void occludedCoherent(std::span<const Ray> rays, std::span<unsigned char> occluded) const;
+
+    // The same for batches of rays that go their own ways (reflected and
+    // refracted rays, their shadow rays): traced one by one, which beats
+    // packets whose lanes diverge.
+    void intersectIncoherent(std::span<const Ray> rays, std::span<TraceHit> hits) const;
+    void occludedIncoherent(std::span<const Ray> rays, std::span<unsigned char> occluded) const;
 
     // Escape hatch for code in src/trace/ that needs the raw RTCScene.
     void* embreeScene() const;

@@ -36,7 +36,7 @@ Scene oneMirror(int resolution) { return cdct_test::oneMirror(CacheTechnique::Cd
 void prefill(RayCache& cache, const std::function<float(const Vec3&)>& depthOf) {
     auto workers = cache.makeWorkers(1);
     cache.beginFrame(workers);
-    workers[0].beginPixel(0);
+    workers[0].beginBatch(0);
     EXPECT_FALSE(cache.lookup(0, {0, 0, 1.001f}, {0, 0, 1}, workers[0]).has_value()) << "nothing cached yet";
     const std::vector<int> awaiting = cache.objectsAwaitingPrefill(workers);
     ASSERT_EQ(awaiting, std::vector<int>{0});
@@ -106,7 +106,7 @@ TEST(CdctImproved, SearchFindsAnAnalyticSphereWithEverySwitchSetting) {
         const CachingCube& cube = cache.cube(0);
         auto workers = cache.makeWorkers(1);
         cache.beginFrame(workers);
-        workers[0].beginPixel(0);
+        workers[0].beginBatch(0);
         for (const Probe& p : awkwardRays()) {
             const Vec3 d = normalize(p.direction);
             const float b = dot(p.origin, d);
@@ -141,7 +141,7 @@ TEST(CdctImproved, EnvironmentBeyondTheFarthestSurfaceIsAnsweredFromMaxDepth) {
         prefill(cache, [](const Vec3& v) { return v.y > 0.0f ? 3.0f : kInf; });
         auto workers = cache.makeWorkers(1);
         cache.beginFrame(workers);
-        workers[0].beginPixel(0);
+        workers[0].beginBatch(0);
         const Vec3 origin{0, -1.0001f, 0}, direction = normalize(Vec3{0.3f, -1.0f, 0.2f});
         const auto color = cache.lookup(0, origin, direction, workers[0]);
         ASSERT_TRUE(color.has_value()) << earlyExit;
@@ -168,7 +168,7 @@ TEST(CdctImproved, ErrorControlRejectsAFoundTexelOffTheRay) {
         prefill(cache, depthOf);
         auto workers = cache.makeWorkers(1);
         cache.beginFrame(workers);
-        workers[0].beginPixel(0);
+        workers[0].beginBatch(0);
         const auto color = cache.lookup(0, origin, direction, workers[0]);
         const FrameCacheStats stats = cache.endFrame(workers);
         if (errorControl) {
@@ -204,7 +204,7 @@ TEST(CdctImproved, AwkwardRaysAndExtremeParametersTerminate) {
             prefill(cache, surface);
             auto workers = cache.makeWorkers(1);
             cache.beginFrame(workers);
-            workers[0].beginPixel(0);
+            workers[0].beginBatch(0);
             for (const Probe& p : awkwardRays()) {
                 if (const auto color = cache.lookup(0, p.origin, p.direction, workers[0])) {
                     EXPECT_TRUE(color->isFinite());

@@ -36,7 +36,7 @@ void fillCube(RayCache& cache, float depth) {
     const int size = cache.cube(0).size();
     auto workers = cache.makeWorkers(1);
     cache.beginFrame(workers);
-    workers[0].beginPixel(0);
+    workers[0].beginBatch(0);
     for (int face = 0; face < 6; ++face)
         for (int y = 0; y < size; ++y)
             for (int x = 0; x < size; ++x) {
@@ -61,7 +61,7 @@ TEST(Cdct, StoreAddressesByTheDirectionFromTheCentreToTheHitPoint) {
     const CachingCube& cube = cache.cube(0);
     auto workers = cache.makeWorkers(1);
     cache.beginFrame(workers);
-    workers[0].beginPixel(0);
+    workers[0].beginBatch(0);
     // Leaves the top of the sphere along +x and hits something 3 units away: P1 = (3, 1, 0).
     const Vec3 origin{0, 1, 0}, direction{1, 0, 0};
     cache.store(0, origin, direction, Rgb{0.5f}, 3.0f, workers[0]);
@@ -103,7 +103,7 @@ TEST(Cdct, SearchMeetingInvalidTexelsReturnsNothing) {
     RayCache cache(oneMirror(), {});
     auto workers = cache.makeWorkers(1);
     cache.beginFrame(workers);
-    workers[0].beginPixel(0);
+    workers[0].beginBatch(0);
     // A few valid texels only: the ones straight along -x, close by, which no probe's search crosses.
     cache.store(0, {-1, 0, 0}, {-1, 0, 0}, Rgb{1.0f}, 2.0f, workers[0]);
     cache.store(0, {-1, 0, 0}, {-1, 0.01f, 0}, Rgb{1.0f}, 2.0f, workers[0]);
@@ -111,7 +111,7 @@ TEST(Cdct, SearchMeetingInvalidTexelsReturnsNothing) {
     ASSERT_EQ(cache.cube(0).validCount(), 2u);
 
     cache.beginFrame(workers);
-    workers[0].beginPixel(1);
+    workers[0].beginBatch(1);
     std::uint64_t asked = 0;
     for (const Probe& p : awkwardRays()) {
         EXPECT_FALSE(cache.lookup(0, p.origin, p.direction, workers[0]).has_value())
@@ -137,7 +137,7 @@ TEST(Cdct, SearchFindsTheStoredSurface) {
     const CachingCube& cube = cache.cube(0);
     auto workers = cache.makeWorkers(1);
     cache.beginFrame(workers);
-    workers[0].beginPixel(0);
+    workers[0].beginBatch(0);
     for (const Probe& p : awkwardRays()) {
         const Vec3 d = normalize(p.direction);
         const float b = dot(p.origin, d);
@@ -164,7 +164,7 @@ TEST(Cdct, TinyEpsilonAndHugeMaxDepthStillTerminate) {
         fillCube(cache, depth);
         auto workers = cache.makeWorkers(1);
         cache.beginFrame(workers);
-        workers[0].beginPixel(0);
+        workers[0].beginBatch(0);
         for (const Probe& p : awkwardRays()) {
             const auto color = cache.lookup(0, p.origin, p.direction, workers[0]);
             ASSERT_TRUE(color.has_value()) << depth;

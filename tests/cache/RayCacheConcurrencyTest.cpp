@@ -47,7 +47,7 @@ std::vector<std::vector<std::uint32_t>> run(int threads, int frames, int pixels,
             pool.emplace_back([&, t] {
                 CacheWorker& worker = workers[static_cast<std::size_t>(t)];
                 for (int p = t; p < pixels; p += threads) {
-                    worker.beginPixel(static_cast<std::uint32_t>(p));
+                    worker.beginBatch(static_cast<std::uint32_t>(p));
                     for (int bounce = 0; bounce < 2; ++bounce) {
                         const int object = (p + bounce) % 3;
                         const Vec3 d = directionFor(p * 2 + bounce, frame);

@@ -108,10 +108,10 @@ TEST(RayCache, LookupsSeeTheFrameStartStateAndTheLowestPixelWins) {
         cache.beginFrame(workers);
         CacheWorker& first = workers[reversed ? 1 : 0];
         CacheWorker& second = workers[reversed ? 0 : 1];
-        second.beginPixel(900);
+        second.beginBatch(900);
         EXPECT_FALSE(cache.lookup(0, p, d, second).has_value());
         cache.store(0, p, d, Rgb{0.25f}, 3.0f, second);
-        first.beginPixel(12);
+        first.beginBatch(12);
         EXPECT_FALSE(cache.lookup(0, p, d, first).has_value());  // not visible before the frame ends
         cache.store(0, p, d, Rgb{0.5f}, 3.0f, first);
         const FrameCacheStats stats = cache.endFrame(workers);
@@ -122,7 +122,7 @@ TEST(RayCache, LookupsSeeTheFrameStartStateAndTheLowestPixelWins) {
         EXPECT_DOUBLE_EQ(stats.objects[0].invalidPercentBefore, 100.0);
 
         cache.beginFrame(workers);
-        workers[0].beginPixel(0);
+        workers[0].beginBatch(0);
         const auto hit = cache.lookup(0, p, d, workers[0]);
         ASSERT_TRUE(hit.has_value());
         EXPECT_EQ(*hit, Rgb{0.5f}) << "pixel 12 precedes pixel 900";
@@ -138,7 +138,7 @@ TEST(RayCache, IdealModeAnswersMissesWithBlackWithoutStoring) {
     RayCache cache(twoMirrorsAndAMatte(), ideal);
     auto workers = cache.makeWorkers(1);
     cache.beginFrame(workers);
-    workers[0].beginPixel(0);
+    workers[0].beginBatch(0);
     const auto answer = cache.lookup(0, {0, 0, 1}, {0, 0, 1}, workers[0]);
     ASSERT_TRUE(answer.has_value());
     EXPECT_EQ(*answer, Rgb{0.0f});

@@ -1,0 +1,335 @@
+#include "render/TileKernel.h"
+
+#include <algorithm>
+#include <limits>
+#include <optional>
+
+#include "core/Optics.h"
+
+namespace raycache {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
+// Adds the time until it goes out of scope to one stage's total, when stage
+// timing is on (it costs two clock reads per stage and wave).
+class StageTimer {
+public:
+    StageTimer(bool enabled, double& milliseconds)
+        : target_(enabled ? &milliseconds : nullptr), start_(enabled ? Clock::now() : Clock::time_point{}) {}
+    ~StageTimer() {
+        if (target_) *target_ += std::chrono::duration<double, std::milli>(Clock::now() - start_).count();
+    }
+    StageTimer(const StageTimer&) = delete;
+    StageTimer& operator=(const StageTimer&) = delete;
+
+private:
+    double* target_;
+    Clock::time_point start_;
+};
+
+}  // namespace
+
+void TileScratch::beginTile(std::size_t roots) {
+    nodes.assign(roots, Node{});
+    vertices.clear();
+    surfaces.clear();
+    albedo.clear();
+}
+
+TileKernel::TileKernel(const Scene& scene, const TraceScene& tracer, const RenderSettings& settings,
+                       const RayCache* cache)
+    : scene_(scene), tracer_(tracer), settings_(settings), cache_(cache && !cache->empty() ? cache : nullptr),
+      shading_(scene) {}
+
+void TileKernel::renderCameraTile(const CameraRays& cameraRays, const TileRange& tile, std::uint64_t tileKey,
+                                  TileScratch& s, CacheWorker* cache, Image& film) const {
+    const int tileWidth = tile.x1 - tile.x0;
+    const auto n = static_cast<std::size_t>(tileWidth) * static_cast<std::size_t>(tile.y1 - tile.y0);
+    s.beginTile(n);
+    {
+        StageTimer timer(settings_.stageTimes, s.stages.firstHits);
+        s.rays.resize(n);
+        s.hits.resize(n);
+        std::size_t i = 0;
+        for (int y = tile.y0; y < tile.y1; ++y)
+            for (int x = tile.x0; x < tile.x1; ++x) s.rays[i++] = cameraRays.ray(x, y);
+        tracer_.intersectCoherent(std::span(s.rays.data(), n), std::span(s.hits.data(), n));
+        s.counts.primary += n;
+        for (i = 0; i < n; ++i) {
+            if (s.hits[i].hit())
+                s.vertices.push_back({s.rays[i], s.hits[i], static_cast<int>(i), 1.0f, 1});
+            else
+                s.nodes[i].direct = shading_.background(s.rays[i]);
+        }
+    }
+    runWaves(s, cache, false, true);
+    resolveNodes(s, cache, tileKey);
+    StageTimer timer(settings_.stageTimes, s.stages.compose);
+    for (std::size_t i = 0; i < n; ++i)
+        film.at(tile.x0 + static_cast<int>(i) % tileWidth, tile.y0 + static_cast<int>(i) / tileWidth) =
+            s.nodes[i].color();
+}
+
+void TileKernel::renderGBufferTile(const CameraRays& cameraRays, const GBufferView& gbuffer, const TileRange& tile,
+                                   std::uint64_t tileKey, TileScratch& s, CacheWorker* cache, Image& film) const {
+    const auto t0 = Clock::now();
+    const int tileWidth = tile.x1 - tile.x0;
+    const auto n = static_cast<std::size_t>(tileWidth) * static_cast<std::size_t>(tile.y1 - tile.y0);
+    s.beginTile(n);
+    {
+        StageTimer timer(settings_.stageTimes, s.stages.firstHits);
+        std::size_t k = 0;
+        for (int y = tile.y0; y < tile.y1; ++y)
+            for (int x = tile.x0; x < tile.x1; ++x, ++k) {
+                const std::size_t i = gbuffer.index(x, y);
+                const Ray ray = cameraRays.ray(x, y);
+                if (!gbuffer.hasSurface(i)) {
+                    s.nodes[k].direct = shading_.background(ray);
+                    continue;
+                }
+                TraceHit hit;
+                hit.objectId = gbuffer.objectId(i);
+                hit.primitiveId = gbuffer.primitiveId(i);
+                s.vertices.push_back({ray, hit, static_cast<int>(k), 1.0f, 1});
+                s.surfaces.push_back(surfacePointFromGBuffer(scene_, gbuffer, i, ray.direction));
+                s.albedo.push_back(gbuffer.albedoAt(i));
+            }
+    }
+    const auto firstBounceBefore = s.firstBounce;
+    s.firstBounce += Clock::now() - t0;  // reading the G-buffer belongs to the first bounce
+    runWaves(s, cache, true, true);
+    resolveNodes(s, cache, tileKey);
+    const auto t1 = Clock::now();
+    {
+        StageTimer timer(settings_.stageTimes, s.stages.compose);
+        for (std::size_t k = 0; k < n; ++k)
+            film.at(tile.x0 + static_cast<int>(k) % tileWidth, tile.y0 + static_cast<int>(k) / tileWidth) =
+                s.nodes[k].color();
+    }
+    s.compose += Clock::now() - t1;
+    // The first bounce was timed as it ran; the rest is the secondary phase.
+    s.laterBounces += (t1 - t0) - (s.firstBounce - firstBounceBefore);
+}
+
+void TileKernel::renderFromInside(int objectId, std::span<const Ray> rays, int depth,
+                                  std::span<RayCache::PrefillTexel> out, TileScratch& s) const {
+    // Enough for any closed mesh a cube centre sits in; past this the ray
+    // counts as seeing the environment.
+    constexpr int kMaxOwnSurfaces = 64;
+    const std::size_t n = rays.size();
+    s.beginTile(n);
+    s.rootHitDistance.assign(n, kInfinity);
+    {
+        StageTimer timer(settings_.stageTimes, s.stages.firstHits);
+        for (std::size_t i = 0; i < n; ++i) {
+            ++s.counts.prefill;
+            Ray r = rays[i];
+            bool shaded = false;
+            for (int k = 0; k < kMaxOwnSurfaces; ++k) {
+                const TraceHit hit = tracer_.intersect(r);
+                if (!hit.hit()) break;
+                if (hit.objectId != objectId) {
+                    s.rootHitDistance[i] = hit.t;
+                    s.vertices.push_back({r, hit, static_cast<int>(i), 1.0f, depth});
+                    shaded = true;
+                    break;
+                }
+                r.tNear = hit.t + surfaceOffset(r.origin + r.direction * hit.t);
+            }
+            if (!shaded) s.nodes[i].direct = shading_.background(rays[i]);
+        }
+    }
+    runWaves(s, nullptr, false, false);
+    resolveNodes(s, nullptr, 0);
+    for (std::size_t i = 0; i < n; ++i) out[i] = {s.nodes[i].color(), s.rootHitDistance[i]};
+}
+
+void TileKernel::runWaves(TileScratch& s, CacheWorker* cache, bool surfacesReady, bool coherentShadows) const {
+    const bool useCache = cache && cache_;
+    bool first = true;
+    while (!s.vertices.empty()) {
+        const auto start = Clock::now();
+        if (!(first && surfacesReady)) computeSurfaces(s);
+        traceShadowRays(s, first && coherentShadows);
+        shadeDirect(s);
+        if (first) s.firstBounce += Clock::now() - start;
+        spawnSecondaryRays(s, useCache);
+        if (useCache) lookupReuse(s, *cache);
+        traceSecondaryRays(s);
+        first = false;
+    }
+}
+
+void TileKernel::computeSurfaces(TileScratch& s) const {
+    StageTimer timer(settings_.stageTimes, s.stages.surfaces);
+    const std::size_t n = s.vertices.size();
+    s.surfaces.resize(n);
+    s.albedo.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const TileScratch::PathVertex& v = s.vertices[i];
+        const SceneObject& object = scene_.objects[static_cast<std::size_t>(v.hit.objectId)];
+        const Material& material = object.material;
+        s.surfaces[i] = surfacePointAt(object, v.ray, v.hit, material.diffuseTexture.has_value());
+        s.albedo[i] = material.albedo(s.surfaces[i].u, s.surfaces[i].v);
+    }
+}
+
+void TileKernel::traceShadowRays(TileScratch& s, bool coherent) const {
+    StageTimer timer(settings_.stageTimes, s.stages.shadowRays);
+    const std::size_t n = s.vertices.size();
+    const std::size_t lights = scene_.lights.size();
+    s.firstQuery.resize(n + 1);
+    s.queries.resize(n * lights);
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        s.firstQuery[i] = static_cast<int>(count);
+        count += static_cast<std::size_t>(shading_.shadowQueries(s.surfaces[i], s.queries.data() + count));
+    }
+    s.firstQuery[n] = static_cast<int>(count);
+    s.rays.resize(count);
+    s.occluded.resize(count);
+    for (std::size_t q = 0; q < count; ++q) s.rays[q] = s.queries[q].ray;
+    // Shadow rays of camera hits start close together and head for the same
+    // lights: packets. Those of later bounces scatter.
+    if (coherent)
+        tracer_.occludedCoherent(std::span(s.rays.data(), count), std::span(s.occluded.data(), count));
+    else
+        tracer_.occludedIncoherent(std::span(s.rays.data(), count), std::span(s.occluded.data(), count));
+    s.counts.shadow += count;
+}
+
+void TileKernel::shadeDirect(TileScratch& s) const {
+    StageTimer timer(settings_.stageTimes, s.stages.directShading);
+    for (std::size_t i = 0; i < s.vertices.size(); ++i) {
+        const TileScratch::PathVertex& v = s.vertices[i];
+        const Material& material = scene_.objects[static_cast<std::size_t>(v.hit.objectId)].material;
+        const auto first = static_cast<std::size_t>(s.firstQuery[i]);
+        const auto count = static_cast<std::size_t>(s.firstQuery[i + 1]) - first;
+        s.nodes[static_cast<std::size_t>(v.node)].direct =
+            shading_.directLight(material, s.albedo[i], s.surfaces[i], -v.ray.direction,
+                                 std::span(s.queries.data() + first, count),
+                                 std::span(s.occluded.data() + first, count));
+    }
+}
+
+void TileKernel::spawnSecondaryRays(TileScratch& s, bool useCache) const {
+    StageTimer timer(settings_.stageTimes, s.stages.secondaryRays);
+    s.leaving.clear();
+    s.pending.clear();
+    // Every secondary ray gets a node of its own, whether a cache answers it
+    // or not, so caching never changes how the colours are summed.
+    const auto emit = [&](const TileScratch::PathVertex& v, const Ray& ray, TileScratch::Kind kind, float share,
+                          bool leavesObject) {
+        const int node = static_cast<int>(s.nodes.size());
+        TileScratch::Node& added = s.nodes.emplace_back();
+        added.parent = v.node;
+        added.weightInParent = share;
+        const float pathWeight = v.pathWeight * share;
+        if (leavesObject && useCache && cache_->cachesObject(v.hit.objectId))
+            s.leaving.push_back({ray, v.hit.objectId, node, pathWeight, v.depth + 1, kind});
+        else
+            s.pending.push_back({ray, node, pathWeight, v.depth + 1, kind});
+    };
+    for (std::size_t i = 0; i < s.vertices.size(); ++i) {
+        const TileScratch::PathVertex& v = s.vertices[i];
+        if (v.depth >= settings_.maxDepth) continue;
+        const Material& material = scene_.objects[static_cast<std::size_t>(v.hit.objectId)].material;
+        if (!material.reflects() && !material.refracts()) continue;
+        const SurfacePoint& sp = s.surfaces[i];
+        const float offset = surfaceOffset(sp.position);
+        float reflectWeight = material.reflectivity;
+        std::optional<Ray> refracted;
+        if (material.refracts()) {
+            // Entering: air -> material; leaving: material -> air (objects do not nest).
+            const float eta = sp.frontFace ? 1.0f / material.ior : material.ior;
+            if (const auto direction = refract(v.ray.direction, sp.normal, eta)) {
+                if (v.pathWeight * material.transmissivity >= settings_.minWeight)
+                    refracted = Ray{sp.position - sp.geometricNormal * offset, normalize(*direction)};
+            } else {
+                // Total internal reflection: the transmitted share is reflected.
+                reflectWeight += material.transmissivity;
+            }
+        }
+        // The reflected ray's node comes first: nodes are gathered last to
+        // first, so the refracted colour is added first, as Whitted's sum has it.
+        if (reflectWeight > 0.0f && v.pathWeight * reflectWeight >= settings_.minWeight)
+            // Reflection off the outside leaves the object; inside, it stays in.
+            emit(v, Ray{sp.position + sp.geometricNormal * offset, normalize(reflect(v.ray.direction, sp.normal))},
+                 TileScratch::Kind::Reflection, reflectWeight, sp.frontFace);
+        if (refracted)
+            // A refracted ray that exits the object leaves it for the scene;
+            // one that enters still has the inside to cross.
+            emit(v, *refracted, TileScratch::Kind::Refraction, material.transmissivity, !sp.frontFace);
+    }
+}
+
+void TileKernel::lookupReuse(TileScratch& s, CacheWorker& cache) const {
+    StageTimer timer(settings_.stageTimes, s.stages.reuseLookups);
+    const std::size_t n = s.leaving.size();
+    if (n == 0) return;
+    s.cacheQueries.resize(n);
+    s.cachedColors.resize(n);
+    s.cacheFound.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+        s.cacheQueries[i] = {s.leaving[i].objectId, s.leaving[i].ray.origin, s.leaving[i].ray.direction};
+    cache_->lookupBatch(s.cacheQueries, s.cachedColors, s.cacheFound, cache);
+    for (std::size_t i = 0; i < n; ++i) {
+        const TileScratch::LeavingRay& l = s.leaving[i];
+        TileScratch::Node& node = s.nodes[static_cast<std::size_t>(l.node)];
+        if (s.cacheFound[i]) {
+            node.direct = s.cachedColors[i];
+            continue;
+        }
+        // A miss: the ray is traced, and what its whole tree brings back is
+        // stored once the tile is done.
+        node.objectId = l.objectId;
+        node.origin = l.ray.origin;
+        node.direction = l.ray.direction;
+        s.pending.push_back({l.ray, l.node, l.pathWeight, l.depth, l.kind});
+    }
+}
+
+void TileKernel::traceSecondaryRays(TileScratch& s) const {
+    StageTimer timer(settings_.stageTimes, s.stages.traceSecondary);
+    const std::size_t n = s.pending.size();
+    s.rays.resize(n);
+    s.hits.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        s.rays[i] = s.pending[i].ray;
+        if (s.pending[i].kind == TileScratch::Kind::Reflection) ++s.counts.reflection;
+        else ++s.counts.refraction;
+    }
+    tracer_.intersectIncoherent(std::span(s.rays.data(), n), std::span(s.hits.data(), n));
+    s.nextVertices.clear();
+    for (std::size_t i = 0; i < n; ++i) {
+        const TileScratch::PendingRay& p = s.pending[i];
+        const TraceHit& hit = s.hits[i];
+        TileScratch::Node& node = s.nodes[static_cast<std::size_t>(p.node)];
+        if (node.objectId >= 0) node.hitDistance = hit.hit() ? hit.t : kInfinity;
+        if (!hit.hit())
+            node.direct = shading_.background(p.ray);
+        else
+            s.nextVertices.push_back({p.ray, hit, p.node, p.pathWeight, p.depth});
+    }
+    std::swap(s.vertices, s.nextVertices);
+}
+
+void TileKernel::resolveNodes(TileScratch& s, CacheWorker* cache, std::uint64_t tileKey) const {
+    StageTimer timer(settings_.stageTimes, s.stages.resolve);
+    if (cache) cache->beginBatch(tileKey);
+    // Nodes are created after their parents, so walking backwards finishes
+    // every node's colour before it is stored or passed up.
+    for (std::size_t i = s.nodes.size(); i-- > 0;) {
+        const TileScratch::Node& node = s.nodes[i];
+        if (node.parent < 0) continue;
+        const Rgb color = node.color();
+        if (node.objectId >= 0 && cache)
+            cache_->store(node.objectId, node.origin, node.direction, color, node.hitDistance, *cache);
+        s.nodes[static_cast<std::size_t>(node.parent)].secondary += color * node.weightInParent;
+    }
+}
+
+}  // namespace raycache

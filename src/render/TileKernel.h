@@ -1,0 +1,157 @@
+#pragma once
+// The one tile kernel (docs/architecture.md): a wavefront over the rays of one
+// tile, in named stages, each run over the whole wave before the next:
+//
+//   first hits (camera rays as packets, a G-buffer, or rays from a cube's
+//   centre) -> surfaces -> shadow rays -> direct shading -> secondary rays ->
+//   reuse lookups (one batch) -> misses traced together -> their hits are the
+//   next wave ... -> stores queued -> compose
+//
+// Whitted's recursion becomes a loop over bounces. Every ray carries the node
+// its colour adds to and its weight there; a node is a pixel (or a pre-fill
+// texel), or a ray leaving a caching object that the cache could not answer,
+// whose colour is stored in the cache once the tile is done. Max depth,
+// minimum weight, total internal reflection and which rays leave an object
+// are decided exactly as the recursive form did (render/LocalShading.h for
+// the shading itself).
+//
+// Every pipeline uses it: the ray pipeline (render/FrameRenderer.h), the
+// hybrid pipeline (render/DeferredShading.h) and improved CDCT's pre-fill
+// (render/CachePrefill.h) differ only in their first stage.
+#include <chrono>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "cache/RayCache.h"
+#include "core/Image.h"
+#include "core/Parallel.h"
+#include "core/RayCounts.h"
+#include "render/CameraRays.h"
+#include "render/FrameStats.h"
+#include "render/GBuffer.h"
+#include "render/LocalShading.h"
+#include "render/RenderSettings.h"
+#include "render/SurfacePoint.h"
+#include "trace/TraceScene.h"
+
+namespace raycache {
+
+// Per-worker buffers of the kernel, reused from tile to tile so a frame
+// allocates only while its waves grow. Opaque to callers except for what
+// the worker did (counts, times).
+class TileScratch {
+public:
+    RayCounts counts;
+    StageTimes stages;  // filled only when RenderSettings::stageTimes is set
+    std::chrono::steady_clock::duration firstBounce{}, laterBounces{}, compose{};  // hybrid phases
+
+private:
+    friend class TileKernel;
+    enum class Kind : unsigned char { Reflection, Refraction };
+    struct PathVertex {  // a ray that reached a surface, waiting to be shaded
+        Ray ray;
+        TraceHit hit;
+        int node;          // the node of the ray: what it brings back adds up there
+        float pathWeight;  // product of kr/kt since the camera, for the minimum-weight rule
+        int depth;         // rays on its path so far, the primary ray being 1
+    };
+    struct PendingRay {  // a secondary ray waiting to be traced
+        Ray ray;
+        int node;
+        float pathWeight;
+        int depth;
+        Kind kind;
+    };
+    struct LeavingRay {  // a secondary ray leaving a caching object: the cache is asked first
+        Ray ray;
+        int objectId;
+        int node;
+        float pathWeight;
+        int depth;
+        Kind kind;
+    };
+    // What one ray brings back: the light at its hit (or the background, or
+    // the cache's answer) plus its reflected and refracted rays' colours times
+    // kr and kt, gathered from its child nodes once the tile is done; the
+    // same sums, in the same order, as the recursive form.
+    struct Node {
+        Rgb direct;
+        Rgb secondary;
+        int parent = -1;            // -1: a pixel or texel of the caller's
+        float weightInParent = 0.0f;
+        int objectId = -1;          // a caching object whose cache missed this ray: stored when done
+        Vec3 origin, direction;     // that ray, for the store
+        float hitDistance = 0.0f;   // distance to its first hit, infinity for a miss
+        Rgb color() const { return direct + secondary; }
+    };
+
+    void beginTile(std::size_t roots);
+
+    std::vector<Node> nodes;
+    std::vector<PathVertex> vertices, nextVertices;
+    std::vector<SurfacePoint> surfaces;
+    std::vector<Rgb> albedo;
+    std::vector<int> firstQuery;
+    std::vector<ShadowQuery> queries;
+    std::vector<Ray> rays;  // packed for the tracer: shadow, camera or secondary rays
+    std::vector<TraceHit> hits;
+    std::vector<unsigned char> occluded;
+    std::vector<LeavingRay> leaving;
+    std::vector<RayCache::Query> cacheQueries;
+    std::vector<Rgb> cachedColors;
+    std::vector<unsigned char> cacheFound;
+    std::vector<PendingRay> pending;
+    std::vector<float> rootHitDistance;
+};
+
+class TileKernel {
+public:
+    // With `cache` (may be null or empty), rays leaving caching objects ask
+    // it first and queue what they traced. Throws InputError if the scene
+    // has more than kMaxLights lights.
+    TileKernel(const Scene& scene, const TraceScene& tracer, const RenderSettings& settings,
+               const RayCache* cache);
+
+    // Ray pipeline: the tile's camera rays as packets, then the waves; writes
+    // the tile's pixels of `film`. `cache` is the worker's view of the cache
+    // frame (null: no caching); `tileKey` orders its stores (unique per frame).
+    void renderCameraTile(const CameraRays& cameraRays, const TileRange& tile, std::uint64_t tileKey,
+                          TileScratch& scratch, CacheWorker* cache, Image& film) const;
+
+    // Hybrid pipeline: the first hits come from the G-buffer (surface,
+    // albedo); pixels without a surface show the background.
+    void renderGBufferTile(const CameraRays& cameraRays, const GBufferView& gbuffer, const TileRange& tile,
+                           std::uint64_t tileKey, TileScratch& scratch, CacheWorker* cache, Image& film) const;
+
+    // Improved CDCT's pre-fill: what each ray from inside object `objectId`
+    // sees once past the object's own surfaces, shaded as rays at `depth`
+    // (weight 1) without asking any cache; out[i] answers rays[i] (colour,
+    // and distance to the hit, infinity for a miss). Counted as pre-fill rays.
+    void renderFromInside(int objectId, std::span<const Ray> rays, int depth, std::span<RayCache::PrefillTexel> out,
+                          TileScratch& scratch) const;
+
+    const LocalShading& shading() const { return shading_; }
+
+private:
+    // Shades the waves until no ray is left; the first wave's surfaces are
+    // already built when `surfacesReady`.
+    void runWaves(TileScratch& s, CacheWorker* cache, bool surfacesReady, bool coherentShadows) const;
+    void computeSurfaces(TileScratch& s) const;
+    void traceShadowRays(TileScratch& s, bool coherent) const;
+    void shadeDirect(TileScratch& s) const;
+    void spawnSecondaryRays(TileScratch& s, bool useCache) const;
+    void lookupReuse(TileScratch& s, CacheWorker& cache) const;
+    void traceSecondaryRays(TileScratch& s) const;
+    // Adds every node's colour to its parent's, children first, queueing the
+    // cache stores of the nodes that stand for traced leaving rays.
+    void resolveNodes(TileScratch& s, CacheWorker* cache, std::uint64_t tileKey) const;
+
+    const Scene& scene_;
+    const TraceScene& tracer_;
+    RenderSettings settings_;
+    const RayCache* cache_;
+    LocalShading shading_;
+};
+
+}  // namespace raycache
