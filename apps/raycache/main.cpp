@@ -41,6 +41,8 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
                                                            "(default: each material's own, 512 in built-in scenes)");
     command.add_flag("--cache-ideal", job.cacheIdeal,
                      "Benchmark switch: cache misses return black instead of being traced");
+    command.add_flag("--stage-times", job.stageTimes,
+                     "Time every stage of the tile kernel (CPU ms summed over threads) and print them per frame");
     command.add_option("--pipeline", job.pipeline,
                        "ray: primary rays per tile; hybrid: G-buffer (OpenGL or primary-ray packets), then "
                        "deferred shadow and secondary rays")

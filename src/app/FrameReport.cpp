@@ -35,6 +35,13 @@ std::string formatFrameLine(const FrameResult& r, int frameCount) {
         line << "  phases ms: raster " << formatFixed(p->raster, 1) << ", readback " << formatFixed(p->readback, 1)
              << ", shadows " << formatFixed(p->shadows, 1) << ", secondary " << formatFixed(p->secondary, 1)
              << ", compose " << formatFixed(p->compose, 1);
+    if (const auto& s = r.stats.stages)
+        line << "  stages cpu ms: first hits " << formatFixed(s->firstHits, 1) << ", surfaces "
+             << formatFixed(s->surfaces, 1) << ", shadow rays " << formatFixed(s->shadowRays, 1) << ", direct "
+             << formatFixed(s->directShading, 1) << ", secondary rays " << formatFixed(s->secondaryRays, 1)
+             << ", lookups " << formatFixed(s->reuseLookups, 1) << ", trace " << formatFixed(s->traceSecondary, 1)
+             << ", resolve " << formatFixed(s->resolve, 1) << ", compose " << formatFixed(s->compose, 1)
+             << ", cache frame end (wall) " << formatFixed(s->cacheFrameEnd, 1);
     return line.str();
 }
 

@@ -34,6 +34,14 @@ nlohmann::json phasesJson(const PhaseTimes& p) {
             {"secondary_ms", p.secondary}, {"compose_ms", p.compose}};
 }
 
+nlohmann::json stagesJson(const StageTimes& s) {
+    return {{"first_hits_cpu_ms", s.firstHits},     {"surfaces_cpu_ms", s.surfaces},
+            {"shadow_rays_cpu_ms", s.shadowRays},   {"direct_shading_cpu_ms", s.directShading},
+            {"secondary_rays_cpu_ms", s.secondaryRays}, {"reuse_lookups_cpu_ms", s.reuseLookups},
+            {"trace_secondary_cpu_ms", s.traceSecondary}, {"resolve_cpu_ms", s.resolve},
+            {"compose_cpu_ms", s.compose},          {"cache_frame_end_ms", s.cacheFrameEnd}};
+}
+
 nlohmann::json raysJson(const RayCounts& r) {
     return {{"primary", r.primary}, {"shadow", r.shadow}, {"reflection", r.reflection},
             {"refraction", r.refraction}, {"prefill", r.prefill}, {"total", r.total()}};
@@ -77,6 +85,7 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out) {
                                     {"mrays_per_s", mrays}};
         if (r.stats.cache) frameJson["cache"] = cacheJson(*r.stats.cache);
         if (r.stats.phases) frameJson["phases"] = phasesJson(*r.stats.phases);
+        if (r.stats.stages) frameJson["stages"] = stagesJson(*r.stats.stages);
         frameStats.push_back(std::move(frameJson));
         const bool lastFrame = r.frame + 1 == frames;
         if (!options.out.empty() && (outPattern.perFrame() || lastFrame)) writeImage(film, outPattern.pathFor(r.frame));

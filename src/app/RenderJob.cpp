@@ -85,6 +85,7 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     settings.cache.cdctToleranceOverride = options.cdctTolerance;
     settings.cache.resolutionOverride = options.cacheResolution;
     settings.cache.ideal = options.cacheIdeal;
+    settings.stageTimes = options.stageTimes;
     settings.pipeline = options.pipeline == "hybrid" ? PipelineKind::Hybrid : PipelineKind::Ray;
     settings.gbuffer = options.gbuffer == "gl"        ? GBufferSource::OpenGl
                        : options.gbuffer == "packets" ? GBufferSource::Packets

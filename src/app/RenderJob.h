@@ -27,6 +27,7 @@ struct RenderJobOptions {
     std::optional<float> cdctTolerance;    // improved CDCT error control, texels
     std::optional<int> cacheResolution;    // default: each material's own setting
     bool cacheIdeal = false;               // benchmark switch, see RayCacheSettings::ideal
+    bool stageTimes = false;               // time the tile kernel's stages (RenderSettings::stageTimes)
     std::string pipeline = "ray";          // ray | hybrid (render/FramePipeline.h)
     std::string gbuffer = "auto";          // hybrid G-buffer source: auto | gl | packets
 };

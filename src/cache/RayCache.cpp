@@ -130,6 +130,13 @@ std::vector<CacheWorker> RayCache::makeWorkers(int count) const {
     return workers;
 }
 
+std::span<CacheWorker> RayCache::reusableWorkers(int count) {
+    const auto n = static_cast<std::size_t>(count);
+    if (workerPool_.size() < n) workerPool_.resize(n);
+    for (CacheWorker& w : workerPool_) w.counters_.resize(cubes_.size());
+    return std::span(workerPool_).first(n);
+}
+
 void RayCache::beginFrame(std::span<CacheWorker> workers) {
     for (Entry& e : cubes_)
         e.invalidPercentBefore =
@@ -141,7 +148,7 @@ void RayCache::beginFrame(std::span<CacheWorker> workers) {
     }
 }
 
-FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers) {
+FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Parallel* parallel) {
     // Batches in key order; only their boundaries are sorted (one per tile),
     // never the stores themselves.
     mergeOrder_.clear();
@@ -156,24 +163,39 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers) {
 
     FrameCacheStats stats;
     stats.objects.resize(cubes_.size());
-    // Stores land on scattered texels of large cubes: the validity word of a
-    // store a little ahead is prefetched so the misses overlap.
-    constexpr std::size_t kAhead = 16;
-    for (const BatchRef& b : mergeOrder_) {
-        const auto& pending = workers[b.worker].pending_;
-        for (std::size_t i = b.begin; i < b.end; ++i) {
-            if (i + kAhead < b.end) {
-                const auto& ahead = pending[i + kAhead];
-                __builtin_prefetch(cubes_[ahead.cube].cube.validWordOf(ahead.texel), 1);
-                __builtin_prefetch(cubes_[ahead.cube].cube.texelWordOf(ahead.texel), 1);
+    // Partition `part` of `parts` applies the stores of cubes c with
+    // c % parts == part: cubes are independent, so partitions may run in
+    // parallel, and each cube still sees its stores in merge order. Stores
+    // land on scattered texels of large cubes: those a little ahead are
+    // prefetched so the memory misses overlap.
+    const auto applyPartition = [&](std::size_t part, std::size_t parts) {
+        constexpr std::size_t kAhead = 16;
+        for (const BatchRef& b : mergeOrder_) {
+            const auto& pending = workers[b.worker].pending_;
+            for (std::size_t i = b.begin; i < b.end; ++i) {
+                if (i + kAhead < b.end) {
+                    const auto& ahead = pending[i + kAhead];
+                    if (ahead.cube % parts == part) {
+                        __builtin_prefetch(cubes_[ahead.cube].cube.validWordOf(ahead.texel), 1);
+                        __builtin_prefetch(cubes_[ahead.cube].cube.texelWordOf(ahead.texel), 1);
+                    }
+                }
+                const auto& p = pending[i];
+                if (p.cube % parts != part) continue;
+                Entry& e = cubes_[p.cube];
+                if (!e.cube.writeIfInvalid(p.texel, p.packed, p.depth)) continue;
+                ++stats.objects[p.cube].stores;
+                if (p.depth < e.cdct.maxDepth) e.farthestSurface = std::max(e.farthestSurface, p.depth);
             }
-            const auto& p = pending[i];
-            Entry& e = cubes_[p.cube];
-            if (!e.cube.writeIfInvalid(p.texel, p.packed, p.depth)) continue;
-            ++stats.objects[p.cube].stores;
-            if (p.depth < e.cdct.maxDepth) e.farthestSurface = std::max(e.farthestSurface, p.depth);
         }
-    }
+    };
+    const int parts = parallel ? std::min<int>(parallel->threadCount(), static_cast<int>(cubes_.size())) : 1;
+    if (parts > 1)
+        parallel->forEachIndex(parts, [&](int part, int) {
+            applyPartition(static_cast<std::size_t>(part), static_cast<std::size_t>(parts));
+        });
+    else
+        applyPartition(0, 1);
 
     for (std::size_t c = 0; c < cubes_.size(); ++c) {
         ObjectCacheStats& s = stats.objects[c];
@@ -271,8 +293,12 @@ std::optional<Rgb> RayCache::lookup(int objectId, const Vec3& origin, const Vec3
 }
 
 void RayCache::store(int objectId, const Vec3& origin, const Vec3& direction, const Rgb& color, float hitDistance,
-                     CacheWorker& worker) const {
+                     CacheWorker& worker, int knownTexel) const {
     const auto c = static_cast<std::size_t>(cubeIndexOf(objectId));
+    if (knownTexel >= 0) {
+        worker.queue({static_cast<std::uint32_t>(c), knownTexel, CachingCube::encodeTexel(color), CachingCube::kInvalidDepth});
+        return;
+    }
     if (fillsByPrefill(cubes_[c])) return;  // its pre-fill writes every texel
     const CachingCube& cube = cubes_[c].cube;
     int texel;
@@ -301,7 +327,7 @@ void RayCache::store(int objectId, const Vec3& origin, const Vec3& direction, co
 }
 
 void RayCache::lookupBatch(std::span<const Query> queries, std::span<Rgb> colors, std::span<unsigned char> found,
-                           CacheWorker& worker) const {
+                           std::span<int> storeTexels, CacheWorker& worker) const {
     // Chunks small enough for the texel indices to stay on the stack and the
     // prefetched lines to stay in L1/L2 until they are read.
     constexpr std::size_t kChunk = 64;
@@ -324,6 +350,7 @@ void RayCache::lookupBatch(std::span<const Query> queries, std::span<Rgb> colors
         for (std::size_t k = 0; k < count; ++k) {
             const Query& q = queries[base + k];
             const std::size_t i = base + k;
+            storeTexels[i] = -1;
             if (texel[k] < 0) {
                 const auto color = lookup(q.objectId, q.origin, q.direction, worker);
                 found[i] = color ? 1 : 0;
@@ -342,6 +369,7 @@ void RayCache::lookupBatch(std::span<const Query> queries, std::span<Rgb> colors
                 ++counters.misses;
                 found[i] = ideal_ ? 1 : 0;
                 if (ideal_) colors[i] = Rgb{};
+                else storeTexels[i] = texel[k];
             }
         }
     }

@@ -29,6 +29,7 @@
 #include "cache/CacheWorker.h"
 #include "cache/CdctSearch.h"
 #include "cache/CachingCube.h"
+#include "core/Parallel.h"
 #include "scene/Scene.h"
 
 namespace raycache {
@@ -91,8 +92,13 @@ public:
     void clear();
 
     std::vector<CacheWorker> makeWorkers(int count) const;
+    // `count` workers owned by the cache and reused frame after frame, so
+    // their store queues keep their memory (render/CacheFrame.h uses them).
+    std::span<CacheWorker> reusableWorkers(int count);
     void beginFrame(std::span<CacheWorker> workers);
-    FrameCacheStats endFrame(std::span<CacheWorker> workers);
+    // With `parallel`, the stores of different cubes are applied by
+    // different threads (each cube's in the same order as without).
+    FrameCacheStats endFrame(std::span<CacheWorker> workers, const Parallel* parallel = nullptr);
 
     // What the ray leaving object `objectId` at `origin` along `direction`
     // brought back in an earlier frame, or nothing if it has to be traced.
@@ -111,8 +117,11 @@ public:
     // one lookup() per query, but CCT's validity bits and texels are
     // prefetched for many queries before any is read, so their memory
     // latencies overlap instead of adding up.
+    // For an unanswered CCT query, storeTexels[i] is the texel its store
+    // will fill (invalid when the frame began), -1 otherwise; handing it to
+    // store() spares addressing the texel twice.
     void lookupBatch(std::span<const Query> queries, std::span<Rgb> colors, std::span<unsigned char> found,
-                     CacheWorker& worker) const;
+                     std::span<int> storeTexels, CacheWorker& worker) const;
     // Improved CDCT (technique Cdct with prefill on): the objects whose cubes
     // were asked for during this frame (by `workers`) and are not filled yet.
     // The renderer fills them after the frame's pixels, before endFrame
@@ -137,8 +146,9 @@ public:
     // first hit, infinity for a miss) for the end of the frame. CDCT stores
     // it at the texel addressed by centre -> hit point, with that distance
     // (misses and hits beyond maxDepth: the point of the ray at maxDepth).
+    // `knownTexel`: the storeTexels answer of lookupBatch for this ray, or -1.
     void store(int objectId, const Vec3& origin, const Vec3& direction, const Rgb& color, float hitDistance,
-               CacheWorker& worker) const;
+               CacheWorker& worker, int knownTexel = -1) const;
 
 private:
     struct Entry {
@@ -175,7 +185,8 @@ private:
         std::size_t worker;
         std::size_t begin, end;
     };
-    std::vector<BatchRef> mergeOrder_;  // object id -> index into cubes_, -1 if uncached
+    std::vector<BatchRef> mergeOrder_;
+    std::vector<CacheWorker> workerPool_;  // object id -> index into cubes_, -1 if uncached
     bool ideal_ = false;
     CdctImprovements improvements_;
 };

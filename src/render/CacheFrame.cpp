@@ -6,7 +6,7 @@ namespace raycache {
 
 CacheFrame::CacheFrame(RayCache* cache, int workerCount) : cache_(cache && !cache->empty() ? cache : nullptr) {
     if (!cache_) return;
-    workers_ = cache_->makeWorkers(workerCount);
+    workers_ = cache_->reusableWorkers(workerCount);
     cache_->beginFrame(workers_);
 }
 
@@ -19,7 +19,7 @@ std::optional<FrameCacheStats> CacheFrame::finish(const TileKernel& kernel, cons
     if (!cache_ || finished_) return std::nullopt;
     finished_ = true;
     rays += prefillCaches(*cache_, workers_, kernel, parallel);
-    return cache_->endFrame(workers_);
+    return cache_->endFrame(workers_, &parallel);
 }
 
 }  // namespace raycache

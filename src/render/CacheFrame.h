@@ -4,7 +4,7 @@
 // and merges the queued stores. Caches change only there, never inside the
 // kernel's stages.
 #include <optional>
-#include <vector>
+#include <span>
 
 #include "cache/RayCache.h"
 #include "core/Parallel.h"
@@ -34,7 +34,7 @@ public:
 
 private:
     RayCache* cache_;
-    std::vector<CacheWorker> workers_;
+    std::span<CacheWorker> workers_;
     bool finished_ = false;
 };
 

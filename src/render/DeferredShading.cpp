@@ -31,7 +31,9 @@ void DeferredShading::shade(const Camera& camera, const GBufferView& gbuffer, Im
     PhaseTimes& phases = stats.phases.emplace(stats.phases.value_or(PhaseTimes{}));
 
     const auto frameStart = Clock::now();
-    std::vector<TileScratch> scratch(static_cast<std::size_t>(parallel_.threadCount()));
+    std::vector<TileScratch>& scratch = scratch_;
+    scratch.resize(static_cast<std::size_t>(parallel_.threadCount()));
+    for (TileScratch& s : scratch) s.beginFrame();
     CacheFrame cacheFrame(cache_, parallel_.threadCount());
     parallel_.forEachTile(width, height, settings_.tileSize, [&](const TileRange& tile, int worker) {
         kernel_.renderGBufferTile(cameraRays, gbuffer, tile, tileKey(tile, width, settings_.tileSize),

@@ -35,6 +35,7 @@ private:
     const Parallel& parallel_;
     RayCache* cache_;
     TileKernel kernel_;
+    std::vector<TileScratch> scratch_;  // per-worker buffers kept from frame to frame
 };
 
 }  // namespace raycache

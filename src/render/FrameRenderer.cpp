@@ -17,7 +17,9 @@ FrameStats FrameRenderer::render(const Camera& camera, Image& film) const {
     if (film.width() != settings_.width || film.height() != settings_.height)
         film = Image(settings_.width, settings_.height);
     const CameraRays cameraRays(camera, settings_.width, settings_.height);
-    std::vector<TileScratch> scratch(static_cast<std::size_t>(parallel_.threadCount()));
+    std::vector<TileScratch>& scratch = scratch_;
+    scratch.resize(static_cast<std::size_t>(parallel_.threadCount()));
+    for (TileScratch& s : scratch) s.beginFrame();
     CacheFrame cacheFrame(cache_, parallel_.threadCount());
     parallel_.forEachTile(settings_.width, settings_.height, settings_.tileSize, [&](const TileRange& tile, int worker) {
         kernel_.renderCameraTile(cameraRays, tile, tileKey(tile, settings_.width, settings_.tileSize),

@@ -28,6 +28,8 @@ private:
     const Parallel& parallel_;
     RayCache* cache_;
     TileKernel kernel_;
+    // Per-worker buffers kept from frame to frame (render() is not reentrant).
+    mutable std::vector<TileScratch> scratch_;
 };
 
 // The key that orders a tile's cache stores: its index in row-major tile order.

@@ -273,9 +273,10 @@ void TileKernel::lookupReuse(TileScratch& s, CacheWorker& cache) const {
     s.cacheQueries.resize(n);
     s.cachedColors.resize(n);
     s.cacheFound.resize(n);
+    s.storeTexels.resize(n);
     for (std::size_t i = 0; i < n; ++i)
         s.cacheQueries[i] = {s.leaving[i].objectId, s.leaving[i].ray.origin, s.leaving[i].ray.direction};
-    cache_->lookupBatch(s.cacheQueries, s.cachedColors, s.cacheFound, cache);
+    cache_->lookupBatch(s.cacheQueries, s.cachedColors, s.cacheFound, s.storeTexels, cache);
     for (std::size_t i = 0; i < n; ++i) {
         const TileScratch::LeavingRay& l = s.leaving[i];
         TileScratch::Node& node = s.nodes[static_cast<std::size_t>(l.node)];
@@ -286,6 +287,7 @@ void TileKernel::lookupReuse(TileScratch& s, CacheWorker& cache) const {
         // A miss: the ray is traced, and what its whole tree brings back is
         // stored once the tile is done.
         node.objectId = l.objectId;
+        node.storeTexel = s.storeTexels[i];
         node.origin = l.ray.origin;
         node.direction = l.ray.direction;
         s.pending.push_back({l.ray, l.node, l.pathWeight, l.depth, l.kind});
@@ -327,7 +329,8 @@ void TileKernel::resolveNodes(TileScratch& s, CacheWorker* cache, std::uint64_t 
         if (node.parent < 0) continue;
         const Rgb color = node.color();
         if (node.objectId >= 0 && cache)
-            cache_->store(node.objectId, node.origin, node.direction, color, node.hitDistance, *cache);
+            cache_->store(node.objectId, node.origin, node.direction, color, node.hitDistance, *cache,
+                          node.storeTexel);
         s.nodes[static_cast<std::size_t>(node.parent)].secondary += color * node.weightInParent;
     }
 }

@@ -46,6 +46,13 @@ public:
     StageTimes stages;  // filled only when RenderSettings::stageTimes is set
     std::chrono::steady_clock::duration firstBounce{}, laterBounces{}, compose{};  // hybrid phases
 
+    // Zeroes the counts and times above; the buffers keep their memory.
+    void beginFrame() {
+        counts = {};
+        stages = {};
+        firstBounce = laterBounces = compose = {};
+    }
+
 private:
     friend class TileKernel;
     enum class Kind : unsigned char { Reflection, Refraction };
@@ -81,6 +88,7 @@ private:
         int parent = -1;            // -1: a pixel or texel of the caller's
         float weightInParent = 0.0f;
         int objectId = -1;          // a caching object whose cache missed this ray: stored when done
+        int storeTexel = -1;        // where, when the lookup already knows (RayCache::lookupBatch)
         Vec3 origin, direction;     // that ray, for the store
         float hitDistance = 0.0f;   // distance to its first hit, infinity for a miss
         Rgb color() const { return direct + secondary; }
@@ -101,6 +109,7 @@ private:
     std::vector<RayCache::Query> cacheQueries;
     std::vector<Rgb> cachedColors;
     std::vector<unsigned char> cacheFound;
+    std::vector<int> storeTexels;
     std::vector<PendingRay> pending;
     std::vector<float> rootHitDistance;
 };

@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <limits>
 
 #include "core/SharedExponentColor.h"
 
@@ -21,6 +24,49 @@ TEST(SharedExponentColor, RoundTripWithinNineBitPrecision) {
     EXPECT_EQ(SharedExponentColor::decode(SharedExponentColor::encode(Rgb{0.0f})), Rgb{0.0f});
     // Powers of two are exact.
     EXPECT_EQ(SharedExponentColor::decode(SharedExponentColor::encode(Rgb{1.0f, 0.5f, 0.25f})), (Rgb{1.0f, 0.5f, 0.25f}));
+}
+
+namespace {
+
+// The encoder as EXT_texture_shared_exponent writes it, with frexp and ldexp:
+// the oracle for the bit-twiddled one in core/SharedExponentColor.cpp.
+std::uint32_t referenceEncode(const Rgb& color) {
+    const auto clampChannel = [](float v) { return !(v > 0.0f) ? 0.0f : std::min(v, SharedExponentColor::kMaxValue); };
+    const float r = clampChannel(color.r), g = clampChannel(color.g), b = clampChannel(color.b);
+    const float maxChannel = std::max({r, g, b});
+    if (maxChannel == 0.0f) return 0u;
+    int exponent;
+    std::frexp(maxChannel, &exponent);
+    int biased = std::max(-16, exponent - 1) + 1 + 15;
+    float scale = std::ldexp(1.0f, biased - 15 - 9);
+    if (std::floor(maxChannel / scale + 0.5f) >= 512.0f) {
+        ++biased;
+        scale *= 2.0f;
+    }
+    biased = std::min(biased, 31);
+    const auto mantissa = [&](float v) { return std::min(static_cast<std::uint32_t>(std::floor(v / scale + 0.5f)), 511u); };
+    return mantissa(r) | (mantissa(g) << 9) | (mantissa(b) << 18) | (static_cast<std::uint32_t>(biased) << 27);
+}
+
+}  // namespace
+
+TEST(SharedExponentColor, EncodesExactlyAsTheSpecificationsFormula) {
+    // Every exponent from subnormal to overflow, with mantissas that round up
+    // across a power of two, and random colours.
+    std::uint32_t state = 12345u;
+    const auto next = [&] {
+        state = state * 1664525u + 1013904223u;
+        return state;
+    };
+    for (int i = 0; i < 200000; ++i) {
+        const float a = std::bit_cast<float>(next() & 0x7fffffffu);
+        const float b = std::bit_cast<float>((next() % 0x48000000u));
+        const float c = (next() % 1000u) * 1e-3f;
+        const Rgb color = i % 3 == 0 ? Rgb{a, b, c} : i % 3 == 1 ? Rgb{b, c, a} : Rgb{c, a * 1e-30f, b};
+        ASSERT_EQ(SharedExponentColor::encode(color), referenceEncode(color)) << color.r << " " << color.g << " " << color.b;
+    }
+    for (float v : {1e-45f, 1e-38f, 1.5e-5f, 0.99951171875f, 0.999755859375f, 1.0f, 511.5f, 65408.0f, 65500.0f})
+        EXPECT_EQ(SharedExponentColor::encode(Rgb{v, v * 0.5f, 0.0f}), referenceEncode(Rgb{v, v * 0.5f, 0.0f})) << v;
 }
 
 TEST(SharedExponentColor, ClampsAndNeverProducesTheInvalidWord) {
