@@ -10,6 +10,7 @@
 #include "app/ViewCommand.h"
 #include "bench/ProgressBar.h"
 #include "core/Errors.h"
+#include "scene/CacheTechnique.h"
 
 namespace {
 
@@ -26,8 +27,8 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
     command.add_option("--min-weight", job.minWeight, "Stop a path when its kr/kt product falls below this")
         ->capture_default_str();
     command.add_option("--technique", job.technique,
-                       "Secondary-ray caching for every mirror/glass object: none, cct, cdct (improved) or "
-                       "cdct-parity (the thesis's search as specified) (default: each material's own setting)");
+                       "Secondary-ray caching for every mirror/glass object: " + raycache::cacheTechniqueNameList() +
+                           " (default: each material's own setting; see docs/caching.md)");
     command.add_option("--cdct-step", job.cdctStep,
                        "CDCT parity linear-search step along the ray, scene units (default: each material's own, 0.4)");
     command.add_option("--cdct-epsilon", job.cdctEpsilon,

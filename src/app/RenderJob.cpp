@@ -28,11 +28,7 @@ CameraPath chooseCameraPath(const Scene& scene, const std::optional<std::string>
 
 }  // namespace
 
-std::optional<CacheTechnique> parseTechnique(const std::string& name) {
-    for (CacheTechnique t : {CacheTechnique::None, CacheTechnique::Cct, CacheTechnique::Cdct, CacheTechnique::CdctParity})
-        if (name == cacheTechniqueName(t)) return t;
-    return std::nullopt;
-}
+std::optional<CacheTechnique> parseTechnique(const std::string& name) { return parseCacheTechnique(name); }
 
 void validateRenderJobOptions(const RenderJobOptions& o) {
     if (o.width < 1 || o.height < 1 || o.width > kMaxImageSide || o.height > kMaxImageSide)
@@ -43,7 +39,7 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
     if (!(o.minWeight >= 0.0f && o.minWeight <= 1.0f)) throw InputError("--min-weight must be in [0, 1]");
     if (o.threads < 0 || o.threads > 1024) throw InputError("--threads must be between 0 (all) and 1024");
     if (o.technique && !parseTechnique(*o.technique))
-        throw InputError("--technique must be none, cct, cdct or cdct-parity (got '" + *o.technique + "')");
+        throw InputError("--technique must be " + cacheTechniqueNameList() + " (got '" + *o.technique + "')");
     const auto positive = [](const std::optional<float>& v, const char* flag) {
         if (v && !(std::isfinite(*v) && *v > 0.0f))
             throw InputError(std::string(flag) + " must be a finite number > 0");

@@ -3,25 +3,10 @@
 #include <optional>
 
 #include "core/Rgb.h"
+#include "scene/CacheTechnique.h"
 #include "scene/Texture.h"
 
 namespace raycache {
-
-// Cct: color only (SPEC §2). CdctParity: color + depth with the thesis's
-// search as specified (SPEC §3). Cdct: the improved color + depth technique
-// (pre-filled cubes, texel-space search, error control; docs/caching.md).
-enum class CacheTechnique { None, Cct, CdctParity, Cdct };
-
-// The name a technique has on the command line and in scene files.
-constexpr const char* cacheTechniqueName(CacheTechnique technique) {
-    switch (technique) {
-    case CacheTechnique::None: return "none";
-    case CacheTechnique::Cct: return "cct";
-    case CacheTechnique::CdctParity: return "cdct-parity";
-    case CacheTechnique::Cdct: return "cdct";
-    }
-    return "unknown";
-}
 
 // The CDCT search (SPEC §3, thesis Algorithm 4), in scene units. The thesis
 // measured step/epsilon pairs 2/0.2, 0.4/0.05, 0.2/0.02 and 0.02/0.002 with

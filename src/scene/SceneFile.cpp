@@ -149,10 +149,12 @@ constexpr std::array<Choice<LightType>, 3> kLightTypes{{{"point", LightType::Poi
 enum class TextureKind { Image, Checker };
 constexpr std::array<Choice<TextureKind>, 2> kTextureKinds{{{"image", TextureKind::Image},
                                                             {"checker", TextureKind::Checker}}};
-constexpr std::array<Choice<CacheTechnique>, 4> kCacheTechniques{{{"none", CacheTechnique::None},
-                                                                  {"cct", CacheTechnique::Cct},
-                                                                  {"cdct", CacheTechnique::Cdct},
-                                                                  {"cdct-parity", CacheTechnique::CdctParity}}};
+constexpr auto kCacheTechniqueChoices = [] {
+    std::array<Choice<CacheTechnique>, kCacheTechniques.size()> choices{};
+    for (std::size_t i = 0; i < kCacheTechniques.size(); ++i)
+        choices[i] = {kCacheTechniques[i].name, kCacheTechniques[i].technique};
+    return choices;
+}();
 enum class ShapeKind { Sphere, Mesh, Plane, Box, Cylinder, Cone, Torus, Bowl };
 constexpr std::array<Choice<ShapeKind>, 8> kShapeKinds{{{"sphere", ShapeKind::Sphere},
                                                         {"mesh", ShapeKind::Mesh},
@@ -612,7 +614,7 @@ private:
     CacheSettings cache(const Node& n) const {
         expectObject(n, {"technique", "resolution", "step", "epsilon", "maxDepth", "tolerance"});
         CacheSettings c;
-        if (const Node v = child(n, "technique")) c.technique = choice(v, "cache technique", kCacheTechniques);
+        if (const Node v = child(n, "technique")) c.technique = choice(v, "cache technique", kCacheTechniqueChoices);
         if (const Node v = child(n, "resolution")) c.faceResolution = integer(v, kMinCacheResolution, kMaxCacheResolution);
         // CDCT search parameters; RayCache::validate checks the step count.
         if (const Node v = child(n, "step")) c.cdct.step = number(v, positive());

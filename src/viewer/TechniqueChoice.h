@@ -14,13 +14,14 @@ struct TechniqueChoice {
     std::optional<CacheTechnique> technique;  // empty: every material's own setting
 };
 
-inline constexpr std::array kTechniqueChoices = {
-    TechniqueChoice{"scene", std::nullopt},
-    TechniqueChoice{"none", CacheTechnique::None},
-    TechniqueChoice{"cct", CacheTechnique::Cct},
-    TechniqueChoice{"cdct", CacheTechnique::Cdct},
-    TechniqueChoice{"cdct-parity", CacheTechnique::CdctParity},
-};
+// "scene" first, then every technique of the table (scene/CacheTechnique.h).
+inline constexpr auto kTechniqueChoices = [] {
+    std::array<TechniqueChoice, kCacheTechniques.size() + 1> choices{};
+    choices[0] = {"scene", std::nullopt};
+    for (std::size_t i = 0; i < kCacheTechniques.size(); ++i)
+        choices[i + 1] = {kCacheTechniques[i].name.data(), kCacheTechniques[i].technique};
+    return choices;
+}();
 
 // Index of the choice labelled `label`, or of "scene" for an empty label;
 // -1 if there is no such choice.
