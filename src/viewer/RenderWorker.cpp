@@ -5,7 +5,6 @@
 
 #include "core/Errors.h"
 #include "render/FramePipeline.h"
-#include "render/FrameRenderer.h"
 #include "viewer/CubeInspectorImage.h"
 #include "viewer/DifferenceHeatMap.h"
 
@@ -99,8 +98,11 @@ void RenderWorker::applyConfig(const ViewerRenderConfig& config, DisplayFrame&) 
     configError_.clear();
     config_ = config;
     settings_ = applyViewerRenderConfig(setup_.base, config);
-    cache_.reset();  // free the old cubes before allocating the new ones
-    cache_ = std::make_unique<RayCache>(*setup_.scene, settings_.cache);
+    session_.reset();  // free the old cubes before allocating the new ones
+    session_ = std::make_unique<RenderSession>(*setup_.scene, settings_, *setup_.tracer, parallel_);
+    RenderSettings uncached = settings_;
+    uncached.cache.techniqueOverride = CacheTechnique::None;
+    uncached_ = std::make_unique<RenderSession>(*setup_.scene, uncached, *setup_.tracer, parallel_);
 }
 
 void RenderWorker::encode(const Image& film, std::vector<std::uint8_t>& rgba) const {
@@ -117,7 +119,7 @@ void RenderWorker::renderOne(const RenderRequest& request, DisplayFrame& frame) 
     applyConfig(request.config, frame);
     if (request.clearCount != clearCount_) {
         clearCount_ = request.clearCount;
-        cache_->clear();
+        session_->cache().clear();
     }
     if (request.pathRestartCount != pathRestartCount_) {
         pathRestartCount_ = request.pathRestartCount;
@@ -126,22 +128,19 @@ void RenderWorker::renderOne(const RenderRequest& request, DisplayFrame& frame) 
     const bool onPath = request.playPath;
     const Camera camera = onPath ? setup_.path.cameraAt(setup_.scene->camera, pathFrame_) : request.camera;
 
-    RenderSettings settings = settings_;
-    settings.width = request.width;
-    settings.height = request.height;
-
     // The one place a frame is rendered, by the pipeline the settings ask for.
+    session_->resize(request.width, request.height);
     auto start = std::chrono::steady_clock::now();
-    frame.stats = makeFramePipeline(*setup_.scene, *setup_.tracer, settings, parallel_, cache_.get())
-                      ->render(camera, film_);
+    frame.stats = session_->render(camera, film_);
     frame.renderMs = millisecondsSince(start);
 
     start = std::chrono::steady_clock::now();
     encode(film_, frame.rgba);
     frame.inspectedObject = -1;
     frame.inspectorRgba.clear();
-    if (request.inspectObject >= 0 && cache_->cachesObject(request.inspectObject)) {
-        const CachingCube& cube = cache_->cube(request.inspectObject);
+    const RayCache& cache = session_->cache();
+    if (request.inspectObject >= 0 && cache.cachesObject(request.inspectObject)) {
+        const CachingCube& cube = cache.cube(request.inspectObject);
         const Image cross = cubeInspectorImage(cube, request.inspectorFaceSize);
         encode(cross, frame.inspectorRgba);
         frame.inspectedObject = request.inspectObject;
@@ -156,8 +155,8 @@ void RenderWorker::renderOne(const RenderRequest& request, DisplayFrame& frame) 
     frame.differenceMs = 0.0;
     if (request.difference) {
         start = std::chrono::steady_clock::now();
-        const FrameRenderer uncached(*setup_.scene, *setup_.tracer, settings, parallel_, nullptr);
-        uncached.render(camera, uncachedFilm_);
+        uncached_->resize(request.width, request.height);
+        uncached_->render(camera, uncachedFilm_);
         encode(uncachedFilm_, uncachedRgba_);
         const double sum = differenceHeatMap(frame.rgba, uncachedRgba_, request.differenceGain, frame.rgba);
         frame.meanDifference = sum / (static_cast<double>(film_.width()) * static_cast<double>(film_.height()));
@@ -171,7 +170,7 @@ void RenderWorker::renderOne(const RenderRequest& request, DisplayFrame& frame) 
     frame.camera = camera;
     frame.pathFrame = onPath ? pathFrame_ : -1;
     frame.reducedResolution = request.reducedResolution && !onPath;
-    frame.cacheBytes = cache_->bytes();
+    frame.cacheBytes = cache.bytes();
     frame.configError = configError_;
     if (onPath) ++pathFrame_;
 }

@@ -14,6 +14,7 @@
 #include "cache/RayCache.h"
 #include "core/Image.h"
 #include "core/Parallel.h"
+#include "render/RenderSession.h"
 #include "render/RenderSettings.h"
 #include "scene/CameraPath.h"
 #include "scene/Scene.h"
@@ -66,7 +67,8 @@ private:
     // Render-thread state.
     std::optional<ViewerRenderConfig> config_;  // in use; empty before the first frame
     RenderSettings settings_;
-    std::unique_ptr<RayCache> cache_;
+    std::unique_ptr<RenderSession> session_;   // the configured pipeline and caches
+    std::unique_ptr<RenderSession> uncached_;  // the same without caches, for the difference view
     std::string configError_;
     std::uint64_t clearCount_ = 0;
     std::uint64_t pathRestartCount_ = 0;

@@ -1,0 +1,61 @@
+#pragma once
+// A scene made ready to render frames: its tracer, its caches, its worker
+// threads and the pipeline the settings ask for, owned together. The CLI,
+// the experiments, the benchmarks and the viewer all render through one of
+// these; nobody assembles the parts by hand.
+#include <memory>
+#include <string>
+
+#include "cache/RayCache.h"
+#include "core/Image.h"
+#include "core/Parallel.h"
+#include "render/FramePipeline.h"
+#include "render/FrameStats.h"
+#include "render/RenderSettings.h"
+#include "scene/Camera.h"
+#include "scene/Scene.h"
+#include "trace/TraceScene.h"
+
+namespace raycache {
+
+class RenderSession {
+public:
+    // Builds its own tracer and worker threads. Throws InputError for invalid
+    // cache settings before building anything, RuntimeError when the hybrid
+    // pipeline is forced onto OpenGL and no context can be made. `scene` must
+    // outlive the session.
+    RenderSession(const Scene& scene, const RenderSettings& settings);
+    // Shares a tracer and threads (which must outlive it) with other sessions
+    // on the same scene, e.g. the variants an experiment compares.
+    RenderSession(const Scene& scene, const RenderSettings& settings, const TraceScene& tracer,
+                  const Parallel& parallel);
+    ~RenderSession();
+    RenderSession(const RenderSession&) = delete;
+    RenderSession& operator=(const RenderSession&) = delete;
+
+    // Renders what `camera` sees into `film` (resized to the session's size).
+    // Images and caches do not depend on the thread count.
+    FrameStats render(const Camera& camera, Image& film);
+    // Changes the image size of later frames; the caches stay as they are.
+    void resize(int width, int height);
+
+    RayCache& cache() { return cache_; }
+    const RayCache& cache() const { return cache_; }
+    const RenderSettings& settings() const { return settings_; }
+    const TraceScene& tracer() const { return *tracer_; }
+    const Parallel& parallel() const { return *parallel_; }
+    // Which pipeline renders, and for the hybrid one where its G-buffer comes from.
+    std::string description() const { return pipeline_->description(); }
+
+private:
+    const Scene& scene_;
+    RenderSettings settings_;
+    RayCache cache_;  // first: its constructor rejects bad settings before any heavy work
+    std::unique_ptr<TraceScene> ownTracer_;
+    std::unique_ptr<Parallel> ownParallel_;
+    const TraceScene* tracer_;
+    const Parallel* parallel_;
+    std::unique_ptr<FramePipeline> pipeline_;
+};
+
+}  // namespace raycache
