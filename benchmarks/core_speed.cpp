@@ -1,21 +1,77 @@
 // Frame time of the renderer against a plain single-ray Embree Whitted loop
-// (trace/BaselineWhitted) on the same scenes, interleaved in one run. The
-// plain loop runs twice: on Embree's built-in spheres, and on raycache's own
-// acceleration structure (user-geometry spheres), to separate the two effects.
+// (trace/BaselineWhitted) and against a floor, on the same scenes,
+// interleaved in one run:
+//  - the plain loop runs twice: on Embree's built-in spheres, and on
+//    raycache's own acceleration structure (user-geometry spheres);
+//  - "floor": what no renderer of these images can skip, through the same
+//    tracer interface: every tile's camera rays as packets, then one shadow
+//    ray per hit and light as packets, no shading and no secondary rays;
+//  - "ideal": raycache with every caching object's secondary rays answered
+//    for free (RayCacheSettings::ideal), the frame no cache can beat.
 // Usage: core_speed [--size 1024] [--rounds 15] [--scenes grid-32,behind-32,reflective-32]
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <vector>
 
 #include "bench/InterleavedRuns.h"
 #include "core/Parallel.h"
-#include "render/FrameRenderer.h"
+#include "render/CameraRays.h"
+#include "render/RenderSession.h"
 #include "scene/BuiltinScenes.h"
 #include "trace/BaselineWhitted.h"
 
 using namespace raycache;
 
+namespace {
+
+// Camera rays and one shadow ray per hit and light, as packets per tile.
+std::uint64_t renderFloor(const Scene& scene, const TraceScene& tracer, const Parallel& parallel, int size) {
+    const CameraRays cameraRays(scene.camera, size, size);
+    constexpr int kTile = 16;
+    struct Scratch {
+        std::vector<Ray> rays, shadowRays;
+        std::vector<TraceHit> hits;
+        std::vector<unsigned char> occluded;
+        std::uint64_t rays_traced = 0;
+    };
+    std::vector<Scratch> scratch(static_cast<std::size_t>(parallel.threadCount()));
+    parallel.forEachTile(size, size, kTile, [&](const TileRange& tile, int worker) {
+        Scratch& s = scratch[static_cast<std::size_t>(worker)];
+        s.rays.clear();
+        for (int y = tile.y0; y < tile.y1; ++y)
+            for (int x = tile.x0; x < tile.x1; ++x) s.rays.push_back(cameraRays.ray(x, y));
+        s.hits.resize(s.rays.size());
+        tracer.intersectCoherent(s.rays, s.hits);
+        s.shadowRays.clear();
+        for (std::size_t i = 0; i < s.rays.size(); ++i) {
+            if (!s.hits[i].hit()) continue;
+            const Vec3 p = s.rays[i].origin + s.rays[i].direction * (s.hits[i].t * 0.9999f);
+            for (const Light& light : scene.lights) {
+                if (light.type == LightType::Directional) {
+                    s.shadowRays.push_back(Ray{p, -light.direction});
+                } else {
+                    const Vec3 d = light.position - p;
+                    const float distance = length(d);
+                    s.shadowRays.push_back(Ray{p, d / distance, 0.0f, distance});
+                }
+            }
+        }
+        s.occluded.resize(s.shadowRays.size());
+        tracer.occludedCoherent(s.shadowRays, s.occluded);
+        s.rays_traced += s.rays.size() + s.shadowRays.size();
+    });
+    std::uint64_t total = 0;
+    for (Scratch& s : scratch) {
+        total += s.rays_traced;
+        s.rays_traced = 0;
+    }
+    return total;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
-    CLI::App app{"Renderer vs plain Embree Whitted loop, interleaved frame timing"};
+    CLI::App app{"Renderer vs plain Embree Whitted loop and the primary + shadow ray floor, interleaved frame timing"};
     int size = 1024, rounds = 15, warmup = 3, maxDepth = 5, threads = 0;
     std::vector<std::string> scenes{"grid-32", "behind-32", "reflective-32"};
     app.add_option("--size", size, "Image width and height")->capture_default_str();
@@ -27,7 +83,7 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
 
     const Parallel parallel(threads);
-    std::printf("| scene | variant | ms/frame median | min-max | Mrays/s | rays/frame | vs baseline |\n");
+    std::printf("| scene | variant | ms/frame median | min-max | Mrays/s | rays/frame | vs plain loop |\n");
     std::printf("| --- | --- | --- | --- | --- | --- | --- |\n");
     for (const std::string& name : scenes) {
         const auto scene = makeBuiltinScene(name);
@@ -40,19 +96,28 @@ int main(int argc, char** argv) {
         settings.maxDepth = maxDepth;
         settings.threads = threads;
         settings.cache.techniqueOverride = CacheTechnique::None;  // uncached, like the plain loop
+        RenderSettings idealSettings = settings;
+        idealSettings.cache.techniqueOverride = CacheTechnique::Cct;
+        idealSettings.cache.ideal = true;
         const TraceScene tracer(*scene);
-        const FrameRenderer renderer(*scene, tracer, settings, parallel);
+        RenderSession renderer(*scene, settings, tracer, parallel);
+        RenderSession ideal(*scene, idealSettings, tracer, parallel);
         Image film(size, size), baselineFilm(size, size);
         const BaselineWhitted plainLoop(*scene, nullptr), plainLoopOurBvh(*scene, &tracer);
         const auto results = runInterleaved(
             {{"plain loop, Embree spheres", [&] { return plainLoop.render(parallel, maxDepth, baselineFilm); }},
              {"plain loop, raycache BVH", [&] { return plainLoopOurBvh.render(parallel, maxDepth, baselineFilm); }},
-             {"raycache", [&] { return renderer.render(scene->camera, film).rays.total(); }}},
+             {"raycache", [&] { return renderer.render(scene->camera, film).rays.total(); }},
+             {"raycache ideal frame", [&] { return ideal.render(scene->camera, film).rays.total(); }},
+             {"floor: primary + shadow packets", [&] { return renderFloor(*scene, tracer, parallel, size); }}},
             warmup, rounds);
         for (const VariantTimes& t : results)
             std::printf("| %s | %s | %.1f | %.1f-%.1f | %.1f | %llu | %.2fx |\n", name.c_str(), t.name.c_str(),
                         t.median(), t.min(), t.max(), static_cast<double>(t.work) / (t.median() * 1e3),
                         static_cast<unsigned long long>(t.work), results[0].median() / t.median());
+        std::printf("| %s | ideal frame / floor | %.2fx | | | | |\n", name.c_str(),
+                    results[3].median() / results[4].median());
+        std::fflush(stdout);
     }
     return 0;
 }
