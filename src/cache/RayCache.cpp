@@ -148,7 +148,7 @@ void RayCache::beginFrame(std::span<CacheWorker> workers) {
     }
 }
 
-FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Parallel* parallel) {
+FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const PartitionRunner& runPartitions) {
     // Batches in key order; only their boundaries are sorted (one per tile),
     // never the stores themselves.
     mergeOrder_.clear();
@@ -189,9 +189,12 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Paralle
             }
         }
     };
-    const int parts = parallel ? std::min<int>(parallel->threadCount(), static_cast<int>(cubes_.size())) : 1;
+    // Every partition scans all queued stores, so a few partitions balance
+    // uneven cubes over the threads without rescanning the queues many times.
+    constexpr int kPartitions = 4;
+    const int parts = runPartitions ? std::min<int>(kPartitions, static_cast<int>(cubes_.size())) : 1;
     if (parts > 1)
-        parallel->forEachIndex(parts, [&](int part, int) {
+        runPartitions(parts, [&](int part) {
             applyPartition(static_cast<std::size_t>(part), static_cast<std::size_t>(parts));
         });
     else

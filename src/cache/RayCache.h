@@ -20,6 +20,7 @@
 // batch by batch in increasing key order, and the first store to an invalid
 // texel wins. Images and cache contents therefore do not depend on the
 // thread count or scheduling.
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -29,7 +30,6 @@
 #include "cache/CacheWorker.h"
 #include "cache/CdctSearch.h"
 #include "cache/CachingCube.h"
-#include "core/Parallel.h"
 #include "scene/Scene.h"
 
 namespace raycache {
@@ -96,9 +96,12 @@ public:
     // their store queues keep their memory (render/CacheFrame.h uses them).
     std::span<CacheWorker> reusableWorkers(int count);
     void beginFrame(std::span<CacheWorker> workers);
-    // With `parallel`, the stores of different cubes are applied by
-    // different threads (each cube's in the same order as without).
-    FrameCacheStats endFrame(std::span<CacheWorker> workers, const Parallel* parallel = nullptr);
+    // Runs body(part) for every part in [0, count), possibly in parallel.
+    using PartitionRunner = std::function<void(int count, const std::function<void(int part)>& body)>;
+    // With `runPartitions`, the stores of different cubes are applied by
+    // different calls of its body (each cube's stores in the same order as
+    // without), so a caller may spread them over threads.
+    FrameCacheStats endFrame(std::span<CacheWorker> workers, const PartitionRunner& runPartitions = {});
 
     // What the ray leaving object `objectId` at `origin` along `direction`
     // brought back in an earlier frame, or nothing if it has to be traced.

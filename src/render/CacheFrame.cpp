@@ -19,7 +19,9 @@ std::optional<FrameCacheStats> CacheFrame::finish(const TileKernel& kernel, cons
     if (!cache_ || finished_) return std::nullopt;
     finished_ = true;
     rays += prefillCaches(*cache_, workers_, kernel, parallel);
-    return cache_->endFrame(workers_, &parallel);
+    return cache_->endFrame(workers_, [&](int count, const std::function<void(int)>& body) {
+        parallel.forEachIndex(count, [&](int part, int) { body(part); });
+    });
 }
 
 }  // namespace raycache

@@ -1,11 +1,14 @@
 // The cache's threading contract exercised with plain std::threads, so that
 // ThreadSanitizer sees every synchronization (oneTBB and Embree are not built
 // with TSan, so renders through them cannot be checked this way): during a
-// frame many workers look up and queue stores on one RayCache; endFrame
-// merges on one thread. The result must equal a single-threaded run.
+// frame many workers look up (one by one and in batches) and queue stores on
+// one RayCache; endFrame merges, on one thread or with its cube partitions
+// on several. The result must equal a single-threaded run.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -37,6 +40,12 @@ Vec3 directionFor(int pixel, int frame) {
 // threads; returns the cubes' texels and every answer the cache gave.
 std::vector<std::vector<std::uint32_t>> run(int threads, int frames, int pixels,
                                             CacheTechnique technique = CacheTechnique::Cct) {
+    // endFrame's cube partitions, each on a thread of its own when threads > 1.
+    const RayCache::PartitionRunner partitionsOnThreads = [&](int count, const std::function<void(int)>& body) {
+        std::vector<std::thread> pool;
+        for (int part = 0; part < count; ++part) pool.emplace_back([&body, part] { body(part); });
+        for (std::thread& th : pool) th.join();
+    };
     RayCache cache(threeMirrors(technique), {});
     auto workers = cache.makeWorkers(threads);
     std::vector<std::uint32_t> answers(static_cast<std::size_t>(frames * pixels * 2), 0u);
@@ -53,14 +62,25 @@ std::vector<std::vector<std::uint32_t>> run(int threads, int frames, int pixels,
                         const Vec3 d = directionFor(p * 2 + bounce, frame);
                         // Leaving the sphere's surface (CDCT searches from there).
                         const Vec3 origin = Vec3{static_cast<float>(3 * object), 0, 0} + normalize(d) * 1.001f;
-                        const auto answer = cache.lookup(object, origin, d, worker);
+                        // Odd pixels ask through the batch call, even ones one by one.
+                        std::optional<Rgb> answer;
+                        int storeTexel = -1;
+                        if (p % 2 == 1) {
+                            const RayCache::Query query{object, origin, d};
+                            Rgb color;
+                            unsigned char found = 0;
+                            cache.lookupBatch({&query, 1}, {&color, 1}, {&found, 1}, {&storeTexel, 1}, worker);
+                            if (found) answer = color;
+                        } else {
+                            answer = cache.lookup(object, origin, d, worker);
+                        }
                         if (answer)
                             answers[static_cast<std::size_t>((frame * pixels + p) * 2 + bounce)] =
                                 CachingCube::encodeTexel(*answer);
                         if (!answer) {
                             // The "traced" color depends on the pixel, so the first writer matters.
                             const Rgb color{static_cast<float>(p % 97) / 97.0f, 0.5f, static_cast<float>(bounce)};
-                            cache.store(object, origin, d, color, 1.0f, worker);
+                            cache.store(object, origin, d, color, 1.0f, worker, storeTexel);
                         }
                     }
                 }
@@ -74,7 +94,8 @@ std::vector<std::vector<std::uint32_t>> run(int threads, int frames, int pixels,
                 texels[i] = {Rgb{static_cast<float>(i % 101), static_cast<float>(object), 1.0f}, 4.0f};
             cache.completePrefill(object, texels);
         }
-        cache.endFrame(workers);
+        if (threads > 1) cache.endFrame(workers, partitionsOnThreads);
+        else cache.endFrame(workers);
     }
     std::vector<std::vector<std::uint32_t>> texels;
     for (int o = 0; o < 3; ++o) {
