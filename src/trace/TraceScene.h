@@ -32,9 +32,9 @@ public:
     // toward one light), as packets: occluded[i] = 1 if rays[i] is blocked.
     void occludedCoherent(std::span<const Ray> rays, std::span<unsigned char> occluded) const;
 
-    // The same for batches of rays that go their own ways (reflected and
-    // refracted rays, their shadow rays): traced one by one, which beats
-    // packets whose lanes diverge.
+    // The same for batches of rays that go their own ways (e.g. shadow rays
+    // of later bounces): traced one by one, which beats packets whose lanes
+    // diverge.
     void intersectIncoherent(std::span<const Ray> rays, std::span<TraceHit> hits) const;
     void occludedIncoherent(std::span<const Ray> rays, std::span<unsigned char> occluded) const;
 
