@@ -31,6 +31,10 @@ LocalShading::LocalShading(const Scene& scene) : scene_(scene) {
     if (scene.lights.size() > kMaxLights)
         throw InputError("scene has " + std::to_string(scene.lights.size()) + " lights; at most " +
                          std::to_string(kMaxLights) + " are supported");
+    // The cone's cosines, once per light rather than once per shadow query.
+    for (const Light& light : scene.lights)
+        spotCosines_.push_back(
+            {cosDegrees(light.coneAngleDeg), cosDegrees(light.coneAngleDeg - light.falloffAngleDeg)});
 }
 
 int LocalShading::shadowQueries(const SurfacePoint& sp, ShadowQuery* out) const {
@@ -50,8 +54,7 @@ int LocalShading::shadowQueries(const SurfacePoint& sp, ShadowQuery* out) const 
             distance = dot(d, d) * inverseDistance;
             toLight = d * inverseDistance;
             if (light.type == LightType::Spot)
-                strength = smoothstep(cosDegrees(light.coneAngleDeg),
-                                      cosDegrees(light.coneAngleDeg - light.falloffAngleDeg),
+                strength = smoothstep(spotCosines_[i].outer, spotCosines_[i].inner,
                                       dot(-toLight, light.direction));
         }
         // Lights below the geometric surface would leak through interpolated normals.

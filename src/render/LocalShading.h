@@ -4,6 +4,7 @@
 // (shadow, reflected, refracted) are traced by the tile kernel
 // (render/TileKernel.h), a whole wave at a time.
 #include <span>
+#include <vector>
 
 #include "core/Rgb.h"
 #include "render/SurfacePoint.h"
@@ -37,7 +38,11 @@ public:
     const Scene& scene() const { return scene_; }
 
 private:
+    struct SpotCosines {
+        float outer, inner;  // cos of the cone angle, and of the angle where the falloff starts
+    };
     const Scene& scene_;
+    std::vector<SpotCosines> spotCosines_;  // per light
 };
 
 // Offset that lifts a spawned ray's origin off the surface it leaves, scaled
