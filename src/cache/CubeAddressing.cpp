@@ -4,18 +4,6 @@
 
 namespace raycache {
 
-CubeTexel cubeTexelFromDirection(const Vec3& direction, int size) {
-    const CubeCoord c = cubeCoordFromDirection(direction);
-    const float n = static_cast<float>(size);
-    // GL nearest filtering with clamp-to-edge, i = clamp(floor(s * size), 0, size - 1),
-    // as llvmpipe computes it (lp_build_sample_wrap_nearest): the product rounded
-    // to float, truncated toward zero (same as floor once clamped at 0; s can
-    // round to a hair below 0 or reach 1 on a face edge).
-    const int x = std::clamp(static_cast<int>(c.s * n), 0, size - 1);
-    const int y = std::clamp(static_cast<int>(c.t * n), 0, size - 1);
-    return {c.face, x, y};
-}
-
 Vec3 cubeTexelCenterDirection(const CubeTexel& texel, int size) {
     const float n = static_cast<float>(size);
     const float sc = 2.0f * (static_cast<float>(texel.x) + 0.5f) / n - 1.0f;

@@ -169,7 +169,9 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
     // land on scattered texels of large cubes: those a little ahead are
     // prefetched so the memory misses overlap.
     const auto applyPartition = [&](std::size_t part, std::size_t parts) {
-        constexpr std::size_t kAhead = 16;
+        // Far enough ahead that several of this partition's own stores are
+        // in flight (a partition owns about 1/parts of them).
+        constexpr std::size_t kAhead = 48;
         for (const BatchRef& b : mergeOrder_) {
             const auto& pending = workers[b.worker].pending_;
             for (std::size_t i = b.begin; i < b.end; ++i) {

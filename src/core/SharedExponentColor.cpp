@@ -35,13 +35,14 @@ std::uint32_t SharedExponentColor::encode(const Rgb& color) {
     int biased = std::max(-kExponentBias - 1, exponent - 1) + 1 + kExponentBias;
     // Dividing by a power of two and multiplying by its inverse are both exact.
     float inverseScale = powerOfTwo(kExponentBias + kMantissaBits - biased);
-    if (std::floor(maxChannel * inverseScale + 0.5f) >= static_cast<float>(1 << kMantissaBits)) {
+    // Truncation is floor for these non-negative values, without a libm call.
+    if (static_cast<std::uint32_t>(maxChannel * inverseScale + 0.5f) >= (1u << kMantissaBits)) {
         ++biased;
         inverseScale *= 0.5f;
     }
     biased = std::min(biased, kMaxBiasedExponent);
     const auto mantissa = [&](float v) {
-        return std::min(static_cast<std::uint32_t>(std::floor(v * inverseScale + 0.5f)), (1u << kMantissaBits) - 1u);
+        return std::min(static_cast<std::uint32_t>(v * inverseScale + 0.5f), (1u << kMantissaBits) - 1u);
     };
     return mantissa(r) | (mantissa(g) << 9) | (mantissa(b) << 18) | (static_cast<std::uint32_t>(biased) << 27);
 }
