@@ -65,6 +65,7 @@ int main(int argc, char** argv) {
         std::string scene;
         VariantTimes uncached, cct, ideal;
         double hitPercentLastFrame;
+        double lookupsPerPath, hitsPerPath;  // CCT, summed over the path's frames
     };
     std::vector<PathRow> pathRows;
     for (const std::string& name : scenes) {
@@ -99,12 +100,17 @@ int main(int argc, char** argv) {
         std::fflush(stdout);
 
         // (b) the moving path from empty caches; each run renders the whole path.
-        double hitPercent = 0.0;
+        double hitPercent = 0.0, lookups = 0.0, hits = 0.0;
         const auto pathRun = [&](const FrameRenderer& renderer, bool isCct) {
             std::uint64_t rays = 0;
+            if (isCct) lookups = hits = 0.0;
             for (int f = 0; f < pathFrames; ++f) {
                 const FrameStats stats = renderer.render(scene->cameraPath.cameraAt(scene->camera, f), film);
                 rays += stats.rays.total();
+                if (isCct && stats.cache) {
+                    lookups += static_cast<double>(stats.cache->lookups());
+                    hits += static_cast<double>(stats.cache->hits());
+                }
                 if (isCct && f + 1 == pathFrames && stats.cache && stats.cache->lookups() > 0)
                     hitPercent = 100.0 * static_cast<double>(stats.cache->hits()) /
                                  static_cast<double>(stats.cache->lookups());
@@ -116,18 +122,26 @@ int main(int argc, char** argv) {
              {"cct", [&] { return pathRun(cct, true); }, [&] { cctCache.clear(); }},
              {"ideal", [&] { return pathRun(ideal, false); }, [&] { idealCache.clear(); }}},
             0, pathRounds);
-        pathRows.push_back({name, moving[0], moving[1], moving[2], hitPercent});
+        pathRows.push_back({name, moving[0], moving[1], moving[2], hitPercent, lookups, hits});
     }
 
     std::printf("\n## (b) moving camera path (%d frames from empty caches), ms per frame\n\n", pathFrames);
-    std::printf("| scene | uncached | CCT | ideal | speed-up | CCT hit rate, last frame |\n");
-    std::printf("| --- | --- | --- | --- | --- | --- |\n");
+    // A miss's cost relative to the plain trace it replaces: the traced ray
+    // tree of one leaving ray costs T = (uncached - ideal) / lookups; the CCT
+    // path costs uncached - hits * T + misses * (c - 1) * T, so
+    // c = 1 + (cct - uncached + hits * T) / (misses * T).
+    std::printf("| scene | uncached | CCT | ideal | speed-up | CCT hit rate, last frame | miss / plain trace |\n");
+    std::printf("| --- | --- | --- | --- | --- | --- | --- |\n");
     for (const PathRow& r : pathRows) {
         const double f = static_cast<double>(pathFrames);
-        std::printf("| %s | %.1f (%.1f-%.1f) | %.1f (%.1f-%.1f) | %.1f (%.1f-%.1f) | %.2fx | %.1f%% |\n", r.scene.c_str(),
-                    r.uncached.median() / f, r.uncached.min() / f, r.uncached.max() / f, r.cct.median() / f,
-                    r.cct.min() / f, r.cct.max() / f, r.ideal.median() / f, r.ideal.min() / f, r.ideal.max() / f,
-                    r.uncached.median() / r.cct.median(), r.hitPercentLastFrame);
+        const double tree = (r.uncached.median() - r.ideal.median()) / r.lookupsPerPath;
+        const double misses = r.lookupsPerPath - r.hitsPerPath;
+        const double missCost =
+            1.0 + (r.cct.median() - r.uncached.median() + r.hitsPerPath * tree) / (misses * tree);
+        std::printf("| %s | %.1f (%.1f-%.1f) | %.1f (%.1f-%.1f) | %.1f (%.1f-%.1f) | %.2fx | %.1f%% | %.2fx |\n",
+                    r.scene.c_str(), r.uncached.median() / f, r.uncached.min() / f, r.uncached.max() / f,
+                    r.cct.median() / f, r.cct.min() / f, r.cct.max() / f, r.ideal.median() / f, r.ideal.min() / f,
+                    r.ideal.max() / f, r.uncached.median() / r.cct.median(), r.hitPercentLastFrame, missCost);
     }
     return 0;
 }
