@@ -17,8 +17,9 @@ using namespace raycache;
 
 namespace {
 
-RenderSettings settingsFor(int size, int threads, std::optional<CacheTechnique> technique, bool ideal) {
+RenderSettings settingsFor(int size, int threads, int maxDepth, std::optional<CacheTechnique> technique, bool ideal) {
     RenderSettings s;
+    s.maxDepth = maxDepth;
     s.width = s.height = size;
     s.threads = threads;
     s.cache.techniqueOverride = technique;
@@ -43,7 +44,7 @@ double documentsGridSpeedup(int n) {
 
 int main(int argc, char** argv) {
     CLI::App app{"CCT vs uncached ray tracing, interleaved frame timing"};
-    int size = 1024, rounds = 7, warmup = 2, pathFrames = 10, pathRounds = 3, threads = 0;
+    int size = 1024, rounds = 7, warmup = 2, pathFrames = 10, pathRounds = 3, threads = 0, maxDepth = 5;
     std::vector<std::string> scenes;
     for (const char* family : {"behind-", "grid-"})
         for (int n : {1, 2, 4, 8, 16, 32}) scenes.push_back(family + std::to_string(n));
@@ -54,6 +55,7 @@ int main(int argc, char** argv) {
     app.add_option("--path-frames", pathFrames, "Frames of the moving camera path")->capture_default_str();
     app.add_option("--path-rounds", pathRounds, "Timed runs of the whole path per variant")->capture_default_str();
     app.add_option("--threads", threads, "Worker threads, 0 = all")->capture_default_str();
+    app.add_option("--max-depth", maxDepth, "Longest ray path")->capture_default_str();
     app.add_option("--scenes", scenes, "Built-in scenes")->delimiter(',');
     CLI11_PARSE(app, argc, argv);
     const Parallel parallel(threads);
@@ -75,9 +77,9 @@ int main(int argc, char** argv) {
             return 2;
         }
         const TraceScene tracer(*scene);
-        const RenderSettings plainSettings = settingsFor(size, threads, CacheTechnique::None, false);
-        const RenderSettings cctSettings = settingsFor(size, threads, CacheTechnique::Cct, false);
-        const RenderSettings idealSettings = settingsFor(size, threads, CacheTechnique::Cct, true);
+        const RenderSettings plainSettings = settingsFor(size, threads, maxDepth, CacheTechnique::None, false);
+        const RenderSettings cctSettings = settingsFor(size, threads, maxDepth, CacheTechnique::Cct, false);
+        const RenderSettings idealSettings = settingsFor(size, threads, maxDepth, CacheTechnique::Cct, true);
         const FrameRenderer plain(*scene, tracer, plainSettings, parallel);
         RayCache cctCache(*scene, cctSettings.cache), idealCache(*scene, idealSettings.cache);
         const FrameRenderer cct(*scene, tracer, cctSettings, parallel, &cctCache);
