@@ -1,5 +1,3 @@
-#include "scene/ImageLoader.h"
-
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -10,6 +8,7 @@
 #include "core/ColorSpace.h"
 #include "core/Errors.h"
 #include "render/ImageWriter.h"
+#include "scene/ImageLoader.h"
 
 namespace raycache {
 namespace {
@@ -71,6 +70,34 @@ TEST(ImageLoader, RadianceHdrIsLinear) {
     EXPECT_EQ(image.at(1, 0), Rgb(0.25f, 0.0f, 1.0f));
     EXPECT_EQ(image.at(0, 1), Rgb(4.0f));
     EXPECT_EQ(image.at(1, 1), Rgb(0.0f));
+}
+
+// EXR files not written by our own code (tests/data/images/make_known_exr.py
+// says how they were made): a hand-made uncompressed file with 32-bit float
+// channels, the same with 16-bit half channels, and that half file rewritten
+// by OpenEXR's own exrmaketiled as ZIP-compressed 2x2 tiles. Every value is
+// exact in half precision, so all three must decode to exactly these.
+void expectKnownExrPixels(const Image& image) {
+    ASSERT_EQ(image.width(), 3);
+    ASSERT_EQ(image.height(), 2);
+    EXPECT_EQ(image.at(0, 0), Rgb(1.0f, 0.5f, 0.25f));
+    EXPECT_EQ(image.at(1, 0), Rgb(2.0f, 0.0f, 0.125f));
+    EXPECT_EQ(image.at(2, 0), Rgb(0.0f));
+    EXPECT_EQ(image.at(0, 1), Rgb(4.0f, 8.0f, 16.0f));
+    EXPECT_EQ(image.at(1, 1), Rgb(0.75f, 0.375f, 1.5f));
+    EXPECT_EQ(image.at(2, 1), Rgb(1024.0f, 0.0625f, 3.0f));
+}
+
+TEST(ImageLoader, ExrFromAnotherWriterFloatChannels) {
+    expectKnownExrPixels(loadImageFile(imageDir / "known-float.exr"));
+}
+
+TEST(ImageLoader, ExrFromAnotherWriterHalfChannels) {
+    expectKnownExrPixels(loadImageFile(imageDir / "known-half.exr"));
+}
+
+TEST(ImageLoader, ExrWrittenByOpenExrZipTiles) {
+    expectKnownExrPixels(loadImageFile(imageDir / "known-half-zip-tiled.exr"));
 }
 
 TEST(ImageLoader, ExtensionIsCaseInsensitive) {
