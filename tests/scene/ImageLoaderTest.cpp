@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <string>
 
@@ -147,6 +148,36 @@ TEST(ImageLoader, AbsurdSizeThrows) {
     const auto path = dir.path() / "wide.png";
     writeImage(Image(maxImageSide + 1, 1), path);
     expectInputErrorNamingFile(path, "larger than the limit");
+}
+
+// Found by fuzzing (docs/testing.md): tinyexr asserts, aborting the whole
+// program, on a header whose "type" contradicts the file's layout, on an
+// unknown type, and on a "tiles" attribute of the wrong size. Each must be an
+// InputError naming the file instead. The first file is the fuzzer's input.
+TEST(ImageLoader, ExrHeaderThatWouldAbortTinyexrThrows) {
+    expectInputErrorNamingFile(imageDir / "fuzz-tiled-type-in-scanline.exr", "type \"tiledimage\"");
+
+    // Byte edits of the OpenEXR-written tiled file.
+    std::ifstream in(imageDir / "known-half-zip-tiled.exr", std::ios::binary);
+    const std::string tiled((std::istreambuf_iterator<char>(in)), {});
+    TempDir dir;
+    const auto edited = [&](const std::string& name, const std::string& from, const std::string& to) {
+        std::string bytes = tiled;
+        const std::size_t at = bytes.find(from);
+        EXPECT_NE(at, std::string::npos) << from;
+        if (at != std::string::npos) bytes.replace(at, from.size(), to);
+        const auto path = dir.path() / name;
+        std::ofstream(path, std::ios::binary) << bytes;
+        return path;
+    };
+    expectInputErrorNamingFile(edited("unknown-type.exr", "tiledimage", "tiledimagX"), "type \"tiledimagX\"");
+    expectInputErrorNamingFile(edited("scanline-type.exr", "tiledimage", "scanlineim"), "type \"scanlineim\"");
+    // "tiles" "tiledesc" then the size, 9 as a little-endian int32.
+    expectInputErrorNamingFile(
+        edited("tiles-size.exr", std::string("tiledesc\0\x09\0\0\0", 13), std::string("tiledesc\0\x08\0\0\0", 13)),
+        "tiles attribute has 8 bytes");
+    // The unedited file still loads, so the edits are what is rejected.
+    EXPECT_EQ(loadImageFile(edited("same.exr", "tiledimage", "tiledimage")).width(), 3);
 }
 
 TEST(ImageLoader, NonFiniteExrPixelThrows) {
