@@ -13,8 +13,11 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
     if (size < 1) return 0;
-    // The formats docs/scene-format.md names, plus two Assimp reads as well.
-    static constexpr std::array<const char*, 7> kExtensions = {".obj", ".gltf", ".glb", ".ply", ".off", ".stl", ".dae"};
+    // The formats docs/scene-format.md names, plus two Assimp reads as well. Not
+    // PLY for now: Debian's Assimp 5.2.5 loops forever on some malformed PLY
+    // headers (tests/fuzz/findings/assimp-ply-hang.ply, docs/testing.md), so
+    // every run would stop there; add it back once the wrapper guards against it.
+    static constexpr std::array<const char*, 6> kExtensions = {".obj", ".gltf", ".glb", ".off", ".stl", ".dae"};
     const std::string name = std::string("mesh") + kExtensions[data[0] % kExtensions.size()];
     const raycache::FuzzScratchDir& dir = raycache::fuzzScratchDir();
     dir.clear();
