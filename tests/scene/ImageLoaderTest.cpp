@@ -176,6 +176,15 @@ TEST(ImageLoader, ExrHeaderThatWouldAbortTinyexrThrows) {
     expectInputErrorNamingFile(
         edited("tiles-size.exr", std::string("tiledesc\0\x09\0\0\0", 13), std::string("tiledesc\0\x08\0\0\0", 13)),
         "tiles attribute has 8 bytes");
+    // Tile sides: 2 x 2 in the file, little-endian right after the size 9.
+    const std::string tilesAttribute("tiledesc\0\x09\0\0\0\x02\0\0\0\x02\0\0\0", 21);
+    expectInputErrorNamingFile(edited("zero-tile.exr", tilesAttribute,
+                                      std::string("tiledesc\0\x09\0\0\0\x02\0\0\0\0\0\0\0", 21)),
+                               "tiles with a side of 0 pixels");
+    expectInputErrorNamingFile(edited("huge-tile.exr", tilesAttribute,
+                                      std::string("tiledesc\0\x09\0\0\0\x02\0\0\0\xff\xff\xff\x7f", 21)),
+                               "tiles of 2147483647 pixels a side");
+    expectInputErrorNamingFile(imageDir / "fuzz-zero-tile-height.exr", "tiles with a side of 0 pixels");
     // The unedited file still loads, so the edits are what is rejected.
     EXPECT_EQ(loadImageFile(edited("same.exr", "tiledimage", "tiledimage")).width(), 3);
 }
