@@ -15,7 +15,9 @@
 #endif
 #endif
 #ifdef RAYCACHE_ASAN
-#include <sanitizer/allocator_interface.h>
+// From the sanitizer runtime (declared here: GCC does not install
+// <sanitizer/allocator_interface.h>).
+extern "C" std::size_t __sanitizer_get_current_allocated_bytes();
 #endif
 
 namespace raycache {

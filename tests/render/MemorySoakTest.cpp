@@ -44,7 +44,9 @@ TEST(ProcessMemory, SeesAOneMebibyteAllocation) {
     std::vector<char> block(1 << 20, 1);
     const std::size_t heapAfter = heapBytesInUse(), residentAfter = residentBytes();
     EXPECT_GE(heapAfter, heapBefore + block.size());
-    if (residentBytesAreMeaningful()) EXPECT_GE(residentAfter, residentBefore + block.size() - 64 * 1024);
+    if (residentBytesAreMeaningful()) {
+        EXPECT_GE(residentAfter, residentBefore + block.size() - 64 * 1024);
+    }
     EXPECT_EQ(block[12345], 1);
 }
 
@@ -92,9 +94,10 @@ TEST_P(MemorySoak, FlatAfterTheCachesFillOnAnOrbit) {
     const auto growth = [](std::size_t from, std::size_t to) { return to > from ? to - from : 0; };
     EXPECT_LT(growth(half.heap, end.heap), kMaxHeapGrowth)
         << "live heap grew from frame " << half.frame << " to " << end.frame;
-    if (residentBytesAreMeaningful())
+    if (residentBytesAreMeaningful()) {
         EXPECT_LT(growth(half.resident, end.resident), kMaxResidentGrowth)
             << "resident memory grew from frame " << half.frame << " to " << end.frame;
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Techniques, MemorySoak, ::testing::Values(CacheTechnique::Cct, CacheTechnique::Cdct),
