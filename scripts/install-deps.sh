@@ -10,6 +10,7 @@ packages=(
   libgtest-dev libgmock-dev
   libegl-dev libgl1-mesa-dri libegl-mesa0 libepoxy-dev
   libglfw3-dev libimgui-dev xvfb xauth
+  clang libclang-rt-14-dev
 )
 
 missing=()

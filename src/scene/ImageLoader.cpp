@@ -7,8 +7,11 @@
 #include <array>
 #include <cctype>
 #include <cstddef>
+#include <cstdint>
 #include <cstdlib>
+#include <fstream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <system_error>
 
@@ -123,12 +126,82 @@ std::string takeExrError(const char* err, int code) {
     return message;
 }
 
+// What tinyexr would assert on (aborting the process) in an OpenEXR header,
+// rather than report: a "type" attribute that contradicts whether the file is
+// tiled or names an unknown type, a "tiles" attribute of the wrong size in a
+// tiled file, and tiles with a zero or absurd side, on which tinyexr's tile
+// count fails (found by fuzzing, docs/testing.md). Read by hand before
+// tinyexr sees the header; anything else malformed is left to tinyexr.
+struct ExrHeaderFacts {
+    std::optional<std::string> type;           // the last "type" attribute, up to its first NUL
+    bool hasTiles = false;                     // a "tiles" attribute is present
+    std::optional<std::int32_t> badTilesSize;  // the size of a "tiles" attribute that is not 9 bytes
+    std::uint32_t smallestTileSide = UINT32_MAX;  // over every "tiles" attribute of 9 bytes
+    std::uint32_t largestTileSide = 0;
+};
+
+ExrHeaderFacts scanExrHeader(const std::filesystem::path& path) {
+    ExrHeaderFacts facts;
+    std::ifstream in(path, std::ios::binary);
+    in.seekg(8);  // magic number and version field
+    const auto readName = [&in](std::string& out) {
+        out.clear();
+        for (char c; in.get(c);) {
+            if (c == '\0') return true;
+            if (out.size() >= 255) return false;  // longer than any valid name: tinyexr rejects it
+            out += c;
+        }
+        return false;
+    };
+    std::string name, type;
+    while (readName(name) && !name.empty() && readName(type)) {
+        std::int32_t size = 0;
+        if (!in.read(reinterpret_cast<char*>(&size), sizeof size) || size < 0) break;
+        if (name == "type") {
+            std::string value(static_cast<std::size_t>(std::min(size, 256)), '\0');
+            if (!in.read(value.data(), static_cast<std::streamsize>(value.size()))) break;
+            if (!value.empty() && value[0] != '\0') facts.type = std::string(value.c_str());
+            in.seekg(size - static_cast<std::int32_t>(value.size()), std::ios::cur);
+            continue;
+        }
+        if (name == "tiles") {
+            facts.hasTiles = true;
+            if (size != 9) {
+                facts.badTilesSize = size;
+            } else {
+                std::uint32_t side[2] = {0, 0};  // x and y size, little-endian like all of OpenEXR
+                if (!in.read(reinterpret_cast<char*>(side), sizeof side)) break;
+                facts.smallestTileSide = std::min({facts.smallestTileSide, side[0], side[1]});
+                facts.largestTileSide = std::max({facts.largestTileSide, side[0], side[1]});
+                in.seekg(1, std::ios::cur);  // level and rounding mode
+                continue;
+            }
+        }
+        in.seekg(size, std::ios::cur);
+    }
+    return facts;
+}
+
 void checkExrHeader(const std::filesystem::path& path) {
     EXRVersion version{};
     int code = ParseEXRVersionFromFile(&version, path.c_str());
     if (code != TINYEXR_SUCCESS) fail(path, "not an OpenEXR file (" + takeExrError(nullptr, code) + ")");
     if (version.multipart || version.non_image)
         fail(path, "multi-part and deep OpenEXR files are not supported");
+    const ExrHeaderFacts facts = scanExrHeader(path);
+    if (version.tiled && facts.badTilesSize)
+        fail(path, "OpenEXR header: the tiles attribute has " + std::to_string(*facts.badTilesSize) + " bytes, not 9");
+    // No tile needs to be larger than the largest image accepted.
+    if (version.tiled && facts.hasTiles && facts.smallestTileSide == 0)
+        fail(path, "OpenEXR header: tiles with a side of 0 pixels");
+    if (version.tiled && facts.largestTileSide > static_cast<std::uint32_t>(maxImageSide))
+        fail(path, "OpenEXR header: tiles of " + std::to_string(facts.largestTileSide) +
+                       " pixels a side, larger than the limit of " + std::to_string(maxImageSide));
+    if (facts.type) {
+        const char* expected = version.tiled && facts.hasTiles ? "tiledimage" : "scanlineimage";
+        if (*facts.type != expected)
+            fail(path, "OpenEXR header: type \"" + *facts.type + "\", but the file is laid out as " + expected);
+    }
     EXRHeader header;
     InitEXRHeader(&header);
     const char* err = nullptr;

@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <string>
 
 #include "XmlCheck.h"
 #include "bench/SvgPlot.h"
@@ -60,4 +62,65 @@ TEST(SvgPlot, NumericAxisAndBars) {
 
 TEST(SvgPlot, EmptyPlotIsStillWellFormed) {
     EXPECT_EQ(xmlProblem(SvgPlot{}.toSvg()), "");
+}
+
+namespace {
+
+// The SVG y coordinate of the y-axis tick labelled `label`, read from the
+// document (right-aligned labels left of the axis); NaN if there is none.
+double yTickPosition(const std::string& svg, const std::string& label) {
+    const std::string tail = "\" text-anchor=\"end\" dominant-baseline=\"middle\">" + label + "</text>";
+    const std::size_t end = svg.find(tail);
+    if (end == std::string::npos) return std::nan("");
+    const std::size_t start = svg.rfind("y=\"", end) + 3;
+    return std::stod(svg.substr(start, end - start));
+}
+// The x coordinate of the x-axis tick labelled `label` (numeric axis).
+double xTickPosition(const std::string& svg, const std::string& label) {
+    const std::string tail = "\" text-anchor=\"middle\">" + label + "</text>";
+    for (std::size_t end = svg.find(tail); end != std::string::npos; end = svg.find(tail, end + 1)) {
+        const std::size_t xStart = svg.rfind("<text x=\"", end) + 9;
+        const std::size_t xEnd = svg.find('"', xStart);
+        return std::stod(svg.substr(xStart, xEnd - xStart));
+    }
+    return std::nan("");
+}
+// cx and cy of the marker whose tooltip ends with ": <value>".
+bool markerAt(const std::string& svg, const std::string& value, double& cx, double& cy) {
+    const std::size_t title = svg.find(": " + value + "</title></circle>");
+    if (title == std::string::npos) return false;
+    const std::size_t circle = svg.rfind("<circle cx=\"", title);
+    cx = std::stod(svg.substr(circle + 12));
+    cy = std::stod(svg.substr(svg.find("cy=\"", circle) + 4));
+    return true;
+}
+
+}  // namespace
+
+// A point lands where the axes' own tick labels say its value is: y = 7.5 on
+// a 0..10 axis three quarters of the way from the "0" tick to the "10" tick,
+// x = 3 halfway between the "2" and "4" ticks; whisker ends likewise.
+TEST(SvgPlot, PointsLandWhereTheAxesPutTheirValues) {
+    SvgPlot plot;
+    plot.yMin = 0.0;
+    plot.yMax = 10.0;
+    plot.series.push_back({"s", {{0, 1.0}, {3, 7.5, 5.0, 9.0}, {6, 2.0}}});
+    const std::string svg = plot.toSvg();
+    const double y0 = yTickPosition(svg, "0"), y10 = yTickPosition(svg, "10");
+    const double x2 = xTickPosition(svg, "2"), x4 = xTickPosition(svg, "4");
+    ASSERT_FALSE(std::isnan(y0) || std::isnan(y10) || std::isnan(x2) || std::isnan(x4)) << svg;
+    ASSERT_GT(y0 - y10, 100.0) << "the axis spans the plot";
+    double cx = 0, cy = 0;
+    ASSERT_TRUE(markerAt(svg, "7.50", cx, cy)) << svg;
+    EXPECT_NEAR(cy, y0 + 0.75 * (y10 - y0), 0.02);
+    EXPECT_NEAR(cx, 0.5 * (x2 + x4), 0.02);
+    // The whisker from 5 to 9: the line element just before that marker.
+    const std::size_t line = svg.rfind("<line x1=\"", svg.find(": 7.50</title>"));
+    ASSERT_NE(line, std::string::npos);
+    const auto attribute = [&](const char* name) {
+        return std::stod(svg.substr(svg.find(std::string(name) + "=\"", line) + std::strlen(name) + 2));
+    };
+    EXPECT_NEAR(attribute("x1"), cx, 0.02);
+    EXPECT_NEAR(attribute("y1"), y0 + 0.5 * (y10 - y0), 0.02);
+    EXPECT_NEAR(attribute("y2"), y0 + 0.9 * (y10 - y0), 0.02);
 }

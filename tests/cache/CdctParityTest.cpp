@@ -192,16 +192,32 @@ TEST(Cdct, StillCameraSecondFrameAnswersFromTheCache) {
         "%llu lookups\n",
         db, static_cast<unsigned long long>(run.stats[1].cache->hits()),
         static_cast<unsigned long long>(run.stats[1].cache->lookups()));
-    EXPECT_FALSE(std::isnan(db));
-    EXPECT_GT(db, 0.0);
+    // Measured 26.52 dB with 1949 of 3021 lookups answered (64.5 %); a search
+    // that answered with wrong texels or stopped answering would fall below.
+    EXPECT_GT(db, 25.0);
+    EXPECT_GT(run.stats[1].cache->hits() * 100, run.stats[1].cache->lookups() * 60);
 }
 
 TEST(Cdct, ParallaxAlongTheCameraPathAgainstCctAndUncached) {
-    // Printed for the record, not asserted beyond sanity: parity mode is the
-    // thesis' algorithm, whose quality depends on how densely the cube is filled.
+    // Parity mode is the thesis' algorithm, whose quality and hit rate depend on
+    // how densely the cube is filled. Measured (frame 6, 128x128, deterministic):
+    //   faces  CCT dB (hits)   CDCT parity dB (hits)
+    //   16^2   22.01 (99 %)    22.84 (92 %)
+    //   32^2   24.01 (78 %)    26.78 (38 %)
+    //   64^2   29.30 (28 %)    42.03 (1 %)
+    //   512^2  43.83 (1 %)     inf (0 %: every search meets a hole, every ray is traced)
+    // Asserted: CDCT parity within 1 dB and 5 points of hits of that, and better
+    // than CCT wherever it answers (the parallax it exists to correct).
+    struct Expected {
+        int resolution;
+        double minCdctDb;
+        double minCdctHitPercent;
+    };
+    constexpr Expected kExpected[] = {{16, 21.8, 87.0}, {32, 25.8, 33.0}, {64, 41.0, 0.5}, {512, 0.0, 0.0}};
     constexpr int kFrames = 6;
     const PathRender plain = renderPath("parallax", CacheTechnique::None, kFrames, false, 128, 2, 16);
-    for (int resolution : {16, 32, 64, 512}) {
+    for (const Expected& expected : kExpected) {
+        const int resolution = expected.resolution;
         const PathRender cct = renderPath("parallax", CacheTechnique::Cct, kFrames, false, 128, 2, resolution);
         const PathRender cdct = renderPath("parallax", CacheTechnique::CdctParity, kFrames, false, 128, 2, resolution);
         const double cctDb = psnr(cct.frames.back(), plain.frames.back());
@@ -218,7 +234,15 @@ TEST(Cdct, ParallaxAlongTheCameraPathAgainstCctAndUncached) {
             resolution, kFrames, cctDb, rate(cct), cdctDb, rate(cdct));
         for (const Image& frame : cdct.frames) EXPECT_TRUE(allFinite(frame));
         EXPECT_FALSE(std::isnan(cdctDb));
-        EXPECT_GT(cdctDb, 0.0);
+        if (resolution == 512) {
+            // No answers at all: the image must be exactly the uncached one.
+            EXPECT_EQ(cdct.stats.back().cache->hits(), 0u);
+            EXPECT_TRUE(sameImage(cdct.frames.back(), plain.frames.back()));
+            continue;
+        }
+        EXPECT_GE(cdctDb, expected.minCdctDb) << resolution << "^2 faces";
+        EXPECT_GE(rate(cdct), expected.minCdctHitPercent) << resolution << "^2 faces";
+        EXPECT_GT(cdctDb, cctDb) << resolution << "^2 faces: CDCT parity should beat CCT under parallax";
     }
 }
 

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "CiRequirement.h"
 #include "app/RenderCommand.h"
 #include "bench/ImageMetrics.h"
 #include "core/Errors.h"
@@ -30,7 +31,18 @@ using namespace raycache;
 namespace {
 
 constexpr int kSize = 96;
-constexpr double kMinPsnr = 40.0;
+// Hybrid (OpenGL G-buffer) against ray, 96x96, every built-in scene, Mesa
+// llvmpipe (measured at 8ce8420): no pixel differs by more than 1e-3 on 15
+// scenes (114.2 to 146.7 dB: float rounding only); one silhouette pixel does
+// on grid-16, grid-32 and shapes (63.2 dB on shapes). The bounds sit just
+// outside that, so one more differing pixel per scene is tolerated, not a
+// broken G-buffer.
+constexpr long kMaxDifferingPixels = 2;
+constexpr double kMinPsnrRoundingOnly = 110.0;  // when no pixel differs by > 1e-3
+constexpr double kMinPsnr = 60.0;
+// With CCT along a path: 132.7 to 139.5 dB, except 45.3 dB in frame 1, where
+// a texel stored from a G-buffer position a rounding away differs.
+constexpr double kMinPsnrCachedPath = 42.0;
 
 RenderSettings settingsFor(PipelineKind pipeline, GBufferSource source, int threads,
                            CacheTechnique technique = CacheTechnique::None, int size = kSize) {
@@ -80,9 +92,9 @@ const std::string& glUnavailableReason() {
     return reason;
 }
 
-#define SKIP_WITHOUT_GL()                                                                              \
-    if (!glUnavailableReason().empty())                                                                \
-        GTEST_SKIP() << "no OpenGL 4.5 core context, GL G-buffer not tested: " << glUnavailableReason()
+#define SKIP_WITHOUT_GL()                                                                                       \
+    if (!glUnavailableReason().empty())                                                                         \
+    RAYCACHE_SKIP_OR_FAIL_IN_CI("no OpenGL 4.5 core context, GL G-buffer not tested: " << glUnavailableReason())
 
 std::vector<std::string> allSceneNames() {
     std::vector<std::string> names;
@@ -120,7 +132,8 @@ TEST_P(HybridEquivalence, OpenGlGBufferMatchesRayTracing) {
     }
     std::printf("[ psnr     ] %-14s hybrid (OpenGL G-buffer) vs ray: %6.2f dB, %ld of %d pixels differ by > 1e-3\n",
                 GetParam().c_str(), db, differing, kSize * kSize);
-    EXPECT_GE(db, kMinPsnr) << GetParam();
+    EXPECT_LE(differing, kMaxDifferingPixels) << GetParam();
+    EXPECT_GE(db, differing == 0 ? kMinPsnrRoundingOnly : kMinPsnr) << GetParam();
     RecordProperty("psnr_db", std::to_string(db));
     // No primary rays: visibility came from the rasterizer.
     EXPECT_EQ(gl.stats[0].rays.primary, 0u);
@@ -164,7 +177,8 @@ TEST(HybridPipeline, CachesWorkUnchanged) {
         EXPECT_EQ(ray.stats[f].cache->stores(), packets.stats[f].cache->stores()) << "frame " << f;
     }
     EXPECT_GT(ray.stats[kFrames - 1].cache->hits(), 0u) << "the path should reuse cached texels";
-    if (!glUnavailableReason().empty()) GTEST_SKIP() << "no OpenGL context: " << glUnavailableReason();
+    if (!glUnavailableReason().empty())
+        RAYCACHE_SKIP_OR_FAIL_IN_CI("no OpenGL context: " << glUnavailableReason());
     const Frames gl =
         renderPath(scene, settingsFor(PipelineKind::Hybrid, GBufferSource::OpenGl, 0, CacheTechnique::Cct), kFrames);
     for (int f = 0; f < kFrames; ++f) {
@@ -172,7 +186,7 @@ TEST(HybridPipeline, CachesWorkUnchanged) {
         std::printf("[ psnr     ] behind-4 CCT frame %d: hybrid (OpenGL) vs ray %.2f dB, cache hits %llu vs %llu\n", f,
                     db, static_cast<unsigned long long>(gl.stats[f].cache->hits()),
                     static_cast<unsigned long long>(ray.stats[f].cache->hits()));
-        EXPECT_GE(db, kMinPsnr) << "frame " << f;
+        EXPECT_GE(db, kMinPsnrCachedPath) << "frame " << f;
         const double rayHits = static_cast<double>(ray.stats[f].cache->hits());
         EXPECT_NEAR(static_cast<double>(gl.stats[f].cache->hits()), rayHits, 0.01 * rayHits + 2.0) << "frame " << f;
     }
@@ -183,6 +197,8 @@ TEST(HybridPipeline, DeterministicAcrossThreadCounts) {
     const Scene scene = *makeBuiltinScene("room");
     std::vector<GBufferSource> sources{GBufferSource::Packets};
     if (glUnavailableReason().empty()) sources.push_back(GBufferSource::OpenGl);
+    else if (::raycache::test::runningInCi())
+        ADD_FAILURE() << "required on CI (CI is set): no OpenGL context: " << glUnavailableReason();
     else std::printf("no OpenGL context, determinism checked for the packet G-buffer only: %s\n",
                      glUnavailableReason().c_str());
     for (const GBufferSource source : sources) {
@@ -266,7 +282,11 @@ TEST(HybridPipeline, OpenGlGBufferAgreesWithPrimaryHits) {
 TEST(HybridPipeline, ReportsPhasesAndTracesOnlyWhatIsNeeded) {
     const Scene scene = *makeBuiltinScene("behind-2");
     for (const GBufferSource source : {GBufferSource::Packets, GBufferSource::OpenGl}) {
-        if (source == GBufferSource::OpenGl && !glUnavailableReason().empty()) continue;
+        if (source == GBufferSource::OpenGl && !glUnavailableReason().empty()) {
+            EXPECT_FALSE(::raycache::test::runningInCi()) << "required on CI: no OpenGL context: "
+                                                          << glUnavailableReason();
+            continue;
+        }
         const Frames hybrid = renderPath(scene, settingsFor(PipelineKind::Hybrid, source, 0), 1);
         const Frames ray = renderPath(scene, settingsFor(PipelineKind::Ray, GBufferSource::Auto, 0), 1);
         const FrameStats& s = hybrid.stats[0];

@@ -1,15 +1,15 @@
-#include "scene/ImageLoader.h"
-
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <string>
 
 #include "core/ColorSpace.h"
 #include "core/Errors.h"
 #include "render/ImageWriter.h"
+#include "scene/ImageLoader.h"
 
 namespace raycache {
 namespace {
@@ -73,6 +73,34 @@ TEST(ImageLoader, RadianceHdrIsLinear) {
     EXPECT_EQ(image.at(1, 1), Rgb(0.0f));
 }
 
+// EXR files not written by our own code (tests/data/images/make_known_exr.py
+// says how they were made): a hand-made uncompressed file with 32-bit float
+// channels, the same with 16-bit half channels, and that half file rewritten
+// by OpenEXR's own exrmaketiled as ZIP-compressed 2x2 tiles. Every value is
+// exact in half precision, so all three must decode to exactly these.
+void expectKnownExrPixels(const Image& image) {
+    ASSERT_EQ(image.width(), 3);
+    ASSERT_EQ(image.height(), 2);
+    EXPECT_EQ(image.at(0, 0), Rgb(1.0f, 0.5f, 0.25f));
+    EXPECT_EQ(image.at(1, 0), Rgb(2.0f, 0.0f, 0.125f));
+    EXPECT_EQ(image.at(2, 0), Rgb(0.0f));
+    EXPECT_EQ(image.at(0, 1), Rgb(4.0f, 8.0f, 16.0f));
+    EXPECT_EQ(image.at(1, 1), Rgb(0.75f, 0.375f, 1.5f));
+    EXPECT_EQ(image.at(2, 1), Rgb(1024.0f, 0.0625f, 3.0f));
+}
+
+TEST(ImageLoader, ExrFromAnotherWriterFloatChannels) {
+    expectKnownExrPixels(loadImageFile(imageDir / "known-float.exr"));
+}
+
+TEST(ImageLoader, ExrFromAnotherWriterHalfChannels) {
+    expectKnownExrPixels(loadImageFile(imageDir / "known-half.exr"));
+}
+
+TEST(ImageLoader, ExrWrittenByOpenExrZipTiles) {
+    expectKnownExrPixels(loadImageFile(imageDir / "known-half-zip-tiled.exr"));
+}
+
 TEST(ImageLoader, ExtensionIsCaseInsensitive) {
     TempDir dir;
     const auto upper = dir.path() / "TINY.PNG";
@@ -120,6 +148,45 @@ TEST(ImageLoader, AbsurdSizeThrows) {
     const auto path = dir.path() / "wide.png";
     writeImage(Image(maxImageSide + 1, 1), path);
     expectInputErrorNamingFile(path, "larger than the limit");
+}
+
+// Found by fuzzing (docs/testing.md): tinyexr asserts, aborting the whole
+// program, on a header whose "type" contradicts the file's layout, on an
+// unknown type, and on a "tiles" attribute of the wrong size. Each must be an
+// InputError naming the file instead. The first file is the fuzzer's input.
+TEST(ImageLoader, ExrHeaderThatWouldAbortTinyexrThrows) {
+    expectInputErrorNamingFile(imageDir / "fuzz-tiled-type-in-scanline.exr", "type \"tiledimage\"");
+
+    // Byte edits of the OpenEXR-written tiled file.
+    std::ifstream in(imageDir / "known-half-zip-tiled.exr", std::ios::binary);
+    const std::string tiled((std::istreambuf_iterator<char>(in)), {});
+    TempDir dir;
+    const auto edited = [&](const std::string& name, const std::string& from, const std::string& to) {
+        std::string bytes = tiled;
+        const std::size_t at = bytes.find(from);
+        EXPECT_NE(at, std::string::npos) << from;
+        if (at != std::string::npos) bytes.replace(at, from.size(), to);
+        const auto path = dir.path() / name;
+        std::ofstream(path, std::ios::binary) << bytes;
+        return path;
+    };
+    expectInputErrorNamingFile(edited("unknown-type.exr", "tiledimage", "tiledimagX"), "type \"tiledimagX\"");
+    expectInputErrorNamingFile(edited("scanline-type.exr", "tiledimage", "scanlineim"), "type \"scanlineim\"");
+    // "tiles" "tiledesc" then the size, 9 as a little-endian int32.
+    expectInputErrorNamingFile(
+        edited("tiles-size.exr", std::string("tiledesc\0\x09\0\0\0", 13), std::string("tiledesc\0\x08\0\0\0", 13)),
+        "tiles attribute has 8 bytes");
+    // Tile sides: 2 x 2 in the file, little-endian right after the size 9.
+    const std::string tilesAttribute("tiledesc\0\x09\0\0\0\x02\0\0\0\x02\0\0\0", 21);
+    expectInputErrorNamingFile(edited("zero-tile.exr", tilesAttribute,
+                                      std::string("tiledesc\0\x09\0\0\0\x02\0\0\0\0\0\0\0", 21)),
+                               "tiles with a side of 0 pixels");
+    expectInputErrorNamingFile(edited("huge-tile.exr", tilesAttribute,
+                                      std::string("tiledesc\0\x09\0\0\0\x02\0\0\0\xff\xff\xff\x7f", 21)),
+                               "tiles of 2147483647 pixels a side");
+    expectInputErrorNamingFile(imageDir / "fuzz-zero-tile-height.exr", "tiles with a side of 0 pixels");
+    // The unedited file still loads, so the edits are what is rejected.
+    EXPECT_EQ(loadImageFile(edited("same.exr", "tiledimage", "tiledimage")).width(), 3);
 }
 
 TEST(ImageLoader, NonFiniteExrPixelThrows) {

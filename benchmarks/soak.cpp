@@ -1,0 +1,75 @@
+// Soak: a long orbit with caches on, printing memory as it goes, so a slow leak
+// or unbounded growth shows as a rising line. Prints resident and live-heap
+// sizes every --every frames and, at the end, the growth over the second half
+// (after the cubes have filled); docs/performance.md records a run. The short
+// version with a pass/fail bound is tests/render/MemorySoakTest.cpp.
+// Usage: soak [--scene room] [--frames 10000] [--size 64] [--cache-res 512] [--technique cct] [--every 500]
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <string>
+
+#include "app/RenderJob.h"
+#include "core/Parallel.h"
+#include "core/ProcessMemory.h"
+#include "render/FramePipeline.h"
+#include "scene/BuiltinScenes.h"
+#include "trace/TraceScene.h"
+
+using namespace raycache;
+
+int main(int argc, char** argv) {
+    CLI::App app{"Memory over a long camera path with caching on"};
+    std::string sceneName = "room", technique = "cct";
+    int frames = 10000, size = 64, cacheResolution = 512, every = 500, threads = 0;
+    app.add_option("--scene", sceneName, "Built-in scene with an orbiting camera")->capture_default_str();
+    app.add_option("--frames", frames, "Frames to render")->capture_default_str();
+    app.add_option("--size", size, "Image width and height")->capture_default_str();
+    app.add_option("--cache-res", cacheResolution, "Caching-cube face resolution")->capture_default_str();
+    app.add_option("--technique", technique, "cct, cdct or cdct-parity")->capture_default_str();
+    app.add_option("--every", every, "Print memory every this many frames")->capture_default_str();
+    app.add_option("--threads", threads, "Worker threads, 0 = all")->capture_default_str();
+    CLI11_PARSE(app, argc, argv);
+
+    const auto scene = makeBuiltinScene(sceneName);
+    const auto parsedTechnique = parseTechnique(technique);
+    if (!scene || !parsedTechnique || frames < 2 || size < 1 || every < 1) {
+        std::fprintf(stderr, "error: unknown scene or technique, or a non-positive count\n");
+        return 2;
+    }
+    RenderSettings settings;
+    settings.width = settings.height = size;
+    settings.threads = threads;
+    settings.cache.techniqueOverride = *parsedTechnique;
+    settings.cache.resolutionOverride = cacheResolution;
+    const TraceScene tracer(*scene);
+    const Parallel parallel(threads);
+    RayCache cache(*scene, settings.cache);
+    const auto pipeline = makeFramePipeline(*scene, tracer, settings, parallel, &cache);
+
+    std::printf("soak: %s, %dx%d, %d frames, %s with %d^2 faces, %d threads\n", sceneName.c_str(), size, size, frames,
+                technique.c_str(), cacheResolution, parallel.threadCount());
+    std::printf("%8s %14s %14s %10s %12s\n", "frame", "resident KiB", "heap KiB", "hits %", "invalid %");
+    std::size_t residentAtHalf = 0, heapAtHalf = 0;
+    for (int f = 0; f < frames; ++f) {
+        Image film;
+        const FrameStats stats = pipeline->render(scene->cameraPath.cameraAt(scene->camera, f), film);
+        if (f + 1 == frames / 2) {
+            residentAtHalf = residentBytes();
+            heapAtHalf = heapBytesInUse();
+        }
+        if ((f + 1) % every == 0 || f == 0 || f + 1 == frames) {
+            const double lookups = stats.cache ? static_cast<double>(stats.cache->lookups()) : 0.0;
+            const double hits = stats.cache ? static_cast<double>(stats.cache->hits()) : 0.0;
+            std::printf("%8d %14.0f %14.0f %10.1f %12.2f\n", f + 1, static_cast<double>(residentBytes()) / 1024.0,
+                        static_cast<double>(heapBytesInUse()) / 1024.0, lookups > 0 ? 100.0 * hits / lookups : 0.0,
+                        stats.cache ? stats.cache->invalidPercentBefore() : 0.0);
+            std::fflush(stdout);
+        }
+    }
+    const auto kib = [](std::size_t from, std::size_t to) {
+        return (static_cast<double>(to) - static_cast<double>(from)) / 1024.0;
+    };
+    std::printf("growth from frame %d to %d: resident %+.0f KiB, heap %+.0f KiB\n", frames / 2, frames,
+                kib(residentAtHalf, residentBytes()), kib(heapAtHalf, heapBytesInUse()));
+    return 0;
+}

@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (the `fuzz` preset: clang, ASan + UBSan) and runs
+# each for a bounded time from its committed seed corpus (tests/fuzz/corpus/).
+# Fails on the first crash, sanitizer report, leak, timeout or out-of-memory;
+# the input that caused it is left in build/fuzz/artifacts/<target>/ and its
+# command to reproduce is printed. New interesting inputs go to
+# build/fuzz/corpus/<target>/, never into the repository.
+#
+#   scripts/fuzz.sh                 every target, 60 s each
+#   FUZZ_SECONDS=20 scripts/fuzz.sh scene_file   one target, 20 s
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+seconds="${FUZZ_SECONDS:-60}"
+targets=("$@")
+if [ ${#targets[@]} -eq 0 ]; then
+  targets=(scene_file mesh_loader image_loader render_command)
+fi
+
+scripts/install-deps.sh
+cmake --preset fuzz >/dev/null
+cmake --build --preset fuzz
+
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+# Debian's Assimp and tinyexr leak inside themselves on some malformed files
+# (a PLY with a garbled element line; an EXR attribute of unknown type): not
+# our code, and not fixable from our wrappers. Every other leak still fails.
+export LSAN_OPTIONS="suppressions=$PWD/tests/fuzz/lsan-suppressions.txt"
+for target in "${targets[@]}"; do
+  binary="build/fuzz/tests/fuzz/fuzz_${target}"
+  corpus="build/fuzz/corpus/${target}"
+  artifacts="build/fuzz/artifacts/${target}/"
+  log="build/fuzz/logs/${target}.log"
+  mkdir -p "$corpus" "$artifacts" "$(dirname "$log")"
+  echo "fuzz: ${target} for ${seconds} s (log ${log})"
+  # -timeout: one input taking longer than 10 s is a finding (the CLI target
+  # renders at most 12x12 pixels for 3 frames); -rss_limit_mb: so is 2 GiB.
+  if ! "$binary" "$corpus" "tests/fuzz/corpus/${target}" \
+      -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=16384 \
+      -artifact_prefix="$artifacts" -print_final_stats=1 >"$log" 2>&1; then
+    tail -n 60 "$log"
+    echo "fuzz: ${target} FAILED; the input is in ${artifacts}; reproduce with: ${binary} <that file>" >&2
+    exit 1
+  fi
+  # The last status line says how many inputs ran and how fast.
+  grep -E '^#[0-9]+.*(DONE|pulse)' "$log" | tail -n 1 | sed "s/^/fuzz: ${target}: /"
+done
