@@ -11,7 +11,7 @@
 #include "bench/SvgPlot.h"
 #include "core/AtomicFile.h"
 #include "core/Errors.h"
-#include "render/FrameRenderer.h"
+#include "render/RenderSession.h"
 #include "render/ImageWriter.h"
 #include "scene/BuiltinScenes.h"
 #include "trace/TraceScene.h"
@@ -65,18 +65,15 @@ public:
         plainSettings.width = plainSettings.height = side;
         plainSettings.threads = context.settings.threads;
         plainSettings.cache.techniqueOverride = CacheTechnique::None;
-        const FrameRenderer plain(scene, tracer, plainSettings, context.parallel);
-        std::vector<std::unique_ptr<RayCache>> caches;
-        std::vector<std::unique_ptr<FrameRenderer>> renderers;
+        RenderSession plain(scene, plainSettings, tracer, context.parallel);
+        std::vector<std::unique_ptr<RenderSession>> renderers;
         for (const CachedVariant& v : variants) {
             RenderSettings s = plainSettings;
             s.cache.techniqueOverride = v.technique;
             s.cache.cdctStepOverride = 0.4f;  // the thesis' middle pair, depths up to 100
             s.cache.cdctEpsilonOverride = 0.05f;
             s.cache.cdctMaxDepthOverride = 100.0f;
-            caches.push_back(std::make_unique<RayCache>(scene, s.cache));
-            renderers.push_back(
-                std::make_unique<FrameRenderer>(scene, tracer, s, context.parallel, caches.back().get()));
+            renderers.push_back(std::make_unique<RenderSession>(scene, s, tracer, context.parallel));
         }
 
         context.progress.step("parallax: " + std::to_string(frames) + " frames");

@@ -9,7 +9,7 @@
 #include "bench/SvgPlot.h"
 #include "core/AtomicFile.h"
 #include "core/Errors.h"
-#include "render/FrameRenderer.h"
+#include "render/RenderSession.h"
 #include "render/ImageWriter.h"
 #include "scene/BuiltinScenes.h"
 #include "trace/TraceScene.h"
@@ -93,7 +93,7 @@ public:
             plainSettings.width = plainSettings.height = side;
             plainSettings.threads = context.settings.threads;
             plainSettings.cache.techniqueOverride = CacheTechnique::None;
-            const FrameRenderer plain(scene, tracer, plainSettings, context.parallel);
+            RenderSession plain(scene, plainSettings, tracer, context.parallel);
             Image reference;
             plain.render(view.camera, reference);
             context.progress.advance(frameWork);
@@ -114,8 +114,7 @@ public:
                     RenderSettings settings = plainSettings;
                     settings.cache.techniqueOverride = CacheTechnique::Cct;
                     settings.cache.resolutionOverride = resolution;
-                    RayCache cache(scene, settings.cache);
-                    const FrameRenderer cached(scene, tracer, settings, context.parallel, &cache);
+                    RenderSession cached(scene, settings, tracer, context.parallel);
                     Image image;
                     for (int f = -protocol.fillFrames; f < 0; ++f) {
                         cached.render(protocol.orbit ? orbit.cameraAt(view.camera, f) : view.camera, image);
