@@ -6,10 +6,14 @@ namespace raycache {
 
 std::string toString(StopReason reason) {
     switch (reason) {
-    case StopReason::KeepGoing: return "running";
-    case StopReason::Precise: return "precise";
-    case StopReason::RoundCap: return "round cap";
-    case StopReason::TimeCap: return "time cap";
+        case StopReason::KeepGoing:
+            return "running";
+        case StopReason::Precise:
+            return "precise";
+        case StopReason::RoundCap:
+            return "round cap";
+        case StopReason::TimeCap:
+            return "time cap";
     }
     return "?";
 }

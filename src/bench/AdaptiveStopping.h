@@ -12,10 +12,10 @@
 namespace raycache {
 
 struct AdaptiveSettings {
-    int minRounds = 5;                // timed rounds always run
-    int maxRounds = 5;                // never more; == minRounds times a fixed count
-    double timeCapSeconds = 0.0;      // no new round once the timed rounds took this long; 0 = no cap
-    double targetHalfWidth = 0.05;    // relative half-width of every interval, 0.05 = ±5 %
+    int minRounds = 5;              // timed rounds always run
+    int maxRounds = 5;              // never more; == minRounds times a fixed count
+    double timeCapSeconds = 0.0;    // no new round once the timed rounds took this long; 0 = no cap
+    double targetHalfWidth = 0.05;  // relative half-width of every interval, 0.05 = ±5 %
     BootstrapSettings bootstrap;
 };
 

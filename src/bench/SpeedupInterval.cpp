@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace raycache {
@@ -41,10 +42,12 @@ std::string format2(double v) {
 }  // namespace
 
 bool SpeedupInterval::known() const {
-    return pairs >= 2 && std::isfinite(speedup) && std::isfinite(low) && std::isfinite(high);
+    return pairs >= kMinPairsForInterval && std::isfinite(speedup) && std::isfinite(low) && std::isfinite(high);
 }
 
-bool SpeedupInterval::containsOne() const { return known() && low <= 1.0 && 1.0 <= high; }
+bool SpeedupInterval::containsOne() const {
+    return known() && low <= 1.0 && 1.0 <= high;
+}
 
 double SpeedupInterval::relativeHalfWidth() const {
     if (!known() || speedup <= 0.0) return INFINITY;
@@ -65,7 +68,7 @@ SpeedupInterval bootstrapSpeedup(std::span<const double> baselineMs, std::span<c
     std::vector<double> b(baselineMs.begin(), baselineMs.begin() + static_cast<std::ptrdiff_t>(n));
     std::vector<double> v(variantMs.begin(), variantMs.begin() + static_cast<std::ptrdiff_t>(n));
     out.speedup = statistic(b, settings.statistic) / statistic(v, settings.statistic);
-    if (n < 2) return out;
+    if (static_cast<int>(n) < kMinPairsForInterval) return out;
 
     // std::mt19937_64 is specified bit for bit; the index is drawn with our own
     // mapping because uniform_int_distribution differs between libraries.
@@ -93,7 +96,9 @@ std::string intervalText(const SpeedupInterval& s) {
 
 std::string describeSpeedup(const SpeedupInterval& s) {
     if (!std::isfinite(s.speedup)) return "–";
-    if (!s.known()) return format2(s.speedup) + "× (no interval: fewer than 2 timed pairs)";
+    if (!s.known())
+        return format2(s.speedup) + "× (no interval: fewer than " + std::to_string(kMinPairsForInterval) +
+               " timed pairs)";
     const std::string ci = "95 % CI " + intervalText(s);
     if (s.containsOne()) return "no measurable difference (" + format2(s.speedup) + "×, " + ci + ")";
     return format2(s.speedup) + "× (" + ci + ")";

@@ -10,6 +10,10 @@
 
 namespace raycache {
 
+// Fewer pairs give no interval: a bootstrap of 2 or 3 values only reshuffles
+// them and yields intervals far narrower than the truth.
+inline constexpr int kMinPairsForInterval = 4;
+
 struct SpeedupInterval {
     double speedup = 0.0;  // on all the data; NaN when it cannot be computed
     double low = 0.0;      // 2.5th percentile of the bootstrap distribution
@@ -38,7 +42,8 @@ struct BootstrapSettings {
 
 // Speed-up of `variantMs` over `baselineMs` (statistic(baseline) / statistic(variant)).
 // Pairs element i of both; extra elements of the longer one are ignored.
-// Fewer than 2 pairs or non-positive times: speed-up without interval, or all NaN.
+// Fewer than kMinPairsForInterval pairs: the speed-up without an interval;
+// no pairs or a non-positive or non-finite time: all NaN.
 SpeedupInterval bootstrapSpeedup(std::span<const double> baselineMs, std::span<const double> variantMs,
                                  const BootstrapSettings& settings = {});
 
