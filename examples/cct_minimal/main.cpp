@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <limits>
 #include <string>
@@ -87,10 +88,16 @@ struct MiniTracer {
 };
 
 void run(int width, int height, int frames, const std::string& outPath) {
+    // Like `raycache render`: the output's directory is created if need be.
+    if (const auto parent = std::filesystem::path(outPath).parent_path(); !parent.empty())
+        std::filesystem::create_directories(parent);
     checkWritableImagePath(outPath);
     const Scene scene = *makeBuiltinScene("behind-8");
     const TraceScene tracer(scene);
-    RayCache cache(scene, RayCacheSettings{CacheTechnique::Cct, kCacheResolution, false});
+    // Named members: a positional list silently shifts when RayCacheSettings gains a field
+    // (an old `false` meant for `ideal` had landed in cdctStepOverride).
+    RayCache cache(scene,
+                   RayCacheSettings{.techniqueOverride = CacheTechnique::Cct, .resolutionOverride = kCacheResolution});
     std::vector<CacheWorker> workers = cache.makeWorkers(1);
     const MiniTracer mini{scene, tracer, cache};
     Image image(width, height);

@@ -6,6 +6,7 @@
 #include <ostream>
 
 #include "bench/ExperimentRegistry.h"
+#include "bench/MachineLoad.h"
 #include "bench/Report.h"
 #include "core/AtomicFile.h"
 #include "core/Errors.h"
@@ -36,6 +37,7 @@ void runBenchCommand(const BenchCommandOptions& options, std::ostream& out) {
         throw RuntimeError("cannot create the results directory " + settings.outDir.string() + ": " + ec.message());
 
     const Parallel parallel(settings.threads);
+    const LoadAverage loadBefore = currentLoadAverage();
     const RunEnvironment environment = currentRunEnvironment(parallel.threadCount());
     double totalWork = 0.0;
     for (const auto& e : experiments) totalWork += e->estimatedWork(settings);
@@ -45,7 +47,7 @@ void runBenchCommand(const BenchCommandOptions& options, std::ostream& out) {
         << settings.outDir.string() << "/" << std::endl;
     ProgressBar progress(out, options.interactive, totalWork);
     const auto start = std::chrono::steady_clock::now();
-    ReportInput report{settings, environment, 0.0, "", {}};
+    ReportInput report{.settings = settings, .environment = environment};
     for (const auto& e : experiments) {
         ExperimentContext context{settings, parallel, progress, environment, settings.outDir / e->name()};
         std::filesystem::create_directories(context.dir, ec);
@@ -60,6 +62,12 @@ void runBenchCommand(const BenchCommandOptions& options, std::ostream& out) {
     progress.finish();
     report.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     out << "finished in " << ProgressBar::formatDuration(report.wallSeconds) << std::endl;
+    const LoadAverage loadAfter = currentLoadAverage();
+    report.loadAverageAfter = loadAfter.toString();
+    report.busyWarning =
+        busyMachineWarning(loadBefore, loadAfter, environment.hardwareThreads, environment.workerThreads);
+    out << "load average " << loadBefore.toString() << " before, " << loadAfter.toString() << " after" << std::endl;
+    if (!report.busyWarning.empty()) out << report.busyWarning << std::endl;
     if (wholeReport) {
         report.command = "raycache bench all";
         if (settings.size != BenchSize::Quick)

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "app/FrameReport.h"
+#include "app/OutputDirectory.h"
 #include "cache/CubeCross.h"
 #include "core/Errors.h"
 #include "render/FrameLoop.h"
@@ -47,13 +48,14 @@ int cachedObjectId(const Scene& scene, const RayCacheSettings& settings, const s
 void runCacheViewCommand(const CacheViewCommandOptions& options, std::ostream& out) {
     validateRenderJobOptions(options.job);
     if (options.out.empty()) throw InputError("--out is required: the image to write the cube's cross to");
-    checkWritableImagePath(options.out);
     if (options.object.empty()) throw InputError("--object is required: the name of a caching object");
     if (options.show != "color" && options.show != "depth")
         throw InputError("--show must be color or depth (got '" + options.show + "')");
 
     const RenderJob job = prepareRenderJob(options.job);
     const int objectId = cachedObjectId(job.scene, job.settings.cache, options.object);
+    createParentDirectories(options.out);
+    checkWritableImagePath(options.out);
     const SceneObject& object = job.scene.objects[static_cast<std::size_t>(objectId)];
     const CacheTechnique technique = RayCache::techniqueFor(object, job.settings.cache);
     if (options.show == "depth" && technique != CacheTechnique::Cdct && technique != CacheTechnique::CdctParity)

@@ -5,6 +5,7 @@
 #include <ostream>
 
 #include "app/FrameReport.h"
+#include "app/OutputDirectory.h"
 #include "bench/Heatmap.h"
 #include "bench/ImageMetrics.h"
 #include "bench/Ssim.h"
@@ -15,7 +16,8 @@
 namespace raycache {
 
 void runDiffCommand(const DiffCommandOptions& options, std::ostream& out) {
-    if (!options.heatmap.empty()) checkWritableImagePath(options.heatmap);
+    if (!options.heatmap.empty() && !isSupportedImageExtension(options.heatmap))
+        checkWritableImagePath(options.heatmap);  // reports the unsupported format before any work
     if (!(std::isfinite(options.heatmapMax) && options.heatmapMax > 0.0 && options.heatmapMax <= 1.0))
         throw InputError("--heatmap-max must be in (0, 1]");
     const Image a = loadImageFile(options.first);
@@ -24,6 +26,7 @@ void runDiffCommand(const DiffCommandOptions& options, std::ostream& out) {
         throw InputError("images differ in size: " + options.first + " is " + std::to_string(a.width()) + "x" +
                          std::to_string(a.height()) + ", " + options.second + " is " + std::to_string(b.width()) + "x" +
                          std::to_string(b.height()));
+    if (!options.heatmap.empty()) createParentDirectories(options.heatmap);
 
     const double mae = meanAbsoluteError(a, b);
     const double peak = psnr(a, b);

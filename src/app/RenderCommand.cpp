@@ -6,9 +6,11 @@
 #include <vector>
 
 #include "app/FramePathPattern.h"
+#include "app/OutputDirectory.h"
 #include "bench/SampleSummary.h"
 #include "app/FrameReport.h"
 #include "core/AtomicFile.h"
+#include "core/Parallel.h"
 #include "core/Errors.h"
 #include "render/FrameLoop.h"
 #include "render/ImageWriter.h"
@@ -52,20 +54,23 @@ nlohmann::json raysJson(const RayCounts& r) {
 void runRenderCommand(const RenderCommandOptions& options, std::ostream& out) {
     validateRenderJobOptions(options.job);
     const FramePathPattern outPattern(options.out);
-    if (!options.out.empty()) checkWritableImagePath(outPattern.pathFor(0));
-    if (!options.statsPath.empty()) {
-        const auto parent = std::filesystem::path(options.statsPath).parent_path();
-        if (!parent.empty() && !std::filesystem::is_directory(parent))
-            throw InputError("--stats: directory " + parent.string() + " does not exist");
-    }
-
     const RenderJob job = prepareRenderJob(options.job);
+    // Only now that the input is known to be good: no directories left behind by a failed run.
+    if (!options.out.empty()) {
+        createParentDirectories(outPattern.pathFor(1));
+        checkWritableImagePath(outPattern.pathFor(1));
+    }
+    if (!options.statsPath.empty()) createParentDirectories(options.statsPath);
+
     const Scene& scene = job.scene;
     const RenderSettings& settings = job.settings;
     const int frames = job.frames;
 
     out << "scene " << scene.name << ": " << scene.objects.size() << " objects, " << scene.lights.size()
         << " lights, " << settings.width << "x" << settings.height << ", " << frames << " frames\n";
+    if (settings.threads > Parallel::hardwareThreads())
+        out << "note: --threads " << settings.threads << " is more than the " << Parallel::hardwareThreads()
+            << " hardware threads; using " << Parallel::hardwareThreads() << "\n";
 
     std::vector<double> times;
     nlohmann::json frameStats = nlohmann::json::array();
@@ -81,14 +86,16 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out) {
         out << formatFrameLine(r, frames) << std::endl;
         times.push_back(r.milliseconds);
         totalRays += rays;
-        nlohmann::json frameJson = {{"frame", r.frame}, {"ms", r.milliseconds}, {"rays", raysJson(rays)},
+        nlohmann::json frameJson = {{"frame", r.frame + 1}, {"ms", r.milliseconds}, {"rays", raysJson(rays)},
                                     {"mrays_per_s", mrays}};
         if (r.stats.cache) frameJson["cache"] = cacheJson(*r.stats.cache);
         if (r.stats.phases) frameJson["phases"] = phasesJson(*r.stats.phases);
         if (r.stats.stages) frameJson["stages"] = stagesJson(*r.stats.stages);
         frameStats.push_back(std::move(frameJson));
         const bool lastFrame = r.frame + 1 == frames;
-        if (!options.out.empty() && (outPattern.perFrame() || lastFrame)) writeImage(film, outPattern.pathFor(r.frame));
+        // Files count from 1 like the progress lines: "frame 1/N" is _0001.
+        if (!options.out.empty() && (outPattern.perFrame() || lastFrame))
+            writeImage(film, outPattern.pathFor(r.frame + 1));
     }, onPipeline);
 
     const SampleSummary summary = summarize(times);

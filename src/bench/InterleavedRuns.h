@@ -1,7 +1,8 @@
 #pragma once
 // Timing several variants of a job side by side: after warm-up, the variants
 // run in turn (A B C A B C ...) so that machine noise hits them alike, and
-// each variant's times are summarized by median and range.
+// each variant's times are summarized by median and range. The adaptive
+// form repeats rounds until the speed-ups are known precisely enough.
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -30,5 +31,19 @@ struct VariantTimes {
 };
 
 std::vector<VariantTimes> runInterleaved(const std::vector<Variant>& variants, int warmupRounds, int timedRounds);
+
+struct AdaptiveSettings;
+enum class StopReason;
+
+struct AdaptiveRun {
+    std::vector<VariantTimes> times;
+    int rounds = 0;              // timed rounds run
+    double seconds = 0.0;        // wall time of the timed rounds
+    StopReason reason{};         // why it stopped (AdaptiveStopping.h)
+};
+
+// Warm-up rounds, then timed rounds until adaptiveStop() says stop.
+AdaptiveRun runInterleavedAdaptive(const std::vector<Variant>& variants, int warmupRounds,
+                                   const AdaptiveSettings& settings);
 
 }  // namespace raycache

@@ -45,7 +45,10 @@ std::string reportMarkdown(const ReportInput& in) {
     env.addRow({"libraries", "Embree " + e.embreeVersion + ", oneTBB " + e.tbbVersion});
     env.addRow({"started", e.startedAt + ", load average " + e.loadAverage + " (1, 5, 15 min) on " +
                                std::to_string(e.hardwareThreads) + " hardware threads"});
+    if (!in.loadAverageAfter.empty())
+        env.addRow({"finished", "load average " + in.loadAverageAfter + " (1, 5, 15 min)"});
     s += env.toMarkdown() + "\n";
+    if (!in.busyWarning.empty()) s += "**" + in.busyWarning + ".**\n\n";
 
     s += "## Findings at a glance\n\n";
     for (const ExperimentOutput& x : in.experiments)

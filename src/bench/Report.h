@@ -14,7 +14,9 @@ struct ReportInput {
     BenchSettings settings;
     RunEnvironment environment;
     double wallSeconds = 0.0;
-    std::string command;  // how it was run, e.g. "raycache bench all --quick"
+    std::string command;           // how it was run, e.g. "raycache bench all --quick"
+    std::string loadAverageAfter;  // /proc/loadavg's figures when the last experiment ended
+    std::string busyWarning;       // busyMachineWarning() for the whole run, empty when quiet
     std::vector<ExperimentOutput> experiments;
 };
 

@@ -167,6 +167,12 @@ std::string SvgPlot::toSvg() const {
                   << "\" height=\"" << num(h) << "\" fill=\"" << color << "\""
                   << (s.dashed ? " fill-opacity=\"0.45\" stroke=\"" + color + "\" stroke-dasharray=\"3 2\"" : "")
                   << "><title>" << escapeXml(s.name) << ": " << num(p.y) << "</title></rect>\n";
+                if (p.low && p.high) {
+                    // The range (e.g. a confidence interval) as a whisker over the bar's middle.
+                    const double cx = bx + barWidth * 0.46;
+                    o << "<line class=\"whisker\" x1=\"" << num(cx) << "\" y1=\"" << num(sy(*p.low)) << "\" x2=\""
+                      << num(cx) << "\" y2=\"" << num(sy(*p.high)) << "\" stroke=\"#222\"/>\n";
+                }
             }
         } else {
             std::string path;

@@ -34,9 +34,31 @@ std::unique_ptr<Experiment> makeTable51Experiment() {
                      {"cct", "CCT", std::nullopt}};  // nullopt: the scene's materials, i.e. only `main` caches
     spec.documents = paperTable51();
     spec.documentsSpeedupColumn = "speedup";
-    spec.full = {1024, 1024, 2, 7, 10, 3, 0};
-    spec.quick = {512, 512, 1, 5, 10, 1, 0};
-    spec.tiny = {32, 32, 1, 2, 2, 1, 2, 32};
+    spec.full = {.width = 1024,
+                 .height = 1024,
+                 .warmupFrames = 2,
+                 .timedFrames = 7,
+                 .movingFrames = 10,
+                 .movingRounds = 3,
+                 .maxTimedFrames = 60,
+                 .timeCapSeconds = 20.0};
+    // Quick: the time cap keeps `bench all --quick` within 3 minutes on 2 cores.
+    spec.quick = {.width = 512,
+                  .height = 512,
+                  .warmupFrames = 1,
+                  .timedFrames = 4,
+                  .movingFrames = 10,
+                  .movingRounds = 1,
+                  .maxTimedFrames = 40,
+                  .timeCapSeconds = 1.5};
+    spec.tiny = {.width = 32,
+                 .height = 32,
+                 .warmupFrames = 1,
+                 .timedFrames = 2,
+                 .movingFrames = 2,
+                 .movingRounds = 1,
+                 .scenes = 2,
+                 .cacheResolution = 32};
     spec.adjustScene = onlyMainSphereCaches;
     spec.configure = selectTable51Pipeline;
     spec.pipeline = "hybrid";

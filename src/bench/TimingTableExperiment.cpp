@@ -3,10 +3,13 @@
 #include <chrono>
 #include <cmath>
 
+#include "bench/AdaptiveStopping.h"
 #include "bench/InterleavedRuns.h"
+#include "bench/MachineLoad.h"
 #include "bench/MarkdownTable.h"
 #include "bench/ResultsJson.h"
 #include "bench/SampleSummary.h"
+#include "bench/SpeedupInterval.h"
 #include "bench/SvgPlot.h"
 #include "core/AtomicFile.h"
 #include "core/Errors.h"
@@ -34,6 +37,8 @@ struct VariantResult {
     VariantTimes moving;                             // one entry per whole-path run (ms per frame, averaged)
     std::vector<std::vector<double>> movingFrameMs;  // per round, every frame of the path
     std::optional<FrameCacheStats> movingLastCache;  // last frame of the last path run
+    SpeedupInterval stillSpeedup;                    // over the baseline, still camera
+    SpeedupInterval movingSpeedup;                   // over the baseline, camera path
     bool measured() const { return variant->unavailable.empty(); }
 };
 
@@ -52,8 +57,53 @@ double hitPercent(const std::optional<FrameCacheStats>& c) {
     return 100.0 * static_cast<double>(c->hits()) / static_cast<double>(c->lookups());
 }
 
-double ratio(double baselineMs, double ms) {
-    return ms > 0.0 && baselineMs > 0.0 ? baselineMs / ms : std::nan("");
+nlohmann::json intervalJson(const SpeedupInterval& s) {
+    return {{"speedup", finiteOrNull(s.speedup)},
+            {"ci95_low", finiteOrNull(s.low)},
+            {"ci95_high", finiteOrNull(s.high)},
+            {"pairs", s.pairs},
+            {"relative_half_width", finiteOrNull(s.relativeHalfWidth())},
+            {"no_measurable_difference", s.containsOne()}};
+}
+
+// Table cell: "1.18× (1.10–1.27)", or "≈ 1 (0.97×, 0.91–1.05)" when the interval contains 1.
+std::string speedupCell(const SpeedupInterval& s) {
+    if (!std::isfinite(s.speedup)) return "–";
+    if (!s.known()) return cellNumber(s.speedup, 2) + "×";
+    if (s.containsOne()) return "no measurable difference (" + cellNumber(s.speedup, 2) + "×, " + intervalText(s) + ")";
+    return cellNumber(s.speedup, 2) + "× (" + intervalText(s) + ")";
+}
+
+// A plotted speed-up with its interval as the whisker.
+PlotPoint intervalPoint(double x, const SpeedupInterval& s) {
+    PlotPoint p{x, s.speedup, std::nullopt, std::nullopt};
+    if (s.known()) {
+        p.low = s.low;
+        p.high = s.high;
+    }
+    return p;
+}
+
+AdaptiveSettings adaptiveSettings(const TimingSize& s) {
+    AdaptiveSettings a;
+    a.minRounds = s.timedFrames;
+    a.maxRounds = std::max(s.timedFrames, s.maxTimedFrames);
+    a.timeCapSeconds = s.timeCapSeconds;
+    return a;
+}
+
+// Moving camera: frame f of round r of the variant paired with the same frame
+// of the baseline (same camera), the mean over the path per variant.
+SpeedupInterval movingInterval(const VariantResult& baseline, const VariantResult& variant) {
+    std::vector<double> b, v;
+    for (std::size_t r = 0; r < std::min(baseline.movingFrameMs.size(), variant.movingFrameMs.size()); ++r) {
+        const std::size_t n = std::min(baseline.movingFrameMs[r].size(), variant.movingFrameMs[r].size());
+        b.insert(b.end(), baseline.movingFrameMs[r].begin(), baseline.movingFrameMs[r].begin() + n);
+        v.insert(v.end(), variant.movingFrameMs[r].begin(), variant.movingFrameMs[r].begin() + n);
+    }
+    BootstrapSettings settings;
+    settings.statistic = TimeStatistic::Mean;
+    return bootstrapSpeedup(b, v, settings);
 }
 
 }  // namespace
@@ -85,6 +135,8 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
 
     nlohmann::json rowsJson = nlohmann::json::array();
     std::vector<std::vector<VariantResult>> table;  // [scene][variant]
+    std::vector<AdaptiveRun> stops;                 // per scene: rounds, time, why the still run stopped
+    const LoadAverage loadBefore = currentLoadAverage();
 
     for (std::size_t si = 0; si < sceneCount; ++si) {
         const TimingScene& ts = spec_.scenes[si];
@@ -136,8 +188,9 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
                              {},
                              [&, work] { context.progress.advance(work); }});
         }
-        const std::vector<VariantTimes> stillTimes = runInterleaved(still, size.warmupFrames, size.timedFrames);
-        for (std::size_t k = 0; k < measuredIndex.size(); ++k) results[measuredIndex[k]].still = stillTimes[k];
+        const AdaptiveRun stillRun = runInterleavedAdaptive(still, size.warmupFrames, adaptiveSettings(size));
+        for (std::size_t k = 0; k < measuredIndex.size(); ++k) results[measuredIndex[k]].still = stillRun.times[k];
+        stops.push_back(stillRun);
 
         // (b) Moving camera from empty caches: the whole path per run, caches filling as they go.
         if (size.movingFrames > 0 && size.movingRounds > 0) {
@@ -170,9 +223,13 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
             }
         }
 
+        for (VariantResult& r : results) {
+            if (!r.measured() || !results[0].measured()) continue;
+            r.stillSpeedup = bootstrapSpeedup(results[0].still.milliseconds, r.still.milliseconds);
+            if (!r.movingFrameMs.empty()) r.movingSpeedup = movingInterval(results[0], r);
+        }
+
         // JSON row.
-        const double baseStill = summarize(results[0].still.milliseconds).median;
-        const double baseMoving = summarize(results[0].moving.milliseconds).median;
         nlohmann::json variantsJson = nlohmann::json::object();
         for (const VariantResult& r : results) {
             nlohmann::json v = {{"label", r.variant->label},
@@ -189,20 +246,23 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
             } else {
                 v["available"] = true;
                 v["still"] = toJson(r.still);
-                v["still"]["speedup_vs_" + baseline.key] =
-                    finiteOrNull(ratio(baseStill, summarize(r.still.milliseconds).median));
+                v["still"]["speedup_vs_" + baseline.key] = intervalJson(r.stillSpeedup);
                 v["still"]["cache_last_frame"] = cacheJson(r.stillCache);
                 if (!r.movingFrameMs.empty()) {
                     v["moving"] = toJson(r.moving);
                     v["moving"]["frame_ms_per_round"] = r.movingFrameMs;
-                    v["moving"]["speedup_vs_" + baseline.key] =
-                        finiteOrNull(ratio(baseMoving, summarize(r.moving.milliseconds).median));
+                    v["moving"]["speedup_vs_" + baseline.key] = intervalJson(r.movingSpeedup);
                     v["moving"]["cache_last_frame"] = cacheJson(r.movingLastCache);
                 }
             }
             variantsJson[r.variant->key] = std::move(v);
         }
-        rowsJson.push_back({{"scene", ts.scene}, {"label", ts.label}, {"variants", variantsJson}});
+        rowsJson.push_back({{"scene", ts.scene},
+                            {"label", ts.label},
+                            {"still_timed_rounds", stillRun.rounds},
+                            {"still_timed_seconds", stillRun.seconds},
+                            {"still_stop_reason", toString(stillRun.reason)},
+                            {"variants", variantsJson}});
         table.push_back(std::move(results));
     }
 
@@ -215,13 +275,26 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
     md += "Size `" + toString(context.settings.size) + "`: " + std::to_string(size.width) + "x" +
           std::to_string(size.height) + ", " + std::to_string(size.cacheResolution) + "² cache faces, " +
           std::to_string(size.warmupFrames) + " warm-up + " + std::to_string(size.timedFrames) +
-          " timed frames per variant (still camera, variants interleaved)";
+          (size.maxTimedFrames > size.timedFrames
+               ? " or more timed frames per variant (still camera, variants interleaved, repeated until every "
+                 "speed-up's 95 % interval is within ±5 %, at most " +
+                     std::to_string(size.maxTimedFrames) + " rounds and " + cellNumber(size.timeCapSeconds, 1) +
+                     " s per scene)"
+               : " timed frames per variant (still camera, variants interleaved)");
     if (size.movingFrames > 0)
         md += "; moving camera: the scene's path, " + std::to_string(size.movingFrames) +
               " frames from empty caches, " + std::to_string(size.movingRounds) + " run(s) per variant";
     md +=
-        ". Times are ms per frame, median (min–max); speed-up = uncached median / variant median. "
-        "The documents' figures are GPU frame rates: compare speed-ups, not frame rates.\n\n";
+        ". Times are ms per frame, median (min–max); speed-up = uncached median / variant median, with its 95 % "
+        "confidence interval in brackets (paired bootstrap over the interleaved rounds, 2000 resamples, fixed seed; "
+        "moving camera: over the path's frames, mean times). Where the interval contains 1 the table says *no "
+        "measurable difference*. The documents' figures are GPU frame rates: compare speed-ups, not frame rates.\n\n";
+    md += "Timed rounds (still camera): ";
+    for (std::size_t si = 0; si < stops.size(); ++si)
+        md += (si ? "; " : "") + spec_.rowHeader + " = " + spec_.scenes[si].label + ": " +
+              std::to_string(stops[si].rounds) + " (" + toString(stops[si].reason) + ", " +
+              cellNumber(stops[si].seconds, 1) + " s)";
+    md += ".\n\n";
 
     SvgPlot speedPlot;
     speedPlot.referenceY = 1.0;
@@ -266,28 +339,28 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
                     ? docComp / docBase
                     : spec_.documents.value(label, spec_.documentsSpeedupColumn).value_or(std::nan(""));
             const SampleSummary b = summarize(r[0].still.milliseconds), c = summarize(r[1].still.milliseconds);
-            const double speed = ratio(b.median, c.median);
+            const SpeedupInterval& speed = r[1].stillSpeedup;
             std::vector<std::string> row{label,
                                          cellNumber(docBase, 1),
                                          cellNumber(docComp, 1),
                                          cellNumber(docSpeed, 2) + (std::isfinite(docSpeed) ? "×" : ""),
                                          cellRange(b, 1),
                                          cellRange(c, 1),
-                                         cellNumber(speed, 2) + "×"};
-            double movingSpeed = std::nan("");
+                                         speedupCell(speed)};
+            SpeedupInterval movingSpeed{std::nan(""), std::nan(""), std::nan(""), 0};
             if (hasMoving) {
-                movingSpeed =
-                    ratio(summarize(r[0].moving.milliseconds).median, summarize(r[1].moving.milliseconds).median);
-                row.push_back(cellNumber(movingSpeed, 2) + "×");
+                movingSpeed = r[1].movingSpeedup;
+                row.push_back(speedupCell(movingSpeed));
                 row.push_back(cellNumber(hitPercent(r[1].movingLastCache), 1) + "%");
             }
             t.addRow(row);
-            ours.points.push_back({static_cast<double>(si), speed});
-            oursMoving.points.push_back({static_cast<double>(si), movingSpeed});
+            ours.points.push_back(intervalPoint(static_cast<double>(si), speed));
+            oursMoving.points.push_back(intervalPoint(static_cast<double>(si), movingSpeed));
             documents.points.push_back({static_cast<double>(si), docSpeed});
         }
         md += t.toMarkdown();
-        speedPlot.title = spec_.name + ": speed-up of " + compared.label + " over " + baseline.label;
+        speedPlot.title = spec_.name + ": speed-up of " + compared.label + " over " + baseline.label +
+                          " (whiskers: 95 % confidence interval)";
         speedPlot.xLabel = spec_.rowHeader;
         speedPlot.yLabel = "speed-up (×)";
         speedPlot.categories = timePlot.categories;
@@ -295,14 +368,18 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
         if (hasMoving) speedPlot.series.push_back(std::move(oursMoving));
         speedPlot.series.push_back(std::move(documents));
         if (!table.empty()) {
-            const double first = ratio(summarize(table.front()[0].still.milliseconds).median,
-                                       summarize(table.front()[1].still.milliseconds).median);
-            const double last = ratio(summarize(table.back()[0].still.milliseconds).median,
-                                      summarize(table.back()[1].still.milliseconds).median);
+            const SpeedupInterval& first = table.front()[1].stillSpeedup;
+            const SpeedupInterval& last = table.back()[1].stillSpeedup;
+            std::string alike;
+            for (std::size_t si = 0; si < table.size(); ++si)
+                if (table[si][1].stillSpeedup.containsOne())
+                    alike += (alike.empty() ? "" : ", ") + spec_.scenes[si].label;
             out.headlines.push_back(
-                spec_.name + ": " + compared.label + " speed-up " + cellNumber(first, 2) + "× (" + spec_.rowHeader +
-                " = " + spec_.scenes.front().label + ") to " + cellNumber(last, 2) + "× (" + spec_.rowHeader + " = " +
-                spec_.scenes[table.size() - 1].label + "), caches filled; documents " +
+                spec_.name + ": " + compared.label + " speed-up " + describeSpeedup(first) + " at " + spec_.rowHeader +
+                " = " + spec_.scenes.front().label + " to " + describeSpeedup(last) + " at " + spec_.rowHeader + " = " +
+                spec_.scenes[table.size() - 1].label + ", caches filled" +
+                (alike.empty() ? "" : "; no measurable difference at " + spec_.rowHeader + " = " + alike) +
+                "; documents " +
                 cellNumber(spec_.documents.value(spec_.scenes.front().label, spec_.documentsSpeedupColumn)
                                .value_or(std::nan("")),
                            2) +
@@ -323,7 +400,8 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
             headers.push_back(label + ": hit rate");
         }
         MarkdownTable t(headers);
-        speedPlot.title = spec_.name + ": frame rate relative to " + baseline.label + " (higher is faster)";
+        speedPlot.title = spec_.name + ": frame rate relative to " + baseline.label +
+                          " (higher is faster; whiskers: 95 % confidence interval)";
         speedPlot.yLabel = "× " + baseline.label + " frame rate";
         speedPlot.bars = true;
         speedPlot.height = 480;
@@ -352,18 +430,18 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
                     continue;
                 }
                 const SampleSummary s = summarize(table[si][vi].still.milliseconds);
-                const double rel = ratio(summarize(table[si][0].still.milliseconds).median, s.median);
+                const SpeedupInterval& rel = table[si][vi].stillSpeedup;
                 row.push_back(cellRange(s, 1));
-                row.push_back(cellNumber(rel, 2) + "×");
+                row.push_back(vi == 0 ? "1.00×" : speedupCell(rel));
                 row.push_back(table[si][vi].stillCache ? cellNumber(hitPercent(table[si][vi].stillCache), 1) + "%"
                                                        : "–");
-                oursSeries[si].points.push_back({static_cast<double>(vi), rel});
+                oursSeries[si].points.push_back(intervalPoint(static_cast<double>(vi), rel));
                 if (vi > 0)
                     out.headlines.push_back(
-                        spec_.name + " " + spec_.scenes[si].label + ": " + v.label + " " + cellNumber(rel, 2) + "× " +
-                        baseline.label + " (documents " +
+                        spec_.name + " " + spec_.scenes[si].label + ": " + v.label + " vs " + baseline.label + ": " +
+                        describeSpeedup(rel) + ", documents " +
                         (std::isfinite(docFps / docBase) ? cellNumber(docFps / docBase, 2) + "×" : "–") +
-                        "), cache hit rate " + cellNumber(hitPercent(table[si][vi].stillCache), 1) + "%");
+                        ", cache hit rate " + cellNumber(hitPercent(table[si][vi].stillCache), 1) + "%");
             }
             t.addRow(row);
         }
@@ -376,6 +454,12 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
     }
     for (const TimingVariant& v : spec_.variants)
         if (!v.unavailable.empty()) out.caveats.push_back(v.label + ": " + v.unavailable);
+    const LoadAverage loadAfter = currentLoadAverage();
+    md += "Load average (1, 5, 15 min): " + loadBefore.toString() + " before, " + loadAfter.toString() + " after.\n\n";
+    if (const std::string busy = busyMachineWarning(loadBefore, loadAfter, context.environment.hardwareThreads,
+                                                    context.environment.workerThreads);
+        !busy.empty())
+        out.caveats.push_back(busy);
 
     writeSvgPlot(speedPlot, (context.dir / "speedup.svg").string());
     writeSvgPlot(timePlot, (context.dir / "frame-times.svg").string());
@@ -397,6 +481,13 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
                                    {"cache_resolution", size.cacheResolution},
                                    {"warmup_frames", size.warmupFrames},
                                    {"timed_frames", size.timedFrames},
+                                   {"max_timed_frames", std::max(size.timedFrames, size.maxTimedFrames)},
+                                   {"time_cap_seconds_per_scene", size.timeCapSeconds},
+                                   {"target_ci_half_width", AdaptiveSettings{}.targetHalfWidth},
+                                   {"bootstrap",
+                                    {{"resamples", BootstrapSettings{}.resamples},
+                                     {"seed", BootstrapSettings{}.seed},
+                                     {"confidence", BootstrapSettings{}.confidence}}},
                                    {"moving_frames", size.movingFrames},
                                    {"moving_rounds", size.movingRounds},
                                    {"max_depth", RenderSettings{}.maxDepth},
@@ -404,6 +495,7 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
                                    {"variants", variantsSpec}}},
                                  {"environment", toJson(context.environment)},
                                  {"documents", toJson(spec_.documents)},
+                                 {"load_average", {{"before", loadBefore.toString()}, {"after", loadAfter.toString()}}},
                                  {"caveats", out.caveats},
                                  {"rows", rowsJson}};
     writeJsonFile(context.dir / "results.json", root);

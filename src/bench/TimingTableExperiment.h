@@ -45,6 +45,12 @@ struct TimingSize {
     int movingRounds = 0;       // each renders the whole path per variant
     int scenes = 0;             // how many of the table's scenes to run (0 = all)
     int cacheResolution = 512;  // cube face side (the documents': 512)
+    // Still camera, adaptive: after `timedFrames` rounds, more rounds until every
+    // speed-up's 95 % interval is within ±5 %, at most `maxTimedFrames` rounds
+    // (0 = exactly timedFrames) and no new round once the timed rounds of a
+    // scene took `timeCapSeconds` (0 = no cap).
+    int maxTimedFrames = 0;
+    double timeCapSeconds = 0.0;
 };
 
 struct TimingTableSpec {

@@ -1,6 +1,9 @@
 #include "core/Parallel.h"
 
+#include <algorithm>
+
 #include <tbb/blocked_range.h>
+#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 #include <tbb/version.h>
@@ -8,13 +11,17 @@
 namespace raycache {
 
 struct Parallel::Impl {
+    // More threads than the hardware has cannot run at once; oneTBB would
+    // ignore them anyway, with a warning on stderr.
     explicit Impl(int threads)
-        : arena(threads > 0 ? threads : tbb::task_arena::automatic) {}
+        : arena(threads > 0 ? std::min(threads, hardwareThreads()) : tbb::task_arena::automatic) {}
     tbb::task_arena arena;
 };
 
 Parallel::Parallel(int threads) : impl_(std::make_unique<Impl>(threads)) {}
 Parallel::~Parallel() = default;
+
+int Parallel::hardwareThreads() { return std::max(1, tbb::info::default_concurrency()); }
 
 int Parallel::threadCount() const { return impl_->arena.max_concurrency(); }
 

@@ -13,13 +13,16 @@ struct TileRange {
 
 class Parallel {
 public:
-    // threads <= 0 means "all hardware threads".
+    // threads <= 0 means "all hardware threads"; more than hardwareThreads() are clamped to it.
     explicit Parallel(int threads = 0);
     ~Parallel();
     Parallel(const Parallel&) = delete;
     Parallel& operator=(const Parallel&) = delete;
 
     int threadCount() const;
+
+    // The threads this process may run at once (CPU affinity and limits included).
+    static int hardwareThreads();
 
     // The oneTBB version the program runs with ("2021.8"), for reports.
     static std::string libraryVersion();

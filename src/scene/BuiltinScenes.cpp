@@ -281,16 +281,19 @@ struct Entry {
     std::function<Scene()> make;
 };
 
+// "1 mirror sphere", "0 mirror spheres", "32 mirror spheres".
+std::string countOf(int n, const std::string& noun) { return std::to_string(n) + " " + noun + (n == 1 ? "" : "s"); }
+
 std::vector<Entry> registry() {
     std::vector<Entry> entries;
     for (int n : kBehindCounts)
         entries.push_back({{"behind-" + std::to_string(n),
-                            "mirror sphere facing the camera, " + std::to_string(n) +
-                                " mirror spheres behind the camera (Table 5.1)"},
+                            "mirror sphere facing the camera, " + countOf(n, "mirror sphere") +
+                                " behind the camera (Table 5.1)"},
                            [n] { return behindScene(n); }});
     for (int n : kGridCounts)
         entries.push_back({{"grid-" + std::to_string(n),
-                            std::to_string(n) + " mirror spheres in a grid in front of the camera (Table 5.2)"},
+                            countOf(n, "mirror sphere") + " in a grid in front of the camera (Table 5.2)"},
                            [n] { return gridScene(n); }});
     entries.push_back({{"diffuse-32", "1 mirror + 31 diffuse spheres, framed for 1920x1080 (Table 5.3)"},
                        [] { return wallOf32("diffuse-32", false); }});

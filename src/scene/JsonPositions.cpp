@@ -12,6 +12,12 @@ namespace {
 
 using nlohmann::json;
 
+// Far beyond any real scene file (which nests ~6 levels, holds short names and
+// paths, and at most 100000 objects), low enough that the index stays cheap.
+constexpr std::size_t kMaxJsonDepth = 64;
+constexpr std::size_t kMaxJsonStringBytes = 64u << 10;
+constexpr std::size_t kMaxJsonContainerSize = 1000000;
+
 // Input iterator over the text that publishes how far nlohmann's lexer has
 // read. SAX callbacks carry no positions, but each one fires right after the
 // lexer consumed its token, so this is the end of that token (numbers: one
@@ -67,10 +73,16 @@ public:
     bool number_integer(json::number_integer_t) { return value(); }
     bool number_unsigned(json::number_unsigned_t) { return value(); }
     bool number_float(json::number_float_t, const json::string_t&) { return value(); }
-    bool string(json::string_t&) { return value(); }
+    bool string(json::string_t& s) {
+        if (s.size() > kMaxJsonStringBytes)
+            return overLimit("string of " + std::to_string(s.size()) + " bytes, more than the limit of " +
+                             std::to_string(kMaxJsonStringBytes));
+        return value();
+    }
     bool binary(json::binary_t&) { return value(); }
 
     bool start_object(std::size_t) {
+        if (!roomForChild()) return false;
         Frame f;
         f.pointer = recordValue();
         frames_.push_back(std::move(f));
@@ -79,6 +91,11 @@ public:
     bool key(json::string_t& name) {
         const std::size_t start = tokenStart();
         Frame& f = frames_.back();
+        if (name.size() > kMaxJsonStringBytes)
+            return overLimit("member name of " + std::to_string(name.size()) + " bytes, more than the limit of " +
+                             std::to_string(kMaxJsonStringBytes));
+        if (f.names.size() >= kMaxJsonContainerSize)
+            return overLimit("object with more than " + std::to_string(kMaxJsonContainerSize) + " members");
         std::string member = appendJsonPointer(f.pointer, name);
         if (!f.names.insert(name).second) {
             // nlohmann would silently keep the last one; a repeated name is
@@ -93,6 +110,7 @@ public:
     }
     bool end_object() { return endContainer(); }
     bool start_array(std::size_t) {
+        if (!roomForChild()) return false;
         Frame f;
         f.pointer = recordValue();
         f.isArray = true;
@@ -135,8 +153,29 @@ public:
 
 private:
     bool value() {
+        if (!frames_.empty() && frames_.back().isArray && frames_.back().nextIndex >= kMaxJsonContainerSize)
+            return overLimit("array with more than " + std::to_string(kMaxJsonContainerSize) + " elements");
         recordValue();
         return true;
+    }
+
+    // Checked before a container opens: every open container costs a pointer
+    // string as long as its depth, so unbounded nesting would cost quadratic
+    // time and memory (a 200 kB file of '[' took 21 s before this limit).
+    bool roomForChild() {
+        if (frames_.size() >= kMaxJsonDepth)
+            return overLimit("nested more than " + std::to_string(kMaxJsonDepth) +
+                             " levels deep (arrays and objects inside each other)");
+        if (!frames_.empty() && frames_.back().isArray && frames_.back().nextIndex >= kMaxJsonContainerSize)
+            return overLimit("array with more than " + std::to_string(kMaxJsonContainerSize) + " elements");
+        return true;
+    }
+
+    // Stops the parse with an error at the token just read (the value that is too much).
+    bool overLimit(std::string message) {
+        errorOffset_ = tokenStart();
+        error_ = JsonSyntaxError{{}, nextValuePointer(), std::move(message)};
+        return false;
     }
 
     // Records where the value that just ended its token starts; returns its pointer.

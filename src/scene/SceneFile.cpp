@@ -26,6 +26,7 @@
 #include "scene/ImageLoader.h"
 #include "scene/JsonPositions.h"
 #include "scene/MeshGenerators.h"
+#include "scene/MeshLimits.h"
 #include "scene/MeshLoader.h"
 
 namespace raycache {
@@ -54,6 +55,15 @@ constexpr std::uintmax_t kMaxSceneFileBytes = 64u << 20;
 // except that whole numbers are written out ("1000000", not "1e+06").
 std::string formatNumber(double v) {
     if (v == std::floor(v) && std::fabs(v) < 1e15) return std::to_string(static_cast<long long>(v));
+    std::array<char, 32> buf{};
+    const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), v);
+    return std::string(buf.data(), r.ptr);
+}
+
+// The same for a float: the shortest text that reads back as that float
+// ("3e+38", not the double 3.0000000054977558e+38).
+std::string formatFloat(float v) {
+    if (v == std::floor(v) && std::fabs(v) < 1e15f) return std::to_string(static_cast<long long>(v));
     std::array<char, 32> buf{};
     const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), v);
     return std::string(buf.data(), r.ptr);
@@ -730,6 +740,7 @@ private:
                 if (const Node v = child(o, "radius")) sphere.radius = number(v, positive());
                 sphere.center = t.matrix.applyToPoint(sphere.center);
                 sphere.radius *= s.x;
+                checkSphereBounds(sphere, o);
                 object.shape = sphere;
                 object.origin = sphere.center;
             } else {
@@ -737,12 +748,56 @@ private:
                     kind == ShapeKind::Mesh ? meshFile(required(o, "file")) : generatedMesh(kind);
                 // Instances share the untransformed mesh when they can.
                 if (!t.identity) mesh = std::make_shared<const TriangleMesh>(transformed(*mesh, t.matrix));
+                const Node transformNode = child(o, "transform");
+                checkMeshBounds(*mesh, t.identity ? (kind == ShapeKind::Mesh ? required(o, "file") : o) : transformNode,
+                                t.identity ? "" : "its transform makes ");
                 object.shape = MeshShape{std::move(mesh)};
                 object.origin = t.translate;
             }
             if (const Node v = child(o, "material")) object.material = objectMaterial(v);
             scene.objects.push_back(std::move(object));
         }
+    }
+
+    // Spheres and meshes must stay within ±kMaxWorldCoordinate: a radius of
+    // 3e38 is a finite float whose bounds are not, and renders nothing.
+    void checkSphereBounds(const Sphere& sphere, const Node& o) const {
+        // Blame the radius when it alone is too large, otherwise what placed the centre.
+        const Node radius = child(o, "radius"), center = child(o, "center"), transform = child(o, "transform");
+        const Node where = radius && !(std::fabs(double(sphere.radius)) <= kMaxWorldCoordinate) ? radius
+                           : center                                                             ? center
+                           : transform                                                          ? transform
+                                                                                                : o;
+        const double reach = std::max({std::fabs(double(sphere.center.x)), std::fabs(double(sphere.center.y)),
+                                       std::fabs(double(sphere.center.z))}) +
+                             double(sphere.radius);
+        if (!isFinite(sphere.center) || !std::isfinite(sphere.radius) || !(reach <= kMaxWorldCoordinate))
+            fail(where, "the sphere (world centre [" + formatFloat(sphere.center.x) + ", " +
+                            formatFloat(sphere.center.y) + ", " + formatFloat(sphere.center.z) + "], radius " +
+                            formatFloat(sphere.radius) + ") reaches " +
+                            (reach <= std::numeric_limits<float>::max() ? formatFloat(static_cast<float>(reach))
+                                                                        : formatNumber(reach)) +
+                            ", beyond the limit of ±" + formatFloat(kMaxWorldCoordinate) +
+                            " on some axis (floats are too coarse to trace beyond)");
+    }
+
+    // `prefix` names what moved the vertices ("its transform makes "), empty for the file's own.
+    void checkMeshBounds(const TriangleMesh& mesh, const Node& where, const std::string& prefix) const {
+        std::size_t nonFinite = 0, outside = 0;
+        for (const Vec3& p : mesh.positions) {
+            if (!isFinite(p))
+                ++nonFinite;
+            else if (std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}) > kMaxWorldCoordinate)
+                ++outside;
+        }
+        if (nonFinite > 0)
+            fail(where, prefix + std::to_string(nonFinite) + " of the mesh's " + std::to_string(mesh.positions.size()) +
+                            " vertices non-finite (infinite or NaN)");
+        if (outside > 0)
+            fail(where, (prefix.empty() ? "" : prefix) + std::to_string(outside) + " of the mesh's " +
+                            std::to_string(mesh.positions.size()) + " vertices lie beyond ±" +
+                            formatFloat(kMaxWorldCoordinate) + " on some axis (floats are too coarse to trace beyond)");
+        if (const std::string problem = validateMesh(mesh); !problem.empty()) fail(where, problem);
     }
 
     std::string fileLabel_;

@@ -1,5 +1,7 @@
 #include "scene/TriangleMesh.h"
 
+#include <algorithm>
+
 namespace raycache {
 
 TriangleMesh transformed(const TriangleMesh& mesh, const Transform& t) {
@@ -31,6 +33,14 @@ std::string validateMesh(const TriangleMesh& mesh) {
             if (idx >= count)
                 return "triangle " + std::to_string(i) + " uses vertex " + std::to_string(idx) +
                        " but the mesh has " + std::to_string(count) + " vertices";
+    // Degenerate triangles among others are harmless (never hit); a mesh of
+    // nothing else is invisible, which is never what was meant.
+    const auto hasArea = [&](const std::array<std::uint32_t, 3>& t) {
+        const Vec3 a = mesh.positions[t[0]], b = mesh.positions[t[1]], c = mesh.positions[t[2]];
+        return length(cross(b - a, c - a)) > 0.0f;
+    };
+    if (std::none_of(mesh.triangles.begin(), mesh.triangles.end(), hasArea))
+        return "all " + std::to_string(mesh.triangles.size()) + " triangles are degenerate (zero area)";
     return {};
 }
 

@@ -22,7 +22,8 @@ struct TriangleMesh {
 TriangleMesh transformed(const TriangleMesh& mesh, const Transform& t);
 
 // Empty string if the mesh is usable, otherwise what is wrong with it
-// (no triangles, index out of range, non-finite values, array size mismatch).
+// (no triangles, index out of range, non-finite values, array size mismatch,
+// only degenerate triangles).
 std::string validateMesh(const TriangleMesh& mesh);
 
 }  // namespace raycache

@@ -126,7 +126,7 @@ TEST_F(CliOutput, StatsJsonCountsTheRaysOfEveryFrame) {
     std::uint64_t total = 0;
     for (std::size_t f = 0; f < frames.size(); ++f) {
         const nlohmann::json& rays = frames[f].at("rays");
-        EXPECT_EQ(frames[f].at("frame"), static_cast<int>(f));
+        EXPECT_EQ(frames[f].at("frame"), static_cast<int>(f) + 1);  // frames count from 1, as "frame 1/N"
         EXPECT_EQ(rays.at("primary"), 32 * 24) << "one primary ray per pixel";
         // One light: at most one shadow ray per surface hit; depth 3 caps
         // reflections at two per pixel; grid-4 has no glass.

@@ -14,6 +14,7 @@
 #include "XmlCheck.h"
 #include "app/BenchCommand.h"
 #include "bench/ExperimentRegistry.h"
+#include "bench/SpeedupInterval.h"
 
 namespace fs = std::filesystem;
 using namespace raycache;
@@ -160,6 +161,36 @@ TEST_F(Experiments, TimingTablesRecordEveryFrameAndSayWhatIsMissing) {
     EXPECT_EQ(t53.at("rows").at(0).at("variants").at("cdct-0.02/0.002").at("cdct").at("step"), 0.02f);
     // The documents' figures sit beside ours.
     EXPECT_DOUBLE_EQ(t53.at("rows").at(1).at("variants").at("cct").at("documents_fps").get<double>(), 68.2);
+}
+
+TEST_F(Experiments, TimingTablesReportSpeedupsWithTheirIntervalsAndStopReasons) {
+    for (const char* name : {"table-5.1", "table-5.2", "table-5.3"}) {
+        SCOPED_TRACE(name);
+        const nlohmann::json j = results(name);
+        const int timed = j.at("settings").at("timed_frames");
+        // Tiny runs a fixed count: fewer rounds than an interval needs, stopped by the round cap.
+        EXPECT_EQ(j.at("settings").at("max_timed_frames").get<int>(), timed);
+        EXPECT_FALSE(j.at("load_average").at("before").get<std::string>().empty());
+        EXPECT_FALSE(j.at("load_average").at("after").get<std::string>().empty());
+        for (const auto& row : j.at("rows")) {
+            EXPECT_EQ(row.at("still_timed_rounds").get<int>(), timed);
+            EXPECT_EQ(row.at("still_stop_reason"), "round cap");
+            const auto& baseline = row.at("variants").at("standard").at("still").at("frame_ms");
+            for (const auto& [key, v] : row.at("variants").items()) {
+                if (!v.at("available").get<bool>()) continue;
+                const nlohmann::json& s = v.at("still").at("speedup_vs_standard");
+                // The recorded speed-up is what the recorded frames give.
+                const SpeedupInterval expected = bootstrapSpeedup(
+                    baseline.get<std::vector<double>>(), v.at("still").at("frame_ms").get<std::vector<double>>());
+                EXPECT_NEAR(s.at("speedup").get<double>(), expected.speedup, 1e-9) << key;
+                EXPECT_TRUE(s.at("ci95_low").is_null()) << key;  // fewer than 4 pairs: no interval
+                EXPECT_FALSE(s.at("no_measurable_difference").get<bool>()) << key;
+            }
+        }
+        EXPECT_NE(readFile(dir_ / name / "results.md").find("Timed rounds (still camera): "), std::string::npos);
+    }
+    EXPECT_NE(log_.find("(no interval: fewer than 4 timed pairs)"), std::string::npos);
+    EXPECT_NE(log_.find("load average "), std::string::npos);
 }
 
 TEST_F(Experiments, FillRateStartsEmptyAndNeverLosesTexels) {

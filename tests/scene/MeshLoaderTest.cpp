@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "core/Errors.h"
@@ -106,6 +107,150 @@ TEST(MeshLoader, MalformedGltfThrows) { expectInputErrorNamingFile(meshDir / "ga
 TEST(MeshLoader, MissingFileThrows) { expectInputErrorNamingFile(meshDir / "no-such-mesh.obj"); }
 
 TEST(MeshLoader, DirectoryThrows) { expectInputErrorNamingFile(meshDir); }
+
+// ---- broken files Assimp would repair or read as garbage: one InputError each ----
+
+// Writes `contents` into a fresh per-test directory and returns the path.
+std::filesystem::path writeMesh(const std::string& name, const std::string& contents) {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "raycache_mesh" / info->name();
+    std::filesystem::create_directories(dir);
+    const std::filesystem::path path = dir / name;
+    std::ofstream(path, std::ios::binary) << contents;
+    return path;
+}
+
+// Expects one single-line InputError naming the file (and, when given, the
+// line and column) whose message contains `fragment`.
+void expectRejected(const std::filesystem::path& path, const std::string& fragment, int line = 0, int column = 0) {
+    try {
+        const TriangleMesh mesh = loadMeshFile(path);
+        ADD_FAILURE() << path << " loaded with " << mesh.triangles.size() << " triangles";
+    } catch (const InputError& e) {
+        const std::string what = e.what();
+        EXPECT_EQ(e.where().file, path.string());
+        EXPECT_NE(what.find(fragment), std::string::npos) << what;
+        EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+        if (line > 0) {
+            EXPECT_EQ(e.where().line, line) << what;
+            EXPECT_EQ(e.where().column, column) << what;
+        }
+        // The scene reader adds "cannot load mesh"; the loader must not say it too.
+        EXPECT_EQ(what.find("cannot load mesh"), std::string::npos) << what;
+    }
+}
+
+// Four vertices of a unit square, two triangles; index buffer at byte 48.
+const std::string kGltfHead =
+    R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+    R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],"buffers":[{"byteLength":60,)"
+    R"("uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAACAPwAAgD8AAAAA)";
+const std::string kGltfTail =
+    R"("}],"bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":12}],)"
+    R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},)"
+    R"({"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}]})";
+
+TEST(MeshLoader, GltfSquareLoads) {
+    // Indices 0 1 2, 1 3 2: the control for the broken variants below.
+    const TriangleMesh mesh = loadMeshFile(writeMesh("square.gltf", kGltfHead + "AAABAAIAAQADAAIA" + kGltfTail));
+    EXPECT_EQ(mesh.triangles.size(), 2u);
+    EXPECT_EQ(mesh.positions.size(), 4u);
+}
+
+TEST(MeshLoader, GltfIndexOutOfRangeIsAnErrorNotADroppedTriangle) {
+    // Indices 0 1 2, 1 7 2: Assimp drops the second triangle and only logs it.
+    expectRejected(writeMesh("oob.gltf", kGltfHead + "AAABAAIAAQAHAAIA" + kGltfTail), "out-of-range indices");
+}
+
+TEST(MeshLoader, GltfNormalCountMismatchIsAnError) {
+    // 2 normals for 4 vertices: Assimp ignores the normals and only logs it.
+    const std::string gltf =
+        R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+        R"("meshes":[{"primitives":[{"attributes":{"POSITION":0,"NORMAL":2},"indices":1}]}],)"
+        R"("buffers":[{"byteLength":84,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAA)"
+        R"(AAAAAAgD8AAAAAAACAPwAAgD8AAAAAAAAAAAAAAAAAAIA/AAAAAAAAAAAAAIA/AAABAAIAAQADAAIA"}],"bufferViews":[{"buffer":0,)"
+        R"("byteOffset":0,"byteLength":48},{"buffer":0,"byteOffset":72,"byteLength":12},{"buffer":0,"byteOffset":48,)"
+        R"("byteLength":24}],"accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[0,0,0],)"
+        R"("max":[1,1,0]},{"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"},{"bufferView":2,)"
+        R"("componentType":5126,"count":2,"type":"VEC3"}]})";
+    expectRejected(writeMesh("normals.gltf", gltf), "Normal count");
+}
+
+TEST(MeshLoader, GltfOfOnlyDegenerateTrianglesIsAnError) {
+    // Indices 0 0 1, 2 2 2: no triangle has area.
+    expectRejected(writeMesh("degenerate.gltf", kGltfHead + "AAAAAAEAAgACAAIA" + kGltfTail),
+                   "all 2 triangles are degenerate");
+}
+
+TEST(MeshLoader, DegenerateTrianglesBesideGoodOnesAreKept) {
+    // Policy (docs/scene-format.md): they are never hit, so they do no harm.
+    const TriangleMesh mesh = loadMeshFile(writeMesh("mixed.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 1 2\n"));
+    EXPECT_EQ(mesh.triangles.size(), 2u);
+}
+
+TEST(MeshLoader, ObjUnknownStatementIsAnError) {
+    expectRejected(writeMesh("garbage.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nhello world\nf 1 2 3\n"),
+                   "unknown OBJ statement \"hello\"", 4, 1);
+}
+
+TEST(MeshLoader, ObjTextureReferenceToNothingIsAnError) {
+    // Assimp accepts "f 1/1 ..." without any "vt" and invents coordinates.
+    expectRejected(writeMesh("uv.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1 2/1 3/1\n"),
+                   "face refers to texture coordinate 1 but the file has 0", 4, 3);
+}
+
+TEST(MeshLoader, ObjNegativeIndexBeyondTheStartIsAnError) {
+    expectRejected(writeMesh("neg.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -4\n"),
+                   "face refers to vertex -4 but the file has 3", 4, 9);
+}
+
+TEST(MeshLoader, ObjRelativeIndicesAndCommentsLoad) {
+    const TriangleMesh mesh =
+        loadMeshFile(writeMesh("rel.obj", "# a comment\nv 0 0 0\nv 1 0 0 # x\nv 0 1 0\ng part\ns off\nf -3 -2 -1\n"));
+    EXPECT_EQ(mesh.triangles.size(), 1u);
+}
+
+TEST(MeshLoader, ObjVertexWithTooFewNumbersIsAnError) {
+    expectRejected(writeMesh("short.obj", "v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n"), "needs 3 to 7 numbers, got 2", 2, 1);
+}
+
+TEST(MeshLoader, ObjNonFiniteVertexIsAnError) {
+    expectRejected(writeMesh("nan.obj", "v 0 0 0\nv 1 0 0\nv 0 1 nan\nf 1 2 3\n"), "");
+}
+
+const std::string kOffTriangle = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n";
+
+TEST(MeshLoader, OffTriangleLoads) {
+    const TriangleMesh mesh = loadMeshFile(writeMesh("ok.off", kOffTriangle + "3 0 1 2\n"));
+    EXPECT_EQ(mesh.triangles.size(), 1u);
+    EXPECT_EQ(mesh.positions.size(), 3u);
+}
+
+TEST(MeshLoader, OffFaceWithAMissingIndexIsAnError) {
+    // Assimp reads the missing index from the next line and makes up a face.
+    expectRejected(writeMesh("short.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n"),
+                   "face 0 announces 4 vertices but lists 3", 6, 1);
+}
+
+TEST(MeshLoader, OffNegativeIndexIsAnError) {
+    expectRejected(writeMesh("neg.off", "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 -1\n"),
+                   "face 1 uses vertex \"-1\" but the vertices are numbered 0 to 2", 7, 7);
+}
+
+TEST(MeshLoader, OffDataAfterTheLastFaceIsAnError) {
+    expectRejected(writeMesh("extra.off", kOffTriangle + "3 0 1 2\n3 0 1 2\n"),
+                   "data after the last of the 1 faces the header announces", 7, 1);
+}
+
+TEST(MeshLoader, OffWithFewerFacesThanTheHeaderIsAnError) {
+    expectRejected(writeMesh("few.off", "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+                   "the header promises 3 vertices and 2 faces, the file has 4 lines of data");
+}
+
+TEST(MeshLoader, OffVertexWithExtraNumbersIsAnError) {
+    expectRejected(writeMesh("long.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0 9 9\n3 0 1 2\n"),
+                   "vertex 2 has 5 numbers, expected 3", 5, 1);
+}
 
 }  // namespace
 }  // namespace raycache

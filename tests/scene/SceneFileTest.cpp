@@ -424,8 +424,11 @@ TEST_F(SceneFileTest, MissingCubeFace) {
 
 TEST_F(SceneFileTest, UnreadableMeshIsReportedWithItsPointer) {
     write("broken.obj", "this is not an OBJ file\n");
-    expectError("{\"objects\": [{\"shape\": \"mesh\", \"file\": @\"broken.obj\"}]}", "/objects/0/file",
-                "cannot load mesh \"broken.obj\"");
+    const std::string m = expectError("{\"objects\": [{\"shape\": \"mesh\", \"file\": @\"broken.obj\"}]}",
+                                      "/objects/0/file", "cannot load mesh \"broken.obj\"");
+    // Once, followed by the mesh file's own position and the problem.
+    EXPECT_EQ(m.find("cannot load mesh"), m.rfind("cannot load mesh")) << m;
+    EXPECT_NE(m.find("broken.obj:1:1: unknown OBJ statement \"this\""), std::string::npos) << m;
 }
 
 TEST_F(SceneFileTest, NonSquareCubeFace) {
@@ -655,6 +658,77 @@ TEST_F(SceneFileTest, ImageEnvironmentsAndTextures) {
     EXPECT_LT(sky.r, 0.5f);  // sRGB 128 is about 0.22 linear
     ASSERT_TRUE(scene.objects[0].material.diffuseTexture.has_value());
     EXPECT_NEAR(scene.objects[0].material.albedo(0.5f, 0.5f).r, 1.0f, 1e-4f);
+}
+
+// ---- input limits -------------------------------------------------------------
+
+TEST_F(SceneFileTest, DeeplyNestedArraysAreRejectedAtTheDepthLimit) {
+    // 200 kB of '[': before the limit, indexing it took 21 s and gigabytes.
+    std::string pointer;
+    for (int i = 0; i < 64; ++i) pointer += "/0";
+    expectError(std::string(64, '[') + "@" + std::string(200000 - 64, '['), pointer, "nested more than 64 levels deep");
+}
+
+TEST_F(SceneFileTest, DeeplyNestedObjectsAreRejectedAtTheDepthLimit) {
+    std::string json, pointer;
+    for (int i = 0; i < 64; ++i) {
+        json += "{\n\"a\": ";
+        pointer += "/a";
+    }
+    expectError(json + "@{\"a\": 1}", pointer, "nested more than 64 levels deep");
+}
+
+TEST_F(SceneFileTest, NestingUpToTheLimitIsNotANestingError) {
+    // Root object + 63 arrays = 64 levels: past the limit check, refused for its type instead.
+    const std::string m = expectError(
+        "{\"objects\": [], \"frames\": @" + std::string(63, '[') + std::string(63, ']') + "}", "/frames", "");
+    EXPECT_EQ(m.find("nested"), std::string::npos) << m;
+}
+
+TEST_F(SceneFileTest, OverlongStringIsRejected) {
+    expectError("{\"objects\": [{\"shape\": \"sphere\", \"name\": @\"" + std::string(70000, 'x') + "\"}]}",
+                "/objects/0/name", "string of 70000 bytes, more than the limit of 65536");
+}
+
+// ---- absurd geometry ------------------------------------------------------------
+
+TEST_F(SceneFileTest, SphereRadiusBeyondTheWorldLimitIsRejected) {
+    // 3e38 is a finite float, but its bounds are not: it used to render nothing, silently.
+    expectError("{\"objects\": [{\"shape\": \"sphere\", \"radius\": @3e38}]}", "/objects/0/radius",
+                "reaches 3e+38, beyond the limit of ±10000000");
+}
+
+TEST_F(SceneFileTest, SphereCentreBeyondTheWorldLimitIsRejected) {
+    expectError("{\"objects\": [{\"shape\": \"sphere\", \"center\": @[0, 2e7, 0], \"radius\": 1}]}",
+                "/objects/0/center", "beyond the limit of ±10000000");
+}
+
+TEST_F(SceneFileTest, SphereScaledBeyondTheWorldLimitIsRejected) {
+    expectError("{\"objects\": [{\"shape\": \"sphere\", \"transform\": @{\"scale\": 1e30}}]}", "/objects/0/transform",
+                "beyond the limit");
+}
+
+TEST_F(SceneFileTest, LargeSphereWithinTheLimitLoads) {
+    // The classic "ground sphere" of radius 1e5 is fine.
+    const Scene scene = load(R"({"objects": [{"shape": "sphere", "center": [0, -100001, 0], "radius": 100000}]})");
+    EXPECT_EQ(std::get<Sphere>(scene.objects.at(0).shape).radius, 100000.0f);
+}
+
+TEST_F(SceneFileTest, MeshTransformMakingVerticesInfiniteIsRejected) {
+    write("far.obj", "v 0 0 0\nv 10 0 0\nv 0 10 0\nf 1 2 3\n");
+    expectError("{\"objects\": [{\"shape\": \"mesh\", \"file\": \"far.obj\", \"transform\": @{\"scale\": 1e38}}]}",
+                "/objects/0/transform", "its transform makes 2 of the mesh's 3 vertices non-finite");
+}
+
+TEST_F(SceneFileTest, MeshTransformBeyondTheWorldLimitIsRejected) {
+    expectError("{\"objects\": [{\"shape\": \"box\", \"transform\": @{\"translate\": [3e7, 0, 0]}}]}",
+                "/objects/0/transform", "vertices lie beyond ±10000000");
+}
+
+TEST_F(SceneFileTest, MeshFileBeyondTheWorldLimitIsRejected) {
+    write("huge.obj", "v 0 0 0\nv 1e9 0 0\nv 0 1 0\nf 1 2 3\n");
+    expectError("{\"objects\": [{\"shape\": \"mesh\", \"file\": @\"huge.obj\"}]}", "/objects/0/file",
+                "1 of the mesh's 3 vertices lie beyond ±10000000");
 }
 
 }  // namespace
