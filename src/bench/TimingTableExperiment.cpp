@@ -13,7 +13,7 @@
 #include "bench/SvgPlot.h"
 #include "core/AtomicFile.h"
 #include "core/Errors.h"
-#include "render/FramePipeline.h"
+#include "render/RenderSession.h"
 #include "scene/BuiltinScenes.h"
 #include "trace/TraceScene.h"
 
@@ -149,8 +149,7 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
 
         std::vector<VariantResult> results(spec_.variants.size());
         std::vector<RenderSettings> settings(spec_.variants.size());
-        std::vector<std::unique_ptr<RayCache>> caches(spec_.variants.size());
-        std::vector<std::unique_ptr<FramePipeline>> renderers(spec_.variants.size());
+        std::vector<std::unique_ptr<RenderSession>> renderers(spec_.variants.size());
         for (std::size_t vi = 0; vi < spec_.variants.size(); ++vi) {
             const TimingVariant& v = spec_.variants[vi];
             results[vi].variant = &v;
@@ -167,8 +166,7 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
                 s.cache.cdctMaxDepthOverride = v.cdct->maxDepth;
             }
             if (spec_.configure) spec_.configure(s);
-            caches[vi] = std::make_unique<RayCache>(scene, s.cache);
-            renderers[vi] = makeFramePipeline(scene, tracer, s, context.parallel, caches[vi].get());
+            renderers[vi] = std::make_unique<RenderSession>(scene, s, tracer, context.parallel);
         }
 
         // (a) Still camera: warm-up frames fill the caches, then timed frames, variants in turn.
@@ -213,7 +211,7 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
                                       results[vi].movingFrameMs.push_back(std::move(frameMs));
                                       return rays;
                                   },
-                                  [&, vi] { caches[vi]->clear(); }, [&, work] { context.progress.advance(work); }});
+                                  [&, vi] { renderers[vi]->cache().clear(); }, [&, work] { context.progress.advance(work); }});
             }
             const std::vector<VariantTimes> movingTimes = runInterleaved(moving, 0, size.movingRounds);
             for (std::size_t k = 0; k < measuredIndex.size(); ++k) {
