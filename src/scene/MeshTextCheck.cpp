@@ -240,6 +240,35 @@ std::optional<MeshTextProblem> checkOffText(std::string_view text) {
     return std::nullopt;
 }
 
+std::optional<MeshTextProblem> checkPlyHeader(std::string_view text) {
+    int lineNumber = 0;
+    std::size_t start = 0;
+    while (start < text.size()) {
+        std::size_t end = text.find('\n', start);
+        if (end == std::string_view::npos) end = text.size();
+        std::string_view line = text.substr(start, end - start);
+        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        ++lineNumber;
+        const std::size_t wordEnd = line.find_first_of(" \t");
+        const std::string_view keyword = line.substr(0, wordEnd);
+        const auto at = [&](std::string message) { return MeshTextProblem{lineNumber, 1, std::move(message)}; };
+        if (lineNumber == 1) {
+            if (line != "ply") return at("a PLY file starts with a line \"ply\"");
+        } else if (lineNumber == 2) {
+            const bool known = line.starts_with("format ascii ") || line.starts_with("format binary_little_endian ") ||
+                               line.starts_with("format binary_big_endian ");
+            if (!known) return at("expected \"format ascii|binary_little_endian|binary_big_endian 1.0\"");
+        } else if (keyword == "end_header") {
+            return std::nullopt;
+        } else if (keyword != "comment" && keyword != "obj_info" && keyword != "element" && keyword != "property") {
+            return at("unknown PLY header line " + quoted(keyword) +
+                      " (expected comment, obj_info, element, property or end_header)");
+        }
+        start = end + 1;
+    }
+    return MeshTextProblem{lineNumber, 1, "the PLY header has no end_header line"};
+}
+
 namespace {
 std::string lowerExtension(const std::filesystem::path& path) {
     std::string ext = path.extension().string();
@@ -250,13 +279,14 @@ std::string lowerExtension(const std::filesystem::path& path) {
 
 bool strictlyCheckedText(const std::filesystem::path& path) {
     const std::string ext = lowerExtension(path);
-    return ext == ".obj" || ext == ".off";
+    return ext == ".obj" || ext == ".off" || ext == ".ply";
 }
 
 std::optional<MeshTextProblem> checkMeshText(const std::filesystem::path& path, std::string_view text) {
     const std::string ext = lowerExtension(path);
     if (ext == ".obj") return checkObjText(text);
     if (ext == ".off") return checkOffText(text);
+    if (ext == ".ply") return checkPlyHeader(text);
     return std::nullopt;
 }
 

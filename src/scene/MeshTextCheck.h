@@ -27,10 +27,17 @@ std::optional<MeshTextProblem> checkObjText(std::string_view text);
 // vertices, vertex indices out of range, anything after the last face.
 std::optional<MeshTextProblem> checkOffText(std::string_view text);
 
-// Whether the extension names a format checked here (.obj, .off, any case).
+// The first problem of a PLY header (ASCII or binary files; the body is not
+// read): a first line other than "ply", a missing or unknown format line,
+// header lines other than comment, obj_info, element and property, and no
+// end_header. Assimp loops forever on a header whose end_header is damaged
+// (found by fuzzing, tests/fuzz/findings/assimp-ply-hang.ply).
+std::optional<MeshTextProblem> checkPlyHeader(std::string_view text);
+
+// Whether the extension names a format checked here (.obj, .off, .ply, any case).
 bool strictlyCheckedText(const std::filesystem::path& path);
 
-// Dispatches on the extension (.obj, .off, any case); other formats: nullopt.
+// Dispatches on the extension (.obj, .off, .ply, any case); other formats: nullopt.
 std::optional<MeshTextProblem> checkMeshText(const std::filesystem::path& path, std::string_view text);
 
 }  // namespace raycache

@@ -122,19 +122,23 @@ RTCGeometry makeMeshGeometry(RTCDevice device, const TriangleMesh& mesh) {
     return geom;
 }
 
+void toEmbree(const Ray& ray, RTCRay& r) {
+    r.org_x = ray.origin.x;
+    r.org_y = ray.origin.y;
+    r.org_z = ray.origin.z;
+    r.dir_x = ray.direction.x;
+    r.dir_y = ray.direction.y;
+    r.dir_z = ray.direction.z;
+    r.tnear = ray.tNear;
+    r.tfar = ray.tFar;
+    r.time = 0.0f;
+    r.mask = 0xFFFFFFFFu;
+    r.id = 0;
+    r.flags = 0;
+}
+
 void toEmbree(const Ray& ray, RTCRayHit& rh) {
-    rh.ray.org_x = ray.origin.x;
-    rh.ray.org_y = ray.origin.y;
-    rh.ray.org_z = ray.origin.z;
-    rh.ray.dir_x = ray.direction.x;
-    rh.ray.dir_y = ray.direction.y;
-    rh.ray.dir_z = ray.direction.z;
-    rh.ray.tnear = ray.tNear;
-    rh.ray.tfar = ray.tFar;
-    rh.ray.time = 0.0f;
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.ray.id = 0;
-    rh.ray.flags = 0;
+    toEmbree(ray, rh.ray);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 }
@@ -178,20 +182,6 @@ void fillPacket(std::span<const Ray> rays, int* valid, RayPacket& packet) {
     }
 }
 
-void toEmbree(const Ray& ray, RTCRay& r) {
-    r.org_x = ray.origin.x;
-    r.org_y = ray.origin.y;
-    r.org_z = ray.origin.z;
-    r.dir_x = ray.direction.x;
-    r.dir_y = ray.direction.y;
-    r.dir_z = ray.direction.z;
-    r.tnear = ray.tNear;
-    r.tfar = ray.tFar;
-    r.time = 0.0f;
-    r.mask = 0xFFFFFFFFu;
-    r.id = 0;
-    r.flags = 0;
-}
 
 }  // namespace
 
@@ -248,18 +238,7 @@ bool TraceScene::occluded(const Ray& ray) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay r;
-    r.org_x = ray.origin.x;
-    r.org_y = ray.origin.y;
-    r.org_z = ray.origin.z;
-    r.dir_x = ray.direction.x;
-    r.dir_y = ray.direction.y;
-    r.dir_z = ray.direction.z;
-    r.tnear = ray.tNear;
-    r.tfar = ray.tFar;
-    r.time = 0.0f;
-    r.mask = 0xFFFFFFFFu;
-    r.id = 0;
-    r.flags = 0;
+    toEmbree(ray, r);
     rtcOccluded1(impl_->scene, &context, &r);
     // Embree marks an occluded ray by setting tfar to -inf.
     return r.tfar < 0.0f;
@@ -308,27 +287,11 @@ void TraceScene::occludedCoherent(std::span<const Ray> rays, std::span<unsigned 
 }
 
 void TraceScene::intersectIncoherent(std::span<const Ray> rays, std::span<TraceHit> hits) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    for (std::size_t i = 0; i < rays.size(); ++i) {
-        RTCRayHit rh;
-        toEmbree(rays[i], rh.ray);
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(impl_->scene, &context, &rh);
-        hits[i] = fromEmbree(rh);
-    }
+    for (std::size_t i = 0; i < rays.size(); ++i) hits[i] = intersect(rays[i]);
 }
 
 void TraceScene::occludedIncoherent(std::span<const Ray> rays, std::span<unsigned char> occluded) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    for (std::size_t i = 0; i < rays.size(); ++i) {
-        RTCRay r;
-        toEmbree(rays[i], r);
-        rtcOccluded1(impl_->scene, &context, &r);
-        occluded[i] = r.tfar < 0.0f ? 1 : 0;
-    }
+    for (std::size_t i = 0; i < rays.size(); ++i) occluded[i] = this->occluded(rays[i]) ? 1 : 0;
 }
 
 }  // namespace raycache

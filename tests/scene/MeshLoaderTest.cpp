@@ -253,4 +253,15 @@ TEST(MeshLoader, OffVertexWithExtraNumbersIsAnError) {
 }
 
 }  // namespace
+// Found by fuzzing (docs/testing.md): Assimp loops forever on a PLY whose
+// header lines are damaged (here "proper4y" and a broken end_header), so the
+// header is checked before Assimp sees the file.
+TEST(MeshLoader, DamagedPlyHeaderIsOneErrorNotAHang) {
+    expectRejected(meshDir / "fuzz-ply-damaged-header.ply", "unknown PLY header line \"proper4y\"", 6, 1);
+    const auto path = writeMesh("no-end.ply", "ply\nformat ascii 1.0\nelement vertex 0\n");
+    expectRejected(path, "no end_header", 3, 1);
+    expectRejected(writeMesh("format.ply", "ply\nformat text 1.0\nend_header\n"), "expected \"format", 2, 1);
+    expectRejected(writeMesh("magic.ply", "plyx\nformat ascii 1.0\nend_header\n"), "starts with a line \"ply\"", 1, 1);
+}
+
 }  // namespace raycache
