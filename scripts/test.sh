@@ -9,3 +9,6 @@ scripts/install-deps.sh
 cmake --workflow --preset release
 cmake --workflow --preset asan
 cmake --workflow --preset tsan
+# Fuzzing, the test suite's fixed run: a fixed seed and input count per target
+# from the committed corpus, so it is the same run on every machine.
+FUZZ_FIXED=1 scripts/fuzz.sh
