@@ -34,31 +34,7 @@ std::unique_ptr<Experiment> makeTable51Experiment() {
                      {"cct", "CCT", std::nullopt}};  // nullopt: the scene's materials, i.e. only `main` caches
     spec.documents = paperTable51();
     spec.documentsSpeedupColumn = "speedup";
-    spec.full = {.width = 1024,
-                 .height = 1024,
-                 .warmupFrames = 2,
-                 .timedFrames = 7,
-                 .movingFrames = 10,
-                 .movingRounds = 3,
-                 .maxTimedFrames = 60,
-                 .timeCapSeconds = 20.0};
-    // Quick: the time cap keeps `bench all --quick` within 3 minutes on 2 cores.
-    spec.quick = {.width = 512,
-                  .height = 512,
-                  .warmupFrames = 1,
-                  .timedFrames = 4,
-                  .movingFrames = 10,
-                  .movingRounds = 1,
-                  .maxTimedFrames = 40,
-                  .timeCapSeconds = 1.5};
-    spec.tiny = {.width = 32,
-                 .height = 32,
-                 .warmupFrames = 1,
-                 .timedFrames = 2,
-                 .movingFrames = 2,
-                 .movingRounds = 1,
-                 .scenes = 2,
-                 .cacheResolution = 32};
+    setSquareTableSizes(spec);
     spec.adjustScene = onlyMainSphereCaches;
     spec.configure = selectTable51Pipeline;
     spec.pipeline = "hybrid";

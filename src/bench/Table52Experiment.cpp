@@ -15,31 +15,7 @@ std::unique_ptr<Experiment> makeTable52Experiment() {
     spec.variants = {{"standard", "uncached", CacheTechnique::None}, {"cct", "CCT", CacheTechnique::Cct}};
     spec.documents = paperTable52();
     spec.documentsSpeedupColumn = "speedup";
-    spec.full = {.width = 1024,
-                 .height = 1024,
-                 .warmupFrames = 2,
-                 .timedFrames = 7,
-                 .movingFrames = 10,
-                 .movingRounds = 3,
-                 .maxTimedFrames = 60,
-                 .timeCapSeconds = 20.0};
-    // Quick: the time cap keeps `bench all --quick` within 3 minutes on 2 cores.
-    spec.quick = {.width = 512,
-                  .height = 512,
-                  .warmupFrames = 1,
-                  .timedFrames = 4,
-                  .movingFrames = 10,
-                  .movingRounds = 1,
-                  .maxTimedFrames = 40,
-                  .timeCapSeconds = 1.5};
-    spec.tiny = {.width = 32,
-                 .height = 32,
-                 .warmupFrames = 1,
-                 .timedFrames = 2,
-                 .movingFrames = 2,
-                 .movingRounds = 1,
-                 .scenes = 2,
-                 .cacheResolution = 32};
+    setSquareTableSizes(spec);
     return std::make_unique<TimingTableExperiment>(std::move(spec));
 }
 

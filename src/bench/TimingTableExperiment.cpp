@@ -501,4 +501,31 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
     return out;
 }
 
+void setSquareTableSizes(TimingTableSpec& spec) {
+    spec.full = {.width = 1024,
+                 .height = 1024,
+                 .warmupFrames = 2,
+                 .timedFrames = 7,
+                 .movingFrames = 10,
+                 .movingRounds = 3,
+                 .maxTimedFrames = 60,
+                 .timeCapSeconds = 20.0};
+    spec.quick = {.width = 512,
+                  .height = 512,
+                  .warmupFrames = 1,
+                  .timedFrames = 4,
+                  .movingFrames = 10,
+                  .movingRounds = 1,
+                  .maxTimedFrames = 40,
+                  .timeCapSeconds = 1.5};
+    spec.tiny = {.width = 32,
+                 .height = 32,
+                 .warmupFrames = 1,
+                 .timedFrames = 2,
+                 .movingFrames = 2,
+                 .movingRounds = 1,
+                 .scenes = 2,
+                 .cacheResolution = 32};
+}
+
 }  // namespace raycache

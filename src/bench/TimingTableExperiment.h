@@ -74,6 +74,10 @@ struct TimingTableSpec {
     std::vector<std::string> caveats;  // printed in the output and the report
 };
 
+// The sizes of the documents' 1024x1024 tables (5.1, 5.2): full, quick (its
+// time cap keeps `bench all --quick` within 3 minutes on 2 cores) and tiny.
+void setSquareTableSizes(TimingTableSpec& spec);
+
 class TimingTableExperiment : public Experiment {
 public:
     explicit TimingTableExperiment(TimingTableSpec spec) : spec_(std::move(spec)) {}
