@@ -35,6 +35,13 @@ std::string formatFrameLine(const FrameResult& r, int frameCount) {
         line << "  phases ms: raster " << formatFixed(p->raster, 1) << ", readback " << formatFixed(p->readback, 1)
              << ", shadows " << formatFixed(p->shadows, 1) << ", secondary " << formatFixed(p->secondary, 1)
              << ", compose " << formatFixed(p->compose, 1);
+    if (const auto& c = r.stats.renderCache) {
+        const double pixels = static_cast<double>(std::max<std::int64_t>(1, c->pixels));
+        line << "  render cache: " << (c->refreshedAll ? "every pixel traced" : "traced " + formatFixed(100.0 * static_cast<double>(c->fresh) / pixels, 1) + " %")
+             << ", predicted " << c->predicted << ", holes " << formatFixed(100.0 * static_cast<double>(c->holes) / pixels, 1)
+             << " %, reshaded " << c->reshaded << ", ms: reconstruction " << formatFixed(c->reconstructionMs(), 1)
+             << ", samples " << formatFixed(c->sampleGenerationMs(), 1);
+    }
     if (const auto& s = r.stats.stages)
         line << "  stages cpu ms: first hits " << formatFixed(s->firstHits, 1) << ", surfaces "
              << formatFixed(s->surfaces, 1) << ", shadow rays " << formatFixed(s->shadowRays, 1) << ", direct "

@@ -36,6 +36,16 @@ nlohmann::json phasesJson(const PhaseTimes& p) {
             {"secondary_ms", p.secondary}, {"compose_ms", p.compose}};
 }
 
+nlohmann::json renderCacheJson(const RenderCacheStats& s) {
+    return {{"reproject_ms", s.reprojectMs}, {"maps_ms", s.mapsMs}, {"filter_ms", s.filterMs},
+            {"reconstruction_ms", s.reconstructionMs()}, {"trace_ms", s.traceMs}, {"reshade_ms", s.reshadeMs},
+            {"sample_generation_ms", s.sampleGenerationMs()}, {"pixels", s.pixels}, {"budget", s.budget},
+            {"fresh", s.fresh}, {"predicted", s.predicted}, {"reprojected", s.reprojected},
+            {"reshaded", s.reshaded}, {"culled", s.culled}, {"holes", s.holes}, {"filled_3x3", s.filled3x3},
+            {"filled_7x7", s.filled7x7}, {"unfilled", s.unfilled}, {"evicted", s.evicted}, {"lost", s.lost},
+            {"live_samples", s.liveSamples}, {"refreshed_all", s.refreshedAll}};
+}
+
 nlohmann::json stagesJson(const StageTimes& s) {
     return {{"first_hits_cpu_ms", s.firstHits},     {"surfaces_cpu_ms", s.surfaces},
             {"shadow_rays_cpu_ms", s.shadowRays},   {"direct_shading_cpu_ms", s.directShading},
@@ -91,6 +101,7 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out) {
         if (r.stats.cache) frameJson["cache"] = cacheJson(*r.stats.cache);
         if (r.stats.phases) frameJson["phases"] = phasesJson(*r.stats.phases);
         if (r.stats.stages) frameJson["stages"] = stagesJson(*r.stats.stages);
+        if (r.stats.renderCache) frameJson["render_cache"] = renderCacheJson(*r.stats.renderCache);
         frameStats.push_back(std::move(frameJson));
         const bool lastFrame = r.frame + 1 == frames;
         // Files count from 1 like the progress lines: "frame 1/N" is _0001.
@@ -109,7 +120,7 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out) {
             {"max_depth", settings.maxDepth},
             {"min_weight", settings.minWeight},
             {"threads", settings.threads},
-            {"pipeline", settings.pipeline == PipelineKind::Hybrid ? "hybrid" : "ray"},
+            {"pipeline", pipelineKindName(settings.pipeline)},
             {"pipeline_description", pipelineLine},
             {"frames", frameStats},
             {"summary", {{"median_ms", summary.median}, {"min_ms", summary.min}, {"max_ms", summary.max},

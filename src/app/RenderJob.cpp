@@ -53,8 +53,12 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
     if (o.cacheResolution &&
         (*o.cacheResolution < RayCache::kMinResolution || *o.cacheResolution > RayCache::kMaxResolution))
         throw InputError("--cache-res must be between 16 and 2048 (got " + std::to_string(*o.cacheResolution) + ")");
-    if (o.pipeline != "ray" && o.pipeline != "hybrid")
-        throw InputError("--pipeline must be ray or hybrid (got '" + o.pipeline + "')");
+    if (!parsePipelineKind(o.pipeline))
+        throw InputError("--pipeline must be ray, hybrid or render-cache (got '" + o.pipeline + "')");
+    validateRenderCacheSettings(o.renderCache);
+    ReprojectedReflections reflections;
+    if (!parseReprojectedReflections(o.rcReflections, reflections))
+        throw InputError("--rc-reflections must be reshade or reproject (got '" + o.rcReflections + "')");
     if (o.gbuffer != "auto" && o.gbuffer != "gl" && o.gbuffer != "packets")
         throw InputError("--gbuffer must be auto, gl or packets (got '" + o.gbuffer + "')");
     if (o.path && *o.path != "static" && *o.path != "orbit" && *o.path != "pan")
@@ -82,7 +86,9 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     settings.cache.resolutionOverride = options.cacheResolution;
     settings.cache.ideal = options.cacheIdeal;
     settings.stageTimes = options.stageTimes;
-    settings.pipeline = options.pipeline == "hybrid" ? PipelineKind::Hybrid : PipelineKind::Ray;
+    settings.pipeline = *parsePipelineKind(options.pipeline);
+    settings.renderCache = options.renderCache;
+    parseReprojectedReflections(options.rcReflections, settings.renderCache.reflections);
     settings.gbuffer = options.gbuffer == "gl"        ? GBufferSource::OpenGl
                        : options.gbuffer == "packets" ? GBufferSource::Packets
                                                       : GBufferSource::Auto;

@@ -28,8 +28,10 @@ struct RenderJobOptions {
     std::optional<int> cacheResolution;    // default: each material's own setting
     bool cacheIdeal = false;               // benchmark switch, see RayCacheSettings::ideal
     bool stageTimes = false;               // time the tile kernel's stages (RenderSettings::stageTimes)
-    std::string pipeline = "ray";          // ray | hybrid (render/FramePipeline.h)
+    std::string pipeline = "ray";          // ray | hybrid | render-cache (render/FramePipeline.h)
     std::string gbuffer = "auto";          // hybrid G-buffer source: auto | gl | packets
+    RenderCacheSettings renderCache;       // --rc-* options of the Render Cache pipeline
+    std::string rcReflections = "reshade"; // reshade | reproject
 };
 
 struct RenderJob {

@@ -5,6 +5,12 @@
 
 namespace raycache {
 
+// A pixel of the image, x to the right, y down from the top row.
+struct PixelCoord {
+    int x = 0, y = 0;
+    bool operator==(const PixelCoord&) const = default;
+};
+
 class CameraRays {
 public:
     CameraRays(const Camera& camera, int width, int height);

@@ -4,6 +4,7 @@
 #include "raster/GBufferRasterizer.h"
 #include "render/FrameRenderer.h"
 #include "render/HybridPipeline.h"
+#include "rendercache/RenderCachePipeline.h"
 
 namespace raycache {
 
@@ -28,6 +29,8 @@ std::unique_ptr<FramePipeline> makeFramePipeline(const Scene& scene, const Trace
                                                  RayCache* cache) {
     if (settings.pipeline == PipelineKind::Ray)
         return std::make_unique<RayPipeline>(scene, tracer, settings, parallel, cache);
+    if (settings.pipeline == PipelineKind::RenderCache)
+        return std::make_unique<RenderCachePipeline>(scene, tracer, settings, parallel, cache);
     std::unique_ptr<GBufferRasterizer> rasterizer;
     std::string reason = "asked for with --gbuffer packets";
     if (settings.gbuffer != GBufferSource::Packets) {

@@ -1,9 +1,11 @@
 #pragma once
-// How a frame is made (SPEC §4, `--pipeline ray|hybrid`): the ray pipeline
-// (FrameRenderer: primary rays as packets, then Whitted shading per pixel) or
-// the hybrid pipeline (a G-buffer, by OpenGL or by primary-ray packets, then
-// deferred shadow, secondary and composition passes). Both produce the same
-// images; the hybrid one also reports its phase times.
+// How a frame is made (`--pipeline ray|hybrid|render-cache`): the ray
+// pipeline (FrameRenderer: primary rays as packets, then Whitted shading per
+// pixel); the hybrid pipeline (SPEC §4: a G-buffer, by OpenGL or by
+// primary-ray packets, then deferred shadow, secondary and composition
+// passes), which gives the ray pipeline's images and reports its phase
+// times; or the Render Cache (SPEC §6, rendercache/RenderCachePipeline.h),
+// which reuses reprojected samples and traces only some pixels per frame.
 #include <memory>
 #include <string>
 
@@ -18,6 +20,7 @@
 namespace raycache {
 
 class RayCache;
+struct RenderCacheOverlays;
 
 class FramePipeline {
 public:
@@ -29,6 +32,9 @@ public:
     // One line saying which pipeline this is and, for the hybrid one, where
     // its G-buffer comes from and why ("pipeline: hybrid, G-buffer by OpenGL (...)").
     virtual std::string description() const = 0;
+    // The Render Cache pipeline's maps of its last frame, for the viewer's
+    // overlays; null for the other pipelines.
+    virtual const RenderCacheOverlays* renderCacheOverlays() const { return nullptr; }
 };
 
 // The pipeline settings.pipeline asks for. The hybrid pipeline with

@@ -3,6 +3,7 @@
 
 #include "cache/CacheStats.h"
 #include "core/RayCounts.h"
+#include "rendercache/RenderCacheStats.h"
 
 namespace raycache {
 
@@ -56,6 +57,7 @@ struct FrameStats {
     std::optional<FrameCacheStats> cache;  // present when caches were in use
     std::optional<PhaseTimes> phases;      // present for the hybrid pipeline
     std::optional<StageTimes> stages;      // present when RenderSettings::stageTimes is set
+    std::optional<RenderCacheStats> renderCache;  // present for the Render Cache pipeline
 };
 
 }  // namespace raycache

@@ -83,4 +83,33 @@ Rgb LocalShading::directLight(const Material& material, const Rgb& albedo, const
     return color;
 }
 
+Rgb LocalShading::viewIndependentLight(const Material& material, const Rgb& albedo, const SurfacePoint& sp,
+                                       std::span<const ShadowQuery> queries, std::span<const unsigned char> occluded,
+                                       std::uint64_t& litMask) const {
+    static_assert(kMaxLights <= 64, "one bit per light");
+    Rgb color = material.ambient * albedo;
+    litMask = 0;
+    for (std::size_t q = 0; q < queries.size(); ++q) {
+        if (occluded[q]) continue;
+        const ShadowQuery& query = queries[q];
+        litMask |= std::uint64_t{1} << query.lightIndex;
+        color += albedo * dot(sp.normal, query.ray.direction) *
+                 scene_.lights[static_cast<std::size_t>(query.lightIndex)].intensity * query.strength;
+    }
+    return color;
+}
+
+Rgb LocalShading::highlights(const Material& material, const SurfacePoint& sp, const Vec3& toViewer,
+                             std::span<const ShadowQuery> queries, std::uint64_t litMask) const {
+    Rgb color;
+    if (material.specular.isBlack()) return color;
+    for (const ShadowQuery& query : queries) {
+        if (!(litMask >> query.lightIndex & 1u)) continue;
+        const float nDotH = std::max(0.0f, dot(sp.normal, normalize(query.ray.direction + toViewer)));
+        color += material.specular * std::pow(nDotH, material.shininess) *
+                 scene_.lights[static_cast<std::size_t>(query.lightIndex)].intensity * query.strength;
+    }
+    return color;
+}
+
 }  // namespace raycache

@@ -3,6 +3,7 @@
 // ray per light, and what a ray that hits nothing sees. The rays themselves
 // (shadow, reflected, refracted) are traced by the tile kernel
 // (render/TileKernel.h), a whole wave at a time.
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -34,6 +35,17 @@ public:
     // (occluded[i] answers queries[i]), with the diffuse albedo at the point.
     Rgb directLight(const Material& material, const Rgb& albedo, const SurfacePoint& sp, const Vec3& toViewer,
                     std::span<const ShadowQuery> queries, std::span<const unsigned char> occluded) const;
+    // directLight split in two for the Render Cache (rendercache/), which
+    // keeps the first part of a sample and shades the second again when the
+    // eye moves. The first: ambient plus the diffuse term of the unoccluded
+    // lights; bit l of `litMask` is set for every such light l.
+    Rgb viewIndependentLight(const Material& material, const Rgb& albedo, const SurfacePoint& sp,
+                             std::span<const ShadowQuery> queries, std::span<const unsigned char> occluded,
+                             std::uint64_t& litMask) const;
+    // The second: the highlights of the lights in `litMask` seen from
+    // `toViewer` (queries as shadowQueries(sp) writes them).
+    Rgb highlights(const Material& material, const SurfacePoint& sp, const Vec3& toViewer,
+                   std::span<const ShadowQuery> queries, std::uint64_t litMask) const;
 
     const Scene& scene() const { return scene_; }
 

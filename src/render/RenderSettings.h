@@ -1,11 +1,19 @@
 #pragma once
+#include <optional>
+#include <string>
+
 #include "cache/RayCache.h"
+#include "rendercache/RenderCacheSettings.h"
 
 namespace raycache {
 
-// How a frame finds its primary visibility (SPEC §4): primary rays per tile
-// (Ray), or a G-buffer followed by deferred shadow and secondary passes (Hybrid).
-enum class PipelineKind { Ray, Hybrid };
+// How a frame is made: primary rays per tile (Ray); a G-buffer followed by
+// deferred shadow and secondary passes (Hybrid, SPEC §4); or reprojected
+// samples of earlier frames plus a budget of new rays (RenderCache, SPEC §6).
+enum class PipelineKind { Ray, Hybrid, RenderCache };
+// "ray", "hybrid", "render-cache", and back (nothing for another name).
+const char* pipelineKindName(PipelineKind kind);
+std::optional<PipelineKind> parsePipelineKind(const std::string& name);
 // Where the hybrid pipeline's G-buffer comes from: OpenGL when a context can
 // be made, else primary-ray packets (Auto); or forced either way.
 enum class GBufferSource { Auto, OpenGl, Packets };
@@ -26,6 +34,7 @@ struct RenderSettings {
     RayCacheSettings cache;
     PipelineKind pipeline = PipelineKind::Ray;
     GBufferSource gbuffer = GBufferSource::Auto;  // hybrid pipeline only
+    RenderCacheSettings renderCache;              // Render Cache pipeline only
     // Time every stage of the tile kernel (FrameStats::stages): two clock
     // reads per stage and wave, so off unless a profile is wanted.
     bool stageTimes = false;

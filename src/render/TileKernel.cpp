@@ -1,6 +1,7 @@
 #include "render/TileKernel.h"
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <optional>
 
@@ -69,7 +70,7 @@ void TileKernel::renderCameraTile(const CameraRays& cameraRays, const TileRange&
                 s.nodes[i].direct = shading_.background(s.rays[i]);
         }
     }
-    runWaves(s, cache, false, true);
+    runWaves(s, cache, FirstWave::Hits, true);
     resolveNodes(s, cache, tileKey);
     StageTimer timer(settings_.stageTimes, s.stages.compose);
     for (std::size_t i = 0; i < n; ++i)
@@ -104,7 +105,7 @@ void TileKernel::renderGBufferTile(const CameraRays& cameraRays, const GBufferVi
     }
     const auto firstBounceBefore = s.firstBounce;
     s.firstBounce += Clock::now() - t0;  // reading the G-buffer belongs to the first bounce
-    runWaves(s, cache, true, true);
+    runWaves(s, cache, FirstWave::Surfaces, true);
     resolveNodes(s, cache, tileKey);
     const auto t1 = Clock::now();
     {
@@ -146,24 +147,89 @@ void TileKernel::renderFromInside(int objectId, std::span<const Ray> rays, int d
             if (!shaded) s.nodes[i].direct = shading_.background(rays[i]);
         }
     }
-    runWaves(s, nullptr, false, false);
+    runWaves(s, nullptr, FirstWave::Hits, false);
     resolveNodes(s, nullptr, 0);
     for (std::size_t i = 0; i < n; ++i) out[i] = {s.nodes[i].color(), s.rootHitDistance[i]};
 }
 
-void TileKernel::runWaves(TileScratch& s, CacheWorker* cache, bool surfacesReady, bool coherentShadows) const {
+void TileKernel::renderCameraPixels(const CameraRays& cameraRays, std::span<const PixelCoord> pixels,
+                                    std::uint64_t batchKey, TileScratch& s, CacheWorker* cache,
+                                    std::span<PrimarySample> out) const {
+    const std::size_t n = pixels.size();
+    s.beginTile(n);
+    s.recordFirstHits = true;
+    s.rootViewIndependent.assign(n, Rgb{});
+    s.rootLitMask.assign(n, 0);
+    {
+        StageTimer timer(settings_.stageTimes, s.stages.firstHits);
+        s.rays.resize(n);
+        s.hits.resize(n);
+        for (std::size_t i = 0; i < n; ++i) s.rays[i] = cameraRays.ray(pixels[i].x, pixels[i].y);
+        tracer_.intersectCoherent(std::span(s.rays.data(), n), std::span(s.hits.data(), n));
+        s.counts.primary += n;
+        for (std::size_t i = 0; i < n; ++i) {
+            out[i].hit = s.hits[i];
+            if (s.hits[i].hit())
+                s.vertices.push_back({s.rays[i], s.hits[i], static_cast<int>(i), 1.0f, 1});
+            else
+                s.nodes[i].direct = shading_.background(s.rays[i]);
+        }
+    }
+    runWaves(s, cache, FirstWave::Hits, true);
+    s.recordFirstHits = false;
+    resolveNodes(s, cache, batchKey);
+    for (std::size_t i = 0; i < n; ++i) {
+        out[i].color = s.nodes[i].color();
+        out[i].viewIndependent = s.rootViewIndependent[i];
+        out[i].litMask = s.rootLitMask[i];
+    }
+}
+
+void TileKernel::reshadeSurfaces(std::span<const ReshadeRequest> requests, std::uint64_t batchKey, TileScratch& s,
+                                 CacheWorker* cache, std::span<Rgb> out) const {
+    const std::size_t n = requests.size();
+    s.beginTile(n);
+    s.reshade = requests;
+    for (std::size_t i = 0; i < n; ++i)
+        s.vertices.push_back({requests[i].ray, requests[i].hit, static_cast<int>(i), 1.0f, 1});
+    runWaves(s, cache, FirstWave::Reshade, false);
+    s.reshade = {};
+    resolveNodes(s, cache, batchKey);
+    for (std::size_t i = 0; i < n; ++i) out[i] = s.nodes[i].color();
+}
+
+void TileKernel::runWaves(TileScratch& s, CacheWorker* cache, FirstWave firstWave, bool coherentShadows) const {
     const bool useCache = cache && cache_;
     bool first = true;
     while (!s.vertices.empty()) {
         const auto start = Clock::now();
-        if (!(first && surfacesReady)) computeSurfaces(s);
-        traceShadowRays(s, first && coherentShadows);
-        shadeDirect(s);
+        if (!(first && firstWave == FirstWave::Surfaces)) computeSurfaces(s);
+        if (first && firstWave == FirstWave::Reshade) {
+            reshadeDirect(s);
+        } else {
+            traceShadowRays(s, first && coherentShadows);
+            shadeDirect(s);
+        }
         if (first) s.firstBounce += Clock::now() - start;
         spawnSecondaryRays(s, useCache);
         if (useCache) lookupReuse(s, *cache);
         traceSecondaryRays(s);
         first = false;
+    }
+}
+
+void TileKernel::reshadeDirect(TileScratch& s) const {
+    StageTimer timer(settings_.stageTimes, s.stages.directShading);
+    std::array<ShadowQuery, kMaxLights> queries;
+    for (std::size_t i = 0; i < s.vertices.size(); ++i) {
+        const TileScratch::PathVertex& v = s.vertices[i];
+        const ReshadeRequest& request = s.reshade[static_cast<std::size_t>(v.node)];
+        const Material& material = scene_.objects[static_cast<std::size_t>(v.hit.objectId)].material;
+        const int count = shading_.shadowQueries(s.surfaces[i], queries.data());
+        s.nodes[static_cast<std::size_t>(v.node)].direct =
+            request.viewIndependent + shading_.highlights(material, s.surfaces[i], -v.ray.direction,
+                                                          std::span(queries.data(), static_cast<std::size_t>(count)),
+                                                          request.litMask);
     }
 }
 
@@ -216,6 +282,10 @@ void TileKernel::shadeDirect(TileScratch& s) const {
             shading_.directLight(material, s.albedo[i], s.surfaces[i], -v.ray.direction,
                                  std::span(s.queries.data() + first, count),
                                  std::span(s.occluded.data() + first, count));
+        if (s.recordFirstHits && v.depth == 1)
+            s.rootViewIndependent[static_cast<std::size_t>(v.node)] = shading_.viewIndependentLight(
+                material, s.albedo[i], s.surfaces[i], std::span(s.queries.data() + first, count),
+                std::span(s.occluded.data() + first, count), s.rootLitMask[static_cast<std::size_t>(v.node)]);
     }
 }
 

@@ -37,6 +37,25 @@
 
 namespace raycache {
 
+// What the Render Cache (rendercache/) keeps of a camera ray: its colour, its
+// first hit, and the light there split as LocalShading::viewIndependentLight
+// splits it, so the view-dependent rest can be shaded again from a new eye.
+struct PrimarySample {
+    Rgb color;
+    TraceHit hit;               // objectId -1: the ray saw the background
+    Rgb viewIndependent;        // ambient plus the unshadowed lights' diffuse term
+    std::uint64_t litMask = 0;  // bit l: light l reached the hit
+};
+
+// A surface point seen again from a new eye (the Render Cache's reprojected
+// samples on mirrors, glass and glossy surfaces).
+struct ReshadeRequest {
+    Ray ray;       // from the new eye through the point
+    TraceHit hit;  // the point's object, primitive and barycentrics; t its distance along `ray`
+    Rgb viewIndependent;
+    std::uint64_t litMask = 0;
+};
+
 // Per-worker buffers of the kernel, reused from tile to tile so a frame
 // allocates only while its waves grow. Opaque to callers except for what
 // the worker did (counts, times).
@@ -95,6 +114,10 @@ private:
     };
 
     void beginTile(std::size_t roots);
+    // How the first wave starts: from tracer hits, from surfaces a G-buffer
+    // already gave, or from reprojected points whose view-independent light
+    // is known (ReshadeRequest).
+    enum class FirstWave : unsigned char { Hits, Surfaces, Reshade };
 
     std::vector<Node> nodes;
     std::vector<PathVertex> vertices, nextVertices;
@@ -112,6 +135,11 @@ private:
     std::vector<int> storeTexels;
     std::vector<PendingRay> pending;
     std::vector<float> rootHitDistance;
+    // The first hits' view-independent light, recorded for PrimarySample.
+    bool recordFirstHits = false;
+    std::vector<Rgb> rootViewIndependent;
+    std::vector<std::uint64_t> rootLitMask;
+    std::span<const ReshadeRequest> reshade;  // the roots of a reshade call
 };
 
 class TileKernel {
@@ -140,12 +168,27 @@ public:
     void renderFromInside(int objectId, std::span<const Ray> rays, int depth, std::span<RayCache::PrefillTexel> out,
                           TileScratch& scratch) const;
 
+    // Render Cache samples: the camera rays through `pixels` (any set, e.g.
+    // scattered over the image), as packets, then the waves; out[i] answers
+    // pixels[i]. `batchKey` orders the cache stores, unique per frame.
+    void renderCameraPixels(const CameraRays& cameraRays, std::span<const PixelCoord> pixels,
+                            std::uint64_t batchKey, TileScratch& scratch, CacheWorker* cache,
+                            std::span<PrimarySample> out) const;
+
+    // The colour of each reprojected point seen along its new ray: its kept
+    // view-independent light, the highlights of its lit lights from the new
+    // eye, and its reflected and refracted rays, which ask the caches first.
+    // No shadow rays. out[i] answers requests[i].
+    void reshadeSurfaces(std::span<const ReshadeRequest> requests, std::uint64_t batchKey, TileScratch& scratch,
+                         CacheWorker* cache, std::span<Rgb> out) const;
+
     const LocalShading& shading() const { return shading_; }
 
 private:
-    // Shades the waves until no ray is left; the first wave's surfaces are
-    // already built when `surfacesReady`.
-    void runWaves(TileScratch& s, CacheWorker* cache, bool surfacesReady, bool coherentShadows) const;
+    using FirstWave = TileScratch::FirstWave;
+    // Shades the waves until no ray is left, the first as `first` says.
+    void runWaves(TileScratch& s, CacheWorker* cache, FirstWave first, bool coherentShadows) const;
+    void reshadeDirect(TileScratch& s) const;
     void computeSurfaces(TileScratch& s) const;
     void traceShadowRays(TileScratch& s, bool coherent) const;
     void shadeDirect(TileScratch& s) const;

@@ -1,0 +1,20 @@
+#include "render/RenderSettings.h"
+
+namespace raycache {
+
+const char* pipelineKindName(PipelineKind kind) {
+    switch (kind) {
+        case PipelineKind::Ray: return "ray";
+        case PipelineKind::Hybrid: return "hybrid";
+        case PipelineKind::RenderCache: return "render-cache";
+    }
+    return "ray";
+}
+
+std::optional<PipelineKind> parsePipelineKind(const std::string& name) {
+    for (PipelineKind kind : {PipelineKind::Ray, PipelineKind::Hybrid, PipelineKind::RenderCache})
+        if (name == pipelineKindName(kind)) return kind;
+    return std::nullopt;
+}
+
+}  // namespace raycache

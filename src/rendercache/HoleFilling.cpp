@@ -1,0 +1,74 @@
+#include "rendercache/HoleFilling.h"
+
+namespace raycache {
+
+namespace {
+
+constexpr int kPrefilterRadius = 3;  // 7x7
+
+}  // namespace
+
+FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel& parallel) {
+    const int width = film.width(), height = film.height();
+    const auto at = [width](int x, int y) {
+        return static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
+    };
+    // Both passes read only pixels that show a sample and write only holes,
+    // so rows can run in any order; the states are written after each pass.
+    std::vector<PixelState> next = state;
+    std::vector<FillCounts> perRow(static_cast<std::size_t>(height));
+    parallel.forEachIndex(height, [&](int y, int) {
+        for (int x = 0; x < width; ++x) {
+            if (!isHole(state[at(x, y)])) continue;
+            Rgb sum;
+            float weight = 0.0f;
+            for (int dy = -1; dy <= 1; ++dy) {
+                const int ny = y + dy;
+                if (ny < 0 || ny >= height) continue;
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int nx = x + dx;
+                    if (nx < 0 || nx >= width || !showsSample(state[at(nx, ny)])) continue;
+                    const float w = (dx == 0 || dy == 0) ? 2.0f : 1.0f;
+                    sum += film.at(nx, ny) * w;
+                    weight += w;
+                }
+            }
+            if (weight > 0.0f) {
+                film.at(x, y) = sum * (1.0f / weight);
+                next[at(x, y)] = PixelState::Filled3x3;
+                ++perRow[static_cast<std::size_t>(y)].filled3x3;
+            }
+        }
+    });
+    parallel.forEachIndex(height, [&](int y, int) {
+        for (int x = 0; x < width; ++x) {
+            if (!isHole(next[at(x, y)])) continue;
+            Rgb sum;
+            int count = 0;
+            for (int ny = std::max(0, y - kPrefilterRadius); ny <= std::min(height - 1, y + kPrefilterRadius); ++ny)
+                for (int nx = std::max(0, x - kPrefilterRadius); nx <= std::min(width - 1, x + kPrefilterRadius); ++nx)
+                    if (showsSample(state[at(nx, ny)])) {
+                        sum += film.at(nx, ny);
+                        ++count;
+                    }
+            if (count > 0) {
+                film.at(x, y) = sum * (1.0f / static_cast<float>(count));
+                next[at(x, y)] = PixelState::Filled7x7;
+                ++perRow[static_cast<std::size_t>(y)].filled7x7;
+            } else {
+                next[at(x, y)] = PixelState::Unfilled;
+                ++perRow[static_cast<std::size_t>(y)].unfilled;
+            }
+        }
+    });
+    state.swap(next);
+    FillCounts total;
+    for (const FillCounts& c : perRow) {
+        total.filled3x3 += c.filled3x3;
+        total.filled7x7 += c.filled7x7;
+        total.unfilled += c.unfilled;
+    }
+    return total;
+}
+
+}  // namespace raycache

@@ -1,0 +1,365 @@
+#include "rendercache/RenderCachePipeline.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "render/CacheFrame.h"
+#include "render/CameraRays.h"
+#include "rendercache/CameraPrediction.h"
+#include "rendercache/DepthCulling.h"
+#include "rendercache/HoleFilling.h"
+#include "rendercache/Reprojection.h"
+#include "rendercache/RequestMap.h"
+#include "rendercache/ScreenProjection.h"
+
+namespace raycache {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double millisecondsSince(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Pixels handed to the tile kernel at once: enough for full packets and
+// waves, few enough to spread over the workers.
+constexpr std::size_t kTraceChunk = 256;
+// Every pixel of the image, 16x16 tile by tile (coherent packets).
+void allPixels(int width, int height, std::vector<PixelCoord>& out) {
+    constexpr int kTile = 16;
+    out.clear();
+    out.reserve(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+    for (int ty = 0; ty < height; ty += kTile)
+        for (int tx = 0; tx < width; tx += kTile)
+            for (int y = ty; y < std::min(height, ty + kTile); ++y)
+                for (int x = tx; x < std::min(width, tx + kTile); ++x) out.push_back({x, y});
+}
+
+bool dependsOnView(const Material& m) { return m.reflects() || m.refracts() || !m.specular.isBlack(); }
+
+}  // namespace
+
+RenderCachePipeline::RenderCachePipeline(const Scene& scene, const TraceScene& tracer, const RenderSettings& settings,
+                                         const Parallel& parallel, RayCache* cache)
+    : scene_(scene), settings_(settings), parallel_(parallel), cache_(cache && !cache->empty() ? cache : nullptr),
+      kernel_(scene, tracer, settings, cache_) {
+    validateRenderCacheSettings(settings.renderCache);
+}
+
+std::string RenderCachePipeline::description() const {
+    const RenderCacheSettings& rc = settings_.renderCache;
+    std::ostringstream line;
+    line << "pipeline: render-cache (";
+    if (rc.targetFrameMs > 0.0f) line << "ray budget chosen to hold " << rc.targetFrameMs << " ms per frame";
+    else line << "at most " << rc.budget * 100.0f << " % of the pixels traced per frame";
+    line << ", reflections " << reprojectedReflectionsName(rc.reflections) << ")";
+    return line.str();
+}
+
+void RenderCachePipeline::forget() {
+    pool_.reset(0);
+    previousCamera_.reset();
+}
+
+int RenderCachePipeline::chooseBudget(int pixels) const {
+    const RenderCacheSettings& rc = settings_.renderCache;
+    if (rc.targetFrameMs > 0.0f && adaptiveBudget_ > 0.0)
+        return static_cast<int>(std::clamp(adaptiveBudget_, 1.0, static_cast<double>(pixels)));
+    return std::max(1, static_cast<int>(std::lround(static_cast<double>(rc.budget) * pixels)));
+}
+
+std::uint32_t RenderCachePipeline::takeFreeSlot() {
+    // A hand going round the slots, taking the next empty one. Always finds
+    // one: live samples number at most the image's slots (each owns a pixel)
+    // plus one frame's predictions, fewer than the capacity.
+    const std::size_t n = pool_.capacity();
+    for (;;) {
+        const std::size_t slot = clockHand_;
+        clockHand_ = (clockHand_ + 1) % n;
+        if (!pool_.empty(slot) || shown_[slot]) continue;
+        ++emptySlotsTaken_;
+        shown_[slot] = 1;
+        return static_cast<std::uint32_t>(slot);
+    }
+}
+
+void RenderCachePipeline::keep(std::size_t slot, const PrimarySample& traced, const CameraRays& rays,
+                               const PixelCoord& pixel) {
+    const Ray ray = rays.ray(pixel.x, pixel.y);
+    pool_.color[slot] = traced.color;
+    pool_.age[slot] = 0;
+    if (!traced.hit.hit()) {
+        pool_.objectId[slot] = SamplePool::kBackground;
+        pool_.position[slot] = ray.direction;
+        pool_.viewDependent[slot] = 0;
+        return;
+    }
+    const SceneObject& object = scene_.objects[static_cast<std::size_t>(traced.hit.objectId)];
+    pool_.objectId[slot] = traced.hit.objectId;
+    pool_.position[slot] = ray.origin + ray.direction * traced.hit.t - object.origin;
+    pool_.viewDependent[slot] = dependsOnView(object.material) ? 1 : 0;
+    pool_.primitiveId[slot] = traced.hit.primitiveId;
+    pool_.baryU[slot] = traced.hit.u;
+    pool_.baryV[slot] = traced.hit.v;
+    pool_.viewIndependent[slot] = traced.viewIndependent;
+    pool_.litMask[slot] = traced.litMask;
+}
+
+std::uint64_t RenderCachePipeline::trace(const Camera& camera, const std::vector<PixelCoord>& pixels,
+                                         std::uint64_t firstKey, CacheFrame& cacheFrame,
+                                         std::vector<PrimarySample>& out) {
+    out.resize(pixels.size());
+    const CameraRays rays(camera, settings_.width, settings_.height);
+    const int chunks = static_cast<int>((pixels.size() + kTraceChunk - 1) / kTraceChunk);
+    parallel_.forEachIndex(chunks, [&](int chunk, int worker) {
+        const std::size_t begin = static_cast<std::size_t>(chunk) * kTraceChunk;
+        const std::size_t count = std::min(kTraceChunk, pixels.size() - begin);
+        kernel_.renderCameraPixels(rays, std::span(pixels.data() + begin, count),
+                                   firstKey + static_cast<std::uint64_t>(chunk),
+                                   scratch_[static_cast<std::size_t>(worker)], cacheFrame.worker(worker),
+                                   std::span(out.data() + begin, count));
+    });
+    return firstKey + static_cast<std::uint64_t>(chunks);
+}
+
+FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
+    const RenderCacheSettings& rc = settings_.renderCache;
+    const int width = settings_.width, height = settings_.height;
+    const int pixels = width * height;
+    if (film.width() != width || film.height() != height) film = Image(width, height);
+    const auto frameStart = Clock::now();
+    RenderCacheStats stats;
+    stats.pixels = pixels;
+
+    // At least one pixel: depth culling reads every pixel's 3x3 neighbourhood.
+    const int margin =
+        std::max(1, static_cast<int>(std::ceil(rc.margin * static_cast<float>(std::max(width, height)))));
+    const std::size_t imageSlots =
+        static_cast<std::size_t>(width + 2 * margin) * static_cast<std::size_t>(height + 2 * margin);
+    // Room for one sample per pixel of the image and margin, plus as many
+    // again for samples hidden behind nearer ones and predicted samples
+    // that have no pixel yet.
+    const std::size_t capacity = imageSlots + static_cast<std::size_t>(pixels);
+    if (pool_.capacity() != capacity) {
+        pool_.reset(capacity);
+        clockHand_ = 0;
+        previousCamera_.reset();
+    }
+    const bool moved = previousCamera_ && !(*previousCamera_ == camera);
+    emptySlotsTaken_ = 0;
+    scratch_.resize(static_cast<std::size_t>(parallel_.threadCount()));
+    for (TileScratch& s : scratch_) s.beginFrame();
+
+    // Reprojection.
+    auto start = Clock::now();
+    const ScreenProjection projection(camera, width, height);
+    const std::vector<Vec3> origins = objectOrigins(scene_);
+    image_.reset(width, height, margin);
+    const ReprojectionCounts reprojected = reproject(pool_, scene_, projection, rc.maxAge, image_, shown_, parallel_);
+    stats.evicted = reprojected.evicted;
+    stats.lost = reprojected.lost;
+    stats.reprojectMs = millisecondsSince(start);
+
+    // Depth culling, holes, the priority and request maps.
+    start = Clock::now();
+    std::vector<PixelState>& state = overlays_.state;
+    state.resize(static_cast<std::size_t>(pixels));
+    std::vector<float> priority(static_cast<std::size_t>(pixels));
+    std::vector<std::int64_t> holesPerRow(static_cast<std::size_t>(height), 0);
+    const float agePriority = 0.5f / static_cast<float>(rc.maxAge);
+    const auto markHoles = [&](bool afterCulling) {
+        parallel_.forEachIndex(height, [&](int y, int) {
+            std::int64_t rowHoles = 0;
+            for (int x = 0; x < width; ++x) {
+                const auto i = static_cast<std::size_t>(y * width + x);
+                if (!afterCulling)
+                    state[i] = image_.hasSample(x, y) ? PixelState::Reprojected : PixelState::Hole;
+                if (isHole(state[i])) {
+                    ++rowHoles;
+                    priority[i] = 1.0f;
+                } else {
+                    priority[i] = agePriority * static_cast<float>(pool_.age[image_.slotAt(x, y)]);
+                }
+            }
+            holesPerRow[static_cast<std::size_t>(y)] = rowHoles;
+        });
+    };
+    markHoles(false);
+    // A still camera puts every sample back where it was traced: nothing to cull.
+    if (moved && rc.depthCullThreshold > 0.0f) {
+        stats.culled = cullOccludedSamples(image_, rc.depthCullThreshold, state, parallel_);
+        if (stats.culled > 0) markHoles(true);
+    }
+    std::int64_t holes = 0;
+    for (std::int64_t h : holesPerRow) holes += h;
+    stats.holes = holes;
+    stats.refreshedAll = !previousCamera_ || static_cast<double>(holes) > static_cast<double>(rc.refreshAllHoleShare) * pixels;
+    const int budget = stats.refreshedAll ? pixels : chooseBudget(pixels);
+    stats.budget = budget;
+    const int predictedBudget =
+        (moved && !stats.refreshedAll) ? static_cast<int>(std::lround(static_cast<double>(budget) * rc.predictShare)) : 0;
+    RequestMap& requests = overlays_.requests;
+    overlays_.width = width;
+    overlays_.height = height;
+    if (stats.refreshedAll) {
+        allPixels(width, height, requests.pixels);
+        requests.tileRequests.clear();
+        requests.tilePriority.clear();
+    } else {
+        buildRequestMap(priority, width, height, rc.requestTileSize, rc.alpha, budget - predictedBudget, rc.seed,
+                        frame_, requests, parallel_);
+    }
+    stats.mapsMs = millisecondsSince(start);
+
+    // New samples through this frame's camera, replacing what their pixels held.
+    start = Clock::now();
+    CacheFrame cacheFrame(cache_, parallel_.threadCount());
+    std::vector<PrimarySample> traced;
+    std::uint64_t key = trace(camera, requests.pixels, 0, cacheFrame, traced);
+    {
+        const CameraRays rays(camera, width, height);
+        for (std::size_t i = 0; i < traced.size(); ++i) {
+            const PixelCoord p = requests.pixels[i];
+            const std::size_t slot = image_.hasSample(p.x, p.y) ? image_.slotAt(p.x, p.y) : takeFreeSlot();
+            keep(slot, traced[i], rays, p);
+            int px, py;
+            float depth;
+            projectSample(pool_, slot, origins, projection, px, py, depth);
+            // Placed where it was traced, whatever rounding says about the reprojection.
+            image_.place(p.x, p.y, depth, static_cast<std::uint32_t>(slot));
+            state[static_cast<std::size_t>(p.y * width + p.x)] = PixelState::Fresh;
+        }
+    }
+    stats.fresh = static_cast<std::int64_t>(traced.size());
+    stats.traceMs = millisecondsSince(start);
+
+    // Predictive sampling: where the next camera will find holes.
+    if (predictedBudget > 0) {
+        start = Clock::now();
+        const Camera next = predictNextCamera(*previousCamera_, camera);
+        const ScreenProjection nextProjection(next, width, height);
+        std::vector<unsigned char> covered(static_cast<std::size_t>(pixels), 0);
+        const std::size_t n = pool_.capacity();
+        constexpr std::size_t kChunk = 16384;
+        parallel_.forEachIndex(static_cast<int>((n + kChunk - 1) / kChunk), [&](int chunk, int) {
+            const std::size_t end = std::min(n, (static_cast<std::size_t>(chunk) + 1) * kChunk);
+            for (std::size_t slot = static_cast<std::size_t>(chunk) * kChunk; slot < end; ++slot) {
+                if (pool_.empty(slot)) continue;
+                int x, y;
+                float depth;
+                if (projectSample(pool_, slot, origins, nextProjection, x, y, depth) && x >= 0 && y >= 0 &&
+                    x < width && y < height)
+                    std::atomic_ref<unsigned char>(covered[static_cast<std::size_t>(y * width + x)])
+                        .store(1, std::memory_order_relaxed);
+            }
+        });
+        for (int i = 0; i < pixels; ++i) priority[static_cast<std::size_t>(i)] = covered[static_cast<std::size_t>(i)] ? 0.0f : 1.0f;
+        buildRequestMap(priority, width, height, rc.requestTileSize, 1.0f, predictedBudget, rc.seed ^ 0x5eed,
+                        frame_, predictedRequests_, parallel_);
+        // Only holes: a tile without any gets no ray even if rounding offered one.
+        std::erase_if(predictedRequests_.pixels, [&](const PixelCoord& p) {
+            return covered[static_cast<std::size_t>(p.y * width + p.x)] != 0;
+        });
+        stats.mapsMs += millisecondsSince(start);
+        start = Clock::now();
+        key = trace(next, predictedRequests_.pixels, key, cacheFrame, traced);
+        const CameraRays rays(next, width, height);
+        for (std::size_t i = 0; i < traced.size(); ++i)
+            keep(takeFreeSlot(), traced[i], rays, predictedRequests_.pixels[i]);
+        stats.predicted = static_cast<std::int64_t>(traced.size());
+        stats.traceMs += millisecondsSince(start);
+    }
+
+    // Reflections, refractions and highlights of reprojected samples, from the new eye.
+    start = Clock::now();
+    if (moved && rc.reflections == ReprojectedReflections::Reshade) {
+        std::vector<ReshadeRequest> reshade;
+        std::vector<std::uint32_t> slots;
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                if (state[static_cast<std::size_t>(y * width + x)] != PixelState::Reprojected) continue;
+                const std::uint32_t slot = image_.slotAt(x, y);
+                if (!pool_.viewDependent[slot]) continue;
+                const int object = pool_.objectId[slot];
+                const Vec3 point = scene_.objects[static_cast<std::size_t>(object)].origin + pool_.position[slot];
+                const Vec3 toPoint = point - camera.position;
+                const float distance = length(toPoint);
+                ReshadeRequest r;
+                r.ray = Ray{camera.position, toPoint * (1.0f / distance)};
+                r.hit.t = distance;
+                r.hit.objectId = object;
+                r.hit.primitiveId = pool_.primitiveId[slot];
+                r.hit.u = pool_.baryU[slot];
+                r.hit.v = pool_.baryV[slot];
+                r.viewIndependent = pool_.viewIndependent[slot];
+                r.litMask = pool_.litMask[slot];
+                reshade.push_back(r);
+                slots.push_back(slot);
+            }
+        std::vector<Rgb> colors(reshade.size());
+        const int chunks = static_cast<int>((reshade.size() + kTraceChunk - 1) / kTraceChunk);
+        parallel_.forEachIndex(chunks, [&](int chunk, int worker) {
+            const std::size_t begin = static_cast<std::size_t>(chunk) * kTraceChunk;
+            const std::size_t count = std::min(kTraceChunk, reshade.size() - begin);
+            kernel_.reshadeSurfaces(std::span(reshade.data() + begin, count), key + static_cast<std::uint64_t>(chunk),
+                                    scratch_[static_cast<std::size_t>(worker)], cacheFrame.worker(worker),
+                                    std::span(colors.data() + begin, count));
+        });
+        for (std::size_t i = 0; i < slots.size(); ++i) pool_.color[slots[i]] = colors[i];
+        stats.reshaded = static_cast<std::int64_t>(slots.size());
+    }
+    stats.reshadeMs = millisecondsSince(start);
+    // The stores queued by this frame's rays are merged: part of tracing them.
+    start = Clock::now();
+    FrameStats frameStats;
+    for (const TileScratch& s : scratch_) frameStats.rays += s.counts;
+    frameStats.cache = cacheFrame.finish(kernel_, parallel_, frameStats.rays);
+    stats.traceMs += millisecondsSince(start);
+
+    // The image: samples where there are, the filters elsewhere.
+    start = Clock::now();
+    const CameraRays rays(camera, width, height);
+    parallel_.forEachIndex(height, [&](int y, int) {
+        for (int x = 0; x < width; ++x) {
+            if (!showsSample(state[static_cast<std::size_t>(y * width + x)])) continue;
+            const std::uint32_t slot = image_.slotAt(x, y);
+            // The background depends on the direction only: exact for any eye.
+            film.at(x, y) = pool_.objectId[slot] == SamplePool::kBackground
+                                ? kernel_.shading().background(rays.ray(x, y))
+                                : pool_.color[slot];
+        }
+    });
+    const FillCounts filled = fillHoles(state, film, parallel_);
+    stats.filled3x3 = filled.filled3x3;
+    stats.filled7x7 = filled.filled7x7;
+    stats.unfilled = filled.unfilled;
+    if (filled.unfilled > 0)
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x)
+                if (state[static_cast<std::size_t>(y * width + x)] == PixelState::Unfilled)
+                    film.at(x, y) = kernel_.shading().background(rays.ray(x, y));
+    stats.filterMs = millisecondsSince(start);
+
+    for (PixelState s : state) stats.reprojected += s == PixelState::Reprojected ? 1 : 0;
+    stats.liveSamples = reprojected.placed + emptySlotsTaken_;
+
+    // The budget that would have held the target time, for the next frame.
+    if (rc.targetFrameMs > 0.0f && !stats.refreshedAll) {
+        const double total = millisecondsSince(frameStart);
+        const double generation = stats.sampleGenerationMs();
+        const double perRay = generation / static_cast<double>(std::max<std::int64_t>(1, stats.fresh + stats.predicted));
+        const double wanted = (rc.targetFrameMs - (total - generation)) / std::max(perRay, 1e-6);
+        adaptiveBudget_ = adaptiveBudget_ > 0.0 ? 0.5 * adaptiveBudget_ + 0.5 * wanted : wanted;
+    }
+    previousCamera_ = camera;
+    ++frame_;
+    frameStats.renderCache = stats;
+    return frameStats;
+}
+
+}  // namespace raycache

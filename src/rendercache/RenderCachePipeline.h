@@ -1,0 +1,75 @@
+#pragma once
+// The Render Cache as a pipeline (SPEC §6, `--pipeline render-cache`):
+// frames are made from the point samples of earlier frames, reprojected to
+// the new camera, plus a budget of new camera rays traced where the request
+// map asks (holes, old samples, and where the predicted next camera will
+// open holes). Holes left are filled by the 3x3 filter and the 7x7
+// prefilter. New samples come from the tile kernel with the frame's caching
+// technique (none, CCT, CDCT). Samples on mirrors, glass and glossy
+// surfaces keep their view-independent light and, with
+// ReprojectedReflections::Reshade, have highlights and reflected/refracted
+// colour evaluated again from the new eye (the caching cubes answer those
+// rays where they can).
+//
+// The first frame, and any frame with more than
+// RenderCacheSettings::refreshAllHoleShare of its pixels in holes, traces
+// every pixel. With a fixed budget images do not depend on the thread count.
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "render/FramePipeline.h"
+#include "render/TileKernel.h"
+#include "rendercache/PointImage.h"
+#include "rendercache/RenderCacheOverlays.h"
+#include "rendercache/SamplePool.h"
+
+namespace raycache {
+
+class CacheFrame;
+
+class RenderCachePipeline final : public FramePipeline {
+public:
+    // Throws InputError for invalid RenderSettings::renderCache values.
+    RenderCachePipeline(const Scene& scene, const TraceScene& tracer, const RenderSettings& settings,
+                        const Parallel& parallel, RayCache* cache);
+
+    FrameStats render(const Camera& camera, Image& film) override;
+    std::string description() const override;
+    const RenderCacheOverlays* renderCacheOverlays() const override { return &overlays_; }
+
+    // Drops every sample: the next frame traces every pixel.
+    void forget();
+
+private:
+    // Traces the camera rays through `pixels` in fixed chunks (the chunk
+    // index, offset by `firstKey`, orders the cache stores); returns the
+    // next unused key.
+    std::uint64_t trace(const Camera& camera, const std::vector<PixelCoord>& pixels, std::uint64_t firstKey,
+                        CacheFrame& cacheFrame, std::vector<PrimarySample>& out);
+    // Stores sample `traced` of the ray through `pixel` of `camera` in `slot`.
+    void keep(std::size_t slot, const PrimarySample& traced, const CameraRays& rays, const PixelCoord& pixel);
+    // An empty slot for a new sample.
+    std::uint32_t takeFreeSlot();
+    int chooseBudget(int pixels) const;
+
+    const Scene& scene_;
+    RenderSettings settings_;
+    const Parallel& parallel_;
+    RayCache* cache_;
+    TileKernel kernel_;
+    std::vector<TileScratch> scratch_;
+
+    SamplePool pool_;
+    PointImage image_;
+    std::vector<unsigned char> shown_;  // per slot: on a pixel this frame, or traced this frame
+    std::size_t clockHand_ = 0;
+    std::int64_t emptySlotsTaken_ = 0;  // this frame
+    RenderCacheOverlays overlays_;
+    RequestMap predictedRequests_;
+    std::optional<Camera> previousCamera_;
+    std::uint64_t frame_ = 0;
+    double adaptiveBudget_ = 0.0;  // rays, when a target frame time is set
+};
+
+}  // namespace raycache

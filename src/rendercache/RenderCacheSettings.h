@@ -1,0 +1,54 @@
+#pragma once
+// Options of the Render Cache pipeline (SPEC §6, `--pipeline render-cache`):
+// how many rays a frame may trace, how requests are spread, how long a
+// reprojected sample lives, and whether view-dependent colour is shaded
+// again from the new eye. Plain data; validateRenderCacheSettings() checks it.
+#include <cstdint>
+#include <string>
+
+namespace raycache {
+
+// What a reprojected sample on a mirror, glass or glossy surface shows.
+enum class ReprojectedReflections {
+    Reproject,  // the colour seen when it was traced (the 2002 Render Cache: it smears as the eye moves)
+    Reshade,    // highlights and reflected/refracted colour evaluated again from the new eye,
+                // reflected/refracted rays answered by the object's caching cube when it has one
+};
+
+struct RenderCacheSettings {
+    // Mix of the request map: weight of a screen tile = (1 - alpha) * uniform
+    // + alpha * its share of the priority (holes and old samples).
+    float alpha = 0.25f;
+    // Primary rays a frame may trace, as a share of the image's pixels.
+    float budget = 0.05f;
+    // When > 0, the budget is chosen each frame to hold this frame time
+    // (milliseconds): images then depend on the machine's speed.
+    float targetFrameMs = 0.0f;
+    // A sample is evicted once it has been reprojected this many times.
+    int maxAge = 32;
+    // Share of the budget spent on pixels where holes will open in the next
+    // frame, traced through the camera predicted from the last two frames.
+    float predictShare = 0.2f;
+    // Samples are kept this far past each image edge (share of the side).
+    float margin = 0.05f;
+    // Enhanced Render Cache depth culling: a point is hidden when more of its
+    // 3x3 neighbours are nearer than it by this share of its depth than not.
+    float depthCullThreshold = 0.1f;
+    // Side of the screen tiles of hole detection and the request map, pixels.
+    int requestTileSize = 8;
+    // More than this share of the image in holes (a cut, the first frame):
+    // every pixel is traced.
+    float refreshAllHoleShare = 0.5f;
+    ReprojectedReflections reflections = ReprojectedReflections::Reshade;
+    std::uint64_t seed = 1;
+};
+
+// Throws InputError naming the option (as `--rc-...`) when a value is out of
+// range: alpha outside [0, 1], budget outside (0, 1], negative target, ...
+void validateRenderCacheSettings(const RenderCacheSettings& settings);
+
+// "reproject" / "reshade", and back (nothing for an unknown name).
+const char* reprojectedReflectionsName(ReprojectedReflections mode);
+bool parseReprojectedReflections(const std::string& name, ReprojectedReflections& out);
+
+}  // namespace raycache

@@ -1,0 +1,97 @@
+#include "rendercache/RequestMap.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace raycache {
+
+std::uint64_t mixBits(std::uint64_t x) {
+    x += 0x9e3779b97f4a7c15ull;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+    return x ^ (x >> 31);
+}
+
+void buildRequestMap(std::span<const float> priority, int width, int height, int tileSize, float alpha, int budget,
+                     std::uint64_t seed, std::uint64_t frame, RequestMap& out, const Parallel& parallel) {
+    out.tileSize = tileSize;
+    out.tilesX = (width + tileSize - 1) / tileSize;
+    out.tilesY = (height + tileSize - 1) / tileSize;
+    const auto tiles = static_cast<std::size_t>(out.tilesX) * static_cast<std::size_t>(out.tilesY);
+    out.tilePriority.assign(tiles, 0.0f);
+    out.tileRequests.assign(tiles, 0);
+    out.pixels.clear();
+    const auto tileRect = [&](std::size_t t, int& x0, int& y0, int& x1, int& y1) {
+        x0 = static_cast<int>(t % static_cast<std::size_t>(out.tilesX)) * tileSize;
+        y0 = static_cast<int>(t / static_cast<std::size_t>(out.tilesX)) * tileSize;
+        x1 = std::min(width, x0 + tileSize);
+        y1 = std::min(height, y0 + tileSize);
+    };
+    const auto pixelIndex = [width](int x, int y) {
+        return static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
+    };
+
+    // The priority map.
+    parallel.forEachIndex(static_cast<int>(tiles), [&](int t, int) {
+        int x0, y0, x1, y1;
+        tileRect(static_cast<std::size_t>(t), x0, y0, x1, y1);
+        double q = 0.0;  // per tile in double, then one float: the same sum on any thread
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x) q += priority[pixelIndex(x, y)];
+        out.tilePriority[static_cast<std::size_t>(t)] = static_cast<float>(q);
+    });
+    if (budget <= 0) return;
+    double totalPriority = 0.0;
+    for (float q : out.tilePriority) totalPriority += q;
+    const double pixels = static_cast<double>(width) * static_cast<double>(height);
+    const double priorityWeight = totalPriority > 0.0 ? alpha : 0.0;
+
+    // The request map: systematic sampling of the tiles' shares.
+    const double start = static_cast<double>(mixBits(seed ^ mixBits(frame)) >> 11) * 0x1.0p-53;
+    double cumulative = 0.0;
+    double previous = std::floor(start);
+    for (std::size_t t = 0; t < tiles; ++t) {
+        int x0, y0, x1, y1;
+        tileRect(t, x0, y0, x1, y1);
+        const double area = static_cast<double>(x1 - x0) * static_cast<double>(y1 - y0);
+        double share = (1.0 - priorityWeight) * area / pixels;
+        if (priorityWeight > 0.0) share += priorityWeight * out.tilePriority[t] / totalPriority;
+        cumulative += share;
+        const double reached = std::floor(static_cast<double>(budget) * cumulative + start);
+        out.tileRequests[t] = static_cast<int>(std::min(area, reached - previous));
+        previous = reached;
+    }
+
+    // Inside each tile: the highest priorities, random among equals.
+    std::vector<std::size_t> firstRequest(tiles + 1, 0);
+    for (std::size_t t = 0; t < tiles; ++t)
+        firstRequest[t + 1] = firstRequest[t] + static_cast<std::size_t>(out.tileRequests[t]);
+    out.pixels.resize(firstRequest[tiles]);
+    parallel.forEachIndex(static_cast<int>(tiles), [&](int tile, int) {
+        const auto t = static_cast<std::size_t>(tile);
+        const int wanted = out.tileRequests[t];
+        if (wanted == 0) return;
+        int x0, y0, x1, y1;
+        tileRect(t, x0, y0, x1, y1);
+        struct Candidate {
+            std::uint64_t key;
+            PixelCoord pixel;
+        };
+        std::vector<Candidate> candidates;
+        candidates.reserve(static_cast<std::size_t>((x1 - x0) * (y1 - y0)));
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x) {
+                const std::size_t i = pixelIndex(x, y);
+                // Priority quantised to 16 bits above, the hash below: sorting
+                // by key orders by priority, then at random.
+                const auto level = static_cast<std::uint64_t>(std::clamp(priority[i], 0.0f, 1.0f) * 65535.0f);
+                const std::uint64_t random = mixBits(seed ^ mixBits(frame ^ mixBits(i))) >> 16;
+                candidates.push_back({(level << 48) | random, {x, y}});
+            }
+        const auto order = [](const Candidate& a, const Candidate& b) { return a.key > b.key; };
+        std::partial_sort(candidates.begin(), candidates.begin() + wanted, candidates.end(), order);
+        for (int k = 0; k < wanted; ++k) out.pixels[firstRequest[t] + static_cast<std::size_t>(k)] = candidates[static_cast<std::size_t>(k)].pixel;
+    });
+}
+
+}  // namespace raycache

@@ -1,0 +1,39 @@
+#pragma once
+// Where a frame's rays go (SPEC §6; Walter et al. 1999, Zhu et al.): the
+// image is cut into square tiles; a tile's priority Q is the sum of its
+// pixels' priorities (holes count 1, samples their age's share of the
+// maximum); the request map gives each tile the share
+//     w = (1 - alpha) * uniform + alpha * Q / sum(Q)
+// of the frame's ray budget (uniform: the tile's share of the pixels), and
+// inside a tile the rays go to the pixels of highest priority, ties broken
+// at random. Counts are rounded by systematic sampling with a random start,
+// so a budget below one ray per tile still reaches every tile over frames.
+// Everything random is a hash of (seed, frame, pixel): the same inputs give
+// the same requests on any number of threads.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/Parallel.h"
+#include "render/CameraRays.h"
+
+namespace raycache {
+
+struct RequestMap {
+    int tileSize = 8;
+    int tilesX = 0, tilesY = 0;
+    std::vector<float> tilePriority;  // Q per tile, row-major
+    std::vector<int> tileRequests;    // rays given to each tile
+    std::vector<PixelCoord> pixels;   // the requested pixels, tile by tile
+};
+
+// Fills `out` for an image of width x height whose pixel priorities (row
+// major, each in [0, 1]) are `priority`. budget >= 0 rays; a tile gets at
+// most as many as it has pixels.
+void buildRequestMap(std::span<const float> priority, int width, int height, int tileSize, float alpha, int budget,
+                     std::uint64_t seed, std::uint64_t frame, RequestMap& out, const Parallel& parallel);
+
+// A well-mixed 64-bit hash (splitmix64's finaliser).
+std::uint64_t mixBits(std::uint64_t x);
+
+}  // namespace raycache

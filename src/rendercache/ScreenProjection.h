@@ -1,0 +1,34 @@
+#pragma once
+// The inverse of CameraRays: where a point lands on the image of a pinhole
+// camera (v' = P'M'v, SPEC §6), in continuous pixel coordinates whose pixel
+// (x, y) covers [x, x+1) x [y, y+1), and its depth along the view axis.
+#include "core/Vec3.h"
+#include "scene/Camera.h"
+
+namespace raycache {
+
+class ScreenProjection {
+public:
+    ScreenProjection(const Camera& camera, int width, int height);
+
+    struct Projected {
+        float x, y;   // continuous pixel coordinates, y down
+        float depth;  // along the view axis; <= 0 behind the eye
+    };
+    // A point in world space.
+    Projected point(const Vec3& world) const { return direction(world - eye_); }
+    // A direction from the eye (a point infinitely far away that way).
+    Projected direction(const Vec3& d) const {
+        const float depth = dot(d, forward_);
+        const float inv = 1.0f / depth;
+        return {(dot(d, right_) * inv + 1.0f) * halfWidth_, (1.0f - dot(d, up_) * inv) * halfHeight_, depth};
+    }
+    const Vec3& eye() const { return eye_; }
+
+private:
+    Vec3 eye_, forward_;
+    Vec3 right_, up_;  // unit axes divided by the image plane's half extent at distance 1
+    float halfWidth_, halfHeight_;
+};
+
+}  // namespace raycache
