@@ -73,7 +73,6 @@ std::string formatOthersShare(double share);
 // Empty when the machine looked quiet (others used at most kBusyOthersShare
 // of it, or their use is unknown), otherwise a one-line warning naming their
 // share and, for the record, the 1-minute load averages before and after.
-std::string busyMachineWarning(double othersShare, const LoadAverage& before, const LoadAverage& after,
-                               int cpus);
+std::string busyMachineWarning(double othersShare, const LoadAverage& before, const LoadAverage& after, int cpus);
 
 }  // namespace raycache

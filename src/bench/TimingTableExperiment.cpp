@@ -456,7 +456,8 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
     const CpuSample cpuAfter = currentCpuSample();
     const LoadAverage loadAfter = currentLoadAverage();
     const double othersShare = othersCpuShare(cpuBefore, cpuAfter);
-    md += "Other processes used " + formatOthersShare(othersShare) + " of the machine's CPU time while this table ran. " +
+    md += "Other processes used " + formatOthersShare(othersShare) +
+          " of the machine's CPU time while this table ran. " +
           "Load average (1, 5, 15 min): " + loadBefore.toString() + " before, " + loadAfter.toString() +
           " after (it includes the bench's own earlier work).\n\n";
     if (const std::string busy = busyMachineWarning(othersShare, loadBefore, loadAfter, cpuAfter.cpus); !busy.empty())
@@ -473,6 +474,8 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
                                 {"label", v.label},
                                 {"technique", techniqueName(v.technique)},
                                 {"available", v.unavailable.empty()}});
+    // null where /proc/stat could not be read
+    const nlohmann::json othersJson = othersShare >= 0.0 ? nlohmann::json(othersShare) : nlohmann::json();
     const nlohmann::json root = {{"experiment", spec_.name},
                                  {"title", spec_.title},
                                  {"size", toString(context.settings.size)},
@@ -497,7 +500,7 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
                                  {"environment", toJson(context.environment)},
                                  {"documents", toJson(spec_.documents)},
                                  {"load_average", {{"before", loadBefore.toString()}, {"after", loadAfter.toString()}}},
-                                 {"others_cpu_share", othersShare >= 0.0 ? nlohmann::json(othersShare) : nlohmann::json()},
+                                 {"others_cpu_share", othersJson},
                                  {"caveats", out.caveats},
                                  {"rows", rowsJson}};
     writeJsonFile(context.dir / "results.json", root);

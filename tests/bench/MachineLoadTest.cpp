@@ -46,7 +46,7 @@ TEST(MachineLoad, ParsesTheCpuLineOfProcStat) {
 TEST(MachineLoad, ProcStatWithoutACpuLineIsUnknown) {
     EXPECT_FALSE(parseProcStatCpu(""));
     EXPECT_FALSE(parseProcStatCpu("intr 1 2 3\nctxt 4\n"));
-    EXPECT_FALSE(parseProcStatCpu("cpu  1 2\ncpu0 1 2\n"));  // too few fields
+    EXPECT_FALSE(parseProcStatCpu("cpu  1 2\ncpu0 1 2\n"));    // too few fields
     EXPECT_FALSE(parseProcStatCpu("cpu  1 2 3 4 5 6 7 8\n"));  // no per-CPU lines: no count
     EXPECT_FALSE(parseProcStatCpu("cpu  x y z w\ncpu0 1 2 3 4\n"));
 }

@@ -15,6 +15,9 @@ namespace raycache {
 namespace {
 
 const std::filesystem::path imageDir = std::filesystem::path(RAYCACHE_TEST_DATA_DIR) / "images";
+// Inputs the fuzzers found (docs/testing.md), kept beside the fuzzers.
+const std::filesystem::path findingsDir =
+    std::filesystem::path(RAYCACHE_TEST_DATA_DIR).parent_path() / "fuzz" / "findings";
 
 // A fresh directory under the system temp dir, removed with everything in it.
 class TempDir {
@@ -123,8 +126,7 @@ TEST(ImageLoader, TiledDeepAndMultipartExrAreRefused) {
 // crashes (SEGV in LoadEXRWithLayer) on this corrupt ZIP-tiled file. It is
 // refused as tiled before tinyexr decodes it: one InputError, no crash.
 TEST(ImageLoader, CorruptZipTiledExrFromTheFuzzerIsRefusedNotACrash) {
-    const auto finding = std::filesystem::path(RAYCACHE_TEST_DATA_DIR).parent_path() / "fuzz" / "findings" /
-                         "tinyexr-segv-zip-tiled.exr";
+    const auto finding = findingsDir / "tinyexr-segv-zip-tiled.exr";
     ASSERT_TRUE(std::filesystem::exists(finding)) << finding;
     expectInputErrorNamingFile(finding, "tiled EXR is not supported, save it as scanline");
 }
@@ -134,8 +136,7 @@ TEST(ImageLoader, CorruptZipTiledExrFromTheFuzzerIsRefusedNotACrash) {
 // tinyexr 1.0.1 read past the end of its buffer (ASan: heap-buffer-overflow in
 // DecodePixelData). Integer channels are refused before tinyexr decodes.
 TEST(ImageLoader, ExrWithAnIntegerChannelIsRefusedBeforeDecoding) {
-    const auto finding = std::filesystem::path(RAYCACHE_TEST_DATA_DIR).parent_path() / "fuzz" / "findings" /
-                         "tinyexr-overread-uint-channel.exr";
+    const auto finding = findingsDir / "tinyexr-overread-uint-channel.exr";
     ASSERT_TRUE(std::filesystem::exists(finding)) << finding;
     expectInputErrorNamingFile(finding, "holds 32-bit integers, which are not supported");
     // The same in a well-formed file: known-half.exr with its G channel's type, HALF (1), set to UINT (0).
@@ -155,8 +156,7 @@ TEST(ImageLoader, ExrWithAnIntegerChannelIsRefusedBeforeDecoding) {
 // attribute became PIZ; tinyexr 1.0.1's PIZ decoder copied past the end of its
 // buffer (ASan: heap-buffer-overflow in DecompressPiz). PIZ is refused.
 TEST(ImageLoader, PizCompressedExrIsRefusedBeforeDecoding) {
-    const auto finding = std::filesystem::path(RAYCACHE_TEST_DATA_DIR).parent_path() / "fuzz" / "findings" /
-                         "tinyexr-overread-piz.exr";
+    const auto finding = findingsDir / "tinyexr-overread-piz.exr";
     ASSERT_TRUE(std::filesystem::exists(finding)) << finding;
     expectInputErrorNamingFile(finding, "PIZ-compressed EXR is not supported, save it with ZIP compression");
     // known-half.exr with its compression, NONE (0), set to PIZ (4).
