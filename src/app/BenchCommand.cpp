@@ -38,6 +38,7 @@ void runBenchCommand(const BenchCommandOptions& options, std::ostream& out) {
 
     const Parallel parallel(settings.threads);
     const LoadAverage loadBefore = currentLoadAverage();
+    const CpuSample cpuBefore = currentCpuSample();
     const RunEnvironment environment = currentRunEnvironment(parallel.threadCount());
     double totalWork = 0.0;
     for (const auto& e : experiments) totalWork += e->estimatedWork(settings);
@@ -62,11 +63,13 @@ void runBenchCommand(const BenchCommandOptions& options, std::ostream& out) {
     progress.finish();
     report.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     out << "finished in " << ProgressBar::formatDuration(report.wallSeconds) << std::endl;
+    const CpuSample cpuAfter = currentCpuSample();
     const LoadAverage loadAfter = currentLoadAverage();
     report.loadAverageAfter = loadAfter.toString();
-    report.busyWarning =
-        busyMachineWarning(loadBefore, loadAfter, environment.hardwareThreads, environment.workerThreads);
-    out << "load average " << loadBefore.toString() << " before, " << loadAfter.toString() << " after" << std::endl;
+    report.othersCpuShare = othersCpuShare(cpuBefore, cpuAfter);
+    report.busyWarning = busyMachineWarning(report.othersCpuShare, loadBefore, loadAfter, cpuAfter.cpus);
+    out << "other processes used " << formatOthersShare(report.othersCpuShare) << " of the CPU time; load average "
+        << loadBefore.toString() << " before, " << loadAfter.toString() << " after" << std::endl;
     if (!report.busyWarning.empty()) out << report.busyWarning << std::endl;
     if (wholeReport) {
         report.command = "raycache bench all";

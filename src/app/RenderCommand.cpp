@@ -119,7 +119,9 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out) {
             {"height", settings.height},
             {"max_depth", settings.maxDepth},
             {"min_weight", settings.minWeight},
-            {"threads", settings.threads},
+            // What ran, not what was asked: Parallel clamps to the hardware threads.
+            {"threads", Parallel(settings.threads).threadCount()},
+            {"threads_requested", settings.threads},  // 0 = all
             {"pipeline", pipelineKindName(settings.pipeline)},
             {"pipeline_description", pipelineLine},
             {"frames", frameStats},

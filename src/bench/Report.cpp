@@ -1,5 +1,6 @@
 #include "bench/Report.h"
 
+#include "bench/MachineLoad.h"
 #include "bench/MarkdownTable.h"
 #include "bench/ProgressBar.h"
 
@@ -46,7 +47,8 @@ std::string reportMarkdown(const ReportInput& in) {
     env.addRow({"started", e.startedAt + ", load average " + e.loadAverage + " (1, 5, 15 min) on " +
                                std::to_string(e.hardwareThreads) + " hardware threads"});
     if (!in.loadAverageAfter.empty())
-        env.addRow({"finished", "load average " + in.loadAverageAfter + " (1, 5, 15 min)"});
+        env.addRow({"finished", "load average " + in.loadAverageAfter + " (1, 5, 15 min); other processes used " +
+                                    formatOthersShare(in.othersCpuShare) + " of the CPU time during the run"});
     s += env.toMarkdown() + "\n";
     if (!in.busyWarning.empty()) s += "**" + in.busyWarning + ".**\n\n";
 

@@ -16,6 +16,7 @@ struct ReportInput {
     double wallSeconds = 0.0;
     std::string command;           // how it was run, e.g. "raycache bench all --quick"
     std::string loadAverageAfter;  // /proc/loadavg's figures when the last experiment ended
+    double othersCpuShare = -1.0;  // othersCpuShare() over the whole run; negative = unknown
     std::string busyWarning;       // busyMachineWarning() for the whole run, empty when quiet
     std::vector<ExperimentOutput> experiments;
 };

@@ -137,6 +137,7 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
     std::vector<std::vector<VariantResult>> table;  // [scene][variant]
     std::vector<AdaptiveRun> stops;                 // per scene: rounds, time, why the still run stopped
     const LoadAverage loadBefore = currentLoadAverage();
+    const CpuSample cpuBefore = currentCpuSample();
 
     for (std::size_t si = 0; si < sceneCount; ++si) {
         const TimingScene& ts = spec_.scenes[si];
@@ -452,11 +453,14 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
     }
     for (const TimingVariant& v : spec_.variants)
         if (!v.unavailable.empty()) out.caveats.push_back(v.label + ": " + v.unavailable);
+    const CpuSample cpuAfter = currentCpuSample();
     const LoadAverage loadAfter = currentLoadAverage();
-    md += "Load average (1, 5, 15 min): " + loadBefore.toString() + " before, " + loadAfter.toString() + " after.\n\n";
-    if (const std::string busy = busyMachineWarning(loadBefore, loadAfter, context.environment.hardwareThreads,
-                                                    context.environment.workerThreads);
-        !busy.empty())
+    const double othersShare = othersCpuShare(cpuBefore, cpuAfter);
+    md += "Other processes used " + formatOthersShare(othersShare) +
+          " of the machine's CPU time while this table ran. " +
+          "Load average (1, 5, 15 min): " + loadBefore.toString() + " before, " + loadAfter.toString() +
+          " after (it includes the bench's own earlier work).\n\n";
+    if (const std::string busy = busyMachineWarning(othersShare, loadBefore, loadAfter, cpuAfter.cpus); !busy.empty())
         out.caveats.push_back(busy);
 
     writeSvgPlot(speedPlot, (context.dir / "speedup.svg").string());
@@ -470,6 +474,8 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
                                 {"label", v.label},
                                 {"technique", techniqueName(v.technique)},
                                 {"available", v.unavailable.empty()}});
+    // null where /proc/stat could not be read
+    const nlohmann::json othersJson = othersShare >= 0.0 ? nlohmann::json(othersShare) : nlohmann::json();
     const nlohmann::json root = {{"experiment", spec_.name},
                                  {"title", spec_.title},
                                  {"size", toString(context.settings.size)},
@@ -494,6 +500,7 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
                                  {"environment", toJson(context.environment)},
                                  {"documents", toJson(spec_.documents)},
                                  {"load_average", {{"before", loadBefore.toString()}, {"after", loadAfter.toString()}}},
+                                 {"others_cpu_share", othersJson},
                                  {"caveats", out.caveats},
                                  {"rows", rowsJson}};
     writeJsonFile(context.dir / "results.json", root);

@@ -148,6 +148,26 @@ TEST_F(CliOutput, StatsJsonCountsTheRaysOfEveryFrame) {
     EXPECT_LE(median, j.at("summary").at("max_ms").get<double>());
 }
 
+// --threads above the hardware threads is clamped (with a note); the JSON
+// records the threads that ran and, apart, the number asked for.
+TEST_F(CliOutput, StatsJsonRecordsTheThreadsUsedNotRequested) {
+    const fs::path clamped = dir_ / "clamped.json", all = dir_ / "all.json";
+    const RunResult r = runRaycache(kGridArgs + " --threads 1000 --stats " + clamped.string(), dir_);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("note: --threads 1000 is more than the"), std::string::npos) << r.out;
+    const nlohmann::json j = readJson(clamped);
+    EXPECT_EQ(j.at("threads").get<int>(), Parallel::hardwareThreads());
+    EXPECT_EQ(j.at("threads_requested").get<int>(), 1000);
+
+    ASSERT_EQ(runRaycache(kGridArgs + " --stats " + all.string(), dir_).exitCode, 0);
+    EXPECT_EQ(readJson(all).at("threads").get<int>(), Parallel::hardwareThreads()) << "0 means all";
+    EXPECT_EQ(readJson(all).at("threads_requested").get<int>(), 0);
+
+    ASSERT_EQ(runRaycache(kGridArgs + " --threads 1 --stats " + all.string(), dir_).exitCode, 0);
+    EXPECT_EQ(readJson(all).at("threads").get<int>(), 1);
+    EXPECT_EQ(readJson(all).at("threads_requested").get<int>(), 1);
+}
+
 TEST_F(CliOutput, StatsJsonCacheCountsAddUpWithCct) {
     const fs::path stats = dir_ / "stats.json";
     const RunResult r = runRaycache(

@@ -172,6 +172,10 @@ TEST_F(Experiments, TimingTablesReportSpeedupsWithTheirIntervalsAndStopReasons) 
         EXPECT_EQ(j.at("settings").at("max_timed_frames").get<int>(), timed);
         EXPECT_FALSE(j.at("load_average").at("before").get<std::string>().empty());
         EXPECT_FALSE(j.at("load_average").at("after").get<std::string>().empty());
+        // Linux has /proc/stat: others' share of the CPU time is known, a fraction.
+        ASSERT_TRUE(j.at("others_cpu_share").is_number());
+        EXPECT_GE(j.at("others_cpu_share").get<double>(), 0.0);
+        EXPECT_LE(j.at("others_cpu_share").get<double>(), 1.0);
         for (const auto& row : j.at("rows")) {
             EXPECT_EQ(row.at("still_timed_rounds").get<int>(), timed);
             EXPECT_EQ(row.at("still_stop_reason"), "round cap");
@@ -191,6 +195,7 @@ TEST_F(Experiments, TimingTablesReportSpeedupsWithTheirIntervalsAndStopReasons) 
     }
     EXPECT_NE(log_.find("(no interval: fewer than 4 timed pairs)"), std::string::npos);
     EXPECT_NE(log_.find("load average "), std::string::npos);
+    EXPECT_NE(log_.find("other processes used "), std::string::npos);
 }
 
 TEST_F(Experiments, FillRateStartsEmptyAndNeverLosesTexels) {

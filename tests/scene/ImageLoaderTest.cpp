@@ -15,6 +15,9 @@ namespace raycache {
 namespace {
 
 const std::filesystem::path imageDir = std::filesystem::path(RAYCACHE_TEST_DATA_DIR) / "images";
+// Inputs the fuzzers found (docs/testing.md), kept beside the fuzzers.
+const std::filesystem::path findingsDir =
+    std::filesystem::path(RAYCACHE_TEST_DATA_DIR).parent_path() / "fuzz" / "findings";
 
 // A fresh directory under the system temp dir, removed with everything in it.
 class TempDir {
@@ -75,9 +78,8 @@ TEST(ImageLoader, RadianceHdrIsLinear) {
 
 // EXR files not written by our own code (tests/data/images/make_known_exr.py
 // says how they were made): a hand-made uncompressed file with 32-bit float
-// channels, the same with 16-bit half channels, and that half file rewritten
-// by OpenEXR's own exrmaketiled as ZIP-compressed 2x2 tiles. Every value is
-// exact in half precision, so all three must decode to exactly these.
+// channels and the same with 16-bit half channels. Every value is exact in
+// half precision, so both must decode to exactly these.
 void expectKnownExrPixels(const Image& image) {
     ASSERT_EQ(image.width(), 3);
     ASSERT_EQ(image.height(), 2);
@@ -97,8 +99,77 @@ TEST(ImageLoader, ExrFromAnotherWriterHalfChannels) {
     expectKnownExrPixels(loadImageFile(imageDir / "known-half.exr"));
 }
 
-TEST(ImageLoader, ExrWrittenByOpenExrZipTiles) {
-    expectKnownExrPixels(loadImageFile(imageDir / "known-half-zip-tiled.exr"));
+// Only flat single-part scanline EXR is read: tiled, deep and multi-part files
+// are refused from the version field, before tinyexr decodes anything. The
+// tiled file is known-half.exr rewritten by OpenEXR's own exrmaketiled
+// (ZIP-compressed 2x2 tiles); deep and multi-part are its flags set by hand.
+TEST(ImageLoader, TiledDeepAndMultipartExrAreRefused) {
+    expectInputErrorNamingFile(imageDir / "known-half-zip-tiled.exr",
+                               "tiled EXR is not supported, save it as scanline");
+    std::ifstream in(imageDir / "known-half.exr", std::ios::binary);
+    const std::string scanline((std::istreambuf_iterator<char>(in)), {});
+    TempDir dir;
+    const auto withFlag = [&](const std::string& name, char flag) {  // byte 5 holds version bits 8-15
+        std::string bytes = scanline;
+        bytes[5] = static_cast<char>(bytes[5] | flag);
+        const auto path = dir.path() / name;
+        std::ofstream(path, std::ios::binary) << bytes;
+        return path;
+    };
+    expectInputErrorNamingFile(withFlag("tiled.exr", 0x02), "tiled EXR is not supported, save it as scanline");
+    expectInputErrorNamingFile(withFlag("deep.exr", 0x08), "deep EXR is not supported");
+    expectInputErrorNamingFile(withFlag("multipart.exr", 0x10), "multi-part EXR is not supported");
+    EXPECT_EQ(loadImageFile(withFlag("same.exr", 0x00)).width(), 3);
+}
+
+// Found by fuzzing (docs/testing.md, finding 3): Debian's tinyexr 1.0.1
+// crashes (SEGV in LoadEXRWithLayer) on this corrupt ZIP-tiled file. It is
+// refused as tiled before tinyexr decodes it: one InputError, no crash.
+TEST(ImageLoader, CorruptZipTiledExrFromTheFuzzerIsRefusedNotACrash) {
+    const auto finding = findingsDir / "tinyexr-segv-zip-tiled.exr";
+    ASSERT_TRUE(std::filesystem::exists(finding)) << finding;
+    expectInputErrorNamingFile(finding, "tiled EXR is not supported, save it as scanline");
+}
+
+// Found by fuzzing (docs/testing.md, finding 8): an uncompressed scanline
+// file whose G channel became 32-bit unsigned integers with too little data;
+// tinyexr 1.0.1 read past the end of its buffer (ASan: heap-buffer-overflow in
+// DecodePixelData). Integer channels are refused before tinyexr decodes.
+TEST(ImageLoader, ExrWithAnIntegerChannelIsRefusedBeforeDecoding) {
+    const auto finding = findingsDir / "tinyexr-overread-uint-channel.exr";
+    ASSERT_TRUE(std::filesystem::exists(finding)) << finding;
+    expectInputErrorNamingFile(finding, "holds 32-bit integers, which are not supported");
+    // The same in a well-formed file: known-half.exr with its G channel's type, HALF (1), set to UINT (0).
+    std::ifstream in(imageDir / "known-half.exr", std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    const std::string halfG("G\0\x01\0\0\0", 6);
+    const std::size_t at = bytes.find(halfG);
+    ASSERT_NE(at, std::string::npos);
+    bytes[at + 2] = '\0';
+    TempDir dir;
+    const auto path = dir.path() / "uint-g.exr";
+    std::ofstream(path, std::ios::binary) << bytes;
+    expectInputErrorNamingFile(path, "OpenEXR channel \"G\" holds 32-bit integers");
+}
+
+// Found by fuzzing (docs/testing.md, finding 9): a file whose compression
+// attribute became PIZ; tinyexr 1.0.1's PIZ decoder copied past the end of its
+// buffer (ASan: heap-buffer-overflow in DecompressPiz). PIZ is refused.
+TEST(ImageLoader, PizCompressedExrIsRefusedBeforeDecoding) {
+    const auto finding = findingsDir / "tinyexr-overread-piz.exr";
+    ASSERT_TRUE(std::filesystem::exists(finding)) << finding;
+    expectInputErrorNamingFile(finding, "PIZ-compressed EXR is not supported, save it with ZIP compression");
+    // known-half.exr with its compression, NONE (0), set to PIZ (4).
+    std::ifstream in(imageDir / "known-half.exr", std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    const std::string none("compression\0compression\0\x01\0\0\0\0", 29);
+    const std::size_t at = bytes.find(none);
+    ASSERT_NE(at, std::string::npos);
+    bytes[at + 28] = '\x04';
+    TempDir dir;
+    const auto path = dir.path() / "piz.exr";
+    std::ofstream(path, std::ios::binary) << bytes;
+    expectInputErrorNamingFile(path, "PIZ-compressed EXR is not supported");
 }
 
 TEST(ImageLoader, ExtensionIsCaseInsensitive) {
@@ -157,19 +228,22 @@ TEST(ImageLoader, HeaderClaimingFarMorePixelsThanTheFileCanHoldThrows) {
     expectInputErrorNamingFile(imageDir / "fuzz-tga-huge-claimed-size.tga", "16384x10752 pixels in a file of 33 bytes");
 }
 
-// Found by fuzzing (docs/testing.md): tinyexr asserts, aborting the whole
-// program, on a header whose "type" contradicts the file's layout, on an
-// unknown type, and on a "tiles" attribute of the wrong size. Each must be an
-// InputError naming the file instead. The first file is the fuzzer's input.
+// Found by fuzzing (docs/testing.md, finding 1): tinyexr asserts, aborting
+// the whole program, on a header whose "type" contradicts the file's layout
+// and on an unknown type. Each must be an InputError naming the file instead.
+// The fuzzer's inputs were tiled files (a tiled version flag without tiles, a
+// tile of height 0), now refused as tiled; the type is checked on byte edits
+// of a scanline file that has one (make_known_exr.py).
 TEST(ImageLoader, ExrHeaderThatWouldAbortTinyexrThrows) {
-    expectInputErrorNamingFile(imageDir / "fuzz-tiled-type-in-scanline.exr", "type \"tiledimage\"");
+    expectInputErrorNamingFile(imageDir / "fuzz-tiled-type-in-scanline.exr", "tiled EXR is not supported");
+    expectInputErrorNamingFile(imageDir / "fuzz-zero-tile-height.exr", "tiled EXR is not supported");
 
-    // Byte edits of the OpenEXR-written tiled file.
-    std::ifstream in(imageDir / "known-half-zip-tiled.exr", std::ios::binary);
-    const std::string tiled((std::istreambuf_iterator<char>(in)), {});
+    std::ifstream in(imageDir / "known-half-typed.exr", std::ios::binary);
+    const std::string typed((std::istreambuf_iterator<char>(in)), {});
     TempDir dir;
-    const auto edited = [&](const std::string& name, const std::string& from, const std::string& to) {
-        std::string bytes = tiled;
+    const auto edited = [&](const std::string& name, const std::string& to) {
+        const std::string from = "scanlineimage";
+        std::string bytes = typed;
         const std::size_t at = bytes.find(from);
         EXPECT_NE(at, std::string::npos) << from;
         if (at != std::string::npos) bytes.replace(at, from.size(), to);
@@ -177,23 +251,10 @@ TEST(ImageLoader, ExrHeaderThatWouldAbortTinyexrThrows) {
         std::ofstream(path, std::ios::binary) << bytes;
         return path;
     };
-    expectInputErrorNamingFile(edited("unknown-type.exr", "tiledimage", "tiledimagX"), "type \"tiledimagX\"");
-    expectInputErrorNamingFile(edited("scanline-type.exr", "tiledimage", "scanlineim"), "type \"scanlineim\"");
-    // "tiles" "tiledesc" then the size, 9 as a little-endian int32.
-    expectInputErrorNamingFile(
-        edited("tiles-size.exr", std::string("tiledesc\0\x09\0\0\0", 13), std::string("tiledesc\0\x08\0\0\0", 13)),
-        "tiles attribute has 8 bytes");
-    // Tile sides: 2 x 2 in the file, little-endian right after the size 9.
-    const std::string tilesAttribute("tiledesc\0\x09\0\0\0\x02\0\0\0\x02\0\0\0", 21);
-    expectInputErrorNamingFile(edited("zero-tile.exr", tilesAttribute,
-                                      std::string("tiledesc\0\x09\0\0\0\x02\0\0\0\0\0\0\0", 21)),
-                               "tiles with a side of 0 pixels");
-    expectInputErrorNamingFile(edited("huge-tile.exr", tilesAttribute,
-                                      std::string("tiledesc\0\x09\0\0\0\x02\0\0\0\xff\xff\xff\x7f", 21)),
-                               "tiles of 2147483647 pixels a side");
-    expectInputErrorNamingFile(imageDir / "fuzz-zero-tile-height.exr", "tiles with a side of 0 pixels");
-    // The unedited file still loads, so the edits are what is rejected.
-    EXPECT_EQ(loadImageFile(edited("same.exr", "tiledimage", "tiledimage")).width(), 3);
+    expectInputErrorNamingFile(edited("tiled-type.exr", std::string("tiledimage\0\0\0", 13)), "type \"tiledimage\"");
+    expectInputErrorNamingFile(edited("unknown-type.exr", "scanlineimagX"), "type \"scanlineimagX\"");
+    // The unedited file loads, so the edits are what is rejected.
+    expectKnownExrPixels(loadImageFile(edited("same.exr", "scanlineimage")));
 }
 
 TEST(ImageLoader, NonFiniteExrPixelThrows) {

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes known-float.exr and known-half.exr: 3x2 OpenEXR images with known
+"""Writes known-float.exr, known-half.exr and known-half-typed.exr: 3x2 OpenEXR images with known
 linear values, made without OpenEXR or tinyexr, straight from the file layout
 in the OpenEXR specification ("OpenEXR File Layout", openexr.com): magic and
 version, the required header attributes, a line offset table and one
@@ -7,7 +7,9 @@ uncompressed scanline block per row, channels in alphabetical order (B, G, R),
 little-endian. ImageLoaderTest reads them through tinyexr, so the EXR reader
 is checked against a writer that is not our own. Run from this directory:
     python3 make_known_exr.py
-Both files were checked with `exrheader` (Debian package openexr 3.1.5).
+known-half-typed.exr is known-half.exr with the optional "type" attribute
+("scanlineimage"), which ImageLoaderTest edits to check the loader's own
+reading of it. The files were checked with `exrheader` (Debian package openexr 3.1.5).
 """
 import struct
 
@@ -23,7 +25,7 @@ def attribute(name, type_name, value):
     return name.encode() + b"\0" + type_name.encode() + b"\0" + struct.pack("<i", len(value)) + value
 
 
-def write(path, pixel_type):  # pixel_type: 1 = HALF, 2 = FLOAT
+def write(path, pixel_type, extra=b""):  # pixel_type: 1 = HALF, 2 = FLOAT; extra: more attributes
     channels = b""
     for name in ("B", "G", "R"):
         channels += name.encode() + b"\0" + struct.pack("<iB3xii", pixel_type, 0, 1, 1)
@@ -37,6 +39,7 @@ def write(path, pixel_type):  # pixel_type: 1 = HALF, 2 = FLOAT
     header += attribute("pixelAspectRatio", "float", struct.pack("<f", 1.0))
     header += attribute("screenWindowCenter", "v2f", struct.pack("<ff", 0.0, 0.0))
     header += attribute("screenWindowWidth", "float", struct.pack("<f", 1.0))
+    header += extra
     header += b"\0"
 
     value_format = "<e" if pixel_type == 1 else "<f"
@@ -59,3 +62,4 @@ def write(path, pixel_type):  # pixel_type: 1 = HALF, 2 = FLOAT
 
 write("known-float.exr", 2)
 write("known-half.exr", 1)
+write("known-half-typed.exr", 1, attribute("type", "string", b"scanlineimage"))
