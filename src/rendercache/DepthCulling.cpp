@@ -30,9 +30,12 @@ std::int64_t cullOccludedSamples(const PointImage& image, float threshold, std::
             }
         }
     });
+    parallel.forEachIndex(height, [&](int y, int) {
+        const auto row = static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
+        for (std::size_t i = row; i < row + static_cast<std::size_t>(width); ++i)
+            if (hide[i]) state[i] = PixelState::Culled;
+    });
     std::int64_t culled = 0;
-    for (std::size_t i = 0; i < hide.size(); ++i)
-        if (hide[i]) state[i] = PixelState::Culled;
     for (std::int64_t c : perRow) culled += c;
     return culled;
 }

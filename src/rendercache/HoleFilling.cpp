@@ -13,9 +13,11 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
     const auto at = [width](int x, int y) {
         return static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
     };
-    // Both passes read only pixels that show a sample and write only holes,
-    // so rows can run in any order; the states are written after each pass.
-    std::vector<PixelState> next = state;
+    // Both passes read `state` and the colours of pixels showing a sample,
+    // and write only the colours of holes and `outcome`: rows run in any
+    // order, without a data race. The states change at the end.
+    enum Outcome : unsigned char { kNone, k3x3, k7x7, kUnfilled };
+    std::vector<unsigned char> outcome(state.size(), kNone);
     std::vector<FillCounts> perRow(static_cast<std::size_t>(height));
     parallel.forEachIndex(height, [&](int y, int) {
         for (int x = 0; x < width; ++x) {
@@ -35,14 +37,14 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
             }
             if (weight > 0.0f) {
                 film.at(x, y) = sum * (1.0f / weight);
-                next[at(x, y)] = PixelState::Filled3x3;
+                outcome[at(x, y)] = k3x3;
                 ++perRow[static_cast<std::size_t>(y)].filled3x3;
             }
         }
     });
     parallel.forEachIndex(height, [&](int y, int) {
         for (int x = 0; x < width; ++x) {
-            if (!isHole(next[at(x, y)])) continue;
+            if (!isHole(state[at(x, y)]) || outcome[at(x, y)] == k3x3) continue;
             Rgb sum;
             int count = 0;
             for (int ny = std::max(0, y - kPrefilterRadius); ny <= std::min(height - 1, y + kPrefilterRadius); ++ny)
@@ -53,15 +55,21 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
                     }
             if (count > 0) {
                 film.at(x, y) = sum * (1.0f / static_cast<float>(count));
-                next[at(x, y)] = PixelState::Filled7x7;
+                outcome[at(x, y)] = k7x7;
                 ++perRow[static_cast<std::size_t>(y)].filled7x7;
             } else {
-                next[at(x, y)] = PixelState::Unfilled;
+                outcome[at(x, y)] = kUnfilled;
                 ++perRow[static_cast<std::size_t>(y)].unfilled;
             }
         }
     });
-    state.swap(next);
+    parallel.forEachIndex(height, [&](int y, int) {
+        for (std::size_t i = at(0, y); i < at(0, y) + static_cast<std::size_t>(width); ++i) {
+            if (outcome[i] == k3x3) state[i] = PixelState::Filled3x3;
+            else if (outcome[i] == k7x7) state[i] = PixelState::Filled7x7;
+            else if (outcome[i] == kUnfilled) state[i] = PixelState::Unfilled;
+        }
+    });
     FillCounts total;
     for (const FillCounts& c : perRow) {
         total.filled3x3 += c.filled3x3;

@@ -172,28 +172,35 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     std::vector<float> priority(static_cast<std::size_t>(pixels));
     std::vector<std::int64_t> holesPerRow(static_cast<std::size_t>(height), 0);
     const float agePriority = 0.5f / static_cast<float>(rc.maxAge);
-    const auto markHoles = [&](bool afterCulling) {
-        parallel_.forEachIndex(height, [&](int y, int) {
-            std::int64_t rowHoles = 0;
-            for (int x = 0; x < width; ++x) {
-                const auto i = static_cast<std::size_t>(y * width + x);
-                if (!afterCulling)
-                    state[i] = image_.hasSample(x, y) ? PixelState::Reprojected : PixelState::Hole;
-                if (isHole(state[i])) {
-                    ++rowHoles;
-                    priority[i] = 1.0f;
-                } else {
-                    priority[i] = agePriority * static_cast<float>(pool_.age[image_.slotAt(x, y)]);
-                }
+    parallel_.forEachIndex(height, [&](int y, int) {
+        std::int64_t rowHoles = 0;
+        for (int x = 0; x < width; ++x) {
+            const auto i = static_cast<std::size_t>(y * width + x);
+            if (image_.hasSample(x, y)) {
+                state[i] = PixelState::Reprojected;
+                priority[i] = agePriority * static_cast<float>(pool_.age[image_.slotAt(x, y)]);
+            } else {
+                state[i] = PixelState::Hole;
+                priority[i] = 1.0f;
+                ++rowHoles;
             }
-            holesPerRow[static_cast<std::size_t>(y)] = rowHoles;
-        });
-    };
-    markHoles(false);
+        }
+        holesPerRow[static_cast<std::size_t>(y)] = rowHoles;
+    });
     // A still camera puts every sample back where it was traced: nothing to cull.
     if (moved && rc.depthCullThreshold > 0.0f) {
         stats.culled = cullOccludedSamples(image_, rc.depthCullThreshold, state, parallel_);
-        if (stats.culled > 0) markHoles(true);
+        if (stats.culled > 0)
+            parallel_.forEachIndex(height, [&](int y, int) {
+                std::int64_t culled = 0;
+                for (int x = 0; x < width; ++x) {
+                    const auto i = static_cast<std::size_t>(y * width + x);
+                    if (state[i] != PixelState::Culled) continue;
+                    priority[i] = 1.0f;
+                    ++culled;
+                }
+                holesPerRow[static_cast<std::size_t>(y)] += culled;
+            });
     }
     std::int64_t holes = 0;
     for (std::int64_t h : holesPerRow) holes += h;
@@ -258,7 +265,10 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
                         .store(1, std::memory_order_relaxed);
             }
         });
-        for (int i = 0; i < pixels; ++i) priority[static_cast<std::size_t>(i)] = covered[static_cast<std::size_t>(i)] ? 0.0f : 1.0f;
+        parallel_.forEachIndex(height, [&](int y, int) {
+            for (auto i = static_cast<std::size_t>(y * width); i < static_cast<std::size_t>((y + 1) * width); ++i)
+                priority[i] = covered[i] ? 0.0f : 1.0f;
+        });
         buildRequestMap(priority, width, height, rc.requestTileSize, 1.0f, predictedBudget, rc.seed ^ 0x5eed,
                         frame_, predictedRequests_, parallel_);
         // Only holes: a tile without any gets no ray even if rounding offered one.
@@ -324,9 +334,12 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     // The image: samples where there are, the filters elsewhere.
     start = Clock::now();
     const CameraRays rays(camera, width, height);
+    std::vector<std::int64_t> reprojectedPerRow(static_cast<std::size_t>(height), 0);
     parallel_.forEachIndex(height, [&](int y, int) {
         for (int x = 0; x < width; ++x) {
-            if (!showsSample(state[static_cast<std::size_t>(y * width + x)])) continue;
+            const PixelState s = state[static_cast<std::size_t>(y * width + x)];
+            if (!showsSample(s)) continue;
+            reprojectedPerRow[static_cast<std::size_t>(y)] += s == PixelState::Reprojected ? 1 : 0;
             const std::uint32_t slot = image_.slotAt(x, y);
             // The background depends on the direction only: exact for any eye.
             film.at(x, y) = pool_.objectId[slot] == SamplePool::kBackground
@@ -345,7 +358,7 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
                     film.at(x, y) = kernel_.shading().background(rays.ray(x, y));
     stats.filterMs = millisecondsSince(start);
 
-    for (PixelState s : state) stats.reprojected += s == PixelState::Reprojected ? 1 : 0;
+    for (std::int64_t r : reprojectedPerRow) stats.reprojected += r;
     stats.liveSamples = reprojected.placed + emptySlotsTaken_;
 
     // The budget that would have held the target time, for the next frame.

@@ -67,25 +67,27 @@ void buildRequestMap(std::span<const float> priority, int width, int height, int
     for (std::size_t t = 0; t < tiles; ++t)
         firstRequest[t + 1] = firstRequest[t] + static_cast<std::size_t>(out.tileRequests[t]);
     out.pixels.resize(firstRequest[tiles]);
-    parallel.forEachIndex(static_cast<int>(tiles), [&](int tile, int) {
+    struct Candidate {
+        std::uint64_t key;
+        PixelCoord pixel;
+    };
+    std::vector<std::vector<Candidate>> perWorker(static_cast<std::size_t>(parallel.threadCount()));
+    const std::uint64_t frameSeed = mixBits(seed ^ mixBits(frame));
+    parallel.forEachIndex(static_cast<int>(tiles), [&](int tile, int worker) {
         const auto t = static_cast<std::size_t>(tile);
         const int wanted = out.tileRequests[t];
         if (wanted == 0) return;
         int x0, y0, x1, y1;
         tileRect(t, x0, y0, x1, y1);
-        struct Candidate {
-            std::uint64_t key;
-            PixelCoord pixel;
-        };
-        std::vector<Candidate> candidates;
-        candidates.reserve(static_cast<std::size_t>((x1 - x0) * (y1 - y0)));
+        std::vector<Candidate>& candidates = perWorker[static_cast<std::size_t>(worker)];
+        candidates.clear();
         for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x) {
                 const std::size_t i = pixelIndex(x, y);
                 // Priority quantised to 16 bits above, the hash below: sorting
                 // by key orders by priority, then at random.
                 const auto level = static_cast<std::uint64_t>(std::clamp(priority[i], 0.0f, 1.0f) * 65535.0f);
-                const std::uint64_t random = mixBits(seed ^ mixBits(frame ^ mixBits(i))) >> 16;
+                const std::uint64_t random = mixBits(frameSeed ^ i) >> 16;
                 candidates.push_back({(level << 48) | random, {x, y}});
             }
         const auto order = [](const Candidate& a, const Candidate& b) { return a.key > b.key; };
