@@ -47,28 +47,20 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
     command.add_option("--pipeline", job.pipeline,
                        "ray: primary rays per tile; hybrid: G-buffer (OpenGL or primary-ray packets), then "
                        "deferred shadow and secondary rays; render-cache: reproject earlier frames' samples and "
-                       "trace a budget of pixels (docs/render-cache.md)")
-        ->capture_default_str();
-    raycache::RenderCacheSettings& rc = job.renderCache;
-    command.add_option("--rc-budget", rc.budget, "Render cache: share of the pixels traced per frame, (0, 1]")
-        ->capture_default_str();
-    command.add_option("--rc-target-ms", rc.targetFrameMs,
+                       "trace a budget of pixels (docs/render-cache.md); default: the scene file's, else ray");
+    command.add_option("--rc-budget", job.rcBudget, "Render cache: share of the pixels traced per frame, (0, 1] (default 0.05)");
+    command.add_option("--rc-target-ms", job.rcTargetMs,
                        "Render cache: choose the budget each frame to hold this frame time, ms (0 = off; images "
-                       "then depend on the machine's speed)")
-        ->capture_default_str();
-    command.add_option("--rc-alpha", rc.alpha,
-                       "Render cache: request map mix, (1-alpha) uniform + alpha priority, [0, 1]")
-        ->capture_default_str();
-    command.add_option("--rc-max-age", rc.maxAge, "Render cache: frames a sample lives")->capture_default_str();
-    command.add_option("--rc-predict", rc.predictShare,
-                       "Render cache: share of the budget for holes the predicted next camera will see, [0, 0.9]")
-        ->capture_default_str();
+                       "then depend on the machine's speed; default 0 = off)");
+    command.add_option("--rc-alpha", job.rcAlpha,
+                       "Render cache: request map mix, (1-alpha) uniform + alpha priority, [0, 1] (default 0.25)");
+    command.add_option("--rc-max-age", job.rcMaxAge, "Render cache: frames a sample lives (default 32)");
+    command.add_option("--rc-predict", job.rcPredict,
+                       "Render cache: share of the budget for holes the predicted next camera will see, [0, 0.9] (default 0.2)");
     command.add_option("--rc-reflections", job.rcReflections,
                        "Render cache: reprojected mirror/glass/glossy samples: reshade (highlights and "
-                       "reflections from the new eye, through the caching cubes) or reproject (as traced)")
-        ->capture_default_str();
-    command.add_option("--rc-seed", rc.seed, "Render cache: seed of the request map's random choices")
-        ->capture_default_str();
+                       "reflections from the new eye, through the caching cubes; the default) or reproject (as traced)");
+    command.add_option("--rc-seed", job.rcSeed, "Render cache: seed of the request map's random choices (default 1)");
     command.add_option("--gbuffer", job.gbuffer,
                        "Hybrid G-buffer source: auto (OpenGL if a 4.5 context can be made, else packets), gl or "
                        "packets")

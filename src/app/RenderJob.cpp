@@ -28,6 +28,16 @@ CameraPath chooseCameraPath(const Scene& scene, const std::optional<std::string>
 
 }  // namespace
 
+void applyRenderCacheOptions(const RenderJobOptions& o, RenderCacheSettings& rc) {
+    if (o.rcBudget) rc.budget = *o.rcBudget;
+    if (o.rcTargetMs) rc.targetFrameMs = *o.rcTargetMs;
+    if (o.rcAlpha) rc.alpha = *o.rcAlpha;
+    if (o.rcPredict) rc.predictShare = *o.rcPredict;
+    if (o.rcMaxAge) rc.maxAge = *o.rcMaxAge;
+    if (o.rcSeed) rc.seed = *o.rcSeed;
+    if (o.rcReflections) parseReprojectedReflections(*o.rcReflections, rc.reflections);
+}
+
 std::optional<CacheTechnique> parseTechnique(const std::string& name) { return parseCacheTechnique(name); }
 
 void validateRenderJobOptions(const RenderJobOptions& o) {
@@ -53,12 +63,15 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
     if (o.cacheResolution &&
         (*o.cacheResolution < RayCache::kMinResolution || *o.cacheResolution > RayCache::kMaxResolution))
         throw InputError("--cache-res must be between 16 and 2048 (got " + std::to_string(*o.cacheResolution) + ")");
-    if (!parsePipelineKind(o.pipeline))
-        throw InputError("--pipeline must be ray, hybrid or render-cache (got '" + o.pipeline + "')");
-    validateRenderCacheSettings(o.renderCache);
+    if (o.pipeline && !parsePipelineKind(*o.pipeline))
+        throw InputError("--pipeline must be ray, hybrid or render-cache (got '" + *o.pipeline + "')");
+    // The --rc-* values alone, over the defaults: each error names its option.
+    RenderCacheSettings rc;
+    applyRenderCacheOptions(o, rc);
+    validateRenderCacheSettings(rc);
     ReprojectedReflections reflections;
-    if (!parseReprojectedReflections(o.rcReflections, reflections))
-        throw InputError("--rc-reflections must be reshade or reproject (got '" + o.rcReflections + "')");
+    if (o.rcReflections && !parseReprojectedReflections(*o.rcReflections, reflections))
+        throw InputError("--rc-reflections must be reshade or reproject (got '" + *o.rcReflections + "')");
     if (o.gbuffer != "auto" && o.gbuffer != "gl" && o.gbuffer != "packets")
         throw InputError("--gbuffer must be auto, gl or packets (got '" + o.gbuffer + "')");
     if (o.path && *o.path != "static" && *o.path != "orbit" && *o.path != "pan")
@@ -86,9 +99,17 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     settings.cache.resolutionOverride = options.cacheResolution;
     settings.cache.ideal = options.cacheIdeal;
     settings.stageTimes = options.stageTimes;
-    settings.pipeline = *parsePipelineKind(options.pipeline);
-    settings.renderCache = options.renderCache;
-    parseReprojectedReflections(options.rcReflections, settings.renderCache.reflections);
+    // Command-line options win over the scene file's, which win over the defaults.
+    const SceneRenderDefaults& fromScene = job.scene.render;
+    settings.pipeline = *parsePipelineKind(options.pipeline.value_or(fromScene.pipeline.value_or("ray")));
+    RenderCacheSettings& rc = settings.renderCache;
+    if (fromScene.rcBudget) rc.budget = *fromScene.rcBudget;
+    if (fromScene.rcTargetMs) rc.targetFrameMs = *fromScene.rcTargetMs;
+    if (fromScene.rcAlpha) rc.alpha = *fromScene.rcAlpha;
+    if (fromScene.rcPredict) rc.predictShare = *fromScene.rcPredict;
+    if (fromScene.rcMaxAge) rc.maxAge = *fromScene.rcMaxAge;
+    if (fromScene.rcReflections) parseReprojectedReflections(*fromScene.rcReflections, rc.reflections);
+    applyRenderCacheOptions(options, rc);
     settings.gbuffer = options.gbuffer == "gl"        ? GBufferSource::OpenGl
                        : options.gbuffer == "packets" ? GBufferSource::Packets
                                                       : GBufferSource::Auto;

@@ -2,6 +2,7 @@
 // What every rendering command needs before its first frame: a loaded scene,
 // the camera path, the render settings and the frame count, from the options
 // those commands share (scene, size, frames, path, threads, depth, caching).
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -28,10 +29,13 @@ struct RenderJobOptions {
     std::optional<int> cacheResolution;    // default: each material's own setting
     bool cacheIdeal = false;               // benchmark switch, see RayCacheSettings::ideal
     bool stageTimes = false;               // time the tile kernel's stages (RenderSettings::stageTimes)
-    std::string pipeline = "ray";          // ray | hybrid | render-cache (render/FramePipeline.h)
+    std::optional<std::string> pipeline;   // ray | hybrid | render-cache; default: the scene file's, else ray
     std::string gbuffer = "auto";          // hybrid G-buffer source: auto | gl | packets
-    RenderCacheSettings renderCache;       // --rc-* options of the Render Cache pipeline
-    std::string rcReflections = "reshade"; // reshade | reproject
+    // The Render Cache's --rc-* options; default: the scene file's, else RenderCacheSettings'.
+    std::optional<float> rcBudget, rcTargetMs, rcAlpha, rcPredict;
+    std::optional<int> rcMaxAge;
+    std::optional<std::string> rcReflections;  // reshade | reproject
+    std::optional<std::uint64_t> rcSeed;
 };
 
 struct RenderJob {
@@ -44,6 +48,9 @@ struct RenderJob {
 // The technique a --technique name stands for (none, cct, cdct,
 // cdct-parity), or nothing for an unknown name.
 std::optional<CacheTechnique> parseTechnique(const std::string& name);
+
+// Puts the --rc-* options that were given into `settings`.
+void applyRenderCacheOptions(const RenderJobOptions& options, RenderCacheSettings& settings);
 
 // Throws InputError for option values out of range, without touching the
 // scene, so commands can check their own options in between and still report

@@ -6,6 +6,7 @@
 #include "core/Errors.h"
 #include "render/ImageWriter.h"
 #include "cache/RayCache.h"
+#include "viewer/PipelineChoice.h"
 #include "viewer/TechniqueChoice.h"
 #include "viewer/Viewer.h"
 
@@ -29,7 +30,9 @@ void runViewCommand(const ViewCommandOptions& options, std::ostream& out) {
     config.cdctEpsilon = options.job.cdctEpsilon;
     config.maxDepth = options.job.maxDepth;
     // The viewer's hybrid pipeline always takes its G-buffer from packets (viewer/PipelineChoice.h).
-    config.pipeline = options.job.pipeline == "hybrid" ? 1 : 0;
+    config.pipeline = job.settings.pipeline == PipelineKind::Hybrid        ? 1
+                      : job.settings.pipeline == PipelineKind::RenderCache ? kRenderCacheChoice
+                                                                            : 0;
 
     ViewerOptions viewer;
     // Without --frames the viewer is interactive; the frame count then only

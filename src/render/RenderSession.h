@@ -46,6 +46,8 @@ public:
     const Parallel& parallel() const { return *parallel_; }
     // Which pipeline renders, and for the hybrid one where its G-buffer comes from.
     std::string description() const { return pipeline_->description(); }
+    // The Render Cache pipeline's maps of the last frame; null for the others.
+    const RenderCacheOverlays* renderCacheOverlays() const { return pipeline_->renderCacheOverlays(); }
 
 private:
     const Scene& scene_;

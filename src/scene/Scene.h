@@ -8,6 +8,7 @@
 #include "scene/Environment.h"
 #include "scene/Light.h"
 #include "scene/SceneObject.h"
+#include "scene/SceneRenderDefaults.h"
 
 namespace raycache {
 
@@ -23,6 +24,7 @@ struct Scene {
     Camera camera;           // the camera at frame 0
     CameraPath cameraPath;   // how it moves
     int defaultFrames = 1;   // length of the default camera path
+    SceneRenderDefaults render;  // what the scene file asks for; command-line options win
 };
 
 }  // namespace raycache

@@ -228,7 +228,8 @@ public:
 
     Scene read(const json& root, const std::string& defaultName) {
         const Node r{&root, ""};
-        expectObject(r, {"name", "camera", "path", "frames", "environment", "lights", "materials", "objects"});
+        expectObject(r, {"name", "camera", "path", "frames", "environment", "lights", "materials", "objects",
+                         "pipeline", "renderCache"});
         Scene scene;
         scene.name = defaultName;
         if (const Node n = child(r, "name")) scene.name = nonEmptyString(n);
@@ -241,6 +242,9 @@ public:
         }
         scene.defaultFrames = pathFrames;
         if (const Node n = child(r, "frames")) scene.defaultFrames = integer(n, 1, kMaxFrames);
+        if (const Node n = child(r, "pipeline"))
+            scene.render.pipeline = oneOf(n, {"ray", "hybrid", "render-cache"});
+        if (const Node n = child(r, "renderCache")) renderCache(n, scene.render);
 
         if (const Node n = child(r, "environment")) scene.environment = environment(n);
         if (const Node n = child(r, "lights")) {
@@ -353,6 +357,29 @@ private:
         const Range range = closed(lo, hi);
         if (!range.contains(d)) fail(n, range.describe() + " (got " + formatNumber(d) + ")");
         return static_cast<int>(d);
+    }
+
+    std::string oneOf(const Node& n, std::initializer_list<const char*> names) const {
+        const std::string s = nonEmptyString(n);
+        std::string list;
+        for (const char* name : names) {
+            if (s == name) return s;
+            list += list.empty() ? std::string(name) : std::string(", ") + name;
+        }
+        fail(n, "must be one of " + list + " (got '" + s + "')");
+    }
+
+    void renderCache(const Node& n, SceneRenderDefaults& out) const {
+        expectObject(n, {"budget", "targetFrameMs", "alpha", "predict", "maxAge", "reflections"});
+        if (const Node v = child(n, "budget")) {
+            out.rcBudget = number(v, closed(0.0, 1.0));
+            if (!(*out.rcBudget > 0.0f)) fail(v, "must be a share of the pixels in (0, 1] (got 0)");
+        }
+        if (const Node v = child(n, "targetFrameMs")) out.rcTargetMs = number(v, closed(0.0, 60000.0));
+        if (const Node v = child(n, "alpha")) out.rcAlpha = number(v, closed(0.0, 1.0));
+        if (const Node v = child(n, "predict")) out.rcPredict = number(v, closed(0.0, 0.9));
+        if (const Node v = child(n, "maxAge")) out.rcMaxAge = integer(v, 1, 65000);
+        if (const Node v = child(n, "reflections")) out.rcReflections = oneOf(v, {"reshade", "reproject"});
     }
 
     std::string nonEmptyString(const Node& n) const {

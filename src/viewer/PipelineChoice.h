@@ -22,6 +22,10 @@ inline constexpr std::array kPipelineChoices = {
                        s.pipeline = PipelineKind::Hybrid;
                        s.gbuffer = GBufferSource::Packets;
                    }},
+    PipelineChoice{"render cache", [](RenderSettings& s) { s.pipeline = PipelineKind::RenderCache; }},
 };
+
+// The index of the Render Cache in kPipelineChoices.
+inline constexpr int kRenderCacheChoice = 2;
 
 }  // namespace raycache

@@ -21,6 +21,7 @@ struct RenderRequest {
     bool continuous = true;              // keep rendering when nothing changes (caches keep filling)
     bool difference = false;             // show the heat map against the uncached render
     float differenceGain = 1.0f;
+    int renderCacheOverlay = 0;          // RenderCacheOverlay: what to paint over a Render Cache frame
     int inspectObject = -1;              // object whose cube to unfold, -1 = none
     int inspectorFaceSize = 128;
 

@@ -7,6 +7,7 @@
 #include "render/FramePipeline.h"
 #include "viewer/CubeInspectorImage.h"
 #include "viewer/DifferenceHeatMap.h"
+#include "viewer/RenderCacheOverlayImage.h"
 
 namespace raycache {
 
@@ -149,6 +150,8 @@ void RenderWorker::renderOne(const RenderRequest& request, DisplayFrame& frame) 
         frame.inspectedInvalidPercent =
             100.0 * static_cast<double>(cube.texelCount() - cube.validCount()) / static_cast<double>(cube.texelCount());
     }
+    if (const RenderCacheOverlays* overlays = session_->renderCacheOverlays())
+        paintRenderCacheOverlay(*overlays, static_cast<RenderCacheOverlay>(request.renderCacheOverlay), frame.rgba);
     frame.encodeMs = millisecondsSince(start);
 
     frame.showsDifference = false;

@@ -22,6 +22,7 @@
 #include "trace/TraceScene.h"
 #include "viewer/FrameHandoff.h"
 #include "viewer/FrameTimeHistory.h"
+#include "viewer/PipelineChoice.h"
 #include "viewer/GlTexture.h"
 #include "viewer/RenderWorker.h"
 #include "viewer/ViewerCamera.h"
@@ -311,10 +312,13 @@ void Viewer::run(std::ostream& out) {
         } else {
             int fbw = 0, fbh = 0;
             window.framebufferSize(fbw, fbh);
-            const float scale = state.resolutionScale * (moving ? state.movingScale : 1.0f);
+            // The Render Cache reuses the last frame's pixels: a lower
+            // resolution while moving would throw them all away.
+            const bool reduce = moving && state.movingScale < 1.0f && state.config.pipeline != kRenderCacheChoice;
+            const float scale = state.resolutionScale * (reduce ? state.movingScale : 1.0f);
             request.width = std::max(1, static_cast<int>(std::lround(static_cast<float>(fbw) * scale)));
             request.height = std::max(1, static_cast<int>(std::lround(static_cast<float>(fbh) * scale)));
-            request.reducedResolution = moving && state.movingScale < 1.0f;
+            request.reducedResolution = reduce;
         }
         request.config = state.config;
         request.clearCount = clearCount;
@@ -323,6 +327,7 @@ void Viewer::run(std::ostream& out) {
         request.continuous = state.continuous;
         request.difference = state.difference;
         request.differenceGain = state.differenceGain;
+        request.renderCacheOverlay = state.renderCacheOverlay;
         request.inspectObject = state.showInspector ? state.inspectObject : -1;
         request.inspectorFaceSize = state.inspectorFaceSize;
         int fbw = 0, fbh = 0;

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "viewer/PipelineChoice.h"
+#include "viewer/RenderCacheOverlayImage.h"
 #include "viewer/TechniqueChoice.h"
 
 namespace raycache {
@@ -99,6 +100,28 @@ void drawStatisticsSection(const ViewerPanelInput& in) {
     }
 }
 
+void drawRenderCacheSection(const ViewerPanelInput& in, ViewerUiState& state) {
+    const DisplayFrame& f = *in.frame;
+    if (!f.stats.renderCache || !ImGui::CollapsingHeader("Render cache", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    const RenderCacheStats& c = *f.stats.renderCache;
+    const double pixels = static_cast<double>(std::max<std::int64_t>(1, c.pixels));
+    ImGui::Text("traced %.1f%% + %lld predicted, holes %.1f%%, reshaded %lld", 100.0 * static_cast<double>(c.fresh) / pixels,
+                static_cast<long long>(c.predicted), 100.0 * static_cast<double>(c.holes) / pixels,
+                static_cast<long long>(c.reshaded));
+    ImGui::Text("ms: reconstruction %.1f (reproject %.1f, maps %.1f, filters %.1f)", c.reconstructionMs(), c.reprojectMs,
+                c.mapsMs, c.filterMs);
+    ImGui::Text("    samples %.1f (trace %.1f, reshade %.1f)", c.sampleGenerationMs(), c.traceMs, c.reshadeMs);
+    ImGui::RadioButton("no overlay", &state.renderCacheOverlay, static_cast<int>(RenderCacheOverlay::None));
+    ImGui::SameLine();
+    ImGui::RadioButton("pixel sources", &state.renderCacheOverlay, static_cast<int>(RenderCacheOverlay::Sources));
+    ImGui::SameLine();
+    ImGui::RadioButton("request map", &state.renderCacheOverlay, static_cast<int>(RenderCacheOverlay::Requests));
+    if (state.renderCacheOverlay == static_cast<int>(RenderCacheOverlay::Sources))
+        ImGui::TextDisabled("green fresh, yellow 3x3, orange 7x7, red unfilled, magenta culled");
+    else if (state.renderCacheOverlay == static_cast<int>(RenderCacheOverlay::Requests))
+        ImGui::TextDisabled("blue: tile priority (holes, old samples); white: requested pixels");
+}
+
 void drawDifferenceSection(const ViewerPanelInput& in, ViewerUiState& state) {
     if (!ImGui::CollapsingHeader("Difference to the uncached image", ImGuiTreeNodeFlags_DefaultOpen)) return;
     ImGui::Checkbox("show heat map (X)", &state.difference);
@@ -175,6 +198,7 @@ void drawViewerPanel(const ViewerPanelInput& in, ViewerUiState& state, ViewerAct
         drawStatisticsSection(in);
         drawRenderingSection(in, state, actions);
         drawCameraSection(in, state, actions);
+        drawRenderCacheSection(in, state);
         drawDifferenceSection(in, state);
         drawInspector(in, state);
         ImGui::TextDisabled("Tab: hide panel   Esc: quit");

@@ -15,6 +15,7 @@ struct ViewerUiState {
     bool playPath = false;
     bool difference = false;
     float differenceGain = 1.0f;
+    int renderCacheOverlay = 0;  // RenderCacheOverlay
     int inspectObject = -1;
     int inspectorFaceSize = 128;
     bool showUi = true;

@@ -158,7 +158,26 @@ TEST_F(SceneFileTest, UnknownKeySuggestionIgnoresCase) {
 
 TEST_F(SceneFileTest, UnknownKeyWithoutCloseMatchListsValidKeys) {
     expectError("{@\"wibble\": 1, \"objects\": []}", "/wibble",
-                "unknown key \"wibble\" (valid keys: name, camera, path, frames, environment, lights, materials, objects)");
+                "unknown key \"wibble\" (valid keys: name, camera, path, frames, environment, lights, materials, objects, "
+                "pipeline, renderCache)");
+}
+
+TEST_F(SceneFileTest, RenderCacheKeysAreReadAndChecked) {
+    const Scene scene = load(R"({"pipeline": "render-cache", "renderCache": {"budget": 0.1, "alpha": 0.5,
+        "maxAge": 8, "predict": 0.3, "targetFrameMs": 20, "reflections": "reproject"}, "objects": []})");
+    ASSERT_TRUE(scene.render.pipeline);
+    EXPECT_EQ(*scene.render.pipeline, "render-cache");
+    EXPECT_EQ(scene.render.rcBudget, 0.1f);
+    EXPECT_EQ(scene.render.rcAlpha, 0.5f);
+    EXPECT_EQ(scene.render.rcMaxAge, 8);
+    EXPECT_EQ(scene.render.rcPredict, 0.3f);
+    EXPECT_EQ(scene.render.rcTargetMs, 20.0f);
+    EXPECT_EQ(scene.render.rcReflections, std::optional<std::string>("reproject"));
+    expectError("{\"pipeline\": @\"raster\", \"objects\": []}", "/pipeline",
+                "must be one of ray, hybrid, render-cache (got 'raster')");
+    expectError("{\"renderCache\": {\"budget\": @0}, \"objects\": []}", "/renderCache/budget", "(0, 1]");
+    expectError("{\"renderCache\": {\"alpha\": @1.5}, \"objects\": []}", "/renderCache/alpha", "between 0 and 1");
+    expectError("{\"renderCache\": {@\"gamma\": 1}, \"objects\": []}", "/renderCache/gamma", "unknown key");
 }
 
 TEST_F(SceneFileTest, FirstUnknownKeyInFileOrderIsReported) {
