@@ -56,9 +56,9 @@ double maskedPsnr(const Image& a, const Image& b, std::span<const unsigned char>
         if (!mask[i]) continue;
         const Rgb& p = a.pixels()[i];
         const Rgb& q = b.pixels()[i];
-        for (const double d : {static_cast<double>(display(p.r) - display(q.r)),
-                               static_cast<double>(display(p.g) - display(q.g)),
-                               static_cast<double>(display(p.b) - display(q.b))})
+        for (const double d :
+             {static_cast<double>(display(p.r) - display(q.r)), static_cast<double>(display(p.g) - display(q.g)),
+              static_cast<double>(display(p.b) - display(q.b))})
             sum += d * d;
         ++count;
     }

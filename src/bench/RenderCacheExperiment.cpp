@@ -277,8 +277,7 @@ public:
                      speedupCell(r.variants[vi].speedup),
                      rangeCell(series(f, [](const FrameRecord& x) { return 100.0 * x.rc.freshShare(); }), 1) + " %",
                      rangeCell(series(f, [](const FrameRecord& x) { return static_cast<double>(x.rc.holes); }), 0),
-                     rangeCell(series(f, [](const FrameRecord& x) { return static_cast<double>(x.rc.reshaded); }),
-                               0)});
+                     rangeCell(series(f, [](const FrameRecord& x) { return static_cast<double>(x.rc.reshaded); }), 0)});
                 const std::vector<double> peak = series(f, [](const FrameRecord& x) { return x.metrics.psnr; });
                 const std::vector<double> mirror = series(f, [](const FrameRecord& x) { return x.mirrorPsnr; });
                 quality.addRow({r.scene, sideText(r.side), variants[vi].label, psnrCell(peak),
@@ -312,7 +311,8 @@ public:
             const double goal = side == 512 ? kGoalReconstructionMs512 : kGoalReconstructionMs1024;
             beside.addRow({sideText(side), cellNumber(*fps, 0) + " fps (" + cellNumber(*ms, 1) + " ms)",
                            "≤ " + cellNumber(goal, 1) + " ms", ours.empty() ? "not run at this size" : ours,
-                           whole.empty() ? "not run at this size" : whole, full.empty() ? "not run at this size" : full});
+                           whole.empty() ? "not run at this size" : whole,
+                           full.empty() ? "not run at this size" : full});
         }
 
         // Goals, from the measured numbers.
@@ -344,48 +344,49 @@ public:
             }
         }
         for (const std::string& line : goalHeadlines(goals)) out.headlines.push_back(line);
-        out.headlines.push_back("render-cache documents (GPU Render Cache, GeForce 6800): reconstruction " +
-                                cellNumber(*documents.value("512", "ms"), 1) + " ms (" +
-                                cellNumber(*documents.value("512", "fps"), 0) + " fps) at 512², " +
-                                cellNumber(*documents.value("1024", "ms"), 1) + " ms (" +
-                                cellNumber(*documents.value("1024", "fps"), 0) + " fps) at 1024², " +
-                                paperRenderCacheCpu());
+        out.headlines.push_back(
+            "render-cache documents (GPU Render Cache, GeForce 6800): reconstruction " +
+            cellNumber(*documents.value("512", "ms"), 1) + " ms (" + cellNumber(*documents.value("512", "fps"), 0) +
+            " fps) at 512², " + cellNumber(*documents.value("1024", "ms"), 1) + " ms (" +
+            cellNumber(*documents.value("1024", "fps"), 0) + " fps) at 1024², " + paperRenderCacheCpu());
         if (std::find(sides.begin(), sides.end(), 1024) == sides.end())
             out.caveats.push_back("the 1024² goals (reconstruction ≤ " + cellNumber(kGoalReconstructionMs1024, 1) +
-                                  " ms, ≥ " + cellNumber(kGoalFps, 0) + " fps end to end) are not measured at this "
+                                  " ms, ≥ " + cellNumber(kGoalFps, 0) +
+                                  " fps end to end) are not measured at this "
                                   "size; `raycache bench render-cache --full` runs 1024²");
 
         // Plots.
         out.plots = writePlots(context, runs, variants, sides, frames, documents);
 
-        std::string md =
-            "Each scene's own camera path — `room`, `behind-32`, `glass` — for " + std::to_string(frames) +
-            " frames at ";
+        std::string md = "Each scene's own camera path — `room`, `behind-32`, `glass` — for " + std::to_string(frames) +
+                         " frames at ";
         for (std::size_t i = 0; i < sides.size(); ++i)
             md += (i ? " and " : "") + std::to_string(sides[i]) + "x" + std::to_string(sides[i]);
-        md += " pixels, the scenes' own caching (CCT on their mirrors and glass), caches and Render Cache starting "
-              "empty. Every frame is rendered in turn by three sessions sharing one tracer and its threads, so "
-              "machine noise hits them alike: the **full render** (the ray pipeline: the reference image and the "
-              "speed baseline), the **Render Cache** (a reprojected sample keeps the colour it was traced with, as "
-              "in the 2002 Render Cache) and the **Render Cache + re-evaluated reflections** (highlights and "
-              "reflected/refracted colour of reprojected mirror, glass and glossy samples shaded again from the "
-              "new eye, their rays answered by the caching cubes where they can). Both Render Cache variants trace "
-              "the same primary rays: a budget of " +
-              cellNumber(100.0 * rcDefaults.budget, 0) + " % of the pixels per frame (α = " +
-              cellNumber(rcDefaults.alpha, 2) + ", " + cellNumber(100.0 * rcDefaults.predictShare, 0) +
-              " % of it through the predicted next camera, samples evicted after " + std::to_string(rcDefaults.maxAge) +
-              " reprojections); re-evaluating reflections adds secondary rays, not primary ones.\n\n"
-              "**Frame 1 traces every pixel** (there are no samples yet, so its image equals the full render's): "
-              "it is left out of every median, mean, range and speed-up below, and kept in results.json. "
-              "*Reconstruction* = reprojection (aging, eviction, projection, depth test) + maps (depth culling, "
-              "hole detection, priority and request maps, prediction maps) + filters (3x3 filter, 7x7 prefilter, "
-              "writing the image); *sample generation* = tracing the requested pixels (this frame's camera and the "
-              "predicted one, with the merge of the caches' stores) + reshading. *Mirror pixels*: pixels whose "
-              "first hit in the full render is an object that reflects (mirrors, and glass, which reflects "
-              "10 %), found by tracing the full render's primary rays. Speed-ups: mean time per frame of the full "
-              "render over the variant's along the path, 95 % CI from the paired bootstrap over the frames "
-              "(bench/SpeedupInterval). Cells are median (min–max) over " +
-              lastFrameText + ".\n\n";
+        md +=
+            " pixels, the scenes' own caching (CCT on their mirrors and glass), caches and Render Cache starting "
+            "empty. Every frame is rendered in turn by three sessions sharing one tracer and its threads, so "
+            "machine noise hits them alike: the **full render** (the ray pipeline: the reference image and the "
+            "speed baseline), the **Render Cache** (a reprojected sample keeps the colour it was traced with, as "
+            "in the 2002 Render Cache) and the **Render Cache + re-evaluated reflections** (highlights and "
+            "reflected/refracted colour of reprojected mirror, glass and glossy samples shaded again from the "
+            "new eye, their rays answered by the caching cubes where they can). Both Render Cache variants trace "
+            "the same primary rays: a budget of " +
+            cellNumber(100.0 * rcDefaults.budget, 0) +
+            " % of the pixels per frame (α = " + cellNumber(rcDefaults.alpha, 2) + ", " +
+            cellNumber(100.0 * rcDefaults.predictShare, 0) +
+            " % of it through the predicted next camera, samples evicted after " + std::to_string(rcDefaults.maxAge) +
+            " reprojections); re-evaluating reflections adds secondary rays, not primary ones.\n\n"
+            "**Frame 1 traces every pixel** (there are no samples yet, so its image equals the full render's): "
+            "it is left out of every median, mean, range and speed-up below, and kept in results.json. "
+            "*Reconstruction* = reprojection (aging, eviction, projection, depth test) + maps (depth culling, "
+            "hole detection, priority and request maps, prediction maps) + filters (3x3 filter, 7x7 prefilter, "
+            "writing the image); *sample generation* = tracing the requested pixels (this frame's camera and the "
+            "predicted one, with the merge of the caches' stores) + reshading. *Mirror pixels*: pixels whose "
+            "first hit in the full render is an object that reflects (mirrors, and glass, which reflects "
+            "10 %), found by tracing the full render's primary rays. Speed-ups: mean time per frame of the full "
+            "render over the variant's along the path, 95 % CI from the paired bootstrap over the frames "
+            "(bench/SpeedupInterval). Cells are median (min–max) over " +
+            lastFrameText + ".\n\n";
         md += "### Frame time: reconstruction and sample generation\n\n" + split.toMarkdown() + "\n";
         md += "### Quality against the full render\n\n" + quality.toMarkdown() +
               "\nPSNR is infinite for a frame identical to the full render; such frames are counted apart and left "
@@ -399,8 +400,9 @@ public:
               " of the machine's CPU time while this experiment ran. Load average (1, 5, 15 min): " +
               loadBefore.toString() + " before, " + loadAfter.toString() +
               " after (it includes the bench's own earlier work).\n\n";
-        md += "Last frame of each path, with difference heat maps against the full render (×1: red = totally "
-              "different; ×4: red = 0.25):\n\n";
+        md +=
+            "Last frame of each path, with difference heat maps against the full render (×1: red = totally "
+            "different; ×4: red = 0.25):\n\n";
         for (const std::string& image : out.images) md += "- [" + image + "](" + image + ")\n";
         out.markdown = md;
 
@@ -490,7 +492,8 @@ private:
         return run;
     }
 
-    static std::vector<GoalCheck> checkGoals(const std::vector<SceneRun>& runs, const std::vector<RcVariant>& variants) {
+    static std::vector<GoalCheck> checkGoals(const std::vector<SceneRun>& runs,
+                                             const std::vector<RcVariant>& variants) {
         std::vector<GoalCheck> goals;
         const auto reconstruction = [](const FrameRecord& x) { return x.rc.reconstructionMs(); };
         for (int side : {512, 1024}) {
@@ -514,15 +517,15 @@ private:
                                      "PSNR ≥ " + cellNumber(kGoalMeanPsnr, 0) + " dB at " + sideText(kGoalFpsSide);
             bool any = false;
             for (const SceneRun& r : runs) {
-                if (r.side != kGoalFpsSide ||
-                    std::find(kEndToEndGoalScenes.begin(), kEndToEndGoalScenes.end(), r.scene) ==
-                        kEndToEndGoalScenes.end())
+                if (r.side != kGoalFpsSide || std::find(kEndToEndGoalScenes.begin(), kEndToEndGoalScenes.end(),
+                                                        r.scene) == kEndToEndGoalScenes.end())
                     continue;
                 for (std::size_t vi = 0; vi < variants.size(); ++vi) {
                     any = true;
                     const std::vector<FrameRecord>& f = r.variants[vi].frames;
                     const double fps = 1000.0 / mean(series(f, [](const FrameRecord& x) { return x.ms; }));
-                    const double peak = mean(finiteOnly(series(f, [](const FrameRecord& x) { return x.metrics.psnr; })));
+                    const double peak =
+                        mean(finiteOnly(series(f, [](const FrameRecord& x) { return x.metrics.psnr; })));
                     std::optional<bool> met;
                     if (std::isfinite(fps)) met = fps >= kGoalFps && (!std::isfinite(peak) || peak >= kGoalMeanPsnr);
                     goals.push_back({goal, r.scene + ", " + variants[vi].label,
@@ -539,10 +542,10 @@ private:
                 const double plain = mean(finiteOnly(series(r.variants[0].frames, mirror)));
                 const double reshaded = mean(finiteOnly(series(r.variants[1].frames, mirror)));
                 const double gain = reshaded - plain;
-                goals.push_back({goal, r.scene + " " + sideText(r.side),
-                                 cellNumber(gain, 2) + " dB (" + cellNumber(reshaded, 2) + " vs " +
-                                     cellNumber(plain, 2) + " dB)",
-                                 std::isfinite(gain) ? std::optional<bool>(gain >= kGoalMirrorGainDb) : std::nullopt});
+                goals.push_back(
+                    {goal, r.scene + " " + sideText(r.side),
+                     cellNumber(gain, 2) + " dB (" + cellNumber(reshaded, 2) + " vs " + cellNumber(plain, 2) + " dB)",
+                     std::isfinite(gain) ? std::optional<bool>(gain >= kGoalMirrorGainDb) : std::nullopt});
             }
         }
         return goals;
@@ -621,8 +624,8 @@ private:
 
         // Where the time goes: median per scene, size and variant, whiskers min–max.
         SvgPlot splitPlot;
-        splitPlot.title = "render-cache: frame time split (median, whiskers min–max, frames 2–" +
-                          std::to_string(frames) + ")";
+        splitPlot.title =
+            "render-cache: frame time split (median, whiskers min–max, frames 2–" + std::to_string(frames) + ")";
         splitPlot.yLabel = "ms per frame";
         splitPlot.bars = true;
         PlotSeries reconstruction{"reconstruction", {}}, generation{"sample generation", {}}, whole{"whole frame", {}},
@@ -696,13 +699,13 @@ private:
                       {"mae", get([](const FrameRecord& x) { return x.metrics.mae; })},
                       {"mirror_psnr_db", get([](const FrameRecord& x) { return x.mirrorPsnr; })}}}};
             }
-            runsJson.push_back({{"scene", r.scene},
-                                {"width", r.side},
-                                {"height", r.side},
-                                {"full",
-                                 {{"frame_ms", r.fullMs}, {"summary", {{"ms", summaryJson(afterSkipped(r.fullMs))}}}}},
-                                {"mirror_pixels", r.mirrorPixels},
-                                {"variants", variantsJson}});
+            runsJson.push_back(
+                {{"scene", r.scene},
+                 {"width", r.side},
+                 {"height", r.side},
+                 {"full", {{"frame_ms", r.fullMs}, {"summary", {{"ms", summaryJson(afterSkipped(r.fullMs))}}}}},
+                 {"mirror_pixels", r.mirrorPixels},
+                 {"variants", variantsJson}});
         }
         nlohmann::json goalsJson = nlohmann::json::array();
         for (const GoalCheck& g : goals)
@@ -713,50 +716,49 @@ private:
         nlohmann::json docs = toJson(documents);
         docs["cpu"] = paperRenderCacheCpu();
         const nlohmann::json othersJson = othersShare >= 0.0 ? nlohmann::json(othersShare) : nlohmann::json();
-        writeJsonFile(
-            context.dir / "results.json",
-            {{"experiment", name()},
-             {"title", title()},
-             {"size", toString(context.settings.size)},
-             {"settings",
-              {{"scenes", kScenes},
-               {"sides", sides},
-               {"frames", frames},
-               {"skipped_frames", kSkippedFrames},
-               {"technique", "scene materials (CCT on mirrors and glass)"},
-               {"baseline", "full render, ray pipeline"},
-               {"variants", variantsSpec},
-               {"render_cache",
-                {{"budget", rc.budget},
-                 {"alpha", rc.alpha},
-                 {"max_age", rc.maxAge},
-                 {"predict_share", rc.predictShare},
-                 {"margin", rc.margin},
-                 {"depth_cull_threshold", rc.depthCullThreshold},
-                 {"request_tile_size", rc.requestTileSize},
-                 {"refresh_all_hole_share", rc.refreshAllHoleShare},
-                 {"seed", rc.seed}}},
-               {"max_depth", RenderSettings{}.maxDepth},
-               {"bootstrap",
-                {{"resamples", BootstrapSettings{}.resamples},
-                 {"seed", BootstrapSettings{}.seed},
-                 {"confidence", BootstrapSettings{}.confidence},
-                 {"statistic", "mean"}}}}},
-             {"environment", toJson(context.environment)},
-             {"documents", docs},
-             {"goal_targets",
-              {{"reconstruction_ms_512", kGoalReconstructionMs512},
-               {"reconstruction_ms_1024", kGoalReconstructionMs1024},
-               {"end_to_end_fps", kGoalFps},
-               {"end_to_end_side", kGoalFpsSide},
-               {"end_to_end_scenes", kEndToEndGoalScenes},
-               {"mean_psnr_db", kGoalMeanPsnr},
-               {"mirror_gain_db", kGoalMirrorGainDb}}},
-             {"goals", goalsJson},
-             {"load_average", {{"before", loadBefore.toString()}, {"after", loadAfter.toString()}}},
-             {"others_cpu_share", othersJson},
-             {"caveats", caveats},
-             {"runs", runsJson}});
+        writeJsonFile(context.dir / "results.json",
+                      {{"experiment", name()},
+                       {"title", title()},
+                       {"size", toString(context.settings.size)},
+                       {"settings",
+                        {{"scenes", kScenes},
+                         {"sides", sides},
+                         {"frames", frames},
+                         {"skipped_frames", kSkippedFrames},
+                         {"technique", "scene materials (CCT on mirrors and glass)"},
+                         {"baseline", "full render, ray pipeline"},
+                         {"variants", variantsSpec},
+                         {"render_cache",
+                          {{"budget", rc.budget},
+                           {"alpha", rc.alpha},
+                           {"max_age", rc.maxAge},
+                           {"predict_share", rc.predictShare},
+                           {"margin", rc.margin},
+                           {"depth_cull_threshold", rc.depthCullThreshold},
+                           {"request_tile_size", rc.requestTileSize},
+                           {"refresh_all_hole_share", rc.refreshAllHoleShare},
+                           {"seed", rc.seed}}},
+                         {"max_depth", RenderSettings{}.maxDepth},
+                         {"bootstrap",
+                          {{"resamples", BootstrapSettings{}.resamples},
+                           {"seed", BootstrapSettings{}.seed},
+                           {"confidence", BootstrapSettings{}.confidence},
+                           {"statistic", "mean"}}}}},
+                       {"environment", toJson(context.environment)},
+                       {"documents", docs},
+                       {"goal_targets",
+                        {{"reconstruction_ms_512", kGoalReconstructionMs512},
+                         {"reconstruction_ms_1024", kGoalReconstructionMs1024},
+                         {"end_to_end_fps", kGoalFps},
+                         {"end_to_end_side", kGoalFpsSide},
+                         {"end_to_end_scenes", kEndToEndGoalScenes},
+                         {"mean_psnr_db", kGoalMeanPsnr},
+                         {"mirror_gain_db", kGoalMirrorGainDb}}},
+                       {"goals", goalsJson},
+                       {"load_average", {{"before", loadBefore.toString()}, {"after", loadAfter.toString()}}},
+                       {"others_cpu_share", othersJson},
+                       {"caveats", caveats},
+                       {"runs", runsJson}});
     }
 };
 
