@@ -237,7 +237,7 @@ TEST_F(Experiments, RenderCacheSplitsFrameTimeAndItsFirstFrameIsTheFullRender) {
     const int frames = j.at("settings").at("frames");
     EXPECT_EQ(frames, 4);
     EXPECT_EQ(j.at("settings").at("skipped_frames"), 1);
-    EXPECT_DOUBLE_EQ(j.at("documents").at("rows").at(0).at("values").at(0).get<double>(), 123.0);
+    EXPECT_DOUBLE_EQ(j.at("documents").at("rows").at(0).at("fps").get<double>(), 123.0);
     ASSERT_EQ(j.at("runs").size(), 3u);  // room, behind-32, glass at 48²
     for (const auto& run : j.at("runs")) {
         const std::string scene = run.at("scene");
