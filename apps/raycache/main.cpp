@@ -138,7 +138,8 @@ int main(int argc, char** argv) {
     CLI::App* benchCmd = app.add_subcommand(
         "bench", "Reproduce the documents' experiments: tables, plots, images and results/report.md");
     benchCmd->add_option("experiments", bench.experiments,
-                         "table-5.1, table-5.2, table-5.3, fill-rate, quality, parallax, or all (writes report.md)");
+                         "table-5.1, table-5.2, table-5.3, fill-rate, quality, parallax, render-cache, or all "
+                         "(writes report.md)");
     benchCmd->add_flag("--quick", bench.quick, "Lower resolution, fewer frames: all in a few minutes (default)");
     benchCmd->add_flag("--full", bench.full, "The documents' resolutions and frame counts (long)");
     benchCmd->add_flag("--tiny", bench.tiny, "A few dozen pixels, seconds: a smoke test, numbers meaningless");

@@ -5,6 +5,7 @@
 #include "bench/FillRateExperiment.h"
 #include "bench/ParallaxExperiment.h"
 #include "bench/QualityExperiment.h"
+#include "bench/RenderCacheExperiment.h"
 #include "bench/TimingTableExperiment.h"
 #include "core/Errors.h"
 
@@ -18,6 +19,7 @@ std::vector<std::unique_ptr<Experiment>> allExperiments() {
     all.push_back(makeFillRateExperiment());
     all.push_back(makeQualityExperiment());
     all.push_back(makeParallaxExperiment());
+    all.push_back(makeRenderCacheExperiment());
     return all;
 }
 

@@ -38,4 +38,11 @@ PaperTable paperFigure59();
 // What Figure 5.9 says about later frames, in words (no numbers per frame).
 std::string paperFigure59Later();
 
+// The GPU Render Cache (SPEC §6, seed 002, Section 4 and Figure 3):
+// reconstruction alone (sample generation excluded) on a GeForce 6800 with a
+// 2.8 GHz Pentium 4; rows "512", "1024" (image side); columns fps, ms.
+PaperTable paperRenderCache();
+// What the same section says about the optimised CPU version, in words.
+std::string paperRenderCacheCpu();
+
 }  // namespace raycache

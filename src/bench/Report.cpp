@@ -15,9 +15,9 @@ std::string sizeDescription(BenchSize size) {
         case BenchSize::Quick:
             return "**Size: quick** — lower resolution and fewer frames than the documents (512×512 instead of "
                    "1024×1024 for the speed tables and quality, 960×540 instead of 1920×1080 for Table 5.3, fewer "
-                   "warm-up and timed frames, one moving-camera run per variant); the fill-rate experiment keeps the "
-                   "documents' 1024×1024. Ratios are indicative; run `raycache bench all --full` for the documents' "
-                   "sizes.";
+                   "warm-up and timed frames, one moving-camera run per variant, 30 Render Cache frames per path at "
+                   "512×512 only); the fill-rate experiment keeps the documents' 1024×1024. Ratios are indicative; "
+                   "run `raycache bench all --full` for the documents' sizes.";
         case BenchSize::Tiny:
             return "**Size: tiny** — a smoke test at a few dozen pixels; the numbers mean nothing.";
     }

@@ -37,6 +37,15 @@ nlohmann::json toJson(const PaperTable& table) {
     return {{"source", table.source}, {"conditions", table.conditions}, {"rows", rows}};
 }
 
+nlohmann::json toJson(const SpeedupInterval& s) {
+    return {{"speedup", finiteOrNull(s.speedup)},
+            {"ci95_low", finiteOrNull(s.low)},
+            {"ci95_high", finiteOrNull(s.high)},
+            {"pairs", s.pairs},
+            {"relative_half_width", finiteOrNull(s.relativeHalfWidth())},
+            {"no_measurable_difference", s.containsOne()}};
+}
+
 nlohmann::json finiteOrNull(double value) {
     return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json();
 }

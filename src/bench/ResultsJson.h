@@ -7,6 +7,7 @@
 #include "bench/InterleavedRuns.h"
 #include "bench/PaperFigures.h"
 #include "bench/RunEnvironment.h"
+#include "bench/SpeedupInterval.h"
 
 namespace raycache {
 
@@ -14,6 +15,9 @@ nlohmann::json toJson(const RunEnvironment& environment);
 // Every timed and warm-up frame in ms, with median, min, max and the median frame rate.
 nlohmann::json toJson(const VariantTimes& times);
 nlohmann::json toJson(const PaperTable& table);
+// {"speedup", "ci95_low", "ci95_high" (null when unknown), "pairs",
+// "relative_half_width", "no_measurable_difference"}.
+nlohmann::json toJson(const SpeedupInterval& s);
 // JSON has no infinity or NaN: such values (e.g. the PSNR of identical
 // images) become null.
 nlohmann::json finiteOrNull(double value);

@@ -104,4 +104,11 @@ std::string describeSpeedup(const SpeedupInterval& s) {
     return format2(s.speedup) + "× (" + ci + ")";
 }
 
+std::string speedupCell(const SpeedupInterval& s) {
+    if (!std::isfinite(s.speedup)) return "–";
+    if (!s.known()) return format2(s.speedup) + "×";
+    if (s.containsOne()) return "no measurable difference (" + format2(s.speedup) + "×, " + intervalText(s) + ")";
+    return format2(s.speedup) + "× (" + intervalText(s) + ")";
+}
+
 }  // namespace raycache

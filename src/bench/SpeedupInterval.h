@@ -50,6 +50,10 @@ SpeedupInterval bootstrapSpeedup(std::span<const double> baselineMs, std::span<c
 // "1.18× (95 % CI 1.10–1.27)", or "no measurable difference (0.97×, 95 % CI 0.91–1.05)"
 // when the interval contains 1.0, or "–" when unknown.
 std::string describeSpeedup(const SpeedupInterval& s);
+// Table cell: "1.18× (1.10–1.27)", "1.18×" without an interval,
+// "no measurable difference (0.97×, 0.91–1.05)" when the interval contains 1,
+// "–" when there is no speed-up.
+std::string speedupCell(const SpeedupInterval& s);
 // The interval alone, "1.10–1.27", for table cells; "–" when unknown.
 std::string intervalText(const SpeedupInterval& s);
 

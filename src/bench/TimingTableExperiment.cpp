@@ -57,23 +57,6 @@ double hitPercent(const std::optional<FrameCacheStats>& c) {
     return 100.0 * static_cast<double>(c->hits()) / static_cast<double>(c->lookups());
 }
 
-nlohmann::json intervalJson(const SpeedupInterval& s) {
-    return {{"speedup", finiteOrNull(s.speedup)},
-            {"ci95_low", finiteOrNull(s.low)},
-            {"ci95_high", finiteOrNull(s.high)},
-            {"pairs", s.pairs},
-            {"relative_half_width", finiteOrNull(s.relativeHalfWidth())},
-            {"no_measurable_difference", s.containsOne()}};
-}
-
-// Table cell: "1.18× (1.10–1.27)", or "≈ 1 (0.97×, 0.91–1.05)" when the interval contains 1.
-std::string speedupCell(const SpeedupInterval& s) {
-    if (!std::isfinite(s.speedup)) return "–";
-    if (!s.known()) return cellNumber(s.speedup, 2) + "×";
-    if (s.containsOne()) return "no measurable difference (" + cellNumber(s.speedup, 2) + "×, " + intervalText(s) + ")";
-    return cellNumber(s.speedup, 2) + "× (" + intervalText(s) + ")";
-}
-
 // A plotted speed-up with its interval as the whisker.
 PlotPoint intervalPoint(double x, const SpeedupInterval& s) {
     PlotPoint p{x, s.speedup, std::nullopt, std::nullopt};
@@ -245,12 +228,12 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
             } else {
                 v["available"] = true;
                 v["still"] = toJson(r.still);
-                v["still"]["speedup_vs_" + baseline.key] = intervalJson(r.stillSpeedup);
+                v["still"]["speedup_vs_" + baseline.key] = toJson(r.stillSpeedup);
                 v["still"]["cache_last_frame"] = cacheJson(r.stillCache);
                 if (!r.movingFrameMs.empty()) {
                     v["moving"] = toJson(r.moving);
                     v["moving"]["frame_ms_per_round"] = r.movingFrameMs;
-                    v["moving"]["speedup_vs_" + baseline.key] = intervalJson(r.movingSpeedup);
+                    v["moving"]["speedup_vs_" + baseline.key] = toJson(r.movingSpeedup);
                     v["moving"]["cache_last_frame"] = cacheJson(r.movingLastCache);
                 }
             }

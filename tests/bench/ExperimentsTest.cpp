@@ -232,6 +232,115 @@ TEST_F(Experiments, QualityAndParallaxMetricsAreInRange) {
     for (const auto& v : p.at("variants")) EXPECT_EQ(v.at("frames").size(), p.at("settings").at("frames"));
 }
 
+TEST_F(Experiments, RenderCacheSplitsFrameTimeAndItsFirstFrameIsTheFullRender) {
+    const nlohmann::json j = results("render-cache");
+    const int frames = j.at("settings").at("frames");
+    EXPECT_EQ(frames, 4);
+    EXPECT_EQ(j.at("settings").at("skipped_frames"), 1);
+    EXPECT_DOUBLE_EQ(j.at("documents").at("rows").at(0).at("fps").get<double>(), 123.0);
+    ASSERT_EQ(j.at("runs").size(), 3u);  // room, behind-32, glass at 48²
+    for (const auto& run : j.at("runs")) {
+        const std::string scene = run.at("scene");
+        SCOPED_TRACE(scene);
+        const int side = run.at("width");
+        EXPECT_EQ(side, 48);
+        const std::int64_t pixels = static_cast<std::int64_t>(side) * side;
+        const auto fullMs = run.at("full").at("frame_ms").get<std::vector<double>>();
+        ASSERT_EQ(static_cast<int>(fullMs.size()), frames);
+        const auto mirrorPixels = run.at("mirror_pixels").get<std::vector<std::int64_t>>();
+        ASSERT_EQ(static_cast<int>(mirrorPixels.size()), frames);
+        for (std::int64_t m : mirrorPixels) {
+            EXPECT_GT(m, 0);  // every scene shows a mirror or glass
+            EXPECT_LT(m, pixels);
+        }
+        ASSERT_EQ(run.at("variants").size(), 2u);
+        std::int64_t reshadedLater = 0;
+        for (const char* key : {"reproject", "reshade"}) {
+            SCOPED_TRACE(key);
+            const nlohmann::json& v = run.at("variants").at(key);
+            const nlohmann::json& f = v.at("frames");
+            ASSERT_EQ(static_cast<int>(f.size()), frames);
+            // Frame 1 has no samples to reproject: it traces every pixel, as the
+            // full render does, and its image is the full render's exactly.
+            const nlohmann::json& first = f.at(0);
+            EXPECT_TRUE(first.at("refreshed_all").get<bool>());
+            EXPECT_EQ(first.at("fresh").get<std::int64_t>(), pixels);
+            EXPECT_DOUBLE_EQ(first.at("fresh_share").get<double>(), 1.0);
+            EXPECT_EQ(first.at("holes").get<std::int64_t>(), pixels);
+            EXPECT_TRUE(first.at("psnr_db").is_null());  // identical: infinite PSNR
+            EXPECT_TRUE(first.at("mirror_psnr_db").is_null());
+            EXPECT_DOUBLE_EQ(first.at("mae").get<double>(), 0.0);
+            EXPECT_DOUBLE_EQ(first.at("ssim").get<double>(), 1.0);
+            std::vector<double> laterMs;
+            for (std::size_t k = 0; k < f.size(); ++k) {
+                const nlohmann::json& x = f.at(k);
+                EXPECT_EQ(x.at("frame").get<int>(), static_cast<int>(k) + 1);
+                EXPECT_EQ(x.at("pixels").get<std::int64_t>(), pixels);
+                const double ms = x.at("ms");
+                EXPECT_GT(ms, 0.0);
+                EXPECT_NEAR(x.at("reconstruction_ms").get<double>(),
+                            x.at("reproject_ms").get<double>() + x.at("maps_ms").get<double>() +
+                                x.at("filter_ms").get<double>(),
+                            1e-9);
+                EXPECT_NEAR(x.at("sample_generation_ms").get<double>(),
+                            x.at("trace_ms").get<double>() + x.at("reshade_ms").get<double>(), 1e-9);
+                // The parts are timed inside the frame the whole is timed around.
+                EXPECT_LE(x.at("reconstruction_ms").get<double>() + x.at("sample_generation_ms").get<double>(),
+                          ms + 1e-6);
+                EXPECT_GE(x.at("fresh_share").get<double>(), 0.0);
+                EXPECT_LE(x.at("fresh_share").get<double>(), 1.0);
+                EXPECT_LE(x.at("mirror_pixels").get<std::int64_t>(), pixels);
+                EXPECT_LE(x.at("ssim").get<double>(), 1.0);
+                EXPECT_TRUE(x.at("psnr_db").is_null() || x.at("psnr_db").get<double>() > 0.0);
+                if (std::string(key) == "reproject") EXPECT_EQ(x.at("reshaded").get<std::int64_t>(), 0);
+                if (k == 0) continue;
+                laterMs.push_back(ms);
+                // A small camera step: the budget, 5 % of the pixels, is all a frame traces.
+                EXPECT_FALSE(x.at("refreshed_all").get<bool>());
+                EXPECT_EQ(x.at("budget").get<std::int64_t>(), std::lround(0.05 * static_cast<double>(pixels)));
+                EXPECT_LE(x.at("fresh").get<std::int64_t>() + x.at("predicted").get<std::int64_t>(),
+                          x.at("budget").get<std::int64_t>());
+                EXPECT_LT(x.at("fresh_share").get<double>(), 0.1);
+                EXPECT_GT(x.at("reprojected").get<std::int64_t>(), pixels / 2);
+                if (std::string(key) == "reshade") reshadedLater += x.at("reshaded").get<std::int64_t>();
+            }
+            // The speed-up skips frame 1 and is what the recorded times give.
+            BootstrapSettings bootstrap;
+            bootstrap.statistic = TimeStatistic::Mean;
+            const SpeedupInterval expected =
+                bootstrapSpeedup(std::vector<double>(fullMs.begin() + 1, fullMs.end()), laterMs, bootstrap);
+            const nlohmann::json& s = v.at("speedup_vs_full");
+            EXPECT_NEAR(s.at("speedup").get<double>(), expected.speedup, 1e-9);
+            EXPECT_EQ(s.at("pairs").get<int>(), frames - 1);
+            EXPECT_TRUE(s.at("ci95_low").is_null());  // 3 pairs: no interval
+            EXPECT_EQ(v.at("summary").at("ms").at("count").get<int>(), frames - 1);
+            for (const std::string suffix : {".png", "-heatmap.png", "-heatmap-x4.png"})
+                EXPECT_TRUE(fs::exists(dir_ / "render-cache" / (scene + "-48-" + key + suffix)));
+        }
+        // Reprojected mirror and glass samples are shaded again once the camera moves.
+        EXPECT_GT(reshadedLater, 0);
+        EXPECT_TRUE(fs::exists(dir_ / "render-cache" / (scene + "-48-full.png")));
+    }
+    // Goals are stated from the numbers: at 48² the 512² and 1024² ones are not measured.
+    ASSERT_FALSE(j.at("goals").empty());
+    int mirrorGoals = 0;
+    for (const auto& g : j.at("goals")) {
+        const std::string goal = g.at("goal");
+        if (goal.find("mirror pixels") != std::string::npos) {
+            ++mirrorGoals;
+            EXPECT_TRUE(g.at("met").is_boolean()) << goal;
+        } else {
+            EXPECT_TRUE(g.at("met").is_null()) << goal;
+        }
+    }
+    EXPECT_EQ(mirrorGoals, 3);
+    const std::string md = readFile(dir_ / "render-cache" / "results.md");
+    EXPECT_NE(md.find("Frame 1 traces every pixel"), std::string::npos);
+    EXPECT_NE(md.find("123 fps (8.1 ms)"), std::string::npos);
+    EXPECT_NE(log_.find("render-cache goal, reconstruction ≤ 2.0 ms at 512² (median): not measured at this size"),
+              std::string::npos);
+}
+
 TEST_F(Experiments, ReportLinksResolveAndStateTheSize) {
     const std::string report = readFile(dir_ / "report.md");
     EXPECT_NE(report.find("Size: tiny"), std::string::npos);

@@ -31,6 +31,19 @@ TEST(ImageMetrics, PsnrAndMaeOfKnownImages) {
     EXPECT_DOUBLE_EQ(meanAbsoluteError(white, white), 0.0);
 }
 
+TEST(ImageMetrics, MaskedPsnrCountsOnlyMaskedPixels) {
+    Image black(4, 2), half(4, 2);
+    for (int x = 0; x < 4; ++x) half.at(x, 0) = Rgb{1.0f};
+    // Row 0 differs by 1 everywhere, row 1 is the same.
+    std::vector<unsigned char> rowZero(8, 0), rowOne(8, 0), both(8, 1), none(8, 0);
+    for (int x = 0; x < 4; ++x) rowZero[static_cast<std::size_t>(x)] = rowOne[static_cast<std::size_t>(4 + x)] = 1;
+    EXPECT_DOUBLE_EQ(maskedPsnr(black, half, rowZero), 0.0);
+    EXPECT_EQ(maskedPsnr(black, half, rowOne), std::numeric_limits<double>::infinity());
+    EXPECT_NEAR(maskedPsnr(black, half, both), psnr(black, half), 1e-12);
+    EXPECT_TRUE(std::isnan(maskedPsnr(black, half, none)));
+    EXPECT_THROW(maskedPsnr(black, half, std::vector<unsigned char>(7, 1)), std::exception);
+}
+
 TEST(ImageMetrics, CountsNonFinitePixels) {
     Image img(3, 1);
     img.at(1, 0) = Rgb{std::nanf(""), 0.0f, 0.0f};

@@ -25,3 +25,11 @@ TEST(PaperFigures, LookupByRowAndColumn) {
     EXPECT_FALSE(t.value("Nothing", "cct").has_value());
     EXPECT_DOUBLE_EQ(paperFigure59().value("512", "invalid-after-frame-1").value(), 73.0);
 }
+
+TEST(PaperFigures, RenderCacheFrameRatesAndTimesAgree) {
+    const PaperTable t = paperRenderCache();
+    EXPECT_DOUBLE_EQ(t.value("512", "fps").value(), 123.0);
+    EXPECT_DOUBLE_EQ(t.value("1024", "fps").value(), 38.0);
+    EXPECT_NEAR(t.value("512", "ms").value(), 8.1, 0.05);
+    EXPECT_NEAR(t.value("1024", "ms").value(), 26.3, 0.05);
+}
