@@ -1,6 +1,8 @@
 #include "rendercache/RequestMap.h"
 
 #include <algorithm>
+#include <array>
+#include <numeric>
 #include <cmath>
 
 namespace raycache {
@@ -67,32 +69,40 @@ void buildRequestMap(std::span<const float> priority, int width, int height, int
     for (std::size_t t = 0; t < tiles; ++t)
         firstRequest[t + 1] = firstRequest[t] + static_cast<std::size_t>(out.tileRequests[t]);
     out.pixels.resize(firstRequest[tiles]);
-    struct Candidate {
-        std::uint64_t key;
-        PixelCoord pixel;
-    };
-    std::vector<std::vector<Candidate>> perWorker(static_cast<std::size_t>(parallel.threadCount()));
     const std::uint64_t frameSeed = mixBits(seed ^ mixBits(frame));
-    parallel.forEachIndex(static_cast<int>(tiles), [&](int tile, int worker) {
+    parallel.forEachIndex(static_cast<int>(tiles), [&](int tile, int) {
         const auto t = static_cast<std::size_t>(tile);
         const int wanted = out.tileRequests[t];
         if (wanted == 0) return;
         int x0, y0, x1, y1;
         tileRect(t, x0, y0, x1, y1);
-        std::vector<Candidate>& candidates = perWorker[static_cast<std::size_t>(worker)];
-        candidates.clear();
-        for (int y = y0; y < y1; ++y)
-            for (int x = x0; x < x1; ++x) {
-                const std::size_t i = pixelIndex(x, y);
-                // Priority quantised to 16 bits above, the hash below: sorting
-                // by key orders by priority, then at random.
-                const auto level = static_cast<std::uint64_t>(std::clamp(priority[i], 0.0f, 1.0f) * 65535.0f);
-                const std::uint64_t random = mixBits(frameSeed ^ i) >> 16;
-                candidates.push_back({(level << 48) | random, {x, y}});
-            }
-        const auto order = [](const Candidate& a, const Candidate& b) { return a.key > b.key; };
-        std::partial_sort(candidates.begin(), candidates.begin() + wanted, candidates.end(), order);
-        for (int k = 0; k < wanted; ++k) out.pixels[firstRequest[t] + static_cast<std::size_t>(k)] = candidates[static_cast<std::size_t>(k)].pixel;
+        const int tileWidth = x1 - x0;
+        const int n = tileWidth * (y1 - y0);
+        // Priorities in kLevels steps; holes (1) on the top one.
+        constexpr int kLevels = 33;
+        const auto levelOf = [&](int k) {
+            const float p = priority[pixelIndex(x0 + k % tileWidth, y0 + k / tileWidth)];
+            return static_cast<int>(std::clamp(p, 0.0f, 1.0f) * static_cast<float>(kLevels - 1));
+        };
+        std::array<int, kLevels> perLevel{};
+        for (int k = 0; k < n; ++k) ++perLevel[static_cast<std::size_t>(levelOf(k))];
+        // The lowest level taken, and how many of it.
+        int cut = kLevels - 1, above = 0;
+        while (cut > 0 && above + perLevel[static_cast<std::size_t>(cut)] < wanted) above += perLevel[static_cast<std::size_t>(cut--)];
+        int fromCut = wanted - above;
+        // Among equals, a random order: the tile's pixels visited with a
+        // random start and a random stride prime to their count, one hash per tile.
+        const std::uint64_t h = mixBits(frameSeed ^ t);
+        const int start = static_cast<int>(h % static_cast<std::uint64_t>(n));
+        int stride = n > 1 ? 1 + static_cast<int>((h >> 32) % static_cast<std::uint64_t>(n - 1)) : 1;
+        while (std::gcd(stride, n) != 1) ++stride;
+        std::size_t next = firstRequest[t];
+        for (int visited = 0, k = start; visited < n; ++visited, k = (k + stride) % n) {
+            const int level = levelOf(k);
+            if (level < cut || (level == cut && fromCut == 0)) continue;
+            if (level == cut) --fromCut;
+            out.pixels[next++] = {x0 + k % tileWidth, y0 + k / tileWidth};
+        }
     });
 }
 

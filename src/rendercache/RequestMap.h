@@ -5,10 +5,10 @@
 // maximum); the request map gives each tile the share
 //     w = (1 - alpha) * uniform + alpha * Q / sum(Q)
 // of the frame's ray budget (uniform: the tile's share of the pixels), and
-// inside a tile the rays go to the pixels of highest priority, ties broken
+// inside a tile the rays go to the pixels of highest priority (in 33 steps), ties broken
 // at random. Counts are rounded by systematic sampling with a random start,
 // so a budget below one ray per tile still reaches every tile over frames.
-// Everything random is a hash of (seed, frame, pixel): the same inputs give
+// Everything random is a hash of (seed, frame, tile): the same inputs give
 // the same requests on any number of threads.
 #include <cstdint>
 #include <span>
