@@ -1,7 +1,9 @@
 // The Render Cache pipeline end to end, against the ray pipeline's images:
-// a still camera reproduces them exactly; a moving one gives the same images
-// and counts on any thread count; and on a mirror, reshading beats
-// reprojecting the traced colour.
+// a still camera and a cut reproduce them exactly; a camera sliding along a
+// flat wall by whole pixels moves every sample by exactly those pixels,
+// reshades a flat mirror to the ray pipeline's colour, and predicts the next
+// frame's holes; a moving camera gives the same images and counts on one and
+// two threads; and on mirror spheres reshading beats reprojecting.
 #include <gtest/gtest.h>
 
 #include <algorithm>
