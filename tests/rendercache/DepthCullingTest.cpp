@@ -1,0 +1,134 @@
+// cullOccludedSamples(): a reprojected sample is hidden when at least three
+// of its 3x3 neighbours are nearer by the threshold share of its depth and
+// they outnumber the other occupied neighbours.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "rendercache/DepthCulling.h"
+
+using namespace raycache;
+
+namespace {
+
+// A 3x3 image (margin 1) whose centre sample is at depth 10; `pattern` gives
+// the 8 neighbours row by row, skipping the centre: 'n' nearer (depth 5),
+// 'f' not nearer (depth 10), 'b' barely nearer (9.5: within the threshold),
+// '.' empty.
+bool centreCulled(const std::string& pattern, PixelState centre = PixelState::Reprojected, float threshold = 0.1f) {
+    PointImage image;
+    image.reset(3, 3, 1);
+    std::vector<PixelState> state(9, PixelState::Hole);
+    std::uint32_t slot = 0;
+    std::size_t k = 0;
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 3; ++x) {
+            if (x == 1 && y == 1) {
+                image.offer(1, 1, 10.0f, slot++);
+                state[4] = centre;
+                continue;
+            }
+            const char c = pattern[k++];
+            if (c == '.') continue;
+            image.offer(x, y, c == 'n' ? 5.0f : c == 'b' ? 9.5f : 10.0f, slot++);
+            state[static_cast<std::size_t>(y * 3 + x)] = PixelState::Reprojected;
+        }
+    std::vector<PixelState> before = state;
+    const std::int64_t culled = cullOccludedSamples(image, threshold, state, Parallel(1));
+    // Only the centre can change: every neighbour here is not farther than it.
+    for (std::size_t i = 0; i < 9; ++i) {
+        if (i == 4) continue;
+        EXPECT_EQ(state[i], before[i]) << pattern << " pixel " << i;
+    }
+    EXPECT_EQ(culled, state[4] == PixelState::Culled ? 1 : 0);
+    return state[4] == PixelState::Culled;
+}
+
+}  // namespace
+
+TEST(DepthCulling, AFarSampleWithMostlyNearerNeighboursIsCulled) {
+    EXPECT_TRUE(
+        centreCulled("nnn"
+                     "nn"
+                     "fff"));  // 5 nearer, 3 not
+    EXPECT_FALSE(
+        centreCulled("nnn"
+                     "nf"
+                     "fff"));  // 4 nearer, 4 not: a tie keeps it
+}
+
+TEST(DepthCulling, TheRuleCaseByCase) {
+    // Straight silhouette: a row of nearer samples above, the rest not nearer: kept.
+    EXPECT_FALSE(
+        centreCulled("nnn"
+                     "ff"
+                     "fff"));
+    // Inside a nearer surface with gaps: culled.
+    EXPECT_TRUE(
+        centreCulled("nnn"
+                     "nf"
+                     "nff"));  // 5 nearer, 3 not
+    EXPECT_TRUE(
+        centreCulled("nnn"
+                     "nn"
+                     "nnn"));  // all nearer
+    EXPECT_TRUE(
+        centreCulled("nnn"
+                     ".."
+                     "..."));  // 3 nearer, 0 other occupied
+    EXPECT_TRUE(
+        centreCulled("n.n"
+                     ".f"
+                     "n.n"));  // 4 nearer, 1 not
+    EXPECT_FALSE(
+        centreCulled("n.n"
+                     ".."
+                     "..."));  // only 2 nearer: never culled
+    EXPECT_FALSE(
+        centreCulled("nnn"
+                     "ff"
+                     "f.."));  // 3 nearer, 3 not: not outnumbered
+    EXPECT_TRUE(
+        centreCulled("nnn"
+                     "ff"
+                     "..."));  // 3 nearer, 2 not
+    // Nearer by less than the threshold (9.5 > 10 * 0.9) counts as not nearer.
+    EXPECT_FALSE(
+        centreCulled("bbb"
+                     "bb"
+                     "bbb"));
+    EXPECT_TRUE(
+        centreCulled("bbb"
+                     "bb"
+                     "bbb",
+                     PixelState::Reprojected, 0.04f));
+    // Fresh samples are never culled (traced this frame: they are what the camera sees).
+    EXPECT_FALSE(
+        centreCulled("nnn"
+                     "nn"
+                     "nnn",
+                     PixelState::Fresh));
+}
+
+TEST(DepthCulling, NeighboursInTheMarginCountAndDecisionsReadDepthsNotEarlierDecisions) {
+    // A 4x1 strip: samples at depths 10, 20, 40 left to right at x = 0..2, x = 3 empty;
+    // above and below (the margin) samples at depth 1.
+    PointImage image;
+    image.reset(4, 1, 1);
+    std::vector<PixelState> state(4, PixelState::Reprojected);
+    state[3] = PixelState::Hole;
+    std::uint32_t slot = 0;
+    for (int x = -1; x <= 4; ++x) {
+        image.offer(x, -1, 1.0f, slot++);
+        image.offer(x, 1, 1.0f, slot++);
+    }
+    image.offer(0, 0, 10.0f, slot++);
+    image.offer(1, 0, 20.0f, slot++);
+    image.offer(2, 0, 40.0f, slot++);
+    const std::int64_t culled = cullOccludedSamples(image, 0.1f, state, Parallel(2));
+    // Each has 6 nearer margin neighbours: all three culled, whichever is decided first.
+    EXPECT_EQ(culled, 3);
+    for (int x = 0; x < 3; ++x) EXPECT_EQ(state[static_cast<std::size_t>(x)], PixelState::Culled) << x;
+    EXPECT_EQ(state[3], PixelState::Hole);
+}

@@ -1,0 +1,165 @@
+// fillHoles(): the 3x3 weighted mean (edge neighbours 2, corners 1) for
+// holes next to a sample, the 7x7 box mean only where the 3x3 finds none,
+// and Unfilled beyond. Expected values are computed here in double from the
+// samples' known colours.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "rendercache/HoleFilling.h"
+
+using namespace raycache;
+
+namespace {
+
+// A colour no two pixels share, small integers so sums are exact.
+Rgb colourOf(int x, int y) {
+    return Rgb{static_cast<float>(x), static_cast<float>(y), static_cast<float>(x * y % 7)};
+}
+
+struct Synthetic {
+    int width, height;
+    std::vector<PixelState> state;
+    Image film;
+    Synthetic(int w, int h)
+        : width(w), height(h), state(static_cast<std::size_t>(w * h), PixelState::Reprojected), film(w, h) {
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) film.at(x, y) = colourOf(x, y);
+    }
+    PixelState& s(int x, int y) { return state[static_cast<std::size_t>(y * width + x)]; }
+    void hole(int x, int y, PixelState kind = PixelState::Hole) {
+        s(x, y) = kind;
+        film.at(x, y) = Rgb{-1.0f};  // must be overwritten (or, unfilled, left)
+    }
+};
+
+struct DRgb {
+    double r = 0, g = 0, b = 0;
+};
+
+void expectColour(const Rgb& got, const DRgb& want, int x, int y) {
+    EXPECT_NEAR(got.r, want.r, 1e-5 * (1 + std::abs(want.r))) << x << "," << y;
+    EXPECT_NEAR(got.g, want.g, 1e-5 * (1 + std::abs(want.g))) << x << "," << y;
+    EXPECT_NEAR(got.b, want.b, 1e-5 * (1 + std::abs(want.b))) << x << "," << y;
+}
+
+// The mean of colourOf over the pixels `isSample` accepts among (x, y)'s
+// neighbours within `radius`, weighted by `weight(dx, dy)`.
+template <class IsSample, class Weight>
+DRgb mean(int x, int y, int radius, int width, int height, IsSample isSample, Weight weight) {
+    DRgb sum;
+    double total = 0;
+    for (int dy = -radius; dy <= radius; ++dy)
+        for (int dx = -radius; dx <= radius; ++dx) {
+            const int nx = x + dx, ny = y + dy;
+            if (nx < 0 || ny < 0 || nx >= width || ny >= height || !isSample(nx, ny)) continue;
+            const double w = weight(dx, dy);
+            const Rgb c = colourOf(nx, ny);
+            sum.r += w * c.r;
+            sum.g += w * c.g;
+            sum.b += w * c.b;
+            total += w;
+        }
+    return {sum.r / total, sum.g / total, sum.b / total};
+}
+
+double edgesTwoCornersOne(int dx, int dy) {
+    return dx == 0 || dy == 0 ? 2.0 : 1.0;
+}
+double box(int, int) {
+    return 1.0;
+}
+
+}  // namespace
+
+TEST(HoleFilling, AOnePixelHoleTakesTheWeightedMeanOfItsEightNeighbours) {
+    Synthetic img(7, 5);
+    img.hole(3, 2);
+    img.s(2, 1) = PixelState::Fresh;  // fresh samples count as samples too
+    const FillCounts c = fillHoles(img.state, img.film, Parallel(1));
+    EXPECT_EQ(c.filled3x3, 1);
+    EXPECT_EQ(c.filled7x7, 0);
+    EXPECT_EQ(c.unfilled, 0);
+    EXPECT_EQ(img.s(3, 2), PixelState::Filled3x3);
+    // (2*(3,1) + 2*(2,2) + 2*(4,2) + 2*(3,3) + (2,1) + (4,1) + (2,3) + (4,3)) / 12, by hand for r and g:
+    // r = (2*3 + 2*2 + 2*4 + 2*3 + 2 + 4 + 2 + 4) / 12 = 3, g = (2*1 + 2*2 + 2*2 + 2*3 + 1 + 1 + 3 + 3) / 12 = 2.
+    EXPECT_FLOAT_EQ(img.film.at(3, 2).r, 3.0f);
+    EXPECT_FLOAT_EQ(img.film.at(3, 2).g, 2.0f);
+    // b = x * y % 7: edges 3, 4, 1, 2, corners 2, 4, 6, 5: 37 / 12.
+    EXPECT_FLOAT_EQ(img.film.at(3, 2).b, 37.0f / 12.0f);
+    expectColour(img.film.at(3, 2),
+                 mean(
+                     3, 2, 1, 7, 5, [](int x, int y) { return !(x == 3 && y == 2); }, edgesTwoCornersOne),
+                 3, 2);
+    // Samples are untouched.
+    EXPECT_EQ(img.film.at(2, 2), colourOf(2, 2));
+}
+
+TEST(HoleFilling, AFiveByFiveHoleFillsItsRingBy3x3AndOnlyItsCentreBy7x7) {
+    constexpr int kW = 17, kH = 15;
+    Synthetic img(kW, kH);
+    const auto inHole = [](int x, int y) { return x >= 5 && x <= 9 && y >= 4 && y <= 8; };
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            if (inHole(x, y)) img.hole(x, y, (x + y) % 3 == 0 ? PixelState::Culled : PixelState::Hole);
+    const FillCounts c = fillHoles(img.state, img.film, Parallel(2));
+    EXPECT_EQ(c.filled3x3, 16);
+    EXPECT_EQ(c.filled7x7, 9);
+    EXPECT_EQ(c.unfilled, 0);
+    const auto isSample = [&](int x, int y) { return !inHole(x, y); };
+    for (int y = 4; y <= 8; ++y)
+        for (int x = 5; x <= 9; ++x) {
+            const bool ring = x == 5 || x == 9 || y == 4 || y == 8;
+            EXPECT_EQ(img.s(x, y), ring ? PixelState::Filled3x3 : PixelState::Filled7x7) << x << "," << y;
+            // Only the samples are averaged, never pixels the first pass filled.
+            expectColour(
+                img.film.at(x, y),
+                ring ? mean(x, y, 1, kW, kH, isSample, edgesTwoCornersOne) : mean(x, y, 3, kW, kH, isSample, box), x,
+                y);
+        }
+    // The centre's 7x7 box holds 49 - 25 samples; by hand: r = mean of x over them = 7.
+    EXPECT_FLOAT_EQ(img.film.at(7, 6).r, 7.0f);
+    EXPECT_FLOAT_EQ(img.film.at(7, 6).g, 6.0f);
+}
+
+TEST(HoleFilling, OnePixelHolesNeverReachThe7x7) {
+    constexpr int kW = 12, kH = 9;
+    Synthetic img(kW, kH);
+    int holes = 0;
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            if ((x + y) % 2 == 0) {  // a checkerboard: every hole has samples on all edges
+                img.hole(x, y);
+                ++holes;
+            }
+    const FillCounts c = fillHoles(img.state, img.film, Parallel(2));
+    EXPECT_EQ(c.filled3x3, holes);
+    EXPECT_EQ(c.filled7x7, 0);
+    EXPECT_EQ(c.unfilled, 0);
+    const auto isSample = [](int x, int y) { return (x + y) % 2 != 0; };
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            if ((x + y) % 2 == 0) {
+                EXPECT_EQ(img.s(x, y), PixelState::Filled3x3);
+                expectColour(img.film.at(x, y), mean(x, y, 1, kW, kH, isSample, edgesTwoCornersOne), x, y);
+            }
+}
+
+TEST(HoleFilling, APixelWithNoSampleWithinThreeStaysUnfilledAndUntouched) {
+    constexpr int kW = 9, kH = 9;
+    Synthetic img(kW, kH);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            if (!(x == 0 && y == 0)) img.hole(x, y);
+    const FillCounts c = fillHoles(img.state, img.film, Parallel(1));
+    // (1,0), (0,1), (1,1) by the 3x3; within 3 of (0,0): x, y <= 3, less those 3 and the sample.
+    EXPECT_EQ(c.filled3x3, 3);
+    EXPECT_EQ(c.filled7x7, 16 - 1 - 3);
+    EXPECT_EQ(c.unfilled, 81 - 16);
+    EXPECT_EQ(img.s(3, 3), PixelState::Filled7x7);
+    EXPECT_EQ(img.film.at(3, 3), colourOf(0, 0));
+    EXPECT_EQ(img.s(4, 0), PixelState::Unfilled);
+    EXPECT_EQ(img.s(8, 8), PixelState::Unfilled);
+    EXPECT_EQ(img.film.at(4, 0), Rgb{-1.0f}) << "left for the caller";
+    EXPECT_EQ(img.film.at(8, 8), Rgb{-1.0f});
+}
