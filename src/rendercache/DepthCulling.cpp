@@ -3,13 +3,16 @@
 namespace raycache {
 
 std::int64_t cullOccludedSamples(const PointImage& image, float threshold, std::vector<PixelState>& state,
-                                 const Parallel& parallel) {
+                                 const Parallel& parallel, std::vector<unsigned char>* scratch) {
     const int width = image.width(), height = image.height();
     std::vector<std::int64_t> perRow(static_cast<std::size_t>(height), 0);
     // Decide from the depths alone, then write, so a row's decision never
     // sees a neighbour row's result.
-    std::vector<unsigned char> hide(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0);
+    std::vector<unsigned char> ownScratch;
+    std::vector<unsigned char>& hide = scratch ? *scratch : ownScratch;
+    hide.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0);
     parallel.forEachIndex(height, [&](int y, int) {
+        std::int64_t rowCulled = 0;  // written once: neighbouring rows' counters share a cache line
         for (int x = 0; x < width; ++x) {
             const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
                                   static_cast<std::size_t>(x);
@@ -26,9 +29,10 @@ std::int64_t cullOccludedSamples(const PointImage& image, float threshold, std::
             const int notNearer = occupied - 1 - nearer;  // the centre is occupied and not nearer than itself
             if (nearer >= 3 && nearer > notNearer) {
                 hide[i] = 1;
-                ++perRow[static_cast<std::size_t>(y)];
+                ++rowCulled;
             }
         }
+        perRow[static_cast<std::size_t>(y)] = rowCulled;
     });
     parallel.forEachIndex(height, [&](int y, int) {
         const auto row = static_cast<std::size_t>(y) * static_cast<std::size_t>(width);

@@ -18,7 +18,8 @@ namespace raycache {
 // Turns Reprojected pixels of `state` (width x height of `image`, whose
 // margin must be at least 1) into Culled where the rule above holds;
 // returns how many.
+// `scratch`, when given, is reused from frame to frame (no allocation).
 std::int64_t cullOccludedSamples(const PointImage& image, float threshold, std::vector<PixelState>& state,
-                                 const Parallel& parallel);
+                                 const Parallel& parallel, std::vector<unsigned char>* scratch = nullptr);
 
 }  // namespace raycache

@@ -8,7 +8,8 @@ constexpr int kPrefilterRadius = 3;  // 7x7
 
 }  // namespace
 
-FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel& parallel) {
+FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel& parallel,
+                     std::vector<unsigned char>* scratch) {
     const int width = film.width(), height = film.height();
     const auto at = [width](int x, int y) {
         return static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
@@ -17,9 +18,13 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
     // and write only the colours of holes and `outcome`: rows run in any
     // order, without a data race. The states change at the end.
     enum Outcome : unsigned char { kNone, k3x3, k7x7, kUnfilled };
-    std::vector<unsigned char> outcome(state.size(), kNone);
+    std::vector<unsigned char> ownScratch;
+    std::vector<unsigned char>& outcome = scratch ? *scratch : ownScratch;
+    outcome.assign(state.size(), kNone);
     std::vector<FillCounts> perRow(static_cast<std::size_t>(height));
+    // Counts per row go to a local, written once (no false sharing).
     parallel.forEachIndex(height, [&](int y, int) {
+        FillCounts row;
         for (int x = 0; x < width; ++x) {
             if (!isHole(state[at(x, y)])) continue;
             Rgb sum;
@@ -38,11 +43,13 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
             if (weight > 0.0f) {
                 film.at(x, y) = sum * (1.0f / weight);
                 outcome[at(x, y)] = k3x3;
-                ++perRow[static_cast<std::size_t>(y)].filled3x3;
+                ++row.filled3x3;
             }
         }
+        perRow[static_cast<std::size_t>(y)] = row;
     });
     parallel.forEachIndex(height, [&](int y, int) {
+        FillCounts row = perRow[static_cast<std::size_t>(y)];
         for (int x = 0; x < width; ++x) {
             if (!isHole(state[at(x, y)]) || outcome[at(x, y)] == k3x3) continue;
             Rgb sum;
@@ -56,12 +63,13 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
             if (count > 0) {
                 film.at(x, y) = sum * (1.0f / static_cast<float>(count));
                 outcome[at(x, y)] = k7x7;
-                ++perRow[static_cast<std::size_t>(y)].filled7x7;
+                ++row.filled7x7;
             } else {
                 outcome[at(x, y)] = kUnfilled;
-                ++perRow[static_cast<std::size_t>(y)].unfilled;
+                ++row.unfilled;
             }
         }
+        perRow[static_cast<std::size_t>(y)] = row;
     });
     parallel.forEachIndex(height, [&](int y, int) {
         for (std::size_t i = at(0, y); i < at(0, y) + static_cast<std::size_t>(width); ++i) {

@@ -23,6 +23,8 @@ struct FillCounts {
 // `film` holds the samples' colours where showsSample(state); the holes
 // (isHole) are filled from those pixels only, and their state set to
 // Filled3x3, Filled7x7 or Unfilled.
-FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel& parallel);
+// `scratch`, when given, is reused from frame to frame (no allocation).
+FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel& parallel,
+                     std::vector<unsigned char>* scratch = nullptr);
 
 }  // namespace raycache

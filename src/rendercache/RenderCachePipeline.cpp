@@ -73,19 +73,24 @@ int RenderCachePipeline::chooseBudget(int pixels) const {
     return std::max(1, static_cast<int>(std::lround(static_cast<double>(rc.budget) * pixels)));
 }
 
-std::uint32_t RenderCachePipeline::takeFreeSlot() {
-    // A hand going round the slots, taking the next empty one. Always finds
-    // one: live samples number at most the image's slots (each owns a pixel)
-    // plus one frame's predictions, fewer than the capacity.
+std::uint32_t RenderCachePipeline::takeFreeSlot(const PixelCoord& pixel) {
+    // The first empty slot from the pixel's own index on: neighbouring
+    // pixels' samples stay in neighbouring slots, so the passes over the
+    // image read the pool nearly in order. (Handing out slots round the
+    // pool instead scattered them: by frame 20 the image's reads of colours
+    // and ages missed the cache on most pixels.) Always finds one: live
+    // samples number at most the image's slots (each owns a pixel) plus one
+    // frame's predictions, fewer than the capacity.
     const std::size_t n = pool_.capacity();
-    for (;;) {
-        const std::size_t slot = clockHand_;
-        clockHand_ = (clockHand_ + 1) % n;
-        if (!pool_.empty(slot) || shown_[slot]) continue;
-        ++emptySlotsTaken_;
-        shown_[slot] = 1;
-        return static_cast<std::uint32_t>(slot);
-    }
+    const int m = image_.margin();
+    const int stride = image_.width() + 2 * m;
+    const int x = std::clamp(pixel.x, -m, image_.width() + m - 1);
+    const int y = std::clamp(pixel.y, -m, image_.height() + m - 1);
+    std::size_t slot = static_cast<std::size_t>(y + m) * static_cast<std::size_t>(stride) + static_cast<std::size_t>(x + m);
+    while (!pool_.empty(slot) || shown_[slot]) slot = slot + 1 == n ? 0 : slot + 1;
+    ++emptySlotsTaken_;
+    shown_[slot] = 1;
+    return static_cast<std::uint32_t>(slot);
 }
 
 void RenderCachePipeline::keep(std::size_t slot, const PrimarySample& traced, const CameraRays& rays,
@@ -147,7 +152,6 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     const std::size_t capacity = imageSlots + static_cast<std::size_t>(pixels);
     if (pool_.capacity() != capacity) {
         pool_.reset(capacity);
-        clockHand_ = 0;
         previousCamera_.reset();
     }
     const bool moved = previousCamera_ && !(*previousCamera_ == camera);
@@ -160,7 +164,8 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     const ScreenProjection projection(camera, width, height);
     const std::vector<Vec3> origins = objectOrigins(scene_);
     image_.reset(width, height, margin);
-    const ReprojectionCounts reprojected = reproject(pool_, scene_, projection, rc.maxAge, image_, shown_, parallel_);
+    const ReprojectionCounts reprojected =
+        reproject(pool_, scene_, projection, rc.maxAge, image_, shown_, parallel_, &bytes_);
     stats.evicted = reprojected.evicted;
     stats.lost = reprojected.lost;
     stats.reprojectMs = millisecondsSince(start);
@@ -169,7 +174,8 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     start = Clock::now();
     std::vector<PixelState>& state = overlays_.state;
     state.resize(static_cast<std::size_t>(pixels));
-    std::vector<float> priority(static_cast<std::size_t>(pixels));
+    std::vector<float>& priority = priority_;
+    priority.resize(static_cast<std::size_t>(pixels));  // every pixel written below
     std::vector<std::int64_t> holesPerRow(static_cast<std::size_t>(height), 0);
     const float agePriority = 0.5f / static_cast<float>(rc.maxAge);
     parallel_.forEachIndex(height, [&](int y, int) {
@@ -189,7 +195,7 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     });
     // A still camera puts every sample back where it was traced: nothing to cull.
     if (moved && rc.depthCullThreshold > 0.0f) {
-        stats.culled = cullOccludedSamples(image_, rc.depthCullThreshold, state, parallel_);
+        stats.culled = cullOccludedSamples(image_, rc.depthCullThreshold, state, parallel_, &bytes_);
         if (stats.culled > 0)
             parallel_.forEachIndex(height, [&](int y, int) {
                 std::int64_t culled = 0;
@@ -226,13 +232,13 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     // New samples through this frame's camera, replacing what their pixels held.
     start = Clock::now();
     CacheFrame cacheFrame(cache_, parallel_.threadCount());
-    std::vector<PrimarySample> traced;
+    std::vector<PrimarySample>& traced = traced_;
     std::uint64_t key = trace(camera, requests.pixels, 0, cacheFrame, traced);
     {
         const CameraRays rays(camera, width, height);
         for (std::size_t i = 0; i < traced.size(); ++i) {
             const PixelCoord p = requests.pixels[i];
-            const std::size_t slot = image_.hasSample(p.x, p.y) ? image_.slotAt(p.x, p.y) : takeFreeSlot();
+            const std::size_t slot = image_.hasSample(p.x, p.y) ? image_.slotAt(p.x, p.y) : takeFreeSlot(p);
             keep(slot, traced[i], rays, p);
             int px, py;
             float depth;
@@ -250,7 +256,8 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
         start = Clock::now();
         const Camera next = predictNextCamera(*previousCamera_, camera);
         const ScreenProjection nextProjection(next, width, height);
-        std::vector<unsigned char> covered(static_cast<std::size_t>(pixels), 0);
+        std::vector<unsigned char>& covered = bytes_;
+        covered.assign(static_cast<std::size_t>(pixels), 0);
         const std::size_t n = pool_.capacity();
         constexpr std::size_t kChunk = 16384;
         parallel_.forEachIndex(static_cast<int>((n + kChunk - 1) / kChunk), [&](int chunk, int) {
@@ -280,7 +287,7 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
         key = trace(next, predictedRequests_.pixels, key, cacheFrame, traced);
         const CameraRays rays(next, width, height);
         for (std::size_t i = 0; i < traced.size(); ++i)
-            keep(takeFreeSlot(), traced[i], rays, predictedRequests_.pixels[i]);
+            keep(takeFreeSlot(predictedRequests_.pixels[i]), traced[i], rays, predictedRequests_.pixels[i]);
         stats.predicted = static_cast<std::int64_t>(traced.size());
         stats.traceMs += millisecondsSince(start);
     }
@@ -288,8 +295,10 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     // Reflections, refractions and highlights of reprojected samples, from the new eye.
     start = Clock::now();
     if (moved && rc.reflections == ReprojectedReflections::Reshade) {
-        std::vector<ReshadeRequest> reshade;
-        std::vector<std::uint32_t> slots;
+        std::vector<ReshadeRequest>& reshade = reshade_;
+        std::vector<std::uint32_t>& slots = reshadeSlots_;
+        reshade.clear();
+        slots.clear();
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x) {
                 if (state[static_cast<std::size_t>(y * width + x)] != PixelState::Reprojected) continue;
@@ -311,7 +320,8 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
                 reshade.push_back(r);
                 slots.push_back(slot);
             }
-        std::vector<Rgb> colors(reshade.size());
+        std::vector<Rgb>& colors = reshadeColors_;
+        colors.resize(reshade.size());
         const int chunks = static_cast<int>((reshade.size() + kTraceChunk - 1) / kTraceChunk);
         parallel_.forEachIndex(chunks, [&](int chunk, int worker) {
             const std::size_t begin = static_cast<std::size_t>(chunk) * kTraceChunk;
@@ -335,19 +345,24 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     start = Clock::now();
     const CameraRays rays(camera, width, height);
     std::vector<std::int64_t> reprojectedPerRow(static_cast<std::size_t>(height), 0);
+    // Counters are kept per row in a local and written once: rows next to
+    // each other share a cache line, and two threads incrementing it in turn
+    // made this loop several times slower.
     parallel_.forEachIndex(height, [&](int y, int) {
+        std::int64_t rowReprojected = 0;
         for (int x = 0; x < width; ++x) {
             const PixelState s = state[static_cast<std::size_t>(y * width + x)];
             if (!showsSample(s)) continue;
-            reprojectedPerRow[static_cast<std::size_t>(y)] += s == PixelState::Reprojected ? 1 : 0;
+            rowReprojected += s == PixelState::Reprojected ? 1 : 0;
             const std::uint32_t slot = image_.slotAt(x, y);
-            // The background depends on the direction only: exact for any eye.
-            film.at(x, y) = pool_.objectId[slot] == SamplePool::kBackground
-                                ? kernel_.shading().background(rays.ray(x, y))
-                                : pool_.color[slot];
+            // A background sample shows what it saw, like any other: looking
+            // up an image environment along every pixel's ray again cost
+            // 12 ms per frame at 1024x1024 on `room`.
+            film.at(x, y) = pool_.color[slot];
         }
+        reprojectedPerRow[static_cast<std::size_t>(y)] = rowReprojected;
     });
-    const FillCounts filled = fillHoles(state, film, parallel_);
+    const FillCounts filled = fillHoles(state, film, parallel_, &bytes_);
     stats.filled3x3 = filled.filled3x3;
     stats.filled7x7 = filled.filled7x7;
     stats.unfilled = filled.unfilled;

@@ -49,8 +49,8 @@ private:
                         CacheFrame& cacheFrame, std::vector<PrimarySample>& out);
     // Stores sample `traced` of the ray through `pixel` of `camera` in `slot`.
     void keep(std::size_t slot, const PrimarySample& traced, const CameraRays& rays, const PixelCoord& pixel);
-    // An empty slot for a new sample.
-    std::uint32_t takeFreeSlot();
+    // An empty slot for a new sample at `pixel`, near the pixel's own index.
+    std::uint32_t takeFreeSlot(const PixelCoord& pixel);
     int chooseBudget(int pixels) const;
 
     const Scene& scene_;
@@ -63,10 +63,16 @@ private:
     SamplePool pool_;
     PointImage image_;
     std::vector<unsigned char> shown_;  // per slot: on a pixel this frame, or traced this frame
-    std::size_t clockHand_ = 0;
     std::int64_t emptySlotsTaken_ = 0;  // this frame
     RenderCacheOverlays overlays_;
     RequestMap predictedRequests_;
+    // Buffers reused from frame to frame: fresh memory costs page faults.
+    std::vector<float> priority_;
+    std::vector<unsigned char> bytes_;  // each step's own per-pixel flags, one step at a time
+    std::vector<PrimarySample> traced_;
+    std::vector<ReshadeRequest> reshade_;
+    std::vector<std::uint32_t> reshadeSlots_;
+    std::vector<Rgb> reshadeColors_;
     std::optional<Camera> previousCamera_;
     std::uint64_t frame_ = 0;
     double adaptiveBudget_ = 0.0;  // rays, when a target frame time is set

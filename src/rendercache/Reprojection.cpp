@@ -22,14 +22,18 @@ std::vector<Vec3> objectOrigins(const Scene& scene) {
 }
 
 ReprojectionCounts reproject(SamplePool& pool, const Scene& scene, const ScreenProjection& projection, int maxAge,
-                             PointImage& image, std::vector<unsigned char>& shown, const Parallel& parallel) {
+                             PointImage& image, std::vector<unsigned char>& shown, const Parallel& parallel,
+                             std::vector<unsigned char>* scratch) {
     const std::size_t n = pool.capacity();
     const std::vector<Vec3> origins = objectOrigins(scene);
     const int chunks = static_cast<int>((n + kChunk - 1) / kChunk);
     std::vector<ReprojectionCounts> perChunk(static_cast<std::size_t>(chunks));
     // Offer every live sample; the depth test picks each pixel's winner.
+    // Counts go to a local and are written once per chunk: neighbouring
+    // chunks' counters share a cache line, and updating it per sample from
+    // two threads cost more than the projection.
     parallel.forEachIndex(chunks, [&](int chunk, int) {
-        ReprojectionCounts& counts = perChunk[static_cast<std::size_t>(chunk)];
+        ReprojectionCounts counts;
         const std::size_t end = std::min(n, (static_cast<std::size_t>(chunk) + 1) * kChunk);
         for (std::size_t slot = static_cast<std::size_t>(chunk) * kChunk; slot < end; ++slot) {
             if (pool.objectId[slot] == SamplePool::kEmpty) continue;
@@ -44,13 +48,16 @@ ReprojectionCounts reproject(SamplePool& pool, const Scene& scene, const ScreenP
             if (projectSample(pool, slot, origins, projection, x, y, depth) && image.covers(x, y))
                 image.offer(x, y, depth, static_cast<std::uint32_t>(slot));
         }
+        perChunk[static_cast<std::size_t>(chunk)] = counts;
     });
     // Mark the winners, and the pixels nobody won.
     std::vector<unsigned char>& won = shown;
     won.assign(n, 0);
     const int rows = image.height() + 2 * image.margin();
     const int stride = image.width() + 2 * image.margin();
-    std::vector<unsigned char> emptyAfterFirst(static_cast<std::size_t>(rows) * static_cast<std::size_t>(stride));
+    std::vector<unsigned char> ownScratch;
+    std::vector<unsigned char>& emptyAfterFirst = scratch ? *scratch : ownScratch;
+    emptyAfterFirst.resize(static_cast<std::size_t>(rows) * static_cast<std::size_t>(stride));  // all written below
     const auto emptyIndex = [&](int x, int y) {
         return static_cast<std::size_t>(y + image.margin()) * static_cast<std::size_t>(stride) +
                static_cast<std::size_t>(x + image.margin());
@@ -93,7 +100,7 @@ ReprojectionCounts reproject(SamplePool& pool, const Scene& scene, const ScreenP
             if (emptyAfterFirst[emptyIndex(x, y)] && image.hasSample(x, y)) won[image.slotAt(x, y)] = 2;
     });
     parallel.forEachIndex(chunks, [&](int chunk, int) {
-        ReprojectionCounts& counts = perChunk[static_cast<std::size_t>(chunk)];
+        ReprojectionCounts counts = perChunk[static_cast<std::size_t>(chunk)];
         const std::size_t end = std::min(n, (static_cast<std::size_t>(chunk) + 1) * kChunk);
         for (std::size_t slot = static_cast<std::size_t>(chunk) * kChunk; slot < end; ++slot) {
             if (pool.objectId[slot] == SamplePool::kEmpty) continue;
@@ -105,6 +112,7 @@ ReprojectionCounts reproject(SamplePool& pool, const Scene& scene, const ScreenP
                 ++counts.lost;
             }
         }
+        perChunk[static_cast<std::size_t>(chunk)] = counts;
     });
     ReprojectionCounts total;
     for (const ReprojectionCounts& c : perChunk) {

@@ -69,7 +69,9 @@ inline bool projectSample(const SamplePool& pool, std::size_t slot, const std::v
 // offers the rest to `image` (reset by the caller to the new size), frees
 // those that win no pixel and sets shown[slot] (resized to the pool) for the
 // winners. The outcome does not depend on the thread count.
+// `scratch`, when given, is reused from frame to frame (no allocation).
 ReprojectionCounts reproject(SamplePool& pool, const Scene& scene, const ScreenProjection& projection, int maxAge,
-                             PointImage& image, std::vector<unsigned char>& shown, const Parallel& parallel);
+                             PointImage& image, std::vector<unsigned char>& shown, const Parallel& parallel,
+                             std::vector<unsigned char>* scratch = nullptr);
 
 }  // namespace raycache

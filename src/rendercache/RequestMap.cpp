@@ -70,7 +70,8 @@ void buildRequestMap(std::span<const float> priority, int width, int height, int
         firstRequest[t + 1] = firstRequest[t] + static_cast<std::size_t>(out.tileRequests[t]);
     out.pixels.resize(firstRequest[tiles]);
     const std::uint64_t frameSeed = mixBits(seed ^ mixBits(frame));
-    parallel.forEachIndex(static_cast<int>(tiles), [&](int tile, int) {
+    std::vector<std::vector<unsigned char>> levelsPerWorker(static_cast<std::size_t>(parallel.threadCount()));
+    parallel.forEachIndex(static_cast<int>(tiles), [&](int tile, int worker) {
         const auto t = static_cast<std::size_t>(tile);
         const int wanted = out.tileRequests[t];
         if (wanted == 0) return;
@@ -80,28 +81,38 @@ void buildRequestMap(std::span<const float> priority, int width, int height, int
         const int n = tileWidth * (y1 - y0);
         // Priorities in kLevels steps; holes (1) on the top one.
         constexpr int kLevels = 33;
-        const auto levelOf = [&](int k) {
-            const float p = priority[pixelIndex(x0 + k % tileWidth, y0 + k / tileWidth)];
-            return static_cast<int>(std::clamp(p, 0.0f, 1.0f) * static_cast<float>(kLevels - 1));
-        };
+        std::vector<unsigned char>& levels = levelsPerWorker[static_cast<std::size_t>(worker)];
+        levels.resize(static_cast<std::size_t>(n));
         std::array<int, kLevels> perLevel{};
-        for (int k = 0; k < n; ++k) ++perLevel[static_cast<std::size_t>(levelOf(k))];
+        std::size_t k = 0;
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x, ++k) {
+                const float p = std::clamp(priority[pixelIndex(x, y)], 0.0f, 1.0f);
+                const auto level = static_cast<unsigned char>(p * static_cast<float>(kLevels - 1));
+                levels[k] = level;
+                ++perLevel[level];
+            }
         // The lowest level taken, and how many of it.
         int cut = kLevels - 1, above = 0;
-        while (cut > 0 && above + perLevel[static_cast<std::size_t>(cut)] < wanted) above += perLevel[static_cast<std::size_t>(cut--)];
+        while (cut > 0 && above + perLevel[static_cast<std::size_t>(cut)] < wanted)
+            above += perLevel[static_cast<std::size_t>(cut--)];
         int fromCut = wanted - above;
         // Among equals, a random order: the tile's pixels visited with a
         // random start and a random stride prime to their count, one hash per tile.
         const std::uint64_t h = mixBits(frameSeed ^ t);
-        const int start = static_cast<int>(h % static_cast<std::uint64_t>(n));
+        int at = static_cast<int>(h % static_cast<std::uint64_t>(n));
         int stride = n > 1 ? 1 + static_cast<int>((h >> 32) % static_cast<std::uint64_t>(n - 1)) : 1;
         while (std::gcd(stride, n) != 1) ++stride;
+        stride %= n;
         std::size_t next = firstRequest[t];
-        for (int visited = 0, k = start; visited < n; ++visited, k = (k + stride) % n) {
-            const int level = levelOf(k);
-            if (level < cut || (level == cut && fromCut == 0)) continue;
-            if (level == cut) --fromCut;
-            out.pixels[next++] = {x0 + k % tileWidth, y0 + k / tileWidth};
+        for (int visited = 0; visited < n && next < firstRequest[t + 1]; ++visited) {
+            const int level = levels[static_cast<std::size_t>(at)];
+            if (level > cut || (level == cut && fromCut > 0)) {
+                if (level == cut) --fromCut;
+                out.pixels[next++] = {x0 + at % tileWidth, y0 + at / tileWidth};
+            }
+            at += stride;
+            if (at >= n) at -= n;
         }
     });
 }
