@@ -1,5 +1,7 @@
 #include "rendercache/Reprojection.h"
 
+#include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <limits>
@@ -80,14 +82,21 @@ ReprojectionCounts reproject(SamplePool& pool, const Scene& scene, const ScreenP
             if (!projectSample(pool, slot, origins, projection, px, py, depth)) continue;
             const int x = static_cast<int>(std::floor(px)), y = static_cast<int>(std::floor(py));
             if (!image.covers(x, y)) continue;
+            // The 8 neighbours, nearest centre first (a fixed order among
+            // equals): the empty pixel beside a collision may lie on either side.
             const float fx = px - static_cast<float>(x) - 0.5f, fy = py - static_cast<float>(y) - 0.5f;
-            const int dx = fx < 0.0f ? -1 : 1, dy = fy < 0.0f ? -1 : 1;
-            const bool horizontalFirst = std::fabs(fx) >= std::fabs(fy);
-            const int candidates[3][2] = {{horizontalFirst ? dx : 0, horizontalFirst ? 0 : dy},
-                                          {horizontalFirst ? 0 : dx, horizontalFirst ? dy : 0},
-                                          {dx, dy}};
-            for (const auto& c : candidates) {
-                const int nx = x + c[0], ny = y + c[1];
+            std::array<std::pair<float, int>, 8> around;
+            int k = 0;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    if (dx == 0 && dy == 0) continue;
+                    const float ex = static_cast<float>(dx) - fx, ey = static_cast<float>(dy) - fy;
+                    around[static_cast<std::size_t>(k)] = {ex * ex + ey * ey, (dy + 1) * 3 + (dx + 1)};
+                    ++k;
+                }
+            std::sort(around.begin(), around.end());
+            for (const auto& [distance, code] : around) {
+                const int nx = x + code % 3 - 1, ny = y + code / 3 - 1;
                 if (!image.covers(nx, ny) || !emptyAfterFirst[emptyIndex(nx, ny)]) continue;
                 image.offer(nx, ny, depth, static_cast<std::uint32_t>(slot));
                 break;

@@ -3,8 +3,8 @@
 // evicted past its maximum age, and otherwise moved to where the new camera
 // sees it (v' = P'M'v0, the object's current origin plus the sample's offset
 // from it). The nearer sample wins a pixel. A sample that loses gets a
-// second chance: the neighbouring pixel nearest to where it landed, if no
-// sample landed there. Without it, samples traced in different frames sit
+// second chance: the nearest of its 8 neighbouring pixels that no sample
+// landed in. Without it, samples traced in different frames sit
 // at unrelated sub-pixel offsets, pairs of them fall into one pixel beside
 // an empty one, and on `room`'s orbit the holes grew to 40 % of the image
 // at a budget of 10 % of the pixels per frame. Samples that still win no
