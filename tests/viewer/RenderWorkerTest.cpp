@@ -10,6 +10,8 @@
 #include "core/ColorSpace.h"
 #include "render/FrameLoop.h"
 #include "scene/BuiltinScenes.h"
+#include "viewer/PipelineChoice.h"
+#include "viewer/RenderCacheOverlayImage.h"
 #include "viewer/TechniqueChoice.h"
 
 using namespace raycache;
@@ -142,4 +144,73 @@ TEST(RenderWorker, RejectedSettingsKeepTheLastGoodOnesAndSayWhy) {
         EXPECT_TRUE(f.stats.cache.has_value());  // still rendering, with CCT
         return true;
     });
+}
+
+TEST(RenderWorker, RenderCacheFramesAreTheOfflineRenderCachesFrames) {
+    const Scene scene = *makeBuiltinScene("room");
+    const TraceScene tracer(scene);
+    RenderSettings settings = smallSettings();
+    settings.cache.techniqueOverride = CacheTechnique::Cct;
+    settings.pipeline = PipelineKind::RenderCache;
+    constexpr int kFrames = 4;
+
+    std::vector<std::vector<std::uint8_t>> offline;
+    renderFrames(scene, scene.cameraPath, settings, kFrames,
+                 [&](const FrameResult&, const Image& film, const RayCache&) { offline.push_back(srgb8(film)); });
+
+    FrameHandoff handoff;
+    RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, smallSettings(), kFrames, {}};
+    RenderWorker worker(setup, handoff);
+    RenderRequest request;
+    request.width = settings.width;
+    request.height = settings.height;
+    request.config.technique = techniqueChoiceIndex("cct");
+    request.config.pipeline = kRenderCacheChoice;
+    worker.submit(request);
+    int next = 0;
+    takeFrames(handoff, worker, [&](const DisplayFrame& f) {
+        EXPECT_EQ(f.pathFrame, next);
+        EXPECT_EQ(f.rgba, offline[static_cast<std::size_t>(next)]) << "frame " << next;
+        EXPECT_TRUE(f.stats.renderCache.has_value());
+        if (f.stats.renderCache) EXPECT_EQ(f.stats.renderCache->refreshedAll, next == 0);
+        ++next;
+        return next == kFrames;
+    });
+    EXPECT_EQ(next, kFrames);
+    for (int i = 0; i < 1000 && !worker.finished(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    EXPECT_FALSE(worker.error());
+}
+
+TEST(RenderCacheOverlay, SourcesTintEachStateAndRequestsMarkTheRequestedPixels) {
+    RenderCacheOverlays o;
+    o.width = 4;
+    o.height = 2;
+    o.state = {PixelState::Reprojected, PixelState::Fresh,     PixelState::Culled,   PixelState::Filled3x3,
+               PixelState::Filled7x7,   PixelState::Unfilled, PixelState::Hole,     PixelState::Reprojected};
+    const std::vector<std::uint8_t> grey(4 * 8, 100);
+    std::vector<std::uint8_t> rgba = grey;
+    paintRenderCacheOverlay(o, RenderCacheOverlay::Sources, rgba);
+    const auto pixel = [&](int i) { return std::vector<int>{rgba[i * 4], rgba[i * 4 + 1], rgba[i * 4 + 2]}; };
+    EXPECT_EQ(pixel(0), (std::vector<int>{100, 100, 100}));  // reprojected: as it is
+    // blend(c, target, a) = (c (256 - a) + target a) / 256
+    EXPECT_EQ(pixel(1), (std::vector<int>{(100 * 96) >> 8, (100 * 96 + 255 * 160) >> 8, (100 * 96) >> 8}));
+    EXPECT_EQ(pixel(2), (std::vector<int>{(100 * 56 + 255 * 200) >> 8, (100 * 56) >> 8, (100 * 56 + 255 * 200) >> 8}));
+    EXPECT_EQ(pixel(3), (std::vector<int>{(100 * 56 + 255 * 200) >> 8, (100 * 56 + 255 * 200) >> 8, (100 * 56) >> 8}));
+    EXPECT_EQ(pixel(5), (std::vector<int>{255, 0, 0}));  // unfilled: pure red
+    EXPECT_EQ(pixel(7), (std::vector<int>{100, 100, 100}));
+
+    rgba = grey;
+    o.requests.tileSize = 2;
+    o.requests.tilesX = 2;
+    o.requests.tilesY = 1;
+    o.requests.tilePriority = {0.0f, 4.0f};
+    o.requests.pixels = {{1, 1}};
+    paintRenderCacheOverlay(o, RenderCacheOverlay::Requests, rgba);
+    EXPECT_EQ(pixel(0), (std::vector<int>{100, 100, 100}));             // priority 0: untinted
+    EXPECT_EQ(pixel(5), (std::vector<int>{255, 255, 255}));             // requested (1, 1): white
+    EXPECT_EQ(pixel(2), (std::vector<int>{(100 * 56) >> 8, (100 * 56 + 64 * 200) >> 8, (100 * 56 + 255 * 200) >> 8}));
+
+    rgba.resize(4);  // the frame after a resize: sizes differ, nothing painted
+    paintRenderCacheOverlay(o, RenderCacheOverlay::Sources, rgba);
+    EXPECT_EQ(rgba, std::vector<std::uint8_t>(4, 100));
 }
