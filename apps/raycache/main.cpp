@@ -61,6 +61,13 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
                        "Render cache: reprojected mirror/glass/glossy samples: reshade (highlights and "
                        "reflections from the new eye, through the caching cubes; the default) or reproject (as traced)");
     command.add_option("--rc-seed", job.rcSeed, "Render cache: seed of the request map's random choices (default 1)");
+    command.add_option("--rc-margin", job.rcMargin,
+                       "Render cache: samples kept past each image edge, share of the side, [0, 0.5] (default 0.05)");
+    command.add_option("--rc-depth-cull", job.rcDepthCull,
+                       "Render cache: depth culling hides a sample whose neighbours are nearer by this share of its "
+                       "depth, [0, 1] (0 = off; default 0.1)");
+    command.add_option("--rc-tile", job.rcTile,
+                       "Render cache: side of the hole-detection and request-map tiles, pixels, 1..256 (default 8)");
     command.add_option("--gbuffer", job.gbuffer,
                        "Hybrid G-buffer source: auto (OpenGL if a 4.5 context can be made, else packets), gl or "
                        "packets")

@@ -35,6 +35,9 @@ void applyRenderCacheOptions(const RenderJobOptions& o, RenderCacheSettings& rc)
     if (o.rcPredict) rc.predictShare = *o.rcPredict;
     if (o.rcMaxAge) rc.maxAge = *o.rcMaxAge;
     if (o.rcSeed) rc.seed = *o.rcSeed;
+    if (o.rcMargin) rc.margin = *o.rcMargin;
+    if (o.rcDepthCull) rc.depthCullThreshold = *o.rcDepthCull;
+    if (o.rcTile) rc.requestTileSize = *o.rcTile;
     if (o.rcReflections) parseReprojectedReflections(*o.rcReflections, rc.reflections);
 }
 

@@ -32,8 +32,8 @@ struct RenderJobOptions {
     std::optional<std::string> pipeline;   // ray | hybrid | render-cache; default: the scene file's, else ray
     std::string gbuffer = "auto";          // hybrid G-buffer source: auto | gl | packets
     // The Render Cache's --rc-* options; default: the scene file's, else RenderCacheSettings'.
-    std::optional<float> rcBudget, rcTargetMs, rcAlpha, rcPredict;
-    std::optional<int> rcMaxAge;
+    std::optional<float> rcBudget, rcTargetMs, rcAlpha, rcPredict, rcMargin, rcDepthCull;
+    std::optional<int> rcMaxAge, rcTile;
     std::optional<std::string> rcReflections;  // reshade | reproject
     std::optional<std::uint64_t> rcSeed;
 };

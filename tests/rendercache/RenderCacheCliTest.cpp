@@ -51,6 +51,9 @@ TEST_F(RenderCacheCli, BadOptionsAreOneErrorLineNamingTheOptionAndExit2) {
         {"--pipeline render-cache --rc-predict 1", "--rc-predict"},
         {"--pipeline render-cache --rc-target-ms -1", "--rc-target-ms"},
         {"--pipeline render-cache --rc-reflections bogus", "--rc-reflections"},
+        {"--pipeline render-cache --rc-margin 0.6", "--rc-margin"},
+        {"--pipeline render-cache --rc-depth-cull -0.1", "--rc-depth-cull"},
+        {"--pipeline render-cache --rc-tile 0", "--rc-tile"},
         {"--pipeline bogus", "--pipeline"},
     };
     for (const auto& c : cases) {
