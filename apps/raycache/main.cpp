@@ -48,25 +48,25 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
                        "ray: primary rays per tile; hybrid: G-buffer (OpenGL or primary-ray packets), then "
                        "deferred shadow and secondary rays; render-cache: reproject earlier frames' samples and "
                        "trace a budget of pixels (docs/render-cache.md); default: the scene file's, else ray");
-    command.add_option("--rc-budget", job.rcBudget, "Render cache: share of the pixels traced per frame, (0, 1] (default 0.05)");
-    command.add_option("--rc-target-ms", job.rcTargetMs,
+    command.add_option("--rc-budget", job.renderCache.budget, "Render cache: share of the pixels traced per frame, (0, 1] (default 0.05)");
+    command.add_option("--rc-target-ms", job.renderCache.targetFrameMs,
                        "Render cache: choose the budget each frame to hold this frame time, ms (0 = off; images "
                        "then depend on the machine's speed; default 0 = off)");
-    command.add_option("--rc-alpha", job.rcAlpha,
+    command.add_option("--rc-alpha", job.renderCache.alpha,
                        "Render cache: request map mix, (1-alpha) uniform + alpha priority, [0, 1] (default 0.25)");
-    command.add_option("--rc-max-age", job.rcMaxAge, "Render cache: frames a sample lives (default 32)");
-    command.add_option("--rc-predict", job.rcPredict,
+    command.add_option("--rc-max-age", job.renderCache.maxAge, "Render cache: frames a sample lives (default 32)");
+    command.add_option("--rc-predict", job.renderCache.predictShare,
                        "Render cache: share of the budget for holes the predicted next camera will see, [0, 0.9] (default 0.2)");
-    command.add_option("--rc-reflections", job.rcReflections,
+    command.add_option("--rc-reflections", job.renderCache.reflections,
                        "Render cache: reprojected mirror/glass/glossy samples: reshade (highlights and "
                        "reflections from the new eye, through the caching cubes; the default) or reproject (as traced)");
-    command.add_option("--rc-seed", job.rcSeed, "Render cache: seed of the request map's random choices (default 1)");
-    command.add_option("--rc-margin", job.rcMargin,
+    command.add_option("--rc-seed", job.renderCache.seed, "Render cache: seed of the request map's random choices (default 1)");
+    command.add_option("--rc-margin", job.renderCache.margin,
                        "Render cache: samples kept past each image edge, share of the side, [0, 0.5] (default 0.05)");
-    command.add_option("--rc-depth-cull", job.rcDepthCull,
+    command.add_option("--rc-depth-cull", job.renderCache.depthCullThreshold,
                        "Render cache: depth culling hides a sample whose neighbours are nearer by this share of its "
                        "depth, [0, 1] (0 = off; default 0.1)");
-    command.add_option("--rc-tile", job.rcTile,
+    command.add_option("--rc-tile", job.renderCache.requestTileSize,
                        "Render cache: side of the hole-detection and request-map tiles, pixels, 1..256 (default 8)");
     command.add_option("--gbuffer", job.gbuffer,
                        "Hybrid G-buffer source: auto (OpenGL if a 4.5 context can be made, else packets), gl or "

@@ -28,17 +28,17 @@ CameraPath chooseCameraPath(const Scene& scene, const std::optional<std::string>
 
 }  // namespace
 
-void applyRenderCacheOptions(const RenderJobOptions& o, RenderCacheSettings& rc) {
-    if (o.rcBudget) rc.budget = *o.rcBudget;
-    if (o.rcTargetMs) rc.targetFrameMs = *o.rcTargetMs;
-    if (o.rcAlpha) rc.alpha = *o.rcAlpha;
-    if (o.rcPredict) rc.predictShare = *o.rcPredict;
-    if (o.rcMaxAge) rc.maxAge = *o.rcMaxAge;
-    if (o.rcSeed) rc.seed = *o.rcSeed;
-    if (o.rcMargin) rc.margin = *o.rcMargin;
-    if (o.rcDepthCull) rc.depthCullThreshold = *o.rcDepthCull;
-    if (o.rcTile) rc.requestTileSize = *o.rcTile;
-    if (o.rcReflections) parseReprojectedReflections(*o.rcReflections, rc.reflections);
+void applyRenderCacheOverrides(const RenderCacheOverrides& o, RenderCacheSettings& rc) {
+    if (o.budget) rc.budget = *o.budget;
+    if (o.targetFrameMs) rc.targetFrameMs = *o.targetFrameMs;
+    if (o.alpha) rc.alpha = *o.alpha;
+    if (o.predictShare) rc.predictShare = *o.predictShare;
+    if (o.maxAge) rc.maxAge = *o.maxAge;
+    if (o.seed) rc.seed = *o.seed;
+    if (o.margin) rc.margin = *o.margin;
+    if (o.depthCullThreshold) rc.depthCullThreshold = *o.depthCullThreshold;
+    if (o.requestTileSize) rc.requestTileSize = *o.requestTileSize;
+    if (o.reflections) parseReprojectedReflections(*o.reflections, rc.reflections);
 }
 
 std::optional<CacheTechnique> parseTechnique(const std::string& name) { return parseCacheTechnique(name); }
@@ -70,11 +70,11 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
         throw InputError("--pipeline must be ray, hybrid or render-cache (got '" + *o.pipeline + "')");
     // The --rc-* values alone, over the defaults: each error names its option.
     RenderCacheSettings rc;
-    applyRenderCacheOptions(o, rc);
+    applyRenderCacheOverrides(o.renderCache, rc);
     validateRenderCacheSettings(rc);
     ReprojectedReflections reflections;
-    if (o.rcReflections && !parseReprojectedReflections(*o.rcReflections, reflections))
-        throw InputError("--rc-reflections must be reshade or reproject (got '" + *o.rcReflections + "')");
+    if (o.renderCache.reflections && !parseReprojectedReflections(*o.renderCache.reflections, reflections))
+        throw InputError("--rc-reflections must be reshade or reproject (got '" + *o.renderCache.reflections + "')");
     if (o.gbuffer != "auto" && o.gbuffer != "gl" && o.gbuffer != "packets")
         throw InputError("--gbuffer must be auto, gl or packets (got '" + o.gbuffer + "')");
     if (o.path && *o.path != "static" && *o.path != "orbit" && *o.path != "pan")
@@ -105,14 +105,8 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     // Command-line options win over the scene file's, which win over the defaults.
     const SceneRenderDefaults& fromScene = job.scene.render;
     settings.pipeline = *parsePipelineKind(options.pipeline.value_or(fromScene.pipeline.value_or("ray")));
-    RenderCacheSettings& rc = settings.renderCache;
-    if (fromScene.rcBudget) rc.budget = *fromScene.rcBudget;
-    if (fromScene.rcTargetMs) rc.targetFrameMs = *fromScene.rcTargetMs;
-    if (fromScene.rcAlpha) rc.alpha = *fromScene.rcAlpha;
-    if (fromScene.rcPredict) rc.predictShare = *fromScene.rcPredict;
-    if (fromScene.rcMaxAge) rc.maxAge = *fromScene.rcMaxAge;
-    if (fromScene.rcReflections) parseReprojectedReflections(*fromScene.rcReflections, rc.reflections);
-    applyRenderCacheOptions(options, rc);
+    applyRenderCacheOverrides(fromScene.renderCache, settings.renderCache);
+    applyRenderCacheOverrides(options.renderCache, settings.renderCache);
     settings.gbuffer = options.gbuffer == "gl"        ? GBufferSource::OpenGl
                        : options.gbuffer == "packets" ? GBufferSource::Packets
                                                       : GBufferSource::Auto;

@@ -32,10 +32,7 @@ struct RenderJobOptions {
     std::optional<std::string> pipeline;   // ray | hybrid | render-cache; default: the scene file's, else ray
     std::string gbuffer = "auto";          // hybrid G-buffer source: auto | gl | packets
     // The Render Cache's --rc-* options; default: the scene file's, else RenderCacheSettings'.
-    std::optional<float> rcBudget, rcTargetMs, rcAlpha, rcPredict, rcMargin, rcDepthCull;
-    std::optional<int> rcMaxAge, rcTile;
-    std::optional<std::string> rcReflections;  // reshade | reproject
-    std::optional<std::uint64_t> rcSeed;
+    RenderCacheOverrides renderCache;
 };
 
 struct RenderJob {
@@ -49,8 +46,8 @@ struct RenderJob {
 // cdct-parity), or nothing for an unknown name.
 std::optional<CacheTechnique> parseTechnique(const std::string& name);
 
-// Puts the --rc-* options that were given into `settings`.
-void applyRenderCacheOptions(const RenderJobOptions& options, RenderCacheSettings& settings);
+// Puts the values that are set into `settings`.
+void applyRenderCacheOverrides(const RenderCacheOverrides& overrides, RenderCacheSettings& settings);
 
 // Throws InputError for option values out of range, without touching the
 // scene, so commands can check their own options in between and still report

@@ -244,7 +244,7 @@ public:
         if (const Node n = child(r, "frames")) scene.defaultFrames = integer(n, 1, kMaxFrames);
         if (const Node n = child(r, "pipeline"))
             scene.render.pipeline = oneOf(n, {"ray", "hybrid", "render-cache"});
-        if (const Node n = child(r, "renderCache")) renderCache(n, scene.render);
+        if (const Node n = child(r, "renderCache")) renderCache(n, scene.render.renderCache);
 
         if (const Node n = child(r, "environment")) scene.environment = environment(n);
         if (const Node n = child(r, "lights")) {
@@ -369,17 +369,17 @@ private:
         fail(n, "must be one of " + list + " (got '" + s + "')");
     }
 
-    void renderCache(const Node& n, SceneRenderDefaults& out) const {
+    void renderCache(const Node& n, RenderCacheOverrides& out) const {
         expectObject(n, {"budget", "targetFrameMs", "alpha", "predict", "maxAge", "reflections"});
         if (const Node v = child(n, "budget")) {
-            out.rcBudget = number(v, closed(0.0, 1.0));
-            if (!(*out.rcBudget > 0.0f)) fail(v, "must be a share of the pixels in (0, 1] (got 0)");
+            out.budget = number(v, closed(0.0, 1.0));
+            if (!(*out.budget > 0.0f)) fail(v, "must be a share of the pixels in (0, 1] (got 0)");
         }
-        if (const Node v = child(n, "targetFrameMs")) out.rcTargetMs = number(v, closed(0.0, 60000.0));
-        if (const Node v = child(n, "alpha")) out.rcAlpha = number(v, closed(0.0, 1.0));
-        if (const Node v = child(n, "predict")) out.rcPredict = number(v, closed(0.0, 0.9));
-        if (const Node v = child(n, "maxAge")) out.rcMaxAge = integer(v, 1, 65000);
-        if (const Node v = child(n, "reflections")) out.rcReflections = oneOf(v, {"reshade", "reproject"});
+        if (const Node v = child(n, "targetFrameMs")) out.targetFrameMs = number(v, closed(0.0, 60000.0));
+        if (const Node v = child(n, "alpha")) out.alpha = number(v, closed(0.0, 1.0));
+        if (const Node v = child(n, "predict")) out.predictShare = number(v, closed(0.0, 0.9));
+        if (const Node v = child(n, "maxAge")) out.maxAge = integer(v, 1, 65000);
+        if (const Node v = child(n, "reflections")) out.reflections = oneOf(v, {"reshade", "reproject"});
     }
 
     std::string nonEmptyString(const Node& n) const {

@@ -2,17 +2,24 @@
 // How a scene file asks to be rendered (its "pipeline" and "renderCache"
 // keys, docs/scene-format.md): defaults that command-line options override.
 // Plain values, checked when the file is read.
+#include <cstdint>
 #include <optional>
 #include <string>
 
 namespace raycache {
 
+// The Render Cache's options (rendercache/RenderCacheSettings.h) that a
+// scene file or the command line sets; those left unset keep their value.
+struct RenderCacheOverrides {
+    std::optional<float> budget, targetFrameMs, alpha, predictShare, margin, depthCullThreshold;
+    std::optional<int> maxAge, requestTileSize;
+    std::optional<std::uint64_t> seed;
+    std::optional<std::string> reflections;  // reshade | reproject
+};
+
 struct SceneRenderDefaults {
     std::optional<std::string> pipeline;  // ray | hybrid | render-cache
-    // The Render Cache's options (rendercache/RenderCacheSettings.h).
-    std::optional<float> rcBudget, rcTargetMs, rcAlpha, rcPredict;
-    std::optional<int> rcMaxAge;
-    std::optional<std::string> rcReflections;  // reshade | reproject
+    RenderCacheOverrides renderCache;
 };
 
 }  // namespace raycache

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "ShellRun.h"
+#include "CliScratchTest.h"
 
 namespace fs = std::filesystem;
 
@@ -17,19 +17,9 @@ namespace {
 using raycache::test::lineCount;
 using raycache::test::RunResult;
 
-class CliFirstRun : public ::testing::Test {
+class CliFirstRun : public raycache::test::CliScratchTest {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("raycache-cli-first-run-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    RunResult run(const std::string& args) const {
-        return raycache::test::runShell(std::string(RAYCACHE_BINARY) + " " + args, dir_ / "stderr.txt");
-    }
-    fs::path dir_;
+    CliFirstRun() : CliScratchTest("raycache-cli-first-run-") {}
 };
 
 }  // namespace

@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "ShellRun.h"
+#include "CliScratchTest.h"
 #include "app/RenderJob.h"
 #include "core/ColorSpace.h"
 #include "core/Parallel.h"
@@ -27,20 +27,9 @@ namespace {
 using raycache::test::lineCount;
 using raycache::test::RunResult;
 
-RunResult runRaycache(const std::string& args, const fs::path& dir) {
-    return raycache::test::runShell(std::string(RAYCACHE_BINARY) + " " + args, dir / "stderr.txt");
-}
-
-class CliOutput : public ::testing::Test {
+class CliOutput : public raycache::test::CliScratchTest {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("raycache-cli-output-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    fs::path dir_;
+    CliOutput() : CliScratchTest("raycache-cli-output-") {}
 };
 
 // Frame `frame` of the job's camera path, rendered uncached in this process.
@@ -74,7 +63,7 @@ const std::string kGridArgs = "render --scene grid-4 --width 32 --height 24 --fr
 }  // namespace
 
 TEST_F(CliOutput, ExrIsTheLastFrameOfTheUncachedRenderBitForBit) {
-    const RunResult r = runRaycache(kGridArgs + " --out " + (dir_ / "last.exr").string(), dir_);
+    const RunResult r = run(kGridArgs + " --out " + (dir_ / "last.exr").string());
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const Image written = loadImageFile(dir_ / "last.exr");
     const Image expected = renderInProcess(gridJob(), 2);
@@ -93,7 +82,7 @@ TEST_F(CliOutput, ExrIsTheLastFrameOfTheUncachedRenderBitForBit) {
 }
 
 TEST_F(CliOutput, PngIsTheSrgbEncodingOfTheLinearImage) {
-    ASSERT_EQ(runRaycache(kGridArgs + " --out " + (dir_ / "last.png").string(), dir_).exitCode, 0);
+    ASSERT_EQ(run(kGridArgs + " --out " + (dir_ / "last.png").string()).exitCode, 0);
     const Image png = loadImageFile(dir_ / "last.png");  // decoded back to linear
     const Image expected = renderInProcess(gridJob(), 2);
     ASSERT_EQ(png.width(), 32);
@@ -113,7 +102,7 @@ TEST_F(CliOutput, PngIsTheSrgbEncodingOfTheLinearImage) {
 
 TEST_F(CliOutput, StatsJsonCountsTheRaysOfEveryFrame) {
     const fs::path stats = dir_ / "stats.json";
-    const RunResult r = runRaycache(kGridArgs + " --max-depth 3 --stats " + stats.string(), dir_);
+    const RunResult r = run(kGridArgs + " --max-depth 3 --stats " + stats.string());
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const nlohmann::json j = readJson(stats);
     EXPECT_EQ(j.at("scene"), "grid-4");
@@ -152,28 +141,27 @@ TEST_F(CliOutput, StatsJsonCountsTheRaysOfEveryFrame) {
 // records the threads that ran and, apart, the number asked for.
 TEST_F(CliOutput, StatsJsonRecordsTheThreadsUsedNotRequested) {
     const fs::path clamped = dir_ / "clamped.json", all = dir_ / "all.json";
-    const RunResult r = runRaycache(kGridArgs + " --threads 1000 --stats " + clamped.string(), dir_);
+    const RunResult r = run(kGridArgs + " --threads 1000 --stats " + clamped.string());
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find("note: --threads 1000 is more than the"), std::string::npos) << r.out;
     const nlohmann::json j = readJson(clamped);
     EXPECT_EQ(j.at("threads").get<int>(), Parallel::hardwareThreads());
     EXPECT_EQ(j.at("threads_requested").get<int>(), 1000);
 
-    ASSERT_EQ(runRaycache(kGridArgs + " --stats " + all.string(), dir_).exitCode, 0);
+    ASSERT_EQ(run(kGridArgs + " --stats " + all.string()).exitCode, 0);
     EXPECT_EQ(readJson(all).at("threads").get<int>(), Parallel::hardwareThreads()) << "0 means all";
     EXPECT_EQ(readJson(all).at("threads_requested").get<int>(), 0);
 
-    ASSERT_EQ(runRaycache(kGridArgs + " --threads 1 --stats " + all.string(), dir_).exitCode, 0);
+    ASSERT_EQ(run(kGridArgs + " --threads 1 --stats " + all.string()).exitCode, 0);
     EXPECT_EQ(readJson(all).at("threads").get<int>(), 1);
     EXPECT_EQ(readJson(all).at("threads_requested").get<int>(), 1);
 }
 
 TEST_F(CliOutput, StatsJsonCacheCountsAddUpWithCct) {
     const fs::path stats = dir_ / "stats.json";
-    const RunResult r = runRaycache(
+    const RunResult r = run(
         "render --scene behind-1 --width 32 --height 32 --frames 3 --technique cct --cache-res 32 --stats " +
-            stats.string(),
-        dir_);
+        stats.string());
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const nlohmann::json frames = readJson(stats).at("frames");
     ASSERT_EQ(frames.size(), 3u);
@@ -210,7 +198,7 @@ TEST_F(CliOutput, HybridFallsBackToPacketsWithoutOpenGl) {
     EXPECT_NE(hybrid.out.find("pipeline: hybrid, G-buffer by primary-ray packets (no OpenGL 4.5 core context"),
               std::string::npos)
         << hybrid.out;
-    ASSERT_EQ(runRaycache(job + " --out " + (dir_ / "ray.exr").string(), dir_).exitCode, 0);
+    ASSERT_EQ(run(job + " --out " + (dir_ / "ray.exr").string()).exitCode, 0);
     const Image a = loadImageFile(dir_ / "hybrid.exr"), b = loadImageFile(dir_ / "ray.exr");
     ASSERT_EQ(a.width(), b.width());
     EXPECT_TRUE(a.pixels() == b.pixels()) << "hybrid (packets) and ray images differ";

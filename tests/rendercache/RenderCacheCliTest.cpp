@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "app/ShellRun.h"
+#include "app/CliScratchTest.h"
 
 namespace fs = std::filesystem;
 
@@ -17,19 +17,9 @@ namespace {
 using raycache::test::lineCount;
 using raycache::test::RunResult;
 
-class RenderCacheCli : public ::testing::Test {
+class RenderCacheCli : public raycache::test::CliScratchTest {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("raycache-rc-cli-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    RunResult run(const std::string& args) const {
-        return raycache::test::runShell(std::string(RAYCACHE_BINARY) + " " + args, dir_ / "stderr.txt");
-    }
-    fs::path dir_;
+    RenderCacheCli() : CliScratchTest("raycache-rc-cli-") {}
 };
 
 }  // namespace

@@ -167,12 +167,12 @@ TEST_F(SceneFileTest, RenderCacheKeysAreReadAndChecked) {
         "maxAge": 8, "predict": 0.3, "targetFrameMs": 20, "reflections": "reproject"}, "objects": []})");
     ASSERT_TRUE(scene.render.pipeline);
     EXPECT_EQ(*scene.render.pipeline, "render-cache");
-    EXPECT_EQ(scene.render.rcBudget, 0.1f);
-    EXPECT_EQ(scene.render.rcAlpha, 0.5f);
-    EXPECT_EQ(scene.render.rcMaxAge, 8);
-    EXPECT_EQ(scene.render.rcPredict, 0.3f);
-    EXPECT_EQ(scene.render.rcTargetMs, 20.0f);
-    EXPECT_EQ(scene.render.rcReflections, std::optional<std::string>("reproject"));
+    EXPECT_EQ(scene.render.renderCache.budget, 0.1f);
+    EXPECT_EQ(scene.render.renderCache.alpha, 0.5f);
+    EXPECT_EQ(scene.render.renderCache.maxAge, 8);
+    EXPECT_EQ(scene.render.renderCache.predictShare, 0.3f);
+    EXPECT_EQ(scene.render.renderCache.targetFrameMs, 20.0f);
+    EXPECT_EQ(scene.render.renderCache.reflections, std::optional<std::string>("reproject"));
     expectError("{\"pipeline\": @\"raster\", \"objects\": []}", "/pipeline",
                 "must be one of ray, hybrid, render-cache (got 'raster')");
     expectError("{\"renderCache\": {\"budget\": @0}, \"objects\": []}", "/renderCache/budget", "(0, 1]");
