@@ -22,6 +22,10 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
     command.add_option("--height", job.height, "Image height in pixels")->capture_default_str();
     command.add_option("--frames", job.frames, "Frames to render (default: the scene's path length)");
     command.add_option("--path", job.path, "Camera path: static, orbit or pan (default: the scene's own)");
+    command.add_option("--time", job.time,
+                       "Animated scenes: the time in seconds the first frame shows; frame f shows time + f / fps")
+        ->capture_default_str();
+    command.add_option("--fps", job.fps, "Animated scenes: frames per second of animation time (default: the scene's, 30)");
     command.add_option("--threads", job.threads, "Worker threads, 0 = all cores")->capture_default_str();
     command.add_option("--max-depth", job.maxDepth, "Longest ray path (primary ray = 1)")->capture_default_str();
     command.add_option("--min-weight", job.minWeight, "Stop a path when its kr/kt product falls below this")

@@ -83,7 +83,7 @@ void runCacheViewCommand(const CacheViewCommandOptions& options, std::ostream& o
                          << formatFixed(static_cast<double>(cube.bytes()) / (1024.0 * 1024.0), 2) << " MiB\n"
                          << "wrote " << options.out << "\n";
                  },
-                 [&](const std::string& pipeline) { out << pipeline << "\n"; });
+                 [&](const std::string& pipeline) { out << pipeline << "\n"; }, job.timeline);
 }
 
 }  // namespace raycache

@@ -42,6 +42,10 @@ std::string formatFrameLine(const FrameResult& r, int frameCount) {
              << " %, reshaded " << c->reshaded << ", ms: reconstruction " << formatFixed(c->reconstructionMs(), 1)
              << ", samples " << formatFixed(c->sampleGenerationMs(), 1);
     }
+    if (const auto& u = r.stats.sceneUpdate)
+        line << "  scene update: " << u->objectsChanged << (u->objectsChanged == 1 ? " object, " : " objects, ")
+             << u->lightsChanged << (u->lightsChanged == 1 ? " light" : " lights") << " changed, "
+             << formatFixed(u->milliseconds, 2) << " ms, " << u->texelsInvalidated << " texels invalidated";
     if (const auto& s = r.stats.stages)
         line << "  stages cpu ms: first hits " << formatFixed(s->firstHits, 1) << ", surfaces "
              << formatFixed(s->surfaces, 1) << ", shadow rays " << formatFixed(s->shadowRays, 1) << ", direct "

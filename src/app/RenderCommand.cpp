@@ -36,6 +36,13 @@ nlohmann::json phasesJson(const PhaseTimes& p) {
             {"secondary_ms", p.secondary}, {"compose_ms", p.compose}};
 }
 
+nlohmann::json sceneUpdateJson(const SceneUpdateStats& u) {
+    return {{"ms", u.milliseconds},           {"pose_ms", u.poseMs},
+            {"tracer_ms", u.tracerMs},        {"cache_ms", u.cacheMs},
+            {"objects_changed", u.objectsChanged}, {"lights_changed", u.lightsChanged},
+            {"texels_invalidated", u.texelsInvalidated}};
+}
+
 nlohmann::json renderCacheJson(const RenderCacheStats& s) {
     return {{"reproject_ms", s.reprojectMs}, {"maps_ms", s.mapsMs}, {"filter_ms", s.filterMs},
             {"reconstruction_ms", s.reconstructionMs()}, {"trace_ms", s.traceMs}, {"reshade_ms", s.reshadeMs},
@@ -102,12 +109,16 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out) {
         if (r.stats.phases) frameJson["phases"] = phasesJson(*r.stats.phases);
         if (r.stats.stages) frameJson["stages"] = stagesJson(*r.stats.stages);
         if (r.stats.renderCache) frameJson["render_cache"] = renderCacheJson(*r.stats.renderCache);
+        if (r.stats.sceneUpdate) {
+            frameJson["time"] = job.timeline.timeOf(r.frame);
+            frameJson["scene_update"] = sceneUpdateJson(*r.stats.sceneUpdate);
+        }
         frameStats.push_back(std::move(frameJson));
         const bool lastFrame = r.frame + 1 == frames;
         // Files count from 1 like the progress lines: "frame 1/N" is _0001.
         if (!options.out.empty() && (outPattern.perFrame() || lastFrame))
             writeImage(film, outPattern.pathFor(r.frame + 1));
-    }, onPipeline);
+    }, onPipeline, job.timeline);
 
     const SampleSummary summary = summarize(times);
     out << "median " << formatFixed(summary.median, 1) << " ms (min " << formatFixed(summary.min, 1) << ", max "

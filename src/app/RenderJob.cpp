@@ -48,6 +48,11 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
         throw InputError("--width/--height must be between 1 and " + std::to_string(kMaxImageSide));
     if (o.frames && (*o.frames < 1 || *o.frames > kMaxFrames))
         throw InputError("--frames must be between 1 and " + std::to_string(kMaxFrames));
+    if (!(std::isfinite(o.time) && std::fabs(o.time) <= kMaxAnimationSeconds))
+        throw InputError("--time must be a finite number of seconds within ±" +
+                         std::to_string(static_cast<int>(kMaxAnimationSeconds)));
+    if (o.fps && !(std::isfinite(*o.fps) && *o.fps > 0.0f && *o.fps <= 1000.0f))
+        throw InputError("--fps must be a number in (0, 1000]");
     if (o.maxDepth < 1 || o.maxDepth > 64) throw InputError("--max-depth must be between 1 and 64");
     if (!(o.minWeight >= 0.0f && o.minWeight <= 1.0f)) throw InputError("--min-weight must be in [0, 1]");
     if (o.threads < 0 || o.threads > 1024) throw InputError("--threads must be between 0 (all) and 1024");
@@ -87,6 +92,7 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     job.scene = loadScene(options.scene);
     job.path = chooseCameraPath(job.scene, options.path);
     job.frames = options.frames.value_or(job.scene.defaultFrames);
+    job.timeline = FrameTimeline{options.time, options.fps.value_or(job.scene.fps)};
 
     RenderSettings& settings = job.settings;
     settings.width = options.width;

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "render/FrameLoop.h"
 #include "render/RenderSettings.h"
 #include "scene/CameraPath.h"
 #include "scene/Scene.h"
@@ -18,6 +19,8 @@ struct RenderJobOptions {
     int height = 512;
     std::optional<int> frames;        // default: the scene's path length
     std::optional<std::string> path;  // static | orbit | pan; default: the scene's own path
+    float time = 0.0f;                // seconds of an animated scene the first frame shows
+    std::optional<float> fps;         // frames per second of animation time; default: the scene's
     int threads = 0;
     int maxDepth = 6;
     float minWeight = 0.01f;
@@ -38,6 +41,7 @@ struct RenderJobOptions {
 struct RenderJob {
     Scene scene;
     CameraPath path;
+    FrameTimeline timeline;  // the moment of the animation each frame shows
     RenderSettings settings;
     int frames = 1;
 };

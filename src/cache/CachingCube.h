@@ -65,6 +65,9 @@ public:
     bool writeIfInvalid(int index, std::uint32_t packed, float depth = kInvalidDepth);
     // Marks every texel invalid again.
     void clear();
+    // Moves the cube with its object (the box keeps its size); texels keep
+    // what they hold.
+    void moveTo(const Vec3& center) { center_ = center; }
 
     // Raw texel words, face-major (see cubeTexelIndex); for views and tests.
     std::span<const std::uint32_t> texels() const { return texels_.words(); }

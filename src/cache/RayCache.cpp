@@ -124,6 +124,17 @@ void RayCache::clear() {
     }
 }
 
+std::int64_t RayCache::sceneChanged(const Scene& posed, const SceneChanges& changes) {
+    if (changes.empty()) return 0;
+    for (Entry& e : cubes_)
+        if (std::binary_search(changes.objects.begin(), changes.objects.end(), e.objectId))
+            e.cube.moveTo(posed.objects[static_cast<std::size_t>(e.objectId)].origin);
+    std::int64_t dropped = 0;
+    for (const Entry& e : cubes_) dropped += static_cast<std::int64_t>(e.cube.validCount());
+    clear();
+    return dropped;
+}
+
 std::vector<CacheWorker> RayCache::makeWorkers(int count) const {
     std::vector<CacheWorker> workers(static_cast<std::size_t>(count));
     for (CacheWorker& w : workers) w.counters_.resize(cubes_.size());

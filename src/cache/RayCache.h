@@ -31,6 +31,7 @@
 #include "cache/CdctSearch.h"
 #include "cache/CachingCube.h"
 #include "scene/Scene.h"
+#include "scene/ScenePose.h"
 
 namespace raycache {
 
@@ -90,6 +91,13 @@ public:
     std::size_t bytes() const;
     // Invalidates every texel of every cube.
     void clear();
+    // After the scene moved to `posed` (changes from scene/ScenePose.h):
+    // every cube of a changed object follows its origin, and the texels
+    // whose colour may depend on what changed are invalidated. Today that is
+    // every texel of every cube as soon as anything changed (exact, never
+    // stale, but it throws away texels that are still right; see
+    // docs/dynamic-scenes.md). Returns how many valid texels were dropped.
+    std::int64_t sceneChanged(const Scene& posed, const SceneChanges& changes);
 
     std::vector<CacheWorker> makeWorkers(int count) const;
     // `count` workers owned by the cache and reused frame after frame, so

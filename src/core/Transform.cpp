@@ -5,6 +5,12 @@
 
 namespace raycache {
 
+Transform Transform::fromRows(const Rows& rows) {
+    Transform r;
+    r.m_ = rows;
+    return r;
+}
+
 Transform Transform::translate(const Vec3& t) {
     Transform r;
     r.m_[0][3] = t.x;

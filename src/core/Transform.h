@@ -24,10 +24,16 @@ public:
     Vec3 applyToNormal(const Vec3& n) const;
 
     Vec3 translation() const { return {m_[0][3], m_[1][3], m_[2][3]}; }
+    // The matrix as three rows of (linear part | translation), e.g. for a
+    // tracer's instance transform.
+    using Rows = std::array<std::array<float, 4>, 3>;
+    const Rows& rows() const { return m_; }
+    static Transform fromRows(const Rows& rows);
+    friend bool operator==(const Transform&, const Transform&) = default;
     float determinant() const;
 
 private:
-    std::array<std::array<float, 4>, 3> m_{{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}}};
+    Rows m_{{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}}};
 };
 
 }  // namespace raycache

@@ -252,11 +252,7 @@ struct GBufferRasterizer::Impl {
         if (!context) return;
         context->makeCurrent();
         releaseTargets();
-        for (const MeshBuffers& m : meshes) {
-            glDeleteVertexArrays(1, &m.vertexArray);
-            glDeleteBuffers(1, &m.vertices);
-            glDeleteBuffers(1, &m.indices);
-        }
+        for (MeshBuffers& m : meshes) releaseMesh(m);
         for (GLuint t : textures) glDeleteTextures(1, &t);
         glDeleteVertexArrays(1, &cubeArray);
         glDeleteBuffers(1, &cubeVertices);
@@ -343,6 +339,18 @@ struct GBufferRasterizer::Impl {
 
         meshes.resize(s.objects.size());
         textures.assign(s.objects.size(), 0);
+        for (std::size_t i = 0; i < s.objects.size(); ++i) {
+            const SceneObject& object = s.objects[i];
+            if (const auto* mesh = std::get_if<MeshShape>(&object.shape)) uploadMesh(*mesh->mesh, meshes[i]);
+            if (const auto& texture = object.material.diffuseTexture; texture && texture->pixels())
+                textures[i] = uploadImage(*texture->pixels());
+        }
+        measureBounds();
+        checkGl("uploading the scene");
+    }
+
+    // The box around every object, which sets the depth range drawn.
+    void measureBounds() {
         bool first = true;
         const auto grow = [&](const Vec3& lo, const Vec3& hi) {
             for (int a = 0; a < 3; ++a) {
@@ -351,19 +359,21 @@ struct GBufferRasterizer::Impl {
             }
             first = false;
         };
-        for (std::size_t i = 0; i < s.objects.size(); ++i) {
-            const SceneObject& object = s.objects[i];
+        for (const SceneObject& object : scene->objects) {
             if (const auto* sphere = std::get_if<Sphere>(&object.shape)) {
                 const Vec3 r{sphere->radius, sphere->radius, sphere->radius};
                 grow(sphere->center - r, sphere->center + r);
             } else {
-                uploadMesh(*std::get<MeshShape>(object.shape).mesh, meshes[i]);
                 for (const Vec3& p : std::get<MeshShape>(object.shape).mesh->positions) grow(p, p);
             }
-            if (const auto& texture = object.material.diffuseTexture; texture && texture->pixels())
-                textures[i] = uploadImage(*texture->pixels());
         }
-        checkGl("uploading the scene");
+    }
+
+    static void releaseMesh(MeshBuffers& m) {
+        glDeleteVertexArrays(1, &m.vertexArray);
+        glDeleteBuffers(1, &m.vertices);
+        glDeleteBuffers(1, &m.indices);
+        m = MeshBuffers{};
     }
 
     static void uploadMesh(const TriangleMesh& mesh, MeshBuffers& out) {
@@ -501,6 +511,21 @@ struct GBufferRasterizer::Impl {
 
 GBufferRasterizer::GBufferRasterizer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 GBufferRasterizer::~GBufferRasterizer() = default;
+
+void GBufferRasterizer::sceneChanged(std::span<const int> changed) {
+    Impl& g = *impl_;
+    g.context->makeCurrent();
+    for (const int id : changed) {
+        const auto i = static_cast<std::size_t>(id);
+        // Spheres are drawn from the scene every frame; meshes live in buffers.
+        if (const auto* mesh = std::get_if<MeshShape>(&g.scene->objects[i].shape)) {
+            Impl::releaseMesh(g.meshes[i]);
+            Impl::uploadMesh(*mesh->mesh, g.meshes[i]);
+        }
+    }
+    g.measureBounds();
+    checkGl("updating the scene");
+}
 
 std::unique_ptr<GBufferRasterizer> GBufferRasterizer::create(const Scene& scene, std::string& whyNot) {
     auto impl = std::make_unique<Impl>();

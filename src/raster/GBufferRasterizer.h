@@ -12,6 +12,7 @@
 // Depth is the distance along the pixel's camera ray (the tracer's t), so
 // raster and tracer agree on which surface is nearest.
 #include <memory>
+#include <span>
 #include <string>
 
 #include "render/GBuffer.h"
@@ -42,6 +43,10 @@ public:
     // view stays valid until the next call or the rasterizer's destruction.
     // Throws RuntimeError if OpenGL fails.
     GBufferView rasterize(const Camera& camera, int width, int height, RasterTimes& times);
+
+    // Uploads again the meshes of objects `changed` and the scene's bounds,
+    // after the scene given to create() moved (scene/ScenePose.h).
+    void sceneChanged(std::span<const int> changed);
 
     // The context it draws with, e.g. "EGL 1.5 surfaceless (no surface), OpenGL 4.5 ..., llvmpipe ...".
     const std::string& description() const;

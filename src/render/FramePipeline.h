@@ -15,6 +15,7 @@
 #include "render/RenderSettings.h"
 #include "scene/Camera.h"
 #include "scene/Scene.h"
+#include "scene/ScenePose.h"
 #include "trace/TraceScene.h"
 
 namespace raycache {
@@ -35,6 +36,10 @@ public:
     // The Render Cache pipeline's maps of its last frame, for the viewer's
     // overlays; null for the other pipelines.
     virtual const RenderCacheOverlays* renderCacheOverlays() const { return nullptr; }
+    // The scene this pipeline renders moved (RenderSession::setTime); the
+    // tracer and the caches are already updated. Pipelines that keep their
+    // own copy of geometry (the hybrid one's OpenGL buffers) update it.
+    virtual void sceneChanged(const SceneChanges& changes) { (void)changes; }
 };
 
 // The pipeline settings.pipeline asks for. The hybrid pipeline with

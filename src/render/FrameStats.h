@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <optional>
 
 #include "cache/CacheStats.h"
@@ -51,6 +52,19 @@ struct StageTimes {
     }
 };
 
+// What moving the scene to the frame's time cost and touched
+// (RenderSession::setTime): posing, the tracer's update and the caches'
+// invalidation, in wall milliseconds.
+struct SceneUpdateStats {
+    double milliseconds = 0.0;
+    double poseMs = 0.0;     // objects, meshes and lights put in their pose
+    double tracerMs = 0.0;   // instance transforms, refits, the top-level rebuild
+    double cacheMs = 0.0;    // cubes moved, texels invalidated
+    int objectsChanged = 0;
+    int lightsChanged = 0;
+    std::int64_t texelsInvalidated = 0;
+};
+
 // What one rendered frame did.
 struct FrameStats {
     RayCounts rays;
@@ -58,6 +72,7 @@ struct FrameStats {
     std::optional<PhaseTimes> phases;      // present for the hybrid pipeline
     std::optional<StageTimes> stages;      // present when RenderSettings::stageTimes is set
     std::optional<RenderCacheStats> renderCache;  // present for the Render Cache pipeline
+    std::optional<SceneUpdateStats> sceneUpdate;  // present for animated scenes
 };
 
 }  // namespace raycache

@@ -33,6 +33,10 @@ FrameStats HybridPipeline::render(const Camera& camera, Image& film) {
     return stats;
 }
 
+void HybridPipeline::sceneChanged(const SceneChanges& changes) {
+    if (rasterizer_ && !changes.objects.empty()) rasterizer_->sceneChanged(changes.objects);
+}
+
 std::string HybridPipeline::description() const {
     if (rasterizer_) return "pipeline: hybrid, G-buffer by OpenGL (" + rasterizer_->description() + ")";
     return "pipeline: hybrid, G-buffer by primary-ray packets (" + fallbackReason_ + ")";

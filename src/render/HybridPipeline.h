@@ -25,6 +25,7 @@ public:
     FrameStats render(const Camera& camera, Image& film) override;
     std::string description() const override;
     bool usesOpenGl() const { return rasterizer_ != nullptr; }
+    void sceneChanged(const SceneChanges& changes) override;
 
 private:
     RenderSettings settings_;

@@ -1,21 +1,80 @@
 #include "render/RenderSession.h"
 
+#include <chrono>
+
+#include "core/Errors.h"
+
+#include "scene/ScenePose.h"
+
 namespace raycache {
 
+namespace {
+
+std::unique_ptr<Scene> copyIfAnimated(const Scene& scene) {
+    return scene.animation.empty() ? nullptr : std::make_unique<Scene>(scene);
+}
+
+using Clock = std::chrono::steady_clock;
+
+double millisecondsSince(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+}  // namespace
+
 RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings)
-    : scene_(scene), settings_(settings), cache_(scene, settings.cache),
-      ownTracer_(std::make_unique<TraceScene>(scene)), ownParallel_(std::make_unique<Parallel>(settings.threads)),
-      tracer_(ownTracer_.get()), parallel_(ownParallel_.get()),
-      pipeline_(makeFramePipeline(scene, *tracer_, settings_, *parallel_, &cache_)) {}
+    : source_(scene), posed_(copyIfAnimated(scene)), scene_(posed_ ? *posed_ : scene), settings_(settings),
+      cache_(scene_, settings.cache), ownTracer_(std::make_unique<TraceScene>(scene_)),
+      ownParallel_(std::make_unique<Parallel>(settings.threads)), tracer_(ownTracer_.get()),
+      parallel_(ownParallel_.get()), pipeline_(makeFramePipeline(scene_, *tracer_, settings_, *parallel_, &cache_)) {}
 
 RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings, const TraceScene& tracer,
                              const Parallel& parallel)
-    : scene_(scene), settings_(settings), cache_(scene, settings.cache), tracer_(&tracer), parallel_(&parallel),
-      pipeline_(makeFramePipeline(scene, tracer, settings_, parallel, &cache_)) {}
+    : source_(scene), posed_(copyIfAnimated(scene)), scene_(posed_ ? *posed_ : scene), settings_(settings),
+      cache_(scene_, settings.cache), tracer_(&tracer), parallel_(&parallel),
+      pipeline_(makeFramePipeline(scene_, tracer, settings_, parallel, &cache_)) {}
 
 RenderSession::~RenderSession() = default;
 
-FrameStats RenderSession::render(const Camera& camera, Image& film) { return pipeline_->render(camera, film); }
+FrameStats RenderSession::render(const Camera& camera, Image& film) {
+    FrameStats stats = pipeline_->render(camera, film);
+    stats.sceneUpdate = pendingUpdate_;
+    pendingUpdate_.reset();
+    return stats;
+}
+
+SceneUpdateStats RenderSession::setTime(float seconds) {
+    SceneUpdateStats update;
+    if (!posed_) return update;
+    const auto start = Clock::now();
+    const SceneChanges changes = poseScene(source_, seconds, *posed_);
+    update.poseMs = millisecondsSince(start);
+    update.objectsChanged = static_cast<int>(changes.objects.size());
+    update.lightsChanged = static_cast<int>(changes.lights.size());
+    if (!changes.empty()) {
+        if (!ownTracer_) throw RuntimeError("a render session that shares its tracer cannot animate its scene");
+        auto phase = Clock::now();
+        ownTracer_->update(*posed_, changes.objects);
+        update.tracerMs = millisecondsSince(phase);
+        phase = Clock::now();
+        update.texelsInvalidated = cache_.sceneChanged(*posed_, changes);
+        update.cacheMs = millisecondsSince(phase);
+        pipeline_->sceneChanged(changes);
+    }
+    update.milliseconds = millisecondsSince(start);
+    if (pendingUpdate_) {  // several updates before one frame: their sum
+        pendingUpdate_->milliseconds += update.milliseconds;
+        pendingUpdate_->poseMs += update.poseMs;
+        pendingUpdate_->tracerMs += update.tracerMs;
+        pendingUpdate_->cacheMs += update.cacheMs;
+        pendingUpdate_->objectsChanged += update.objectsChanged;
+        pendingUpdate_->lightsChanged += update.lightsChanged;
+        pendingUpdate_->texelsInvalidated += update.texelsInvalidated;
+    } else {
+        pendingUpdate_ = update;
+    }
+    return update;
+}
 
 void RenderSession::resize(int width, int height) {
     if (width == settings_.width && height == settings_.height) return;

@@ -4,6 +4,7 @@
 // the experiments, the benchmarks and the viewer all render through one of
 // these; nobody assembles the parts by hand.
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "cache/RayCache.h"
@@ -34,8 +35,16 @@ public:
     RenderSession& operator=(const RenderSession&) = delete;
 
     // Renders what `camera` sees into `film` (resized to the session's size).
-    // Images and caches do not depend on the thread count.
+    // Images and caches do not depend on the thread count. The stats include
+    // the scene update of setTime calls since the last frame.
     FrameStats render(const Camera& camera, Image& film);
+    // Puts an animated scene in its pose at `seconds`: moves the tracer's
+    // objects, invalidates what the caches saw of what changed, tells the
+    // pipeline. Does nothing for a still scene. A session that shares its
+    // tracer cannot animate (the others would see the change): RuntimeError.
+    SceneUpdateStats setTime(float seconds);
+    // The scene as the last setTime left it (the scene itself when still).
+    const Scene& scene() const { return scene_; }
     // Changes the image size of later frames; the caches stay as they are.
     void resize(int width, int height);
 
@@ -50,7 +59,10 @@ public:
     const RenderCacheOverlays* renderCacheOverlays() const { return pipeline_->renderCacheOverlays(); }
 
 private:
-    const Scene& scene_;
+    const Scene& source_;
+    std::unique_ptr<Scene> posed_;  // the current pose of an animated scene; null when still
+    const Scene& scene_;            // *posed_, or source_ when still
+    std::optional<SceneUpdateStats> pendingUpdate_;
     RenderSettings settings_;
     RayCache cache_;  // first: its constructor rejects bad settings before any heavy work
     std::unique_ptr<TraceScene> ownTracer_;

@@ -6,7 +6,9 @@
 #include <memory>
 #include <numbers>
 
+#include "scene/ClothDrape.h"
 #include "scene/MeshGenerators.h"
+#include "scene/ScenePose.h"
 
 namespace raycache {
 
@@ -276,6 +278,108 @@ Scene shapesScene() {
     return s;
 }
 
+// ---- animated scenes (scene/Animation.h) ----------------------------------
+
+// Makes the last object added animated, its shape as built the rest shape.
+ObjectAnimation& animateLast(Scene& s) {
+    const auto index = static_cast<int>(s.objects.size()) - 1;
+    const SceneObject& object = s.objects.back();
+    s.animation.objects.push_back(ObjectAnimation{index, std::nullopt, nullptr, object.shape, object.origin});
+    return s.animation.objects.back();
+}
+
+TransformKey moveKey(float time, const Vec3& translate, float yawDeg = 0.0f) {
+    return TransformKey{time, translate, Quaternion::fromAxisAngle({0, 1, 0}, yawDeg), {1, 1, 1}};
+}
+
+// `room` with a ball bouncing left and right between the mirror ball and the camera.
+Scene roomMovingScene() {
+    Scene s = roomScene();
+    s.name = "room-moving";
+    s.objects.push_back(sphere("bouncing-ball", {-4.0f, 0.6f, 3.0f}, 0.6f, matte(Rgb{0.9f, 0.15f, 0.1f})));
+    TransformTrack track;
+    // Across in 2 s and back in 2 s, two bounces each way (|sin| arcs, 1 s each).
+    constexpr int kKeys = 32;
+    for (int k = 0; k <= kKeys; ++k) {
+        const float t = 4.0f * static_cast<float>(k) / kKeys;
+        const float across = t < 2.0f ? t / 2.0f : 2.0f - t / 2.0f;
+        const float height = 2.0f * std::fabs(std::sin(std::numbers::pi_v<float> * t));
+        track.keys.push_back(moveKey(t, {8.0f * across, height, 0.0f}));
+    }
+    animateLast(s).transform = track;
+    s.cameraPath = CameraPath{};  // a still camera: what changes is the scene
+    s.defaultFrames = 48;
+    return s;
+}
+
+// Spheres circling a glass sphere at different heights, radii and speeds.
+Scene orbitScene() {
+    Scene s;
+    s.name = "orbit";
+    s.objects.push_back(floorObject(100.0f));
+    s.objects.push_back(sphere("glass-core", {0, 1.3f, 0}, 1.2f, glass()));
+    struct Orbiter {
+        float radius, height, size, period;
+        bool reflective;
+    };
+    const std::array<Orbiter, 4> orbiters{{{3.0f, 0.7f, 0.6f, 4.0f, true},
+                                           {3.6f, 1.8f, 0.5f, 6.0f, false},
+                                           {2.6f, 2.6f, 0.4f, 3.0f, false},
+                                           {4.2f, 1.0f, 0.7f, 8.0f, true}}};
+    for (std::size_t i = 0; i < orbiters.size(); ++i) {
+        const Orbiter& o = orbiters[i];
+        const Material m = o.reflective ? mirror(paletteColor(static_cast<int>(i)), 0.6f)
+                                        : matte(paletteColor(static_cast<int>(i)));
+        s.objects.push_back(sphere("orbiter" + std::to_string(i), {o.radius, o.height, 0}, o.size, m));
+        // A turn about the y axis in keys 90° apart (slerp takes the shorter way).
+        TransformTrack track;
+        for (int k = 0; k <= 4; ++k)
+            track.keys.push_back(moveKey(o.period * static_cast<float>(k) / 4.0f, {0, 0, 0}, 90.0f * static_cast<float>(k)));
+        animateLast(s).transform = track;
+    }
+    s.lights.push_back(pointLight({4, 10, 6}));
+    s.environment = Environment::constant(kSky);
+    s.camera = camera({0, 4, 10}, {0, 1.2f, 0}, 45.0f);
+    s.defaultFrames = 60;
+    return s;
+}
+
+// A ~90k-triangle sheet folding over a sphere, a mirror ball beside it.
+Scene clothScene() {
+    Scene s;
+    s.name = "cloth";
+    s.objects.push_back(floorObject(100.0f));
+    const ClothDrapeShape shape;
+    s.objects.push_back(sphere("support", shape.sphereCenter, shape.sphereRadius, matte(Rgb{0.6f})));
+    s.objects.push_back(sphere("mirror-ball", {3.4f, 1.3f, 1.0f}, 1.3f, mirror()));
+    auto drape = std::make_shared<const ClothDrape>(shape);
+    Material cloth = checker(Rgb{0.8f, 0.2f, 0.25f}, Rgb{0.95f, 0.9f, 0.8f}, 8.0f);
+    s.objects.push_back(SceneObject{"cloth", MeshShape{std::make_shared<const TriangleMesh>(drape->restMesh())},
+                                    cloth, shape.sphereCenter});
+    animateLast(s).deformation = drape;
+    s.lights.push_back(pointLight({4, 10, 6}));
+    s.environment = Environment::constant(kSky);
+    s.camera = camera({-1.5f, 4.5f, 9.5f}, {0.8f, 1.0f, 0}, 45.0f);
+    s.defaultFrames = 60;
+    return s;
+}
+
+// `grid-8` lit by a light sweeping from left to right and back.
+Scene lightSweepScene() {
+    Scene s = gridScene(8);
+    s.name = "light-sweep";
+    LightTrack track;
+    track.light = 0;
+    const Light& light = s.lights[0];
+    for (const auto& [t, x] : {std::pair{0.0f, -14.0f}, std::pair{2.0f, 14.0f}, std::pair{4.0f, -14.0f}})
+        track.keys.push_back(LightKey{t, {x, light.position.y, light.position.z}, light.direction, light.intensity});
+    track.interpolation = Interpolation::Smooth;
+    s.animation.lights.push_back(track);
+    s.cameraPath = CameraPath{};
+    s.defaultFrames = 60;
+    return s;
+}
+
 struct Entry {
     BuiltinSceneInfo info;
     std::function<Scene()> make;
@@ -305,6 +409,11 @@ std::vector<Entry> registry() {
                        parallaxScene});
     entries.push_back({{"glass", "refractive sphere and box before a checkered wall"}, glassScene});
     entries.push_back({{"shapes", "mirror cone, cylinder and torus (concave) (Fig 5.10/5.11)"}, shapesScene});
+    entries.push_back({{"room-moving", "animated: `room` with a ball bouncing past the mirror ball"}, roomMovingScene});
+    entries.push_back({{"orbit", "animated: spheres circling a glass sphere"}, orbitScene});
+    entries.push_back({{"cloth", "animated: a 90k-triangle sheet folding over a sphere beside a mirror ball"},
+                       clothScene});
+    entries.push_back({{"light-sweep", "animated: `grid-8` under a light sweeping across"}, lightSweepScene});
     return entries;
 }
 
@@ -317,8 +426,12 @@ std::vector<BuiltinSceneInfo> builtinScenes() {
 }
 
 std::optional<Scene> makeBuiltinScene(std::string_view name) {
-    for (const Entry& e : registry())
-        if (e.info.name == name) return e.make();
+    for (const Entry& e : registry()) {
+        if (e.info.name != name) continue;
+        Scene scene = e.make();
+        poseScene(scene, 0.0f, scene);  // what a still render of an animated scene shows
+        return scene;
+    }
     return std::nullopt;
 }
 

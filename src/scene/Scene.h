@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/Animation.h"
 #include "scene/Camera.h"
 #include "scene/CameraPath.h"
 #include "scene/Environment.h"
@@ -24,6 +25,8 @@ struct Scene {
     Camera camera;           // the camera at frame 0
     CameraPath cameraPath;   // how it moves
     int defaultFrames = 1;   // length of the default camera path
+    SceneAnimation animation;  // objects and lights that move; empty for a still scene
+    float fps = 30.0f;         // frame index / fps = the time a frame shows
     SceneRenderDefaults render;  // what the scene file asks for; command-line options win
 };
 

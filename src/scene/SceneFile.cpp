@@ -28,6 +28,7 @@
 #include "scene/MeshGenerators.h"
 #include "scene/MeshLimits.h"
 #include "scene/MeshLoader.h"
+#include "scene/ScenePose.h"
 
 namespace raycache {
 
@@ -228,7 +229,7 @@ public:
 
     Scene read(const json& root, const std::string& defaultName) {
         const Node r{&root, ""};
-        expectObject(r, {"name", "camera", "path", "frames", "environment", "lights", "materials", "objects",
+        expectObject(r, {"name", "camera", "path", "frames", "fps", "environment", "lights", "materials", "objects",
                          "pipeline", "renderCache"});
         Scene scene;
         scene.name = defaultName;
@@ -247,11 +248,20 @@ public:
         if (const Node n = child(r, "renderCache")) renderCache(n, scene.render.renderCache);
 
         if (const Node n = child(r, "environment")) scene.environment = environment(n);
+        if (const Node n = child(r, "fps")) scene.fps = number(n, {0.0, 1000.0, false, true});
         if (const Node n = child(r, "lights")) {
-            for (const Node& l : elements(n, 0, kMaxLights, "lights")) scene.lights.push_back(light(l));
+            for (const Node& l : elements(n, 0, kMaxLights, "lights")) {
+                scene.lights.push_back(light(l));
+                if (const Node a = child(l, "animation")) {
+                    LightTrack track = lightTrack(a, scene.lights.back());
+                    track.light = static_cast<int>(scene.lights.size()) - 1;
+                    scene.animation.lights.push_back(std::move(track));
+                }
+            }
         }
         if (const Node n = child(r, "materials")) materials(n);
         objects(required(r, "objects"), scene);
+        poseScene(scene, 0.0f, scene);  // a still render shows time 0
         return scene;
     }
 
@@ -594,14 +604,16 @@ private:
     }
 
     Light light(const Node& n) const {
-        expectObject(n, {"type", "position", "direction", "intensity", "cone", "falloff"});
+        expectObject(n, {"type", "position", "direction", "intensity", "cone", "falloff", "animation"});
         const Node type = required(n, "type");
         Light l;
         l.type = choice(type, "light type", kLightTypes);
         const std::string variant = "light type " + quote(type->get<std::string>());
         switch (l.type) {
-        case LightType::Point: expectKeysApply(n, {"type", "position", "intensity"}, variant); break;
-        case LightType::Directional: expectKeysApply(n, {"type", "direction", "intensity"}, variant); break;
+        case LightType::Point: expectKeysApply(n, {"type", "position", "intensity", "animation"}, variant); break;
+        case LightType::Directional:
+            expectKeysApply(n, {"type", "direction", "intensity", "animation"}, variant);
+            break;
         case LightType::Spot: break;  // uses every key
         }
         if (l.type != LightType::Directional) l.position = vec3(required(n, "position"));
@@ -614,6 +626,118 @@ private:
                 l.falloffAngleDeg = number(f, closed(0.0, static_cast<double>(l.coneAngleDeg)));
         }
         return l;
+    }
+
+    // ---- animation (scene/Animation.h) ----------------------------------
+
+    // "interpolation" and "wrap" of an animation object.
+    void trackOptions(const Node& n, Interpolation& interpolation, Wrap& wrap) const {
+        if (const Node v = child(n, "interpolation"))
+            interpolation = oneOf(v, {"linear", "smooth"}) == "smooth" ? Interpolation::Smooth : Interpolation::Linear;
+        if (const Node v = child(n, "wrap")) wrap = oneOf(v, {"loop", "clamp"}) == "clamp" ? Wrap::Clamp : Wrap::Loop;
+    }
+
+    // The "keys" array: at least one, times finite and strictly increasing.
+    std::vector<Node> keyNodes(const Node& n, std::vector<float>& times) const {
+        std::vector<Node> keys = elements(required(n, "keys"), 1, kMaxKeyframes, "keys");
+        for (const Node& k : keys) {
+            if (!k->is_object()) failType(k, "a key object");
+            const Node t = required(k, "time");
+            const float time = number(t, closed(-kMaxAnimationSeconds, kMaxAnimationSeconds));
+            if (!times.empty() && !(time > times.back()))
+                fail(t, "key times must increase (got " + formatNumber(time) + " after " + formatNumber(times.back()) + ")");
+            times.push_back(time);
+        }
+        return keys;
+    }
+
+    TransformTrack transformTrack(const Node& n, bool sphere) const {
+        expectObject(n, {"keys", "interpolation", "wrap"});
+        TransformTrack track;
+        trackOptions(n, track.interpolation, track.wrap);
+        std::vector<float> times;
+        for (const Node& k : keyNodes(n, times)) {
+            expectObject(k, {"time", "translate", "rotate", "scale"});
+            TransformKey key;
+            key.time = times[track.keys.size()];
+            if (const Node v = child(k, "translate")) key.translate = vec3(v);
+            if (const Node v = child(k, "rotate")) {
+                if (v->is_array()) {
+                    // Applied in the order listed: the first entry acts first.
+                    for (const Node& r : elements(v, 0, kMaxRotations, "rotations")) key.rotation = rotation(r) * key.rotation;
+                } else if (v->is_object()) {
+                    key.rotation = rotation(v);
+                } else {
+                    failType(v, "a rotation {\"axis\", \"degrees\"} or an array of them");
+                }
+            }
+            if (const Node v = child(k, "scale")) {
+                if (v->is_number()) {
+                    key.scale = Vec3(1.0f, 1.0f, 1.0f) * number(v, positive());
+                } else if (v->is_array() && v->size() == 3) {
+                    const auto e = elements(v, 3, 3, "numbers");
+                    key.scale = {number(e[0], positive()), number(e[1], positive()), number(e[2], positive())};
+                    if (sphere && !(key.scale.x == key.scale.y && key.scale.y == key.scale.z))
+                        fail(v, "a sphere needs a uniform scale (a non-uniform one would make it an ellipsoid; use a mesh)");
+                } else {
+                    failType(v, "a number or an array of 3 numbers [x, y, z]");
+                }
+            }
+            track.keys.push_back(key);
+        }
+        return track;
+    }
+
+    Quaternion rotation(const Node& n) const {
+        expectObject(n, {"axis", "degrees"});
+        const Vec3 axis = nonZeroVec3(required(n, "axis"));
+        return Quaternion::fromAxisAngle(axis, number(required(n, "degrees")));
+    }
+
+    LightTrack lightTrack(const Node& n, const Light& light) const {
+        expectObject(n, {"keys", "interpolation", "wrap"});
+        LightTrack track;
+        trackOptions(n, track.interpolation, track.wrap);
+        std::vector<float> times;
+        for (const Node& k : keyNodes(n, times)) {
+            // A key sets what its light type uses; what it leaves out keeps the light's own value.
+            switch (light.type) {
+            case LightType::Point: expectObject(k, {"time", "position", "intensity"}); break;
+            case LightType::Directional: expectObject(k, {"time", "direction", "intensity"}); break;
+            case LightType::Spot: expectObject(k, {"time", "position", "direction", "intensity"}); break;
+            }
+            LightKey key{times[track.keys.size()], light.position, light.direction, light.intensity};
+            if (const Node v = child(k, "position")) key.position = vec3(v);
+            if (const Node v = child(k, "direction")) key.direction = normalize(nonZeroVec3(v));
+            if (const Node v = child(k, "intensity")) key.intensity = rgb(v);
+            track.keys.push_back(key);
+        }
+        return track;
+    }
+
+    // "frames": {"files": [...], "fps": f, "wrap": w}: one mesh file per
+    // frame, each with the rest mesh's triangles, placed by `placement`.
+    std::shared_ptr<const MeshDeformation> meshFrames(const Node& n, const TriangleMesh& rest, const Transform& placement) {
+        expectObject(n, {"files", "fps", "wrap"});
+        float fps = 24.0f;
+        if (const Node v = child(n, "fps")) fps = number(v, {0.0, 1000.0, false, true});
+        Wrap wrap = Wrap::Loop;
+        if (const Node v = child(n, "wrap")) wrap = oneOf(v, {"loop", "clamp"}) == "clamp" ? Wrap::Clamp : Wrap::Loop;
+        std::vector<std::vector<Vec3>> frames;
+        for (const Node& f : elements(required(n, "files"), 1, kMaxKeyframes, "files")) {
+            const std::shared_ptr<const TriangleMesh> mesh = meshFile(f);
+            if (mesh->positions.size() != rest.positions.size())
+                fail(f, "has " + std::to_string(mesh->positions.size()) + " vertices, the object's \"file\" has " +
+                            std::to_string(rest.positions.size()) + " (every frame needs the same vertices)");
+            if (mesh->triangles != rest.triangles)
+                fail(f, "has other triangles than the object's \"file\" (every frame needs the same triangles)");
+            std::vector<Vec3> positions;
+            positions.reserve(mesh->positions.size());
+            for (const Vec3& p : mesh->positions) positions.push_back(placement.applyToPoint(p));
+            checkMeshBounds(TriangleMesh{positions, {}, {}, mesh->triangles}, f, "");
+            frames.push_back(std::move(positions));
+        }
+        return std::make_shared<const MeshSequence>(std::move(frames), fps, wrap);
     }
 
     Material material(const Node& n) {
@@ -730,18 +854,18 @@ private:
     void objects(const Node& n, Scene& scene) {
         std::unordered_map<std::string, std::string> names;  // name -> pointer of its first use
         for (const Node& o : elements(n, 0, kMaxObjects, "objects")) {
-            expectObject(o, {"name", "shape", "center", "radius", "file", "transform", "material"});
+            expectObject(o, {"name", "shape", "center", "radius", "file", "transform", "material", "animation", "frames"});
             const Node shape = required(o, "shape");
             const ShapeKind kind = choice(shape, "shape", kShapeKinds);
             const std::string variant = "shape " + quote(shape->get<std::string>());
             switch (kind) {
             case ShapeKind::Sphere:
-                expectKeysApply(o, {"name", "shape", "center", "radius", "transform", "material"}, variant);
+                expectKeysApply(o, {"name", "shape", "center", "radius", "transform", "material", "animation"}, variant);
                 break;
             case ShapeKind::Mesh:
-                expectKeysApply(o, {"name", "shape", "file", "transform", "material"}, variant);
+                expectKeysApply(o, {"name", "shape", "file", "transform", "material", "animation", "frames"}, variant);
                 break;
-            default: expectKeysApply(o, {"name", "shape", "transform", "material"}, variant); break;
+            default: expectKeysApply(o, {"name", "shape", "transform", "material", "animation"}, variant); break;
             }
 
             SceneObject object;
@@ -782,6 +906,14 @@ private:
                 object.origin = t.translate;
             }
             if (const Node v = child(o, "material")) object.material = objectMaterial(v);
+            const Node animation = child(o, "animation");
+            const Node frames = child(o, "frames");
+            if (animation || frames) {
+                ObjectAnimation a{static_cast<int>(scene.objects.size()), std::nullopt, nullptr, object.shape, object.origin};
+                if (animation) a.transform = transformTrack(animation, kind == ShapeKind::Sphere);
+                if (frames) a.deformation = meshFrames(frames, *std::get<MeshShape>(object.shape).mesh, t.matrix);
+                scene.animation.objects.push_back(std::move(a));
+            }
             scene.objects.push_back(std::move(object));
         }
     }

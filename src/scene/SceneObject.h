@@ -3,6 +3,7 @@
 #include <string>
 #include <variant>
 
+#include "core/Transform.h"
 #include "core/Vec3.h"
 #include "scene/Material.h"
 #include "scene/TriangleMesh.h"
@@ -28,6 +29,9 @@ struct SceneObject {
     // The object's origin in world space: the centre of its caching cube. The
     // cube follows the object's translation, never its rotation.
     Vec3 origin;
+    // For an animated object: the keyframed transform that placed its rest
+    // shape at the current time (scene/Animation.h); identity otherwise.
+    Transform placement;
 };
 
 }  // namespace raycache

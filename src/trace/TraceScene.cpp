@@ -105,16 +105,20 @@ RTCGeometry makeSphereGeometry(RTCDevice device, const Sphere& sphere) {
     return geom;
 }
 
-RTCGeometry makeMeshGeometry(RTCDevice device, const TriangleMesh& mesh) {
-    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    // rtcSetNewGeometryBuffer pads the vertex buffer for Embree's 16-byte loads itself.
-    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-        geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
+void copyVertices(const TriangleMesh& mesh, float* vertices) {
     for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
         vertices[3 * i + 0] = mesh.positions[i].x;
         vertices[3 * i + 1] = mesh.positions[i].y;
         vertices[3 * i + 2] = mesh.positions[i].z;
     }
+}
+
+RTCGeometry makeMeshGeometry(RTCDevice device, const TriangleMesh& mesh) {
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    // rtcSetNewGeometryBuffer pads the vertex buffer for Embree's 16-byte loads itself.
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
+    copyVertices(mesh, vertices);
     auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
         geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.triangles.size()));
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
@@ -147,7 +151,8 @@ TraceHit fromEmbree(const RTCRayHit& rh) {
     TraceHit h;
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
     h.t = rh.ray.tfar;
-    h.objectId = static_cast<int>(rh.hit.geomID);
+    // A moving mesh is an instance whose geometry id is its object's index.
+    h.objectId = static_cast<int>(rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID ? rh.hit.instID[0] : rh.hit.geomID);
     h.primitiveId = static_cast<int>(rh.hit.primID);
     h.u = rh.hit.u;
     h.v = rh.hit.v;
@@ -185,33 +190,98 @@ void fillPacket(std::span<const Ray> rays, int* valid, RayPacket& packet) {
 
 }  // namespace
 
+// How an object is held, which decides how it follows the animation.
+enum class Representation {
+    Still,           // geometry in the top-level scene, never updated
+    MovingSphere,    // user geometry whose sphere is rewritten
+    RigidInstance,   // its rest mesh in a scene of its own, instanced with a transform
+    DeformingMesh,   // triangles whose vertices are rewritten and whose hierarchy is refitted
+};
+
 struct TraceScene::Impl {
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;
     // Sphere data read by the intersection callbacks; sized once, never moved.
     std::vector<Sphere> spheres;
+    std::vector<Representation> representation;  // per object
+    std::vector<RTCScene> instanced;             // per object: its own scene for RigidInstance
+    // Embree 3.13.5's coherent-packet occlusion never returned from a
+    // scene holding both instances and user geometry (spheres); packets of
+    // scenes with instances are traced without the coherence hint.
+    bool coherentHint = true;
 
     ~Impl() {
         if (scene) rtcReleaseScene(scene);
+        for (RTCScene s : instanced)
+            if (s) rtcReleaseScene(s);
         if (device) rtcReleaseDevice(device);
     }
 };
+
+namespace {
+
+void setInstanceTransform(RTCGeometry instance, const Transform& placement) {
+    const Transform::Rows& rows = placement.rows();
+    float matrix[12];
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c) matrix[r * 4 + c] = rows[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)];
+    rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, matrix);
+}
+
+Representation representationOf(const Scene& scene, std::size_t object) {
+    const ObjectAnimation* animation = scene.animation.forObject(static_cast<int>(object));
+    if (!animation) return Representation::Still;
+    if (std::holds_alternative<Sphere>(scene.objects[object].shape)) return Representation::MovingSphere;
+    return animation->deformation ? Representation::DeformingMesh : Representation::RigidInstance;
+}
+
+}  // namespace
 
 TraceScene::TraceScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
     impl_->device = rtcNewDevice(nullptr);
     if (!impl_->device) throw RuntimeError("Embree could not create a device");
     impl_->scene = rtcNewScene(impl_->device);
-    rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
+    // A still scene gets one high-quality hierarchy. An animated one asks for
+    // Embree's two-level mode (scene quality LOW), in which every geometry
+    // keeps a hierarchy of its own at its own quality and a commit rebuilds
+    // only the changed ones and the small top level over them: still objects
+    // HIGH, moving spheres and instances rebuilt at MEDIUM, deforming meshes
+    // REFIT (their vertices move, their triangles stay). Measured in
+    // docs/dynamic-scenes.md.
+    const bool animated = !scene.animation.empty();
+    rtcSetSceneBuildQuality(impl_->scene, animated ? RTC_BUILD_QUALITY_MEDIUM : RTC_BUILD_QUALITY_HIGH);
     impl_->spheres.resize(scene.objects.size());
+    impl_->instanced.assign(scene.objects.size(), nullptr);
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
         const SceneObject& object = scene.objects[i];
+        const Representation representation = representationOf(scene, i);
+        impl_->representation.push_back(representation);
         RTCGeometry geom = nullptr;
         if (const auto* sphere = std::get_if<Sphere>(&object.shape)) {
             impl_->spheres[i] = *sphere;
             geom = makeSphereGeometry(impl_->device, impl_->spheres[i]);
+        } else if (representation == Representation::RigidInstance) {
+            // The instanced scene holds the rest mesh; the instance places it.
+            const ObjectAnimation& animation = *scene.animation.forObject(static_cast<int>(i));
+            RTCScene own = rtcNewScene(impl_->device);
+            rtcSetSceneBuildQuality(own, RTC_BUILD_QUALITY_HIGH);
+            RTCGeometry mesh = makeMeshGeometry(impl_->device, *std::get<MeshShape>(animation.restShape).mesh);
+            rtcCommitGeometry(mesh);
+            rtcAttachGeometry(own, mesh);
+            rtcReleaseGeometry(mesh);
+            rtcCommitScene(own);
+            impl_->instanced[i] = own;
+            impl_->coherentHint = false;
+            geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_INSTANCE);
+            rtcSetGeometryInstancedScene(geom, own);
+            setInstanceTransform(geom, object.placement);
         } else {
             geom = makeMeshGeometry(impl_->device, *std::get<MeshShape>(object.shape).mesh);
         }
+        if (animated && representation != Representation::RigidInstance)
+            rtcSetGeometryBuildQuality(geom, representation == Representation::Still           ? RTC_BUILD_QUALITY_HIGH
+                                             : representation == Representation::DeformingMesh ? RTC_BUILD_QUALITY_REFIT
+                                                                                               : RTC_BUILD_QUALITY_MEDIUM);
         rtcCommitGeometry(geom);
         // Geometry ids equal object indices, so hits name objects directly.
         rtcAttachGeometryByID(impl_->scene, geom, static_cast<unsigned>(i));
@@ -222,6 +292,30 @@ TraceScene::TraceScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
 }
 
 TraceScene::~TraceScene() = default;
+
+void TraceScene::update(const Scene& posed, std::span<const int> changed) {
+    if (changed.empty()) return;
+    for (const int id : changed) {
+        const auto i = static_cast<std::size_t>(id);
+        RTCGeometry geom = rtcGetGeometry(impl_->scene, static_cast<unsigned>(id));
+        switch (impl_->representation[i]) {
+        case Representation::Still:
+            throw RuntimeError("the tracer was asked to move object " + std::to_string(id) +
+                               ", which its scene does not animate");
+        case Representation::MovingSphere: impl_->spheres[i] = std::get<Sphere>(posed.objects[i].shape); break;
+        case Representation::RigidInstance: setInstanceTransform(geom, posed.objects[i].placement); break;
+        case Representation::DeformingMesh: {
+            const TriangleMesh& mesh = *std::get<MeshShape>(posed.objects[i].shape).mesh;
+            copyVertices(mesh, static_cast<float*>(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_VERTEX, 0)));
+            rtcUpdateGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0);
+            break;
+        }
+        }
+        rtcCommitGeometry(geom);
+    }
+    rtcCommitScene(impl_->scene);
+    throwOnDeviceError(impl_->device, "updating the scene");
+}
 
 void* TraceScene::embreeScene() const { return impl_->scene; }
 
@@ -247,7 +341,7 @@ bool TraceScene::occluded(const Ray& ray) const {
 void TraceScene::intersectCoherent(std::span<const Ray> rays, std::span<TraceHit> hits) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    if (impl_->coherentHint) context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     alignas(64) RayHitPacket packet;
     alignas(64) int valid[kPacketWidth];
     for (std::size_t base = 0; base < rays.size(); base += kPacketWidth) {
@@ -263,7 +357,8 @@ void TraceScene::intersectCoherent(std::span<const Ray> rays, std::span<TraceHit
             h = TraceHit{};
             if (packet.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) continue;
             h.t = packet.ray.tfar[k];
-            h.objectId = static_cast<int>(packet.hit.geomID[k]);
+            const unsigned instance = packet.hit.instID[0][k];
+            h.objectId = static_cast<int>(instance != RTC_INVALID_GEOMETRY_ID ? instance : packet.hit.geomID[k]);
             h.primitiveId = static_cast<int>(packet.hit.primID[k]);
             h.u = packet.hit.u[k];
             h.v = packet.hit.v[k];
@@ -274,7 +369,7 @@ void TraceScene::intersectCoherent(std::span<const Ray> rays, std::span<TraceHit
 void TraceScene::occludedCoherent(std::span<const Ray> rays, std::span<unsigned char> occluded) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    if (impl_->coherentHint) context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     alignas(64) RayPacket packet;
     alignas(64) int valid[kPacketWidth];
     for (std::size_t base = 0; base < rays.size(); base += kPacketWidth) {

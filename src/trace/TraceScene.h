@@ -20,6 +20,13 @@ public:
     TraceScene(const TraceScene&) = delete;
     TraceScene& operator=(const TraceScene&) = delete;
 
+    // Moves the tracer's objects `changed` (sorted object indices) to their
+    // pose in `posed` (scene/ScenePose.h): animated spheres are updated in
+    // place, rigidly moving meshes are instances whose transform changes,
+    // deforming meshes refit their hierarchy. Not thread-safe: no ray may be
+    // in flight. `posed` has the objects of the scene this tracer was built from.
+    void update(const Scene& posed, std::span<const int> changed);
+
     // Nearest hit in [ray.tNear, ray.tFar]. Thread-safe.
     TraceHit intersect(const Ray& ray) const;
     // True if anything lies in [ray.tNear, ray.tFar]. Thread-safe.

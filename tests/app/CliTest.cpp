@@ -46,9 +46,32 @@ protected:
 TEST_F(Cli, ScenesListsOneLinePerBuiltinScene) {
     const RunResult r = runRaycache("scenes", dir_);
     EXPECT_EQ(r.exitCode, 0);
-    EXPECT_EQ(lineCount(r.out), 7 + 6 + 2 + 4);  // behind-N, grid-N, the two 32-sphere walls, 4 others
+    // behind-N, grid-N, the two 32-sphere walls, 4 others, 4 animated
+    EXPECT_EQ(lineCount(r.out), 7 + 6 + 2 + 4 + 4);
     EXPECT_NE(r.out.find("behind-32"), std::string::npos);
+    EXPECT_NE(r.out.find("light-sweep"), std::string::npos);
     EXPECT_NE(r.out.find("parallax"), std::string::npos);
+}
+
+TEST_F(Cli, AnimatedSceneReportsItsSceneUpdateAndTimeInTheStats) {
+    const RunResult r = runRaycache("render --scene orbit --frames 2 --width 32 --height 32 --time 0.5 --fps 10 "
+                                    "--stats " + (dir_ / "stats.json").string(),
+                                    dir_);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("scene update: 4 objects, 0 lights changed"), std::string::npos) << r.out;
+    std::ifstream in(dir_ / "stats.json");
+    const std::string stats((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(stats.find("\"time\": 0.6"), std::string::npos) << stats;  // frame 2 at 0.5 + 1/10 s
+    EXPECT_NE(stats.find("\"scene_update\""), std::string::npos);
+}
+
+TEST_F(Cli, BadTimeOrFpsIsOneLineAndExit2) {
+    for (const char* args : {"render --scene orbit --time nan", "render --scene orbit --fps 0",
+                             "render --scene orbit --fps -3", "render --scene orbit --time 1e9"}) {
+        const RunResult r = runRaycache(args, dir_);
+        EXPECT_EQ(r.exitCode, 2) << args;
+        EXPECT_EQ(lineCount(r.err), 1) << args << ": " << r.err;
+    }
 }
 
 TEST_F(Cli, HelpWorksForEveryCommand) {

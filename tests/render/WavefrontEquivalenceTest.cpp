@@ -43,6 +43,9 @@ TEST(WavefrontEquivalence, EveryBuiltinSceneEqualsTheRecursiveRenderer) {
     for (const BuiltinSceneInfo& info : builtinScenes()) {
         const auto scene = makeBuiltinScene(info.name);
         ASSERT_TRUE(scene.has_value()) << info.name;
+        // The animated scenes came after the recursive renderer was retired;
+        // render/AnimatedSessionTest.cpp checks them against fresh renders of each pose.
+        if (!scene->animation.empty()) continue;
         RenderSettings settings;
         settings.width = settings.height = kSize;
         settings.cache.techniqueOverride = CacheTechnique::None;

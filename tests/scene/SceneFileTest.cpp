@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/Errors.h"
+#include "scene/ScenePose.h"
 
 namespace raycache {
 namespace {
@@ -158,7 +159,7 @@ TEST_F(SceneFileTest, UnknownKeySuggestionIgnoresCase) {
 
 TEST_F(SceneFileTest, UnknownKeyWithoutCloseMatchListsValidKeys) {
     expectError("{@\"wibble\": 1, \"objects\": []}", "/wibble",
-                "unknown key \"wibble\" (valid keys: name, camera, path, frames, environment, lights, materials, objects, "
+                "unknown key \"wibble\" (valid keys: name, camera, path, frames, fps, environment, lights, materials, objects, "
                 "pipeline, renderCache)");
 }
 
@@ -748,6 +749,85 @@ TEST_F(SceneFileTest, MeshFileBeyondTheWorldLimitIsRejected) {
     write("huge.obj", "v 0 0 0\nv 1e9 0 0\nv 0 1 0\nf 1 2 3\n");
     expectError("{\"objects\": [{\"shape\": \"mesh\", \"file\": @\"huge.obj\"}]}", "/objects/0/file",
                 "1 of the mesh's 3 vertices lie beyond ±10000000");
+}
+
+// ---- animation ------------------------------------------------------------
+
+TEST_F(SceneFileTest, ObjectAndLightAnimationsLoadAndTheSceneStartsAtTimeZero) {
+    const Scene scene = load(R"({"fps": 24,
+        "lights": [{"type": "point", "position": [0, 10, 0],
+                    "animation": {"keys": [{"time": 0, "position": [-5, 10, 0]}, {"time": 2, "position": [5, 10, 0]}],
+                                  "interpolation": "smooth", "wrap": "clamp"}}],
+        "objects": [{"shape": "sphere", "center": [3, 1, 0], "radius": 0.5,
+                     "animation": {"keys": [{"time": 0, "translate": [0, 1, 0]},
+                                            {"time": 1, "rotate": {"axis": [0, 1, 0], "degrees": 90}, "scale": 2}],
+                                   "wrap": "clamp"}},
+                    {"shape": "box"}]})");
+    EXPECT_EQ(scene.fps, 24.0f);
+    ASSERT_EQ(scene.animation.objects.size(), 1u);
+    ASSERT_EQ(scene.animation.lights.size(), 1u);
+    EXPECT_EQ(scene.animation.lights[0].interpolation, Interpolation::Smooth);
+    EXPECT_EQ(scene.animation.lights[0].wrap, Wrap::Clamp);
+    // Posed at time 0: the first key applies (the sphere lifted by 1, the light at its first position).
+    EXPECT_EQ(std::get<Sphere>(scene.objects[0].shape).center, (Vec3{3, 2, 0}));
+    EXPECT_EQ(scene.objects[0].origin, (Vec3{3, 2, 0}));
+    EXPECT_EQ(scene.lights[0].position, (Vec3{-5, 10, 0}));
+    // At 1 s the key scales by 2 and turns a quarter about y, both about
+    // the world's origin, like an object's transform: (3, 1, 0) -> (0, 2, -6).
+    Scene posed = scene;
+    poseScene(scene, 1.0f, posed);
+    const Sphere& s = std::get<Sphere>(posed.objects[0].shape);
+    EXPECT_NEAR(s.center.x, 0.0f, 1e-5f);
+    EXPECT_NEAR(s.center.y, 2.0f, 1e-5f);
+    EXPECT_NEAR(s.center.z, -6.0f, 1e-5f);
+    EXPECT_NEAR(s.radius, 1.0f, 1e-5f);
+}
+
+TEST_F(SceneFileTest, AnimationKeyTimesMustIncrease) {
+    expectError(R"({"objects": [{"shape": "sphere", "animation": {"keys": [{"time": 1}, {"time": @1}]}}]})",
+                "/objects/0/animation/keys/1/time", "key times must increase (got 1 after 1)");
+}
+
+TEST_F(SceneFileTest, AnimationNeedsKeys) {
+    expectError(R"({"objects": [{"shape": "sphere", "animation": {"keys": @[]}}]})", "/objects/0/animation/keys",
+                "needs at least 1 keys");
+}
+
+TEST_F(SceneFileTest, AnimatedSphereRejectsNonUniformScale) {
+    expectError(R"({"objects": [{"shape": "sphere", "animation": {"keys": [{"time": 0, "scale": @[1, 2, 1]}]}}]})",
+                "/objects/0/animation/keys/0/scale", "a sphere needs a uniform scale");
+}
+
+TEST_F(SceneFileTest, AnimationKeyRejectsUnknownKeysAndBadValues) {
+    expectError(R"({"objects": [{"shape": "box", "animation": {"keys": [{"time": 0, @"translation": [1, 2, 3]}]}}]})",
+                "/objects/0/animation/keys/0/translation", "unknown key \"translation\"");
+    expectError(R"({"objects": [{"shape": "box", "animation": {"keys": [{"time": 0}], "wrap": @"bounce"}}]})",
+                "/objects/0/animation/wrap", "must be one of loop, clamp");
+    expectError(R"({"objects": [{"shape": "box", "animation": {"keys": [{"time": @"soon"}]}}]})",
+                "/objects/0/animation/keys/0/time", "expected a number");
+}
+
+TEST_F(SceneFileTest, LightKeyTakesOnlyWhatItsTypeUses) {
+    expectError(R"({"lights": [{"type": "point", "position": [0, 1, 0],
+                   "animation": {"keys": [{"time": 0, @"direction": [0, -1, 0]}]}}], "objects": []})",
+                "/lights/0/animation/keys/0/direction", "unknown key \"direction\"");
+}
+
+TEST_F(SceneFileTest, FpsMustBePositive) {
+    expectError(R"({"fps": @0, "objects": []})", "/fps", "must be");
+}
+
+TEST_F(SceneFileTest, MeshFramesNeedTheRestMeshsVertices) {
+    write("rest.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    write("f1.obj", "v 0 0 1\nv 1 0 1\nv 0 1 1\nf 1 2 3\n");
+    write("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n");
+    const Scene scene = load(R"({"objects": [{"shape": "mesh", "file": "rest.obj",
+                                 "frames": {"files": ["rest.obj", "f1.obj"], "fps": 2}}]})");
+    Scene posed = scene;
+    poseScene(scene, 0.25f, posed);  // halfway from frame 0 to frame 1
+    EXPECT_NEAR(std::get<MeshShape>(posed.objects[0].shape).mesh->positions[0].z, 0.5f, 1e-6f);
+    expectError(R"({"objects": [{"shape": "mesh", "file": "rest.obj", "frames": {"files": [@"bad.obj"]}}]})",
+                "/objects/0/frames/files/0", "has 4 vertices, the object's \"file\" has 3");
 }
 
 }  // namespace
