@@ -81,6 +81,16 @@ void MeshSequence::positionsAt(float time, std::span<Vec3> out) const {
     for (std::size_t i = 0; i < out.size(); ++i) out[i] = s == 0.0f ? a[i] : mix(a[i], b[i], s);
 }
 
+float SceneAnimation::duration() const {
+    float longest = 0.0f;
+    for (const ObjectAnimation& a : objects) {
+        if (a.transform) longest = std::max(longest, a.transform->keys.back().time);
+        if (a.deformation) longest = std::max(longest, a.deformation->duration());
+    }
+    for (const LightTrack& t : lights) longest = std::max(longest, t.keys.back().time);
+    return longest;
+}
+
 const ObjectAnimation* SceneAnimation::forObject(int object) const {
     for (const ObjectAnimation& a : objects)
         if (a.object == object) return &a;

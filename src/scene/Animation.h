@@ -75,6 +75,8 @@ class MeshDeformation {
 public:
     virtual ~MeshDeformation() = default;
     virtual std::size_t vertexCount() const = 0;
+    // Seconds after which the motion repeats (or stops changing).
+    virtual float duration() const = 0;
     // Vertex positions at `time` in the object's own space, before its
     // keyframed transform; out.size() == vertexCount().
     virtual void positionsAt(float time, std::span<Vec3> out) const = 0;
@@ -87,6 +89,7 @@ public:
     // Every frame has the same vertex count (the loader checks); at least one.
     MeshSequence(std::vector<std::vector<Vec3>> frames, float fps, Wrap wrap);
     std::size_t vertexCount() const override { return frames_.front().size(); }
+    float duration() const override { return static_cast<float>(frames_.size()) / fps_; }
     void positionsAt(float time, std::span<Vec3> out) const override;
 
 private:
@@ -113,6 +116,8 @@ struct SceneAnimation {
     std::vector<LightTrack> lights;
 
     bool empty() const { return objects.empty() && lights.empty(); }
+    // The latest key time or deformation length: the span worth scrubbing through.
+    float duration() const;
     const ObjectAnimation* forObject(int object) const;
 };
 

@@ -21,6 +21,7 @@ public:
     // The flat sheet (with normals and uvs), the shape at time 0.
     TriangleMesh restMesh() const;
     std::size_t vertexCount() const override;
+    float duration() const override { return shape_.period; }
     void positionsAt(float time, std::span<Vec3> out) const override;
 
 private:

@@ -17,6 +17,7 @@ struct RenderRequest {
     ViewerRenderConfig config;
     std::uint64_t clearCount = 0;        // a change clears every cache
     bool playPath = false;               // take cameras from the path, one path frame per render
+    float time = 0.0f;                   // animated scenes: the moment to show (scripted runs: from the path frame)
     std::uint64_t pathRestartCount = 0;  // a change restarts the path at frame 0
     bool continuous = true;              // keep rendering when nothing changes (caches keep filling)
     bool difference = false;             // show the heat map against the uncached render

@@ -100,10 +100,16 @@ void RenderWorker::applyConfig(const ViewerRenderConfig& config, DisplayFrame&) 
     config_ = config;
     settings_ = applyViewerRenderConfig(setup_.base, config);
     session_.reset();  // free the old cubes before allocating the new ones
-    session_ = std::make_unique<RenderSession>(*setup_.scene, settings_, *setup_.tracer, parallel_);
     RenderSettings uncached = settings_;
     uncached.cache.techniqueOverride = CacheTechnique::None;
-    uncached_ = std::make_unique<RenderSession>(*setup_.scene, uncached, *setup_.tracer, parallel_);
+    if (setup_.scene->animation.empty()) {
+        session_ = std::make_unique<RenderSession>(*setup_.scene, settings_, *setup_.tracer, parallel_);
+        uncached_ = std::make_unique<RenderSession>(*setup_.scene, uncached, *setup_.tracer, parallel_);
+    } else {
+        // A session that animates moves its tracer: each needs its own.
+        session_ = std::make_unique<RenderSession>(*setup_.scene, settings_);
+        uncached_ = std::make_unique<RenderSession>(*setup_.scene, uncached);
+    }
 }
 
 void RenderWorker::encode(const Image& film, std::vector<std::uint8_t>& rgba) const {
@@ -128,6 +134,9 @@ void RenderWorker::renderOne(const RenderRequest& request, DisplayFrame& frame) 
     }
     const bool onPath = request.playPath;
     const Camera camera = onPath ? setup_.path.cameraAt(setup_.scene->camera, pathFrame_) : request.camera;
+
+    const float time = setup_.scriptedFrames ? setup_.timeline.timeOf(pathFrame_) : request.time;
+    session_->setTime(time);
 
     // The one place a frame is rendered, by the pipeline the settings ask for.
     session_->resize(request.width, request.height);
@@ -159,6 +168,7 @@ void RenderWorker::renderOne(const RenderRequest& request, DisplayFrame& frame) 
     if (request.difference) {
         start = std::chrono::steady_clock::now();
         uncached_->resize(request.width, request.height);
+        uncached_->setTime(time);
         uncached_->render(camera, uncachedFilm_);
         encode(uncachedFilm_, uncachedRgba_);
         const double sum = differenceHeatMap(frame.rgba, uncachedRgba_, request.differenceGain, frame.rgba);

@@ -14,6 +14,7 @@
 #include "cache/RayCache.h"
 #include "core/Image.h"
 #include "core/Parallel.h"
+#include "render/FrameLoop.h"
 #include "render/RenderSession.h"
 #include "render/RenderSettings.h"
 #include "scene/CameraPath.h"
@@ -29,6 +30,7 @@ struct RenderWorkerSetup {
     const Scene* scene = nullptr;         // outlives the worker
     const TraceScene* tracer = nullptr;   // outlives the worker
     CameraPath path;
+    FrameTimeline timeline;               // scripted runs: the moment each path frame shows
     RenderSettings base;                  // threads, min weight, command-line cache overrides
     // Scripted run: render path frames 0 .. frames-1 exactly once each, every
     // one handed over (lossless), then stop. Empty: interactive.

@@ -159,6 +159,7 @@ void Viewer::run(std::ostream& out) {
     setup.scene = &scene;
     setup.tracer = &tracer;
     setup.path = job_.path;
+    setup.timeline = job_.timeline;
     setup.base = base;
     setup.scriptedFrames = options_.scriptedFrames;
     setup.onPublished = &ViewerWindow::wake;
@@ -323,6 +324,9 @@ void Viewer::run(std::ostream& out) {
         request.config = state.config;
         request.clearCount = clearCount;
         request.playPath = state.playPath;
+        if (!scene.animation.empty() && state.playAnimation && !scripted)
+            state.animationTime += dt * state.animationSpeed;
+        request.time = state.animationTime;
         request.pathRestartCount = pathRestartCount;
         request.continuous = state.continuous;
         request.difference = state.difference;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <imgui.h>
 #include <string>
@@ -30,6 +31,25 @@ void drawCameraSection(const ViewerPanelInput& in, ViewerUiState& state, ViewerA
     ImGui::Text("position %.2f %.2f %.2f  looking at %.2f %.2f %.2f", static_cast<double>(c.position.x),
                 static_cast<double>(c.position.y), static_cast<double>(c.position.z), static_cast<double>(c.lookAt.x),
                 static_cast<double>(c.lookAt.y), static_cast<double>(c.lookAt.z));
+}
+
+void drawAnimationSection(const ViewerPanelInput& in, ViewerUiState& state) {
+    const SceneAnimation& animation = in.scene->animation;
+    if (animation.empty() || !ImGui::CollapsingHeader("Animation", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    if (ImGui::Button(state.playAnimation ? "Pause" : "Play")) state.playAnimation = !state.playAnimation;
+    ImGui::SameLine();
+    if (ImGui::Button("Restart")) state.animationTime = 0.0f;
+    // Scrubbing pauses: the slider would fight the running clock.
+    const float longest = std::max(animation.duration(), 0.1f);
+    float shown = std::fmod(state.animationTime, longest);
+    if (ImGui::SliderFloat("time (s)", &shown, 0.0f, longest, "%.2f")) {
+        state.animationTime = shown;
+        state.playAnimation = false;
+    }
+    ImGui::SliderFloat("speed", &state.animationSpeed, 0.05f, 4.0f, "%.2fx", ImGuiSliderFlags_Logarithmic);
+    if (const auto& u = in.frame->stats.sceneUpdate)
+        ImGui::Text("update %.2f ms: %d objects, %d lights changed, %lld texels invalidated", u->milliseconds,
+                    u->objectsChanged, u->lightsChanged, static_cast<long long>(u->texelsInvalidated));
 }
 
 void drawRenderingSection(const ViewerPanelInput& in, ViewerUiState& state, ViewerActions& actions) {
@@ -198,6 +218,7 @@ void drawViewerPanel(const ViewerPanelInput& in, ViewerUiState& state, ViewerAct
         drawStatisticsSection(in);
         drawRenderingSection(in, state, actions);
         drawCameraSection(in, state, actions);
+        drawAnimationSection(in, state);
         drawRenderCacheSection(in, state);
         drawDifferenceSection(in, state);
         drawInspector(in, state);

@@ -13,6 +13,9 @@ struct ViewerUiState {
     float movingScale = 0.5f;    // extra factor while the camera moves
     bool continuous = true;
     bool playPath = false;
+    bool playAnimation = true;   // animated scenes: the clock runs
+    float animationTime = 0.0f;  // seconds of the animation shown
+    float animationSpeed = 1.0f;
     bool difference = false;
     float differenceGain = 1.0f;
     int renderCacheOverlay = 0;  // RenderCacheOverlay

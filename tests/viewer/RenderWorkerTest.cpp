@@ -68,7 +68,7 @@ TEST(RenderWorker, ScriptedRunShowsEveryPathFrameAsTheOfflineRendererDoes) {
                  [&](const FrameResult&, const Image& film, const RayCache&) { offline.push_back(srgb8(film)); });
 
     FrameHandoff handoff;
-    RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, smallSettings(), kFrames, {}};
+    RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, {}, smallSettings(), kFrames, {}};
     RenderWorker worker(setup, handoff);
     RenderRequest request;
     request.width = settings.width;
@@ -97,11 +97,46 @@ TEST(RenderWorker, ScriptedRunShowsEveryPathFrameAsTheOfflineRendererDoes) {
     EXPECT_FALSE(worker.error());
 }
 
+TEST(RenderWorker, ScriptedRunOfAnAnimatedSceneShowsEachFramesMomentAsTheOfflineRendererDoes) {
+    const Scene scene = *makeBuiltinScene("orbit");  // four spheres circling, two of them caching mirrors
+    const TraceScene tracer(scene);
+    RenderSettings settings = smallSettings();
+    settings.cache.techniqueOverride = CacheTechnique::Cct;
+    constexpr int kFrames = 3;
+    const FrameTimeline timeline{0.5f, 10.0f};
+
+    std::vector<std::vector<std::uint8_t>> offline;
+    renderFrames(
+        scene, scene.cameraPath, settings, kFrames,
+        [&](const FrameResult&, const Image& film, const RayCache&) { offline.push_back(srgb8(film)); }, {}, timeline);
+
+    FrameHandoff handoff;
+    RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, timeline, smallSettings(), kFrames, {}};
+    RenderWorker worker(setup, handoff);
+    RenderRequest request;
+    request.width = settings.width;
+    request.height = settings.height;
+    request.config.technique = techniqueChoiceIndex("cct");
+    request.time = 7.0f;  // ignored by a scripted run: the path frame sets the moment
+    worker.submit(request);
+    int next = 0;
+    takeFrames(handoff, worker, [&](const DisplayFrame& f) {
+        EXPECT_EQ(f.pathFrame, next);
+        EXPECT_EQ(f.rgba, offline[static_cast<std::size_t>(next)]) << "frame " << next;
+        EXPECT_TRUE(f.stats.sceneUpdate.has_value());
+        ++next;
+        return next == kFrames;
+    });
+    EXPECT_EQ(next, kFrames);
+    for (int i = 0; i < 1000 && !worker.finished(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    EXPECT_FALSE(worker.error());
+}
+
 TEST(RenderWorker, DifferenceToTheUncachedImageIsZeroWithoutCaching) {
     const Scene scene = *makeBuiltinScene("room");
     const TraceScene tracer(scene);
     FrameHandoff handoff;
-    RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, smallSettings(), std::nullopt, {}};
+    RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, {}, smallSettings(), std::nullopt, {}};
     RenderWorker worker(setup, handoff);
     RenderRequest request;
     request.camera = scene.camera;
@@ -125,7 +160,7 @@ TEST(RenderWorker, RejectedSettingsKeepTheLastGoodOnesAndSayWhy) {
     const Scene scene = *makeBuiltinScene("room");
     const TraceScene tracer(scene);
     FrameHandoff handoff;
-    RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, smallSettings(), std::nullopt, {}};
+    RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, {}, smallSettings(), std::nullopt, {}};
     RenderWorker worker(setup, handoff);
     RenderRequest request;
     request.camera = scene.camera;
@@ -159,7 +194,7 @@ TEST(RenderWorker, RenderCacheFramesAreTheOfflineRenderCachesFrames) {
                  [&](const FrameResult&, const Image& film, const RayCache&) { offline.push_back(srgb8(film)); });
 
     FrameHandoff handoff;
-    RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, smallSettings(), kFrames, {}};
+    RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, {}, smallSettings(), kFrames, {}};
     RenderWorker worker(setup, handoff);
     RenderRequest request;
     request.width = settings.width;
