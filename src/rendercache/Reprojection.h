@@ -11,6 +11,10 @@
 // pixel are freed, as on the GPU Render Cache, where samples and pixels
 // correspond one to one. (Keeping them while hidden was tried: 8 % fewer
 // holes, twice the samples to reproject.)
+//
+// As on the GPU, the winners are copied into a second pool at their pixel's
+// slot (SamplePool): the next frame, the image passes and new samples then
+// all go through the pool in pixel order.
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -29,6 +33,19 @@ struct ReprojectionCounts {
     std::int64_t moved = 0;    // of those, on a neighbour of the pixel they landed in
     std::int64_t lost = 0;     // behind a nearer sample, past the margin or behind the eye: freed
     std::int64_t evicted = 0;  // too old: freed
+};
+
+// Kept from frame to frame (fresh memory costs page faults): where each
+// sample of the source pool landed, so that the depth test and the second
+// chance project every sample once, and per band of rows the samples that
+// landed too far from it to be tested in parallel.
+struct ReprojectionScratch {
+    struct Landing {
+        float x, y;   // continuous pixel position
+        float depth;  // < 0: no pixel (empty slot, evicted, behind the eye or past the margin)
+    };
+    std::vector<Landing> landing;  // per slot of the source pool
+    std::vector<std::vector<std::uint32_t>> farSlots;  // per band
 };
 
 // Every object's origin, indexed like Scene::objects: a sample's position
@@ -65,13 +82,18 @@ inline bool projectSample(const SamplePool& pool, std::size_t slot, const std::v
     return true;
 }
 
-// Ages every sample by one frame and frees those older than `maxAge`,
-// offers the rest to `image` (reset by the caller to the new size), frees
-// those that win no pixel and sets shown[slot] (resized to the pool) for the
-// winners. The outcome does not depend on the thread count.
-// `scratch`, when given, is reused from frame to frame (no allocation).
-ReprojectionCounts reproject(SamplePool& pool, const Scene& scene, const ScreenProjection& projection, int maxAge,
-                             PointImage& image, std::vector<unsigned char>& shown, const Parallel& parallel,
-                             std::vector<unsigned char>* scratch = nullptr);
+// Ages every sample of `from` (its used slots) by one frame, drops those
+// older than `maxAge`, gives each pixel of `image` (reset by the caller to
+// the new size, and empty) the nearest sample that lands in it, then lets
+// the losers try a neighbour, and copies each pixel's winner into `to` at
+// the pixel's slot (image.pixelIndex). `to` must have `from`'s capacity and
+// image.pixelCount() pixel slots, as `from` must; its pixel slots are all
+// written (empty where no sample won), its overflow left unused. `image`
+// ends holding each winner's depth and its slot in `to`. `from` is not
+// changed. Ties in depth go to the lower slot of `from`: the outcome does
+// not depend on the thread count.
+ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene& scene,
+                             const ScreenProjection& projection, int maxAge, PointImage& image,
+                             const Parallel& parallel, ReprojectionScratch& scratch);
 
 }  // namespace raycache
