@@ -39,9 +39,14 @@ public:
     // offer() for a caller that makes sure no other thread touches pixel
     // (x, y) meanwhile: no atomic instruction, which cost more than the
     // projection when every sample made one. `key` as key(depth, slot).
-    void offerUnshared(int x, int y, std::uint64_t key) {
+    // Returns the key that lost: the one the pixel held if the offer is
+    // nearer, else the offer; emptyKey() if the pixel held none.
+    std::uint64_t offerUnshared(int x, int y, std::uint64_t key) {
         std::uint64_t& current = keys_[index(x, y)];
-        if (key < current) current = key;
+        const std::uint64_t held = current;
+        if (key >= held) return key;
+        current = key;
+        return held;
     }
     // Puts `slot` at pixel (x, y) unconditionally (a freshly traced sample).
     void place(int x, int y, float depth, std::uint32_t slot) { keys_[index(x, y)] = pack(depth, slot); }

@@ -144,8 +144,14 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     const ScreenProjection projection(camera, width, height);
     const std::vector<Vec3> origins = objectOrigins(scene_);
     image_.reset(width, height, margin);
+    // The camera of the next frame, for predictive sampling: the samples
+    // are projected through it in the same pass.
+    const bool predicts = moved && rc.predictShare > 0.0f;
+    const Camera next = predicts ? predictNextCamera(*previousCamera_, camera) : camera;
+    const ScreenProjection nextProjection(next, width, height);
     const ReprojectionCounts reprojected =
-        reproject(pool_, spare_, scene_, projection, rc.maxAge, image_, parallel_, reprojectionScratch_);
+        reproject(pool_, spare_, scene_, projection, rc.maxAge, image_, parallel_, reprojectionScratch_,
+                  predicts ? &nextProjection : nullptr, &nextPixel_);
     std::swap(pool_, spare_);
     stats.evicted = reprojected.evicted;
     stats.lost = reprojected.lost;
@@ -157,38 +163,34 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     state.resize(static_cast<std::size_t>(pixels));
     std::vector<float>& priority = priority_;
     priority.resize(static_cast<std::size_t>(pixels));  // every pixel written below
+    // One pass: holes, depth culling (a still camera puts every sample back
+    // where it was traced: nothing to cull) and priorities. Counts per row
+    // go to locals, written once (no false sharing).
+    const bool cull = moved && rc.depthCullThreshold > 0.0f;
     std::vector<std::int64_t> holesPerRow(static_cast<std::size_t>(height), 0);
+    std::vector<std::int64_t> culledPerRow(static_cast<std::size_t>(height), 0);
     const float agePriority = 0.5f / static_cast<float>(rc.maxAge);
     parallel_.forEachIndex(height, [&](int y, int) {
-        std::int64_t rowHoles = 0;
+        std::int64_t rowHoles = 0, rowCulled = 0;
         for (int x = 0; x < width; ++x) {
             const auto i = static_cast<std::size_t>(y * width + x);
-            if (image_.hasSample(x, y)) {
-                state[i] = PixelState::Reprojected;
-                priority[i] = agePriority * static_cast<float>(pool_.age[image_.pixelIndex(x, y)]);
-            } else {
+            if (!image_.hasSample(x, y)) {
                 state[i] = PixelState::Hole;
                 priority[i] = 1.0f;
                 ++rowHoles;
+            } else if (cull && hiddenByNearerNeighbours(image_, x, y, rc.depthCullThreshold)) {
+                state[i] = PixelState::Culled;
+                priority[i] = 1.0f;
+                ++rowCulled;
+            } else {
+                state[i] = PixelState::Reprojected;
+                priority[i] = agePriority * static_cast<float>(pool_.age[image_.pixelIndex(x, y)]);
             }
         }
-        holesPerRow[static_cast<std::size_t>(y)] = rowHoles;
+        holesPerRow[static_cast<std::size_t>(y)] = rowHoles + rowCulled;
+        culledPerRow[static_cast<std::size_t>(y)] = rowCulled;
     });
-    // A still camera puts every sample back where it was traced: nothing to cull.
-    if (moved && rc.depthCullThreshold > 0.0f) {
-        stats.culled = cullOccludedSamples(image_, rc.depthCullThreshold, state, parallel_, &bytes_);
-        if (stats.culled > 0)
-            parallel_.forEachIndex(height, [&](int y, int) {
-                std::int64_t culled = 0;
-                for (int x = 0; x < width; ++x) {
-                    const auto i = static_cast<std::size_t>(y * width + x);
-                    if (state[i] != PixelState::Culled) continue;
-                    priority[i] = 1.0f;
-                    ++culled;
-                }
-                holesPerRow[static_cast<std::size_t>(y)] += culled;
-            });
-    }
+    for (std::int64_t c : culledPerRow) stats.culled += c;
     std::int64_t holes = 0;
     for (std::int64_t h : holesPerRow) holes += h;
     stats.holes = holes;
@@ -228,6 +230,7 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
             // Placed where it was traced, whatever rounding says about the reprojection.
             image_.place(p.x, p.y, depth, static_cast<std::uint32_t>(slot));
             state[static_cast<std::size_t>(p.y * width + p.x)] = PixelState::Fresh;
+            if (predictedBudget > 0) nextPixel_[slot] = imagePixelThrough(pool_, slot, origins, nextProjection, width, height);
         }
     }
     stats.fresh = static_cast<std::int64_t>(traced.size());
@@ -236,23 +239,19 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     // Predictive sampling: where the next camera will find holes.
     if (predictedBudget > 0) {
         start = Clock::now();
-        const Camera next = predictNextCamera(*previousCamera_, camera);
-        const ScreenProjection nextProjection(next, width, height);
+        // Where the samples land through the next camera was found by
+        // reproject() (fresh samples: when kept); every sample is in a
+        // pixel slot until the predicted ones are kept below.
         std::vector<unsigned char>& covered = bytes_;
         covered.assign(static_cast<std::size_t>(pixels), 0);
-        const std::size_t n = pool_.used();
+        const std::size_t n = pool_.pixelSlots;
         constexpr std::size_t kChunk = 16384;
         parallel_.forEachIndex(static_cast<int>((n + kChunk - 1) / kChunk), [&](int chunk, int) {
             const std::size_t end = std::min(n, (static_cast<std::size_t>(chunk) + 1) * kChunk);
-            for (std::size_t slot = static_cast<std::size_t>(chunk) * kChunk; slot < end; ++slot) {
-                if (pool_.empty(slot)) continue;
-                int x, y;
-                float depth;
-                if (projectSample(pool_, slot, origins, nextProjection, x, y, depth) && x >= 0 && y >= 0 &&
-                    x < width && y < height)
-                    std::atomic_ref<unsigned char>(covered[static_cast<std::size_t>(y * width + x)])
+            for (std::size_t slot = static_cast<std::size_t>(chunk) * kChunk; slot < end; ++slot)
+                if (const std::int32_t pixel = nextPixel_[slot]; pixel >= 0)
+                    std::atomic_ref<unsigned char>(covered[static_cast<std::size_t>(pixel)])
                         .store(1, std::memory_order_relaxed);
-            }
         });
         parallel_.forEachIndex(height, [&](int y, int) {
             for (auto i = static_cast<std::size_t>(y * width); i < static_cast<std::size_t>((y + 1) * width); ++i)

@@ -63,6 +63,9 @@ private:
     // into (then the two swap), as the GPU Render Cache does.
     SamplePool pool_, spare_;
     ReprojectionScratch reprojectionScratch_;
+    // Per pixel slot: the pixel its sample lands in through the predicted
+    // camera (imagePixelThrough), on frames that predict.
+    std::vector<std::int32_t> nextPixel_;
     PointImage image_;
     RenderCacheOverlays overlays_;
     RequestMap predictedRequests_;

@@ -42,9 +42,10 @@ std::vector<Vec3> objectOrigins(const Scene& scene) {
 
 ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene& scene,
                              const ScreenProjection& projection, int maxAge, PointImage& image,
-                             const Parallel& parallel, ReprojectionScratch& scratch) {
+                             const Parallel& parallel, ReprojectionScratch& scratch, const ScreenProjection* next,
+                             std::vector<std::int32_t>* nextPixel) {
     if (to.capacity() != from.capacity() || to.pixelSlots != image.pixelCount() ||
-        from.pixelSlots != image.pixelCount() || from.capacity() >= kSecondChanceTag)
+        from.pixelSlots != image.pixelCount() || from.capacity() >= kSecondChanceTag || (next && !nextPixel))
         throw RuntimeError("reproject: the pools do not fit the image");
     const std::vector<Vec3> origins = objectOrigins(scene);
     const int rows = image.rows();
@@ -53,8 +54,25 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
     const int bands = (rows + kBandRows - 1) / kBandRows;
     std::vector<ReprojectionScratch::Landing>& landing = scratch.landing;
     landing.resize(from.capacity());  // the used slots are all written below
+    if (next) {
+        scratch.nextPixel.resize(from.capacity());  // written for every sample that lands
+        nextPixel->resize(to.pixelSlots);           // every pixel slot written below
+    }
+    std::int32_t* nextOfSource = scratch.nextPixel.data();
     std::vector<std::vector<std::uint32_t>>& far = scratch.farSlots;
     far.resize(static_cast<std::size_t>(bands));
+    // The last list: losers of the offers made on one thread.
+    std::vector<std::vector<std::uint32_t>>& losers = scratch.losers;
+    losers.resize(static_cast<std::size_t>(bands) + 1);
+    const auto loserList = [&](int band) -> std::vector<std::uint32_t>& {
+        return losers[band < 0 ? losers.size() - 1 : static_cast<std::size_t>(band)];
+    };
+    // Offers `key`; the key that loses goes to the list of `band` (which
+    // reached its pixel, so also reaches the pixel's neighbours).
+    const auto offer = [&](int x, int y, std::uint64_t key, int band) {
+        const std::uint64_t lost = image.offerUnshared(x, y, key);
+        if (lost != PointImage::emptyKey()) loserList(band).push_back(PointImage::slotOf(lost));
+    };
     // Whether band `band` may test a sample that landed in image row `row`
     // (from 0 at the margin's top) in parallel: its second chance reaches
     // one row farther.
@@ -91,6 +109,7 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
     const std::uint16_t* age = from.age.data();
     ReprojectionScratch::Landing* landed = landing.data();
     for (std::vector<std::uint32_t>& list : far) list.clear();
+    for (std::vector<std::uint32_t>& list : losers) list.clear();
     forEachBand([&](std::size_t slot, int band, Counts& counts) {
         ReprojectionScratch::Landing& l = landed[slot];
         l.depth = kNoPixel;
@@ -105,25 +124,23 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
         const int x = static_cast<int>(std::floor(px)), y = static_cast<int>(std::floor(py));
         if (!image.covers(x, y)) return;
         l = {px, py, depth};
+        if (next) nextOfSource[slot] = imagePixelThrough(from, slot, origins, *next, image.width(), image.height());
         const std::uint64_t key = PointImage::key(depth, static_cast<std::uint32_t>(slot));
-        if (band < 0) image.offerUnshared(x, y, key);
-        else if (withinReach(band, y + margin)) image.offerUnshared(x, y, key);
+        if (band < 0 || withinReach(band, y + margin)) offer(x, y, key, band);
         else far[static_cast<std::size_t>(band)].push_back(static_cast<std::uint32_t>(slot));
     });
     for (const std::vector<std::uint32_t>& list : far)
         for (std::uint32_t slot : list) {
             const ReprojectionScratch::Landing& l = landed[slot];
-            image.offerUnshared(static_cast<int>(std::floor(l.x)), static_cast<int>(std::floor(l.y)),
-                                PointImage::key(l.depth, slot));
+            offer(static_cast<int>(std::floor(l.x)), static_cast<int>(std::floor(l.y)), PointImage::key(l.depth, slot),
+                  -1);
         }
 
     // Second chance: a loser offers itself to the nearest neighbouring pixel
     // that the first round left empty (first-round winners stay).
-    const auto secondChance = [&](std::size_t slot) {
+    const auto secondChance = [&](std::uint32_t slot) {
         const ReprojectionScratch::Landing l = landed[slot];
         const int x = static_cast<int>(std::floor(l.x)), y = static_cast<int>(std::floor(l.y));
-        // Its own pixel's first round is over: no second-chance offer goes there.
-        if (image.keyAt(x, y) == PointImage::key(l.depth, static_cast<std::uint32_t>(slot))) return;
         // The nearest empty neighbour by distance to its centre; among
         // equals the first in row order (a fixed order).
         const float fx = l.x - static_cast<float>(x) - 0.5f, fy = l.y - static_cast<float>(y) - 0.5f;
@@ -144,33 +161,64 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
             }
         if (nearest < std::numeric_limits<float>::infinity())
             image.offerUnshared(bestX, bestY,
-                                PointImage::key(l.depth, static_cast<std::uint32_t>(slot) | kSecondChanceTag));
+                                PointImage::key(l.depth, slot | kSecondChanceTag));
     };
-    forEachBand([&](std::size_t slot, int band, Counts&) {
-        const ReprojectionScratch::Landing& l = landed[slot];
-        if (!(l.depth >= 0.0f)) return;
-        if (band >= 0 && !withinReach(band, static_cast<int>(std::floor(l.y)) + margin)) return;  // below
-        secondChance(slot);
-    });
-    for (const std::vector<std::uint32_t>& list : far)
-        for (std::uint32_t slot : list) secondChance(slot);
+    for (int phase = 0; phase < 2; ++phase)
+        parallel.forEachIndex((bands - phase + 1) / 2, [&](int i, int) {
+            for (std::uint32_t slot : losers[static_cast<std::size_t>(2 * i + phase)]) secondChance(slot);
+        });
+    for (std::uint32_t slot : losers.back()) secondChance(slot);
 
     // Each pixel's winner to its own slot of `to`; the image now names those slots.
     std::vector<std::int64_t> placedPerRow(static_cast<std::size_t>(rows), 0);
     std::vector<std::int64_t> movedPerRow(static_cast<std::size_t>(rows), 0);
     parallel.forEachIndex(rows, [&](int row, int) {
+        // The arrays' addresses in locals: a store through an unsigned char
+        // may alias anything, and made the compiler reload every vector's
+        // address for every sample.
+        const Vec3* fromPosition = from.position.data();
+        const Rgb* fromColor = from.color.data();
+        const unsigned char* fromViewDependent = from.viewDependent.data();
+        const int* fromPrimitive = from.primitiveId.data();
+        const float *fromU = from.baryU.data(), *fromV = from.baryV.data();
+        const Rgb* fromViewIndependent = from.viewIndependent.data();
+        const std::uint64_t* fromLitMask = from.litMask.data();
+        int* toObject = to.objectId.data();
+        Vec3* toPosition = to.position.data();
+        Rgb* toColor = to.color.data();
+        std::uint16_t* toAge = to.age.data();
+        unsigned char* toViewDependent = to.viewDependent.data();
+        int* toPrimitive = to.primitiveId.data();
+        float *toU = to.baryU.data(), *toV = to.baryV.data();
+        Rgb* toViewIndependent = to.viewIndependent.data();
+        std::uint64_t* toLitMask = to.litMask.data();
+        std::int32_t* nextOfPixel = next ? nextPixel->data() : nullptr;
         const int y = row - margin;
         std::int64_t placed = 0, moved = 0;
         for (int x = -margin; x < image.width() + margin; ++x) {
             const std::size_t pixel = image.pixelIndex(x, y);
             const std::uint64_t key = image.keyAt(x, y);
             if (key == PointImage::emptyKey()) {
-                to.objectId[pixel] = SamplePool::kEmpty;
+                toObject[pixel] = SamplePool::kEmpty;
+                if (nextOfPixel) nextOfPixel[pixel] = -1;
                 continue;
             }
             const std::uint32_t tagged = PointImage::slotOf(key);
-            to.copySample(from, tagged & ~kSecondChanceTag, pixel);
-            ++to.age[pixel];
+            const std::size_t source = tagged & ~kSecondChanceTag;
+            if (nextOfPixel) nextOfPixel[pixel] = nextOfSource[source];
+            toObject[pixel] = objectId[source];
+            toPosition[pixel] = fromPosition[source];
+            toColor[pixel] = fromColor[source];
+            toAge[pixel] = static_cast<std::uint16_t>(age[source] + 1);
+            toViewDependent[pixel] = fromViewDependent[source];
+            // What reshading needs, only where it means something.
+            if (fromViewDependent[source]) {
+                toPrimitive[pixel] = fromPrimitive[source];
+                toU[pixel] = fromU[source];
+                toV[pixel] = fromV[source];
+                toViewIndependent[pixel] = fromViewIndependent[source];
+                toLitMask[pixel] = fromLitMask[source];
+            }
             image.place(x, y, PointImage::depthOf(key), static_cast<std::uint32_t>(pixel));
             ++placed;
             moved += (tagged & kSecondChanceTag) ? 1 : 0;

@@ -37,8 +37,10 @@ struct ReprojectionCounts {
 
 // Kept from frame to frame (fresh memory costs page faults): where each
 // sample of the source pool landed, so that the depth test and the second
-// chance project every sample once, and per band of rows the samples that
-// landed too far from it to be tested in parallel.
+// chance project every sample once; per band of rows, the samples that
+// landed too far from it to be tested in parallel, and the samples that
+// lost the first round (only they get a second chance, so only they are
+// visited again).
 struct ReprojectionScratch {
     struct Landing {
         float x, y;   // continuous pixel position
@@ -46,6 +48,8 @@ struct ReprojectionScratch {
     };
     std::vector<Landing> landing;  // per slot of the source pool
     std::vector<std::vector<std::uint32_t>> farSlots;  // per band
+    std::vector<std::vector<std::uint32_t>> losers;    // per band, then those of the far and overflow slots
+    std::vector<std::int32_t> nextPixel;               // per slot of the source pool, see reproject()
 };
 
 // Every object's origin, indexed like Scene::objects: a sample's position
@@ -82,6 +86,17 @@ inline bool projectSample(const SamplePool& pool, std::size_t slot, const std::v
     return true;
 }
 
+// The pixel of a width x height image (y * width + x) where sample `slot`
+// lands through `projection`, or -1 when it lands off the image.
+inline std::int32_t imagePixelThrough(const SamplePool& pool, std::size_t slot, const std::vector<Vec3>& origins,
+                                      const ScreenProjection& projection, int width, int height) {
+    int x, y;
+    float depth;
+    if (!projectSample(pool, slot, origins, projection, x, y, depth) || x < 0 || y < 0 || x >= width || y >= height)
+        return -1;
+    return y * width + x;
+}
+
 // Ages every sample of `from` (its used slots) by one frame, drops those
 // older than `maxAge`, gives each pixel of `image` (reset by the caller to
 // the new size, and empty) the nearest sample that lands in it, then lets
@@ -92,8 +107,13 @@ inline bool projectSample(const SamplePool& pool, std::size_t slot, const std::v
 // ends holding each winner's depth and its slot in `to`. `from` is not
 // changed. Ties in depth go to the lower slot of `from`: the outcome does
 // not depend on the thread count.
+// When `next` is given (the predicted camera of the next frame), `nextPixel`
+// is resized to `to`'s pixel slots and gets, for each, imagePixelThrough()
+// `next` of the sample it now holds (-1 where it holds none): projected
+// in the same pass as through `projection`, not in another pass over the pool.
 ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene& scene,
                              const ScreenProjection& projection, int maxAge, PointImage& image,
-                             const Parallel& parallel, ReprojectionScratch& scratch);
+                             const Parallel& parallel, ReprojectionScratch& scratch,
+                             const ScreenProjection* next = nullptr, std::vector<std::int32_t>* nextPixel = nullptr);
 
 }  // namespace raycache

@@ -36,22 +36,6 @@ struct SamplePool {
     // The next free overflow slot, to be filled by the caller; throws
     // RuntimeError when none is left.
     std::size_t takeOverflowSlot();
-    // Makes slot `to` a copy of sample `from` of `source` (the reshading
-    // fields only where they mean something).
-    void copySample(const SamplePool& source, std::size_t from, std::size_t to) {
-        objectId[to] = source.objectId[from];
-        position[to] = source.position[from];
-        color[to] = source.color[from];
-        age[to] = source.age[from];
-        viewDependent[to] = source.viewDependent[from];
-        if (!source.viewDependent[from]) return;
-        primitiveId[to] = source.primitiveId[from];
-        baryU[to] = source.baryU[from];
-        baryV[to] = source.baryV[from];
-        viewIndependent[to] = source.viewIndependent[from];
-        litMask[to] = source.litMask[from];
-    }
-
     std::size_t pixelSlots = 0;    // slots addressed by pixel
     std::size_t overflowUsed = 0;  // overflow slots [pixelSlots, pixelSlots + overflowUsed) in use
 

@@ -232,3 +232,42 @@ TEST(Reprojection, EveryWinnerMovesToItsPixelsSlotWithAllItsFieldsOnAnyThreadCou
         EXPECT_EQ(to.age, reference.age);
     }
 }
+
+// With the next frame's camera given, reproject() tells for every pixel slot
+// where its sample will land through it, as projecting the moved sample
+// again would: the prediction needs no pass of its own over the pool.
+TEST(Reprojection, ThroughThePredictedCameraEveryPixelSlotKnowsWhereItsSampleWillLand) {
+    const Scene scene = twoObjects();
+    const ScreenProjection projection(eyeCamera(), kSize, kSize);
+    Camera nextCamera = eyeCamera();
+    nextCamera.position = {0.6f, -0.3f, 0.0f};  // about one pixel left and half a pixel up at depth 5
+    nextCamera.lookAt = nextCamera.position + Vec3{0, 0, -1};
+    const ScreenProjection next(nextCamera, kSize, kSize);
+    Fixture f;
+    for (std::size_t i = 0; i < 12; ++i)
+        f.put(i, 0, at(0.5f + static_cast<float>(i % 10), 0.5f + static_cast<float>(i) * 0.8f, 5));
+    f.put(12, 0, at(9.7f, 9.5f, 5));  // lands in the image, off it through the next camera
+    SamplePool to;
+    to.reset(kPixelSlots, kOverflow);
+    PointImage image;
+    image.reset(kSize, kSize, kMargin);
+    ReprojectionScratch scratch;
+    std::vector<std::int32_t> nextPixel;
+    const std::vector<Vec3> origins = objectOrigins(scene);
+    for (int threads : {1, 2}) {
+        image.reset(kSize, kSize, kMargin);
+        reproject(f.pool, to, scene, projection, 32, image, Parallel(threads), scratch, &next, &nextPixel);
+        ASSERT_EQ(nextPixel.size(), kPixelSlots);
+        int landing = 0, off = 0;
+        for (std::size_t slot = 0; slot < kPixelSlots; ++slot) {
+            if (to.empty(slot)) {
+                EXPECT_EQ(nextPixel[slot], -1) << slot;
+                continue;
+            }
+            EXPECT_EQ(nextPixel[slot], imagePixelThrough(to, slot, origins, next, kSize, kSize)) << slot;
+            (nextPixel[slot] >= 0 ? landing : off) += 1;
+        }
+        EXPECT_EQ(landing + off, 13);
+        EXPECT_GT(off, 0);
+    }
+}
