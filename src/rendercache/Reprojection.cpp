@@ -25,7 +25,6 @@ constexpr int kBandRows = 32;
 // by (depth, slot), and a tagged key tells the other losers that the pixel
 // was empty after the first round. Slots stay below 2^31.
 constexpr std::uint32_t kSecondChanceTag = 1u << 31;
-constexpr float kNoPixel = -1.0f;
 
 bool emptyAfterFirstRound(std::uint64_t key) {
     return key == PointImage::emptyKey() || (PointImage::slotOf(key) & kSecondChanceTag) != 0;
@@ -111,8 +110,6 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
     for (std::vector<std::uint32_t>& list : far) list.clear();
     for (std::vector<std::uint32_t>& list : losers) list.clear();
     forEachBand([&](std::size_t slot, int band, Counts& counts) {
-        ReprojectionScratch::Landing& l = landed[slot];
-        l.depth = kNoPixel;
         if (objectId[slot] == SamplePool::kEmpty) return;
         ++counts.live;
         if (age[slot] >= maxAge) {
@@ -123,7 +120,7 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
         if (!projectSample(from, slot, origins, projection, px, py, depth)) return;
         const int x = static_cast<int>(std::floor(px)), y = static_cast<int>(std::floor(py));
         if (!image.covers(x, y)) return;
-        l = {px, py, depth};
+        landed[slot] = {px, py, depth};  // read again only for losers and far samples, which all landed
         if (next) nextOfSource[slot] = imagePixelThrough(from, slot, origins, *next, image.width(), image.height());
         const std::uint64_t key = PointImage::key(depth, static_cast<std::uint32_t>(slot));
         if (band < 0 || withinReach(band, y + margin)) offer(x, y, key, band);

@@ -44,9 +44,9 @@ struct ReprojectionCounts {
 struct ReprojectionScratch {
     struct Landing {
         float x, y;   // continuous pixel position
-        float depth;  // < 0: no pixel (empty slot, evicted, behind the eye or past the margin)
+        float depth;
     };
-    std::vector<Landing> landing;  // per slot of the source pool
+    std::vector<Landing> landing;  // per slot of the source pool, written where the sample landed in the image
     std::vector<std::vector<std::uint32_t>> farSlots;  // per band
     std::vector<std::vector<std::uint32_t>> losers;    // per band, then those of the far and overflow slots
     std::vector<std::int32_t> nextPixel;               // per slot of the source pool, see reproject()
