@@ -51,26 +51,34 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
     const int margin = image.margin();
     const auto stride = static_cast<std::size_t>(image.stride());
     const int bands = (rows + kBandRows - 1) / kBandRows;
-    std::vector<ReprojectionScratch::Landing>& landing = scratch.landing;
-    landing.resize(from.capacity());  // the used slots are all written below
+    using Landed = ReprojectionScratch::Landed;
     if (next) {
         scratch.nextPixel.resize(from.capacity());  // written for every sample that lands
         nextPixel->resize(to.pixelSlots);           // every pixel slot written below
     }
     std::int32_t* nextOfSource = scratch.nextPixel.data();
-    std::vector<std::vector<std::uint32_t>>& far = scratch.farSlots;
+    std::vector<std::vector<Landed>>& far = scratch.far;
     far.resize(static_cast<std::size_t>(bands));
     // The last list: losers of the offers made on one thread.
-    std::vector<std::vector<std::uint32_t>>& losers = scratch.losers;
+    std::vector<std::vector<Landed>>& losers = scratch.losers;
     losers.resize(static_cast<std::size_t>(bands) + 1);
-    const auto loserList = [&](int band) -> std::vector<std::uint32_t>& {
-        return losers[band < 0 ? losers.size() - 1 : static_cast<std::size_t>(band)];
-    };
-    // Offers `key`; the key that loses goes to the list of `band` (which
-    // reached its pixel, so also reaches the pixel's neighbours).
-    const auto offer = [&](int x, int y, std::uint64_t key, int band) {
-        const std::uint64_t lost = image.offerUnshared(x, y, key);
-        if (lost != PointImage::emptyKey()) loserList(band).push_back(PointImage::slotOf(lost));
+    for (std::vector<Landed>& list : far) list.clear();
+    for (std::vector<Landed>& list : losers) list.clear();
+    // Offers `sample` to pixel (x, y); the one that loses goes to the list
+    // of `band` (which reached the pixel, so also reaches its neighbours),
+    // a sample it pushed out projected again.
+    const auto offer = [&](int x, int y, const Landed& sample, int band) {
+        const std::uint64_t lost = image.offerUnshared(x, y, PointImage::key(sample.depth, sample.slot));
+        if (lost == PointImage::emptyKey()) return;
+        std::vector<Landed>& list = losers[band < 0 ? losers.size() - 1 : static_cast<std::size_t>(band)];
+        const std::uint32_t loser = PointImage::slotOf(lost);
+        if (loser == sample.slot) {
+            list.push_back(sample);
+            return;
+        }
+        Landed pushedOut{loser, 0.0f, 0.0f, 0.0f};
+        projectSample(from, loser, origins, projection, pushedOut.x, pushedOut.y, pushedOut.depth);
+        list.push_back(pushedOut);
     };
     // Whether band `band` may test a sample that landed in image row `row`
     // (from 0 at the margin's top) in parallel: its second chance reaches
@@ -106,9 +114,6 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
     // pixel; the depth test picks each pixel's winner.
     const int* objectId = from.objectId.data();
     const std::uint16_t* age = from.age.data();
-    ReprojectionScratch::Landing* landed = landing.data();
-    for (std::vector<std::uint32_t>& list : far) list.clear();
-    for (std::vector<std::uint32_t>& list : losers) list.clear();
     forEachBand([&](std::size_t slot, int band, Counts& counts) {
         if (objectId[slot] == SamplePool::kEmpty) return;
         ++counts.live;
@@ -116,27 +121,21 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
             ++counts.evicted;
             return;
         }
-        float px, py, depth;
-        if (!projectSample(from, slot, origins, projection, px, py, depth)) return;
-        const int x = static_cast<int>(std::floor(px)), y = static_cast<int>(std::floor(py));
+        Landed sample{static_cast<std::uint32_t>(slot), 0.0f, 0.0f, 0.0f};
+        if (!projectSample(from, slot, origins, projection, sample.x, sample.y, sample.depth)) return;
+        const int x = static_cast<int>(std::floor(sample.x)), y = static_cast<int>(std::floor(sample.y));
         if (!image.covers(x, y)) return;
-        landed[slot] = {px, py, depth};  // read again only for losers and far samples, which all landed
         if (next) nextOfSource[slot] = imagePixelThrough(from, slot, origins, *next, image.width(), image.height());
-        const std::uint64_t key = PointImage::key(depth, static_cast<std::uint32_t>(slot));
-        if (band < 0 || withinReach(band, y + margin)) offer(x, y, key, band);
-        else far[static_cast<std::size_t>(band)].push_back(static_cast<std::uint32_t>(slot));
+        if (band < 0 || withinReach(band, y + margin)) offer(x, y, sample, band);
+        else far[static_cast<std::size_t>(band)].push_back(sample);
     });
-    for (const std::vector<std::uint32_t>& list : far)
-        for (std::uint32_t slot : list) {
-            const ReprojectionScratch::Landing& l = landed[slot];
-            offer(static_cast<int>(std::floor(l.x)), static_cast<int>(std::floor(l.y)), PointImage::key(l.depth, slot),
-                  -1);
-        }
+    for (const std::vector<Landed>& list : far)
+        for (const Landed& sample : list)
+            offer(static_cast<int>(std::floor(sample.x)), static_cast<int>(std::floor(sample.y)), sample, -1);
 
     // Second chance: a loser offers itself to the nearest neighbouring pixel
     // that the first round left empty (first-round winners stay).
-    const auto secondChance = [&](std::uint32_t slot) {
-        const ReprojectionScratch::Landing l = landed[slot];
+    const auto secondChance = [&](const Landed& l) {
         const int x = static_cast<int>(std::floor(l.x)), y = static_cast<int>(std::floor(l.y));
         // The nearest empty neighbour by distance to its centre; among
         // equals the first in row order (a fixed order).
@@ -158,13 +157,13 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
             }
         if (nearest < std::numeric_limits<float>::infinity())
             image.offerUnshared(bestX, bestY,
-                                PointImage::key(l.depth, slot | kSecondChanceTag));
+                                PointImage::key(l.depth, l.slot | kSecondChanceTag));
     };
     for (int phase = 0; phase < 2; ++phase)
         parallel.forEachIndex((bands - phase + 1) / 2, [&](int i, int) {
-            for (std::uint32_t slot : losers[static_cast<std::size_t>(2 * i + phase)]) secondChance(slot);
+            for (const Landed& loser : losers[static_cast<std::size_t>(2 * i + phase)]) secondChance(loser);
         });
-    for (std::uint32_t slot : losers.back()) secondChance(slot);
+    for (const Landed& loser : losers.back()) secondChance(loser);
 
     // Each pixel's winner to its own slot of `to`; the image now names those slots.
     std::vector<std::int64_t> placedPerRow(static_cast<std::size_t>(rows), 0);

@@ -35,21 +35,21 @@ struct ReprojectionCounts {
     std::int64_t evicted = 0;  // too old: freed
 };
 
-// Kept from frame to frame (fresh memory costs page faults): where each
-// sample of the source pool landed, so that the depth test and the second
-// chance project every sample once; per band of rows, the samples that
-// landed too far from it to be tested in parallel, and the samples that
-// lost the first round (only they get a second chance, so only they are
-// visited again).
+// Kept from frame to frame (fresh memory costs page faults): per band of
+// rows, the samples that landed too far from it to be tested in parallel,
+// and the samples that lost the first round with where they landed (only
+// they get a second chance, so only they are visited again, and their
+// projection is not repeated). Keeping every sample's landing instead cost
+// more in writes than projecting the displaced losers again.
 struct ReprojectionScratch {
-    struct Landing {
-        float x, y;   // continuous pixel position
+    struct Landed {
+        std::uint32_t slot;  // in the source pool
+        float x, y;          // continuous pixel position
         float depth;
     };
-    std::vector<Landing> landing;  // per slot of the source pool, written where the sample landed in the image
-    std::vector<std::vector<std::uint32_t>> farSlots;  // per band
-    std::vector<std::vector<std::uint32_t>> losers;    // per band, then those of the far and overflow slots
-    std::vector<std::int32_t> nextPixel;               // per slot of the source pool, see reproject()
+    std::vector<std::vector<Landed>> far;     // per band
+    std::vector<std::vector<Landed>> losers;  // per band, then those of the offers made on one thread
+    std::vector<std::int32_t> nextPixel;      // per slot of the source pool, see reproject()
 };
 
 // Every object's origin, indexed like Scene::objects: a sample's position
