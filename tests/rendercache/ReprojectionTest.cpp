@@ -271,3 +271,129 @@ TEST(Reprojection, ThroughThePredictedCameraEveryPixelSlotKnowsWhereItsSampleWil
         EXPECT_GT(off, 0);
     }
 }
+
+namespace {
+
+// The rule of reproject() written plainly, one sample at a time, as the
+// oracle for the banded, list-driven implementation: pixel -> (depth, slot)
+// of its winner, and whether it won on the second chance.
+struct OracleWinner {
+    float depth;
+    std::uint32_t slot;
+    bool moved;
+};
+std::map<std::pair<int, int>, OracleWinner> oracle(const SamplePool& pool, const Scene& scene,
+                                                   const ScreenProjection& projection, int maxAge,
+                                                   const PointImage& shape) {
+    const std::vector<Vec3> origins = objectOrigins(scene);
+    struct Landing {
+        std::uint32_t slot;
+        float x, y, depth;
+    };
+    std::vector<Landing> landed;
+    for (std::size_t slot = 0; slot < pool.used(); ++slot) {
+        if (pool.empty(slot) || pool.age[slot] >= maxAge) continue;
+        float px, py, depth;
+        if (!projectSample(pool, slot, origins, projection, px, py, depth)) continue;
+        if (!shape.covers(static_cast<int>(std::floor(px)), static_cast<int>(std::floor(py)))) continue;
+        landed.push_back({static_cast<std::uint32_t>(slot), px, py, depth});
+    }
+    const auto nearer = [](float d, std::uint32_t s, const OracleWinner& w) {
+        return d < w.depth || (d == w.depth && s < w.slot);
+    };
+    std::map<std::pair<int, int>, OracleWinner> first;
+    for (const Landing& l : landed) {
+        const std::pair<int, int> p{static_cast<int>(std::floor(l.x)), static_cast<int>(std::floor(l.y))};
+        const auto it = first.find(p);
+        if (it == first.end() || nearer(l.depth, l.slot, it->second)) first[p] = {l.depth, l.slot, false};
+    }
+    std::map<std::pair<int, int>, OracleWinner> second;
+    for (const Landing& l : landed) {
+        const int x = static_cast<int>(std::floor(l.x)), y = static_cast<int>(std::floor(l.y));
+        if (first.at({x, y}).slot == l.slot) continue;
+        float best = 1e30f;
+        std::pair<int, int> target{0, 0};
+        bool found = false;
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                if ((dx == 0 && dy == 0) || !shape.covers(x + dx, y + dy) || first.count({x + dx, y + dy})) continue;
+                const float ex = static_cast<float>(dx) - (l.x - static_cast<float>(x) - 0.5f);
+                const float ey = static_cast<float>(dy) - (l.y - static_cast<float>(y) - 0.5f);
+                if (ex * ex + ey * ey < best) {
+                    best = ex * ex + ey * ey;
+                    target = {x + dx, y + dy};
+                    found = true;
+                }
+            }
+        if (!found) continue;
+        const auto it = second.find(target);
+        if (it == second.end() || nearer(l.depth, l.slot, it->second)) second[target] = {l.depth, l.slot, true};
+    }
+    first.insert(second.begin(), second.end());
+    return first;
+}
+
+}  // namespace
+
+// A tall image (several bands of rows tested in parallel) and samples that
+// land far from the rows they sat in (moved more than half a band: tested
+// on one thread afterwards), plus predicted samples in the overflow:
+// whatever the path, the outcome is the plain rule's, on any thread count.
+TEST(Reprojection, BandsFarSamplesAndOverflowGiveThePlainRulesOutcome) {
+    constexpr int kW = 6, kH = 160, kM = 2;
+    const Scene scene = twoObjects();
+    // 90 degrees vertically; at depth d, pixel row py is at height d (80 - py) / 80.
+    const Camera camera{{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 90.0f};
+    const ScreenProjection projection(camera, kW, kH);
+    const auto point = [&](float px, float py, float depth) {
+        return Vec3{depth * (px - 3.0f) / 80.0f, depth * (80.0f - py) / 80.0f, -depth};
+    };
+    PointImage image;
+    image.reset(kW, kH, kM);
+    const std::size_t pixelSlots = image.pixelCount();
+    SamplePool from;
+    from.reset(pixelSlots, 64);
+    from.overflowUsed = 40;
+    for (std::size_t slot = 0; slot < from.used(); ++slot) {
+        const std::uint32_t h = static_cast<std::uint32_t>(slot) * 2654435761u ^ 0x9e3779b9u;
+        if (h % 7 == 0) continue;
+        // Most land near the row their slot belongs to; every fifth lands anywhere.
+        const float row = slot < pixelSlots ? static_cast<float>(slot / (kW + 2 * kM)) - kM : 0.0f;
+        const bool far = h % 5 == 0 || slot >= pixelSlots;
+        const float py = far ? -1.5f + static_cast<float>((h >> 8) % 16300) / 100.0f
+                             : row + static_cast<float>((h >> 8) % 700) / 100.0f - 3.0f;
+        const float px = -1.5f + static_cast<float>((h >> 20) % 850) / 100.0f;
+        from.objectId[slot] = 0;
+        from.position[slot] = point(px, py, 1.0f + static_cast<float>((h >> 3) % 4));  // few depths: ties
+        from.age[slot] = static_cast<std::uint16_t>(h % 4);
+    }
+    const auto expected = oracle(from, scene, projection, 3, image);
+    std::size_t moved = 0;
+    for (const auto& [pixel, winner] : expected) moved += winner.moved ? 1 : 0;
+    ASSERT_GT(moved, 10u) << "the second chance must be exercised";
+    for (int threads : {1, 2, 3}) {
+        image.reset(kW, kH, kM);
+        SamplePool to;
+        to.reset(pixelSlots, 64);
+        ReprojectionScratch scratch;
+        const ReprojectionCounts c = reproject(from, to, scene, projection, 3, image, Parallel(threads), scratch);
+        EXPECT_EQ(c.placed, static_cast<std::int64_t>(expected.size())) << threads << " threads";
+        EXPECT_EQ(c.moved, static_cast<std::int64_t>(moved));
+        std::size_t far = 0;
+        for (const auto& list : scratch.far) far += list.size();
+        EXPECT_GT(far, 20u) << "samples landing far from their band must be exercised";
+        EXPECT_GT(scratch.far.size(), 4u) << "several bands";
+        for (int y = -kM; y < kH + kM; ++y)
+            for (int x = -kM; x < kW + kM; ++x) {
+                const auto e = expected.find({x, y});
+                const std::size_t pixel = image.pixelIndex(x, y);
+                if (e == expected.end()) {
+                    ASSERT_TRUE(to.empty(pixel)) << x << "," << y << ", " << threads << " threads";
+                    continue;
+                }
+                ASSERT_FALSE(to.empty(pixel)) << x << "," << y << ", " << threads << " threads";
+                ASSERT_EQ(to.position[pixel], from.position[e->second.slot]) << x << "," << y;
+                ASSERT_EQ(image.depthAt(x, y), e->second.depth) << x << "," << y;
+            }
+    }
+}
