@@ -17,17 +17,7 @@ std::int64_t cullOccludedSamples(const PointImage& image, float threshold, std::
             const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
                                   static_cast<std::size_t>(x);
             if (state[i] != PixelState::Reprojected) continue;
-            // Compared as packed keys: no float decoding, empty pixels never nearer.
-            const std::uint64_t nearerKey = PointImage::nearerThan(image.depthAt(x, y) * (1.0f - threshold));
-            int nearer = 0, occupied = 0;
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) {
-                    const std::uint64_t key = image.keyAt(x + dx, y + dy);  // the margin is at least 1 pixel
-                    nearer += key <= nearerKey ? 1 : 0;
-                    occupied += key != PointImage::emptyKey() ? 1 : 0;
-                }
-            const int notNearer = occupied - 1 - nearer;  // the centre is occupied and not nearer than itself
-            if (nearer >= 3 && nearer > notNearer) {
+            if (hiddenByNearerNeighbours(image, x, y, threshold)) {
                 hide[i] = 1;
                 ++rowCulled;
             }

@@ -1,5 +1,7 @@
 #include "rendercache/HoleFilling.h"
 
+#include <algorithm>
+
 namespace raycache {
 
 namespace {
@@ -14,19 +16,26 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
     const auto at = [width](int x, int y) {
         return static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
     };
-    // Both passes read `state` and the colours of pixels showing a sample,
+    // Both filters read `state` and the colours of pixels showing a sample,
     // and write only the colours of holes and `outcome`: rows run in any
     // order, without a data race. The states change at the end.
-    enum Outcome : unsigned char { kNone, k3x3, k7x7, kUnfilled };
+    enum Outcome : unsigned char { kNone, k3x3, k7x7, kUnfilled, kWants7x7 };
     std::vector<unsigned char> ownScratch;
     std::vector<unsigned char>& outcome = scratch ? *scratch : ownScratch;
     outcome.assign(state.size(), kNone);
     std::vector<FillCounts> perRow(static_cast<std::size_t>(height));
+    // Per row: holes the 3x3 filter could not fill, and whether the row has
+    // any hole (rows without are skipped by the later passes).
+    std::vector<int> wants7x7(static_cast<std::size_t>(height), 0);
+    std::vector<unsigned char> hasHoles(static_cast<std::size_t>(height), 0);
     // Counts per row go to a local, written once (no false sharing).
     parallel.forEachIndex(height, [&](int y, int) {
         FillCounts row;
+        int wanting = 0;
+        bool holes = false;
         for (int x = 0; x < width; ++x) {
             if (!isHole(state[at(x, y)])) continue;
+            holes = true;
             Rgb sum;
             float weight = 0.0f;
             for (int dy = -1; dy <= 1; ++dy) {
@@ -44,22 +53,67 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
                 film.at(x, y) = sum * (1.0f / weight);
                 outcome[at(x, y)] = k3x3;
                 ++row.filled3x3;
+            } else {
+                outcome[at(x, y)] = kWants7x7;
+                ++wanting;
             }
         }
         perRow[static_cast<std::size_t>(y)] = row;
+        wants7x7[static_cast<std::size_t>(y)] = wanting;
+        hasHoles[static_cast<std::size_t>(y)] = holes ? 1 : 0;
     });
-    parallel.forEachIndex(height, [&](int y, int) {
+    // The 7x7 box only on rows with holes it must fill. Where they are
+    // dense, per row the sums of each column's 7 pixels (samples only) over
+    // the span of those holes, then 7 columns per hole: a wide hole costs
+    // 7 + 7 reads per pixel, not 49. Where they are few and far apart, the
+    // 49 pixels of each box. (The choice depends on the holes only, so the
+    // image does not depend on the thread count.)
+    struct ColumnSums {
+        std::vector<Rgb> sum;
+        std::vector<int> count;
+    };
+    std::vector<ColumnSums> columnsPerWorker(static_cast<std::size_t>(parallel.threadCount()));
+    parallel.forEachIndex(height, [&](int y, int worker) {
+        if (wants7x7[static_cast<std::size_t>(y)] == 0) return;
         FillCounts row = perRow[static_cast<std::size_t>(y)];
-        for (int x = 0; x < width; ++x) {
-            if (!isHole(state[at(x, y)]) || outcome[at(x, y)] == k3x3) continue;
+        int first = width, last = -1;
+        for (int x = 0; x < width; ++x)
+            if (outcome[at(x, y)] == kWants7x7) {
+                first = std::min(first, x);
+                last = x;
+            }
+        const int wanting = wants7x7[static_cast<std::size_t>(y)];
+        const bool dense = last - first + 1 + 2 * kPrefilterRadius < 6 * wanting;
+        const int x0 = dense ? std::max(0, first - kPrefilterRadius) : 0;
+        const int x1 = dense ? std::min(width - 1, last + kPrefilterRadius) : -1;  // no columns when sparse
+        const int y0 = std::max(0, y - kPrefilterRadius), y1 = std::min(height - 1, y + kPrefilterRadius);
+        ColumnSums& columns = columnsPerWorker[static_cast<std::size_t>(worker)];
+        columns.sum.assign(static_cast<std::size_t>(x1 - x0 + 1), Rgb{});
+        columns.count.assign(static_cast<std::size_t>(x1 - x0 + 1), 0);
+        for (int ny = y0; ny <= y1; ++ny)
+            for (int nx = x0; nx <= x1; ++nx)
+                if (showsSample(state[at(nx, ny)])) {
+                    columns.sum[static_cast<std::size_t>(nx - x0)] += film.at(nx, ny);
+                    ++columns.count[static_cast<std::size_t>(nx - x0)];
+                }
+        for (int x = first; x <= last; ++x) {
+            if (outcome[at(x, y)] != kWants7x7) continue;
             Rgb sum;
             int count = 0;
-            for (int ny = std::max(0, y - kPrefilterRadius); ny <= std::min(height - 1, y + kPrefilterRadius); ++ny)
-                for (int nx = std::max(0, x - kPrefilterRadius); nx <= std::min(width - 1, x + kPrefilterRadius); ++nx)
-                    if (showsSample(state[at(nx, ny)])) {
-                        sum += film.at(nx, ny);
-                        ++count;
-                    }
+            const int nx0 = std::max(0, x - kPrefilterRadius), nx1 = std::min(width - 1, x + kPrefilterRadius);
+            if (dense) {
+                for (int nx = nx0; nx <= nx1; ++nx) {
+                    sum += columns.sum[static_cast<std::size_t>(nx - x0)];
+                    count += columns.count[static_cast<std::size_t>(nx - x0)];
+                }
+            } else {
+                for (int ny = y0; ny <= y1; ++ny)
+                    for (int nx = nx0; nx <= nx1; ++nx)
+                        if (showsSample(state[at(nx, ny)])) {
+                            sum += film.at(nx, ny);
+                            ++count;
+                        }
+            }
             if (count > 0) {
                 film.at(x, y) = sum * (1.0f / static_cast<float>(count));
                 outcome[at(x, y)] = k7x7;
@@ -72,6 +126,7 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
         perRow[static_cast<std::size_t>(y)] = row;
     });
     parallel.forEachIndex(height, [&](int y, int) {
+        if (!hasHoles[static_cast<std::size_t>(y)]) return;
         for (std::size_t i = at(0, y); i < at(0, y) + static_cast<std::size_t>(width); ++i) {
             if (outcome[i] == k3x3) state[i] = PixelState::Filled3x3;
             else if (outcome[i] == k7x7) state[i] = PixelState::Filled7x7;

@@ -62,7 +62,7 @@ std::string RenderCachePipeline::description() const {
 }
 
 void RenderCachePipeline::forget() {
-    pool_.reset(0);
+    pool_.reset(0, 0);
     previousCamera_.reset();
 }
 
@@ -71,26 +71,6 @@ int RenderCachePipeline::chooseBudget(int pixels) const {
     if (rc.targetFrameMs > 0.0f && adaptiveBudget_ > 0.0)
         return static_cast<int>(std::clamp(adaptiveBudget_, 1.0, static_cast<double>(pixels)));
     return std::max(1, static_cast<int>(std::lround(static_cast<double>(rc.budget) * pixels)));
-}
-
-std::uint32_t RenderCachePipeline::takeFreeSlot(const PixelCoord& pixel) {
-    // The first empty slot from the pixel's own index on: neighbouring
-    // pixels' samples stay in neighbouring slots, so the passes over the
-    // image read the pool nearly in order. (Handing out slots round the
-    // pool instead scattered them: by frame 20 the image's reads of colours
-    // and ages missed the cache on most pixels.) Always finds one: live
-    // samples number at most the image's slots (each owns a pixel) plus one
-    // frame's predictions, fewer than the capacity.
-    const std::size_t n = pool_.capacity();
-    const int m = image_.margin();
-    const int stride = image_.width() + 2 * m;
-    const int x = std::clamp(pixel.x, -m, image_.width() + m - 1);
-    const int y = std::clamp(pixel.y, -m, image_.height() + m - 1);
-    std::size_t slot = static_cast<std::size_t>(y + m) * static_cast<std::size_t>(stride) + static_cast<std::size_t>(x + m);
-    while (!pool_.empty(slot) || shown_[slot]) slot = slot + 1 == n ? 0 : slot + 1;
-    ++emptySlotsTaken_;
-    shown_[slot] = 1;
-    return static_cast<std::uint32_t>(slot);
 }
 
 void RenderCachePipeline::keep(std::size_t slot, const PrimarySample& traced, const CameraRays& rays,
@@ -146,16 +126,16 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
         std::max(1, static_cast<int>(std::ceil(rc.margin * static_cast<float>(std::max(width, height)))));
     const std::size_t imageSlots =
         static_cast<std::size_t>(width + 2 * margin) * static_cast<std::size_t>(height + 2 * margin);
-    // Room for one sample per pixel of the image and margin, plus as many
-    // again for samples hidden behind nearer ones and predicted samples
-    // that have no pixel yet.
-    const std::size_t capacity = imageSlots + static_cast<std::size_t>(pixels);
-    if (pool_.capacity() != capacity) {
-        pool_.reset(capacity);
+    // One slot per pixel of the image and margin, plus overflow slots for
+    // the predicted samples, which have no pixel yet (at most the budget,
+    // at most every pixel).
+    if (pool_.pixelSlots != imageSlots || pool_.capacity() != imageSlots + static_cast<std::size_t>(pixels)) {
+        pool_.reset(imageSlots, static_cast<std::size_t>(pixels));
+        spare_.reset(imageSlots, static_cast<std::size_t>(pixels));
         previousCamera_.reset();
     }
     const bool moved = previousCamera_ && !(*previousCamera_ == camera);
-    emptySlotsTaken_ = 0;
+    std::int64_t newSamples = 0;  // taking a slot no sample held: in a hole, or predicted
     scratch_.resize(static_cast<std::size_t>(parallel_.threadCount()));
     for (TileScratch& s : scratch_) s.beginFrame();
 
@@ -164,8 +144,15 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     const ScreenProjection projection(camera, width, height);
     const std::vector<Vec3> origins = objectOrigins(scene_);
     image_.reset(width, height, margin);
+    // The camera of the next frame, for predictive sampling: the samples
+    // are projected through it in the same pass.
+    const bool predicts = moved && rc.predictShare > 0.0f;
+    const Camera next = predicts ? predictNextCamera(*previousCamera_, camera) : camera;
+    const ScreenProjection nextProjection(next, width, height);
     const ReprojectionCounts reprojected =
-        reproject(pool_, scene_, projection, rc.maxAge, image_, shown_, parallel_, &bytes_);
+        reproject(pool_, spare_, scene_, projection, rc.maxAge, image_, parallel_, reprojectionScratch_,
+                  predicts ? &nextProjection : nullptr, &nextPixel_);
+    std::swap(pool_, spare_);
     stats.evicted = reprojected.evicted;
     stats.lost = reprojected.lost;
     stats.reprojectMs = millisecondsSince(start);
@@ -176,38 +163,34 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     state.resize(static_cast<std::size_t>(pixels));
     std::vector<float>& priority = priority_;
     priority.resize(static_cast<std::size_t>(pixels));  // every pixel written below
+    // One pass: holes, depth culling (a still camera puts every sample back
+    // where it was traced: nothing to cull) and priorities. Counts per row
+    // go to locals, written once (no false sharing).
+    const bool cull = moved && rc.depthCullThreshold > 0.0f;
     std::vector<std::int64_t> holesPerRow(static_cast<std::size_t>(height), 0);
+    std::vector<std::int64_t> culledPerRow(static_cast<std::size_t>(height), 0);
     const float agePriority = 0.5f / static_cast<float>(rc.maxAge);
     parallel_.forEachIndex(height, [&](int y, int) {
-        std::int64_t rowHoles = 0;
+        std::int64_t rowHoles = 0, rowCulled = 0;
         for (int x = 0; x < width; ++x) {
             const auto i = static_cast<std::size_t>(y * width + x);
-            if (image_.hasSample(x, y)) {
-                state[i] = PixelState::Reprojected;
-                priority[i] = agePriority * static_cast<float>(pool_.age[image_.slotAt(x, y)]);
-            } else {
+            if (!image_.hasSample(x, y)) {
                 state[i] = PixelState::Hole;
                 priority[i] = 1.0f;
                 ++rowHoles;
+            } else if (cull && hiddenByNearerNeighbours(image_, x, y, rc.depthCullThreshold)) {
+                state[i] = PixelState::Culled;
+                priority[i] = 1.0f;
+                ++rowCulled;
+            } else {
+                state[i] = PixelState::Reprojected;
+                priority[i] = agePriority * static_cast<float>(pool_.age[image_.pixelIndex(x, y)]);
             }
         }
-        holesPerRow[static_cast<std::size_t>(y)] = rowHoles;
+        holesPerRow[static_cast<std::size_t>(y)] = rowHoles + rowCulled;
+        culledPerRow[static_cast<std::size_t>(y)] = rowCulled;
     });
-    // A still camera puts every sample back where it was traced: nothing to cull.
-    if (moved && rc.depthCullThreshold > 0.0f) {
-        stats.culled = cullOccludedSamples(image_, rc.depthCullThreshold, state, parallel_, &bytes_);
-        if (stats.culled > 0)
-            parallel_.forEachIndex(height, [&](int y, int) {
-                std::int64_t culled = 0;
-                for (int x = 0; x < width; ++x) {
-                    const auto i = static_cast<std::size_t>(y * width + x);
-                    if (state[i] != PixelState::Culled) continue;
-                    priority[i] = 1.0f;
-                    ++culled;
-                }
-                holesPerRow[static_cast<std::size_t>(y)] += culled;
-            });
-    }
+    for (std::int64_t c : culledPerRow) stats.culled += c;
     std::int64_t holes = 0;
     for (std::int64_t h : holesPerRow) holes += h;
     stats.holes = holes;
@@ -238,14 +221,16 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
         const CameraRays rays(camera, width, height);
         for (std::size_t i = 0; i < traced.size(); ++i) {
             const PixelCoord p = requests.pixels[i];
-            const std::size_t slot = image_.hasSample(p.x, p.y) ? image_.slotAt(p.x, p.y) : takeFreeSlot(p);
+            const std::size_t slot = image_.pixelIndex(p.x, p.y);
+            newSamples += image_.hasSample(p.x, p.y) ? 0 : 1;
             keep(slot, traced[i], rays, p);
             int px, py;
-            float depth;
+            float depth = std::numeric_limits<float>::infinity();  // a camera ray's hit is never behind the eye
             projectSample(pool_, slot, origins, projection, px, py, depth);
             // Placed where it was traced, whatever rounding says about the reprojection.
             image_.place(p.x, p.y, depth, static_cast<std::uint32_t>(slot));
             state[static_cast<std::size_t>(p.y * width + p.x)] = PixelState::Fresh;
+            if (predictedBudget > 0) nextPixel_[slot] = imagePixelThrough(pool_, slot, origins, nextProjection, width, height);
         }
     }
     stats.fresh = static_cast<std::int64_t>(traced.size());
@@ -254,23 +239,19 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     // Predictive sampling: where the next camera will find holes.
     if (predictedBudget > 0) {
         start = Clock::now();
-        const Camera next = predictNextCamera(*previousCamera_, camera);
-        const ScreenProjection nextProjection(next, width, height);
+        // Where the samples land through the next camera was found by
+        // reproject() (fresh samples: when kept); every sample is in a
+        // pixel slot until the predicted ones are kept below.
         std::vector<unsigned char>& covered = bytes_;
         covered.assign(static_cast<std::size_t>(pixels), 0);
-        const std::size_t n = pool_.capacity();
+        const std::size_t n = pool_.pixelSlots;
         constexpr std::size_t kChunk = 16384;
         parallel_.forEachIndex(static_cast<int>((n + kChunk - 1) / kChunk), [&](int chunk, int) {
             const std::size_t end = std::min(n, (static_cast<std::size_t>(chunk) + 1) * kChunk);
-            for (std::size_t slot = static_cast<std::size_t>(chunk) * kChunk; slot < end; ++slot) {
-                if (pool_.empty(slot)) continue;
-                int x, y;
-                float depth;
-                if (projectSample(pool_, slot, origins, nextProjection, x, y, depth) && x >= 0 && y >= 0 &&
-                    x < width && y < height)
-                    std::atomic_ref<unsigned char>(covered[static_cast<std::size_t>(y * width + x)])
+            for (std::size_t slot = static_cast<std::size_t>(chunk) * kChunk; slot < end; ++slot)
+                if (const std::int32_t pixel = nextPixel_[slot]; pixel >= 0)
+                    std::atomic_ref<unsigned char>(covered[static_cast<std::size_t>(pixel)])
                         .store(1, std::memory_order_relaxed);
-            }
         });
         parallel_.forEachIndex(height, [&](int y, int) {
             for (auto i = static_cast<std::size_t>(y * width); i < static_cast<std::size_t>((y + 1) * width); ++i)
@@ -287,7 +268,8 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
         key = trace(next, predictedRequests_.pixels, key, cacheFrame, traced);
         const CameraRays rays(next, width, height);
         for (std::size_t i = 0; i < traced.size(); ++i)
-            keep(takeFreeSlot(predictedRequests_.pixels[i]), traced[i], rays, predictedRequests_.pixels[i]);
+            keep(pool_.takeOverflowSlot(), traced[i], rays, predictedRequests_.pixels[i]);
+        newSamples += static_cast<std::int64_t>(traced.size());
         stats.predicted = static_cast<std::int64_t>(traced.size());
         stats.traceMs += millisecondsSince(start);
     }
@@ -302,7 +284,7 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x) {
                 if (state[static_cast<std::size_t>(y * width + x)] != PixelState::Reprojected) continue;
-                const std::uint32_t slot = image_.slotAt(x, y);
+                const auto slot = static_cast<std::uint32_t>(image_.pixelIndex(x, y));
                 if (!pool_.viewDependent[slot]) continue;
                 const int object = pool_.objectId[slot];
                 const Vec3 point = scene_.objects[static_cast<std::size_t>(object)].origin + pool_.position[slot];
@@ -354,7 +336,7 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
             const PixelState s = state[static_cast<std::size_t>(y * width + x)];
             if (!showsSample(s)) continue;
             rowReprojected += s == PixelState::Reprojected ? 1 : 0;
-            const std::uint32_t slot = image_.slotAt(x, y);
+            const std::size_t slot = image_.pixelIndex(x, y);
             // A background sample shows what it saw, like any other: looking
             // up an image environment along every pixel's ray again cost
             // 12 ms per frame at 1024x1024 on `room`.
@@ -374,7 +356,7 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     stats.filterMs = millisecondsSince(start);
 
     for (std::int64_t r : reprojectedPerRow) stats.reprojected += r;
-    stats.liveSamples = reprojected.placed + emptySlotsTaken_;
+    stats.liveSamples = reprojected.placed + newSamples;
 
     // The budget that would have held the target time, for the next frame.
     if (rc.targetFrameMs > 0.0f && !stats.refreshedAll) {

@@ -22,6 +22,7 @@
 #include "render/TileKernel.h"
 #include "rendercache/PointImage.h"
 #include "rendercache/RenderCacheOverlays.h"
+#include "rendercache/Reprojection.h"
 #include "rendercache/SamplePool.h"
 
 namespace raycache {
@@ -49,8 +50,6 @@ private:
                         CacheFrame& cacheFrame, std::vector<PrimarySample>& out);
     // Stores sample `traced` of the ray through `pixel` of `camera` in `slot`.
     void keep(std::size_t slot, const PrimarySample& traced, const CameraRays& rays, const PixelCoord& pixel);
-    // An empty slot for a new sample at `pixel`, near the pixel's own index.
-    std::uint32_t takeFreeSlot(const PixelCoord& pixel);
     int chooseBudget(int pixels) const;
 
     const Scene& scene_;
@@ -60,10 +59,14 @@ private:
     TileKernel kernel_;
     std::vector<TileScratch> scratch_;
 
-    SamplePool pool_;
+    // The samples, in pixel order, and the buffer reprojection copies them
+    // into (then the two swap), as the GPU Render Cache does.
+    SamplePool pool_, spare_;
+    ReprojectionScratch reprojectionScratch_;
+    // Per pixel slot: the pixel its sample lands in through the predicted
+    // camera (imagePixelThrough), on frames that predict.
+    std::vector<std::int32_t> nextPixel_;
     PointImage image_;
-    std::vector<unsigned char> shown_;  // per slot: on a pixel this frame, or traced this frame
-    std::int64_t emptySlotsTaken_ = 0;  // this frame
     RenderCacheOverlays overlays_;
     RequestMap predictedRequests_;
     // Buffers reused from frame to frame: fresh memory costs page faults.

@@ -1,18 +1,34 @@
 #include "rendercache/Reprojection.h"
 
 #include <algorithm>
-#include <array>
-#include <atomic>
 #include <cmath>
 #include <limits>
 #include <vector>
+
+#include "core/Errors.h"
 
 namespace raycache {
 
 namespace {
 
-// Slots are handed to workers in chunks of this many.
-constexpr std::size_t kChunk = 16384;
+// The depth test without atomic instructions: the source pool is in pixel
+// order (the last frame's), and a sample lands a few rows from where it
+// was, so bands of kBandRows rows of source slots are tested in parallel,
+// every other band at a time; a band touches only the rows within half a
+// band of its own, which the bands running beside it never do. Samples
+// that land farther (fast motion, the overflow's predicted samples) are
+// tested afterwards on one thread. A minimum does not depend on the order
+// in which it is taken, so neither does the outcome.
+constexpr int kBandRows = 32;
+// Marks a second-chance offer in the slot half of its key: such offers go
+// only to pixels no sample landed in, so among themselves they still order
+// by (depth, slot), and a tagged key tells the other losers that the pixel
+// was empty after the first round. Slots stay below 2^31.
+constexpr std::uint32_t kSecondChanceTag = 1u << 31;
+
+bool emptyAfterFirstRound(std::uint64_t key) {
+    return key == PointImage::emptyKey() || (PointImage::slotOf(key) & kSecondChanceTag) != 0;
+}
 
 }  // namespace
 
@@ -23,113 +39,200 @@ std::vector<Vec3> objectOrigins(const Scene& scene) {
     return origins;
 }
 
-ReprojectionCounts reproject(SamplePool& pool, const Scene& scene, const ScreenProjection& projection, int maxAge,
-                             PointImage& image, std::vector<unsigned char>& shown, const Parallel& parallel,
-                             std::vector<unsigned char>* scratch) {
-    const std::size_t n = pool.capacity();
+ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene& scene,
+                             const ScreenProjection& projection, int maxAge, PointImage& image,
+                             const Parallel& parallel, ReprojectionScratch& scratch, const ScreenProjection* next,
+                             std::vector<std::int32_t>* nextPixel) {
+    if (to.capacity() != from.capacity() || to.pixelSlots != image.pixelCount() ||
+        from.pixelSlots != image.pixelCount() || from.capacity() >= kSecondChanceTag || (next && !nextPixel))
+        throw RuntimeError("reproject: the pools do not fit the image");
     const std::vector<Vec3> origins = objectOrigins(scene);
-    const int chunks = static_cast<int>((n + kChunk - 1) / kChunk);
-    std::vector<ReprojectionCounts> perChunk(static_cast<std::size_t>(chunks));
-    // Offer every live sample; the depth test picks each pixel's winner.
-    // Counts go to a local and are written once per chunk: neighbouring
-    // chunks' counters share a cache line, and updating it per sample from
-    // two threads cost more than the projection.
-    parallel.forEachIndex(chunks, [&](int chunk, int) {
-        ReprojectionCounts counts;
-        const std::size_t end = std::min(n, (static_cast<std::size_t>(chunk) + 1) * kChunk);
-        for (std::size_t slot = static_cast<std::size_t>(chunk) * kChunk; slot < end; ++slot) {
-            if (pool.objectId[slot] == SamplePool::kEmpty) continue;
-            if (pool.age[slot] >= maxAge) {
-                pool.objectId[slot] = SamplePool::kEmpty;
-                ++counts.evicted;
+    const int rows = image.rows();
+    const int margin = image.margin();
+    const auto stride = static_cast<std::size_t>(image.stride());
+    const int bands = (rows + kBandRows - 1) / kBandRows;
+    using Landed = ReprojectionScratch::Landed;
+    if (next) {
+        scratch.nextPixel.resize(from.capacity());  // written for every sample that lands
+        nextPixel->resize(to.pixelSlots);           // every pixel slot written below
+    }
+    std::int32_t* nextOfSource = scratch.nextPixel.data();
+    std::vector<std::vector<Landed>>& far = scratch.far;
+    far.resize(static_cast<std::size_t>(bands));
+    // The last list: losers of the offers made on one thread.
+    std::vector<std::vector<Landed>>& losers = scratch.losers;
+    losers.resize(static_cast<std::size_t>(bands) + 1);
+    for (std::vector<Landed>& list : far) list.clear();
+    for (std::vector<Landed>& list : losers) list.clear();
+    // Offers `sample` to pixel (x, y); the one that loses goes to the list
+    // of `band` (which reached the pixel, so also reaches its neighbours),
+    // a sample it pushed out projected again.
+    const auto offer = [&](int x, int y, const Landed& sample, int band) {
+        const std::uint64_t lost = image.offerUnshared(x, y, PointImage::key(sample.depth, sample.slot));
+        if (lost == PointImage::emptyKey()) return;
+        std::vector<Landed>& list = losers[band < 0 ? losers.size() - 1 : static_cast<std::size_t>(band)];
+        const std::uint32_t loser = PointImage::slotOf(lost);
+        if (loser == sample.slot) {
+            list.push_back(sample);
+            return;
+        }
+        Landed pushedOut{loser, 0.0f, 0.0f, 0.0f};
+        projectSample(from, loser, origins, projection, pushedOut.x, pushedOut.y, pushedOut.depth);
+        list.push_back(pushedOut);
+    };
+    // Whether band `band` may test a sample that landed in image row `row`
+    // (from 0 at the margin's top) in parallel: its second chance reaches
+    // one row farther.
+    const auto withinReach = [](int band, int row) {
+        return row >= band * kBandRows - kBandRows / 2 + 1 && row < (band + 1) * kBandRows + kBandRows / 2 - 1;
+    };
+    // Counts go to a local and are written once per band or row:
+    // neighbouring counters share a cache line, and updating it per sample
+    // from two threads cost more than the projection.
+    struct Counts {
+        std::int64_t live = 0, evicted = 0;
+    };
+    std::vector<Counts> perBand(static_cast<std::size_t>(bands) + 1);
+    // Runs body(slot, band, counts) over every band's slots, every other
+    // band at a time, then body(slot, -1, counts) over the overflow slots
+    // on this thread.
+    const auto forEachBand = [&](const auto& body) {
+        for (int phase = 0; phase < 2; ++phase)
+            parallel.forEachIndex((bands - phase + 1) / 2, [&](int i, int) {
+                const int band = 2 * i + phase;
+                Counts counts = perBand[static_cast<std::size_t>(band)];
+                const std::size_t end = static_cast<std::size_t>(std::min(rows, (band + 1) * kBandRows)) * stride;
+                for (std::size_t slot = static_cast<std::size_t>(band) * kBandRows * stride; slot < end; ++slot)
+                    body(slot, band, counts);
+                perBand[static_cast<std::size_t>(band)] = counts;
+            });
+        Counts& counts = perBand.back();
+        for (std::size_t slot = from.pixelSlots; slot < from.used(); ++slot) body(slot, -1, counts);
+    };
+
+    // First round: project every live sample once and offer it to its
+    // pixel; the depth test picks each pixel's winner.
+    const int* objectId = from.objectId.data();
+    const std::uint16_t* age = from.age.data();
+    forEachBand([&](std::size_t slot, int band, Counts& counts) {
+        if (objectId[slot] == SamplePool::kEmpty) return;
+        ++counts.live;
+        if (age[slot] >= maxAge) {
+            ++counts.evicted;
+            return;
+        }
+        Landed sample{static_cast<std::uint32_t>(slot), 0.0f, 0.0f, 0.0f};
+        if (!projectSample(from, slot, origins, projection, sample.x, sample.y, sample.depth)) return;
+        const int x = static_cast<int>(std::floor(sample.x)), y = static_cast<int>(std::floor(sample.y));
+        if (!image.covers(x, y)) return;
+        if (next) nextOfSource[slot] = imagePixelThrough(from, slot, origins, *next, image.width(), image.height());
+        if (band < 0 || withinReach(band, y + margin)) offer(x, y, sample, band);
+        else far[static_cast<std::size_t>(band)].push_back(sample);
+    });
+    for (const std::vector<Landed>& list : far)
+        for (const Landed& sample : list)
+            offer(static_cast<int>(std::floor(sample.x)), static_cast<int>(std::floor(sample.y)), sample, -1);
+
+    // Second chance: a loser offers itself to the nearest neighbouring pixel
+    // that the first round left empty (first-round winners stay).
+    const auto secondChance = [&](const Landed& l) {
+        const int x = static_cast<int>(std::floor(l.x)), y = static_cast<int>(std::floor(l.y));
+        // The nearest empty neighbour by distance to its centre; among
+        // equals the first in row order (a fixed order).
+        const float fx = l.x - static_cast<float>(x) - 0.5f, fy = l.y - static_cast<float>(y) - 0.5f;
+        float nearest = std::numeric_limits<float>::infinity();
+        int bestX = 0, bestY = 0;
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                if (dx == 0 && dy == 0) continue;
+                const int nx = x + dx, ny = y + dy;
+                if (!image.covers(nx, ny) || !emptyAfterFirstRound(image.keyAt(nx, ny))) continue;
+                const float ex = static_cast<float>(dx) - fx, ey = static_cast<float>(dy) - fy;
+                const float distance = ex * ex + ey * ey;
+                if (distance < nearest) {
+                    nearest = distance;
+                    bestX = nx;
+                    bestY = ny;
+                }
+            }
+        if (nearest < std::numeric_limits<float>::infinity())
+            image.offerUnshared(bestX, bestY,
+                                PointImage::key(l.depth, l.slot | kSecondChanceTag));
+    };
+    for (int phase = 0; phase < 2; ++phase)
+        parallel.forEachIndex((bands - phase + 1) / 2, [&](int i, int) {
+            for (const Landed& loser : losers[static_cast<std::size_t>(2 * i + phase)]) secondChance(loser);
+        });
+    for (const Landed& loser : losers.back()) secondChance(loser);
+
+    // Each pixel's winner to its own slot of `to`; the image now names those slots.
+    std::vector<std::int64_t> placedPerRow(static_cast<std::size_t>(rows), 0);
+    std::vector<std::int64_t> movedPerRow(static_cast<std::size_t>(rows), 0);
+    parallel.forEachIndex(rows, [&](int row, int) {
+        // The arrays' addresses in locals: a store through an unsigned char
+        // may alias anything, and made the compiler reload every vector's
+        // address for every sample.
+        const Vec3* fromPosition = from.position.data();
+        const Rgb* fromColor = from.color.data();
+        const unsigned char* fromViewDependent = from.viewDependent.data();
+        const int* fromPrimitive = from.primitiveId.data();
+        const float *fromU = from.baryU.data(), *fromV = from.baryV.data();
+        const Rgb* fromViewIndependent = from.viewIndependent.data();
+        const std::uint64_t* fromLitMask = from.litMask.data();
+        int* toObject = to.objectId.data();
+        Vec3* toPosition = to.position.data();
+        Rgb* toColor = to.color.data();
+        std::uint16_t* toAge = to.age.data();
+        unsigned char* toViewDependent = to.viewDependent.data();
+        int* toPrimitive = to.primitiveId.data();
+        float *toU = to.baryU.data(), *toV = to.baryV.data();
+        Rgb* toViewIndependent = to.viewIndependent.data();
+        std::uint64_t* toLitMask = to.litMask.data();
+        std::int32_t* nextOfPixel = next ? nextPixel->data() : nullptr;
+        const int y = row - margin;
+        std::int64_t placed = 0, moved = 0;
+        for (int x = -margin; x < image.width() + margin; ++x) {
+            const std::size_t pixel = image.pixelIndex(x, y);
+            const std::uint64_t key = image.keyAt(x, y);
+            if (key == PointImage::emptyKey()) {
+                toObject[pixel] = SamplePool::kEmpty;
+                if (nextOfPixel) nextOfPixel[pixel] = -1;
                 continue;
             }
-            ++pool.age[slot];
-            int x, y;
-            float depth;
-            if (projectSample(pool, slot, origins, projection, x, y, depth) && image.covers(x, y))
-                image.offer(x, y, depth, static_cast<std::uint32_t>(slot));
-        }
-        perChunk[static_cast<std::size_t>(chunk)] = counts;
-    });
-    // Mark the winners, and the pixels nobody won.
-    std::vector<unsigned char>& won = shown;
-    won.assign(n, 0);
-    const int rows = image.height() + 2 * image.margin();
-    const int stride = image.width() + 2 * image.margin();
-    std::vector<unsigned char> ownScratch;
-    std::vector<unsigned char>& emptyAfterFirst = scratch ? *scratch : ownScratch;
-    emptyAfterFirst.resize(static_cast<std::size_t>(rows) * static_cast<std::size_t>(stride));  // all written below
-    const auto emptyIndex = [&](int x, int y) {
-        return static_cast<std::size_t>(y + image.margin()) * static_cast<std::size_t>(stride) +
-               static_cast<std::size_t>(x + image.margin());
-    };
-    parallel.forEachIndex(rows, [&](int row, int) {
-        const int y = row - image.margin();
-        for (int x = -image.margin(); x < image.width() + image.margin(); ++x) {
-            const bool has = image.hasSample(x, y);
-            if (has) won[image.slotAt(x, y)] = 1;  // one pixel per slot: no race
-            emptyAfterFirst[emptyIndex(x, y)] = has ? 0 : 1;
-        }
-    });
-    // Second chance: losers offer themselves to the nearest neighbouring
-    // pixel that the first round left empty (first-round winners stay).
-    parallel.forEachIndex(chunks, [&](int chunk, int) {
-        const std::size_t end = std::min(n, (static_cast<std::size_t>(chunk) + 1) * kChunk);
-        for (std::size_t slot = static_cast<std::size_t>(chunk) * kChunk; slot < end; ++slot) {
-            if (pool.objectId[slot] == SamplePool::kEmpty || won[slot]) continue;
-            float px, py, depth;
-            if (!projectSample(pool, slot, origins, projection, px, py, depth)) continue;
-            const int x = static_cast<int>(std::floor(px)), y = static_cast<int>(std::floor(py));
-            if (!image.covers(x, y)) continue;
-            // The 8 neighbours, nearest centre first (a fixed order among
-            // equals): the empty pixel beside a collision may lie on either side.
-            const float fx = px - static_cast<float>(x) - 0.5f, fy = py - static_cast<float>(y) - 0.5f;
-            std::array<std::pair<float, int>, 8> around;
-            int k = 0;
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) {
-                    if (dx == 0 && dy == 0) continue;
-                    const float ex = static_cast<float>(dx) - fx, ey = static_cast<float>(dy) - fy;
-                    around[static_cast<std::size_t>(k)] = {ex * ex + ey * ey, (dy + 1) * 3 + (dx + 1)};
-                    ++k;
-                }
-            std::sort(around.begin(), around.end());
-            for (const auto& [distance, code] : around) {
-                const int nx = x + code % 3 - 1, ny = y + code / 3 - 1;
-                if (!image.covers(nx, ny) || !emptyAfterFirst[emptyIndex(nx, ny)]) continue;
-                image.offer(nx, ny, depth, static_cast<std::uint32_t>(slot));
-                break;
+            const std::uint32_t tagged = PointImage::slotOf(key);
+            const std::size_t source = tagged & ~kSecondChanceTag;
+            if (nextOfPixel) nextOfPixel[pixel] = nextOfSource[source];
+            toObject[pixel] = objectId[source];
+            toPosition[pixel] = fromPosition[source];
+            toColor[pixel] = fromColor[source];
+            toAge[pixel] = static_cast<std::uint16_t>(age[source] + 1);
+            toViewDependent[pixel] = fromViewDependent[source];
+            // What reshading needs, only where it means something.
+            if (fromViewDependent[source]) {
+                toPrimitive[pixel] = fromPrimitive[source];
+                toU[pixel] = fromU[source];
+                toV[pixel] = fromV[source];
+                toViewIndependent[pixel] = fromViewIndependent[source];
+                toLitMask[pixel] = fromLitMask[source];
             }
+            image.place(x, y, PointImage::depthOf(key), static_cast<std::uint32_t>(pixel));
+            ++placed;
+            moved += (tagged & kSecondChanceTag) ? 1 : 0;
         }
+        placedPerRow[static_cast<std::size_t>(row)] = placed;
+        movedPerRow[static_cast<std::size_t>(row)] = moved;
     });
-    parallel.forEachIndex(rows, [&](int row, int) {
-        const int y = row - image.margin();
-        for (int x = -image.margin(); x < image.width() + image.margin(); ++x)
-            if (emptyAfterFirst[emptyIndex(x, y)] && image.hasSample(x, y)) won[image.slotAt(x, y)] = 2;
-    });
-    parallel.forEachIndex(chunks, [&](int chunk, int) {
-        ReprojectionCounts counts = perChunk[static_cast<std::size_t>(chunk)];
-        const std::size_t end = std::min(n, (static_cast<std::size_t>(chunk) + 1) * kChunk);
-        for (std::size_t slot = static_cast<std::size_t>(chunk) * kChunk; slot < end; ++slot) {
-            if (pool.objectId[slot] == SamplePool::kEmpty) continue;
-            if (won[slot]) {
-                ++counts.placed;
-                if (won[slot] == 2) ++counts.moved;
-            } else {
-                pool.objectId[slot] = SamplePool::kEmpty;
-                ++counts.lost;
-            }
-        }
-        perChunk[static_cast<std::size_t>(chunk)] = counts;
-    });
+    to.overflowUsed = 0;
+
     ReprojectionCounts total;
-    for (const ReprojectionCounts& c : perChunk) {
-        total.placed += c.placed;
-        total.moved += c.moved;
+    for (std::int64_t p : placedPerRow) total.placed += p;
+    for (std::int64_t m : movedPerRow) total.moved += m;
+    std::int64_t live = 0;
+    for (const Counts& c : perBand) {
+        live += c.live;
         total.evicted += c.evicted;
-        total.lost += c.lost;
     }
+    total.lost = live - total.evicted - total.placed;
     return total;
 }
 

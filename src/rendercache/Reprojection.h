@@ -11,6 +11,10 @@
 // pixel are freed, as on the GPU Render Cache, where samples and pixels
 // correspond one to one. (Keeping them while hidden was tried: 8 % fewer
 // holes, twice the samples to reproject.)
+//
+// As on the GPU, the winners are copied into a second pool at their pixel's
+// slot (SamplePool): the next frame, the image passes and new samples then
+// all go through the pool in pixel order.
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -29,6 +33,23 @@ struct ReprojectionCounts {
     std::int64_t moved = 0;    // of those, on a neighbour of the pixel they landed in
     std::int64_t lost = 0;     // behind a nearer sample, past the margin or behind the eye: freed
     std::int64_t evicted = 0;  // too old: freed
+};
+
+// Kept from frame to frame (fresh memory costs page faults): per band of
+// rows, the samples that landed too far from it to be tested in parallel,
+// and the samples that lost the first round with where they landed (only
+// they get a second chance, so only they are visited again, and their
+// projection is not repeated). Keeping every sample's landing instead cost
+// more in writes than projecting the displaced losers again.
+struct ReprojectionScratch {
+    struct Landed {
+        std::uint32_t slot;  // in the source pool
+        float x, y;          // continuous pixel position
+        float depth;
+    };
+    std::vector<std::vector<Landed>> far;     // per band
+    std::vector<std::vector<Landed>> losers;  // per band, then those of the offers made on one thread
+    std::vector<std::int32_t> nextPixel;      // per slot of the source pool, see reproject()
 };
 
 // Every object's origin, indexed like Scene::objects: a sample's position
@@ -65,13 +86,34 @@ inline bool projectSample(const SamplePool& pool, std::size_t slot, const std::v
     return true;
 }
 
-// Ages every sample by one frame and frees those older than `maxAge`,
-// offers the rest to `image` (reset by the caller to the new size), frees
-// those that win no pixel and sets shown[slot] (resized to the pool) for the
-// winners. The outcome does not depend on the thread count.
-// `scratch`, when given, is reused from frame to frame (no allocation).
-ReprojectionCounts reproject(SamplePool& pool, const Scene& scene, const ScreenProjection& projection, int maxAge,
-                             PointImage& image, std::vector<unsigned char>& shown, const Parallel& parallel,
-                             std::vector<unsigned char>* scratch = nullptr);
+// The pixel of a width x height image (y * width + x) where sample `slot`
+// lands through `projection`, or -1 when it lands off the image.
+inline std::int32_t imagePixelThrough(const SamplePool& pool, std::size_t slot, const std::vector<Vec3>& origins,
+                                      const ScreenProjection& projection, int width, int height) {
+    int x, y;
+    float depth;
+    if (!projectSample(pool, slot, origins, projection, x, y, depth) || x < 0 || y < 0 || x >= width || y >= height)
+        return -1;
+    return y * width + x;
+}
+
+// Ages every sample of `from` (its used slots) by one frame, drops those
+// older than `maxAge`, gives each pixel of `image` (reset by the caller to
+// the new size, and empty) the nearest sample that lands in it, then lets
+// the losers try a neighbour, and copies each pixel's winner into `to` at
+// the pixel's slot (image.pixelIndex). `to` must have `from`'s capacity and
+// image.pixelCount() pixel slots, as `from` must; its pixel slots are all
+// written (empty where no sample won), its overflow left unused. `image`
+// ends holding each winner's depth and its slot in `to`. `from` is not
+// changed. Ties in depth go to the lower slot of `from`: the outcome does
+// not depend on the thread count.
+// When `next` is given (the predicted camera of the next frame), `nextPixel`
+// is resized to `to`'s pixel slots and gets, for each, imagePixelThrough()
+// `next` of the sample it now holds (-1 where it holds none): projected
+// in the same pass as through `projection`, not in another pass over the pool.
+ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene& scene,
+                             const ScreenProjection& projection, int maxAge, PointImage& image,
+                             const Parallel& parallel, ReprojectionScratch& scratch,
+                             const ScreenProjection* next = nullptr, std::vector<std::int32_t>* nextPixel = nullptr);
 
 }  // namespace raycache

@@ -4,6 +4,7 @@
 // samples' known colours.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "rendercache/HoleFilling.h"
@@ -162,4 +163,53 @@ TEST(HoleFilling, APixelWithNoSampleWithinThreeStaysUnfilledAndUntouched) {
     EXPECT_EQ(img.s(8, 8), PixelState::Unfilled);
     EXPECT_EQ(img.film.at(4, 0), Rgb{-1.0f}) << "left for the caller";
     EXPECT_EQ(img.film.at(8, 8), Rgb{-1.0f});
+}
+
+// Rows where the 7x7 holes are many (a wide hole: column sums) and rows
+// where they are few and far apart (a box per hole) both give the 7x7 mean,
+// on one and two threads.
+TEST(HoleFilling, WideAndScatteredHolesBothTakeThe7x7MeanOnAnyThreadCount) {
+    constexpr int kW = 48, kH = 20;
+    std::vector<std::vector<bool>> hole(kH, std::vector<bool>(kW, false));
+    for (int y = 4; y < 11; ++y)
+        for (int x = 2; x < 40; ++x) hole[static_cast<std::size_t>(y)][static_cast<std::size_t>(x)] = true;  // wide
+    for (int cx : {5, 42})  // two 3x3 holes far apart on rows 14-16: one 7x7 pixel each
+        for (int y = 14; y < 17; ++y)
+            for (int x = cx - 1; x <= cx + 1; ++x) hole[static_cast<std::size_t>(y)][static_cast<std::size_t>(x)] = true;
+    const auto isSample = [&](int x, int y) { return !hole[static_cast<std::size_t>(y)][static_cast<std::size_t>(x)]; };
+    Image reference;
+    for (int threads : {1, 2}) {
+        Synthetic img(kW, kH);
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x)
+                if (!isSample(x, y)) img.hole(x, y);
+        const FillCounts c = fillHoles(img.state, img.film, Parallel(threads));
+        // The oracle: the nearest sample's distance (in the max norm) decides.
+        const auto sampleWithin = [&](int x, int y, int r) {
+            for (int ny = std::max(0, y - r); ny <= std::min(kH - 1, y + r); ++ny)
+                for (int nx = std::max(0, x - r); nx <= std::min(kW - 1, x + r); ++nx)
+                    if (isSample(nx, ny)) return true;
+            return false;
+        };
+        std::int64_t filled7x7 = 0, unfilled = 0;
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                if (isSample(x, y) || sampleWithin(x, y, 1)) continue;
+                if (!sampleWithin(x, y, 3)) {
+                    EXPECT_EQ(img.s(x, y), PixelState::Unfilled) << x << "," << y;
+                    ++unfilled;
+                    continue;
+                }
+                ++filled7x7;
+                ASSERT_EQ(img.s(x, y), PixelState::Filled7x7) << x << "," << y;
+                expectColour(img.film.at(x, y), mean(x, y, 3, kW, kH, isSample, box), x, y);
+            }
+        EXPECT_EQ(c.filled7x7, filled7x7);
+        EXPECT_EQ(c.unfilled, unfilled);
+        EXPECT_GT(filled7x7, 100);
+        EXPECT_EQ(img.s(5, 15), PixelState::Filled7x7);
+        EXPECT_EQ(img.s(42, 15), PixelState::Filled7x7);
+        if (threads == 1) reference = img.film;
+        else EXPECT_EQ(img.film.pixels(), reference.pixels());
+    }
 }

@@ -1,8 +1,10 @@
 // reproject(): aging, eviction at the maximum age, the depth test, the second
-// chance for losers, and its exact counts, on samples placed where a
-// 90-degree camera at the origin sees them in closed form.
+// chance for losers, the winners moved to their pixels' slots of the other
+// pool, and its exact counts, on samples placed where a 90-degree camera at
+// the origin sees them in closed form.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <utility>
@@ -33,9 +35,17 @@ Scene twoObjects() {
     return scene;
 }
 
+// The image's pixel slots (12 x 12 with the margin) and room for predicted samples after them.
+constexpr std::size_t kPixelSlots = (kSize + 2 * kMargin) * (kSize + 2 * kMargin);
+constexpr std::size_t kOverflow = 24;
+
 struct Fixture {
     SamplePool pool;
-    void put(std::size_t slot, int object, const Vec3& position, std::uint16_t age = 0) {
+    Fixture() { pool.reset(kPixelSlots, kOverflow); }
+    // Sample `i` in overflow slot i, where predicted samples wait for a pixel.
+    void put(std::size_t i, int object, const Vec3& position, std::uint16_t age = 0) {
+        const std::size_t slot = kPixelSlots + i;
+        pool.overflowUsed = std::max(pool.overflowUsed, i + 1);
         pool.objectId[slot] = object;
         pool.position[slot] = position;
         pool.age[slot] = age;
@@ -50,7 +60,6 @@ TEST(Reprojection, AgesEvictsTestsDepthGivesLosersASecondChanceAndCountsExactly)
     constexpr int kMaxAge = 3;
     for (int threads : {1, 2}) {
         Fixture f;
-        f.pool.reset(24);
         f.put(0, 0, at(2.5f, 2.5f, 5));
         // Object b's origin moved from (1, 0, -5) to (2, 0, -5): its sample follows, one pixel to the right.
         f.put(1, 1, at(5.5f, 3.5f, 5) - Vec3{1, 0, -5});
@@ -71,48 +80,57 @@ TEST(Reprojection, AgesEvictsTestsDepthGivesLosersASecondChanceAndCountsExactly)
         f.put(16, SamplePool::kBackground, normalize(at(0.3f, 9.5f, 1)));  // a miss, infinitely far
         f.put(17, 0, at(0.5f, 9.5f, 100));                                 // any surface beats it
         f.put(18, 0, at(10.5f, 4.5f, 5));                                  // in the margin: kept, not shown
-        // Slots 19..23 stay empty.
+        // Overflow slots 19..23 stay empty, and so do the pixel slots.
 
         PointImage image;
         image.reset(kSize, kSize, kMargin);
-        std::vector<unsigned char> shown;
+        ASSERT_EQ(image.pixelCount(), kPixelSlots);
+        SamplePool to;
+        to.reset(kPixelSlots, kOverflow);
+        // Left over from an earlier frame: every pixel slot is written.
+        for (std::size_t slot = 0; slot < kPixelSlots; ++slot) to.objectId[slot] = 0;
+        to.overflowUsed = 3;
+        const SamplePool before = f.pool;
+        ReprojectionScratch scratch;
         const Parallel parallel(threads);
-        const ReprojectionCounts counts = reproject(f.pool, scene, projection, kMaxAge, image, shown, parallel);
+        const ReprojectionCounts counts = reproject(f.pool, to, scene, projection, kMaxAge, image, parallel, scratch);
         EXPECT_EQ(counts.placed, 15) << threads << " threads";
         EXPECT_EQ(counts.moved, 4);
         EXPECT_EQ(counts.lost, 3);
         EXPECT_EQ(counts.evicted, 1);
 
-        const std::map<std::pair<int, int>, std::uint32_t> expected = {
+        // Pixel -> the sample that wins it.
+        const std::map<std::pair<int, int>, std::size_t> expected = {
             {{2, 2}, 0},  {{6, 3}, 1},  {{1, 7}, 2},  {{3, 5}, 5},  {{4, 5}, 6},   {{7, 7}, 7},  {{8, 7}, 9},
             {{7, 8}, 10}, {{8, 8}, 11}, {{1, 1}, 12}, {{2, 1}, 13}, {{-1, 9}, 16}, {{0, 9}, 17}, {{10, 4}, 18},
             {{7, 6}, 8},
         };
         for (int y = -kMargin; y < kSize + kMargin; ++y)
             for (int x = -kMargin; x < kSize + kMargin; ++x) {
+                const std::size_t pixel = image.pixelIndex(x, y);
                 const auto e = expected.find({x, y});
                 if (e == expected.end()) {
                     EXPECT_FALSE(image.hasSample(x, y)) << x << "," << y << " holds slot " << image.slotAt(x, y);
-                } else {
-                    ASSERT_TRUE(image.hasSample(x, y)) << x << "," << y;
-                    EXPECT_EQ(image.slotAt(x, y), e->second) << x << "," << y;
+                    EXPECT_TRUE(to.empty(pixel)) << x << "," << y;
+                    continue;
                 }
+                ASSERT_TRUE(image.hasSample(x, y)) << x << "," << y;
+                EXPECT_EQ(image.slotAt(x, y), pixel) << x << "," << y << ": the winner sits in its pixel's slot";
+                const std::size_t source = kPixelSlots + e->second;
+                EXPECT_EQ(to.objectId[pixel], before.objectId[source]) << x << "," << y;
+                EXPECT_EQ(to.position[pixel], before.position[source]) << x << "," << y;
+                EXPECT_EQ(to.age[pixel], before.age[source] + 1) << x << "," << y << ": aged by one frame";
             }
         EXPECT_NEAR(image.depthAt(3, 5), 4.0f, 1e-5f);
         EXPECT_NEAR(image.depthAt(4, 5), 6.0f, 1e-5f) << "a moved sample keeps its own depth";
         EXPECT_EQ(image.depthAt(-1, 9), std::numeric_limits<float>::infinity());
-
-        for (std::uint32_t slot : {3u, 4u, 14u, 15u}) EXPECT_TRUE(f.pool.empty(slot)) << slot << " freed";
-        for (std::uint32_t slot : {0u, 1u, 2u, 5u, 6u, 7u, 8u, 9u, 10u, 11u, 12u, 13u, 16u, 17u, 18u}) {
-            EXPECT_FALSE(f.pool.empty(slot)) << slot;
-            EXPECT_NE(shown[slot], 0) << slot;
-        }
-        for (std::uint32_t slot : {3u, 4u, 14u, 15u, 19u}) EXPECT_EQ(shown[slot], 0) << slot;
-        EXPECT_EQ(shown.size(), f.pool.capacity());
-        EXPECT_EQ(f.pool.age[0], 1);
-        EXPECT_EQ(f.pool.age[2], kMaxAge);
-        EXPECT_EQ(f.pool.age[16], 1);
-        EXPECT_TRUE(f.pool.empty(19));
+        EXPECT_EQ(to.age[image.pixelIndex(1, 7)], kMaxAge);
+        EXPECT_EQ(to.overflowUsed, 0u) << "no sample is left without a pixel";
+        EXPECT_EQ(to.used(), kPixelSlots);
+        // The source is only read.
+        EXPECT_EQ(f.pool.objectId, before.objectId);
+        EXPECT_EQ(f.pool.age, before.age);
+        EXPECT_EQ(f.pool.overflowUsed, before.overflowUsed);
     }
 }
 
@@ -121,27 +139,261 @@ TEST(Reprojection, ASampleIsShownForMaxAgeReprojectionsAndEvictedOnTheNext) {
     const ScreenProjection projection(eyeCamera(), kSize, kSize);
     const Parallel parallel(1);
     for (int maxAge : {1, 2, 5}) {
-        SamplePool pool;
-        pool.reset(1);
-        pool.objectId[0] = 0;
-        pool.position[0] = at(4.5f, 4.5f, 3);
-        pool.age[0] = 0;  // just traced
+        Fixture f;
+        f.put(0, 0, at(4.5f, 4.5f, 3));  // just traced
+        SamplePool& pool = f.pool;
+        SamplePool spare;
+        spare.reset(kPixelSlots, kOverflow);
         PointImage image;
-        std::vector<unsigned char> shown;
+        ReprojectionScratch scratch;
         for (int frame = 1; frame <= maxAge; ++frame) {
             image.reset(kSize, kSize, kMargin);
-            const ReprojectionCounts c = reproject(pool, scene, projection, maxAge, image, shown, parallel);
+            const ReprojectionCounts c = reproject(pool, spare, scene, projection, maxAge, image, parallel, scratch);
+            std::swap(pool, spare);
             ASSERT_EQ(c.placed, 1) << "max age " << maxAge << ", reprojection " << frame;
             ASSERT_EQ(c.evicted, 0);
-            ASSERT_EQ(pool.age[0], frame);
-            ASSERT_EQ(image.slotAt(4, 4), 0u);
+            ASSERT_EQ(image.slotAt(4, 4), image.pixelIndex(4, 4));
+            ASSERT_EQ(pool.age[image.pixelIndex(4, 4)], frame);
         }
         image.reset(kSize, kSize, kMargin);
-        const ReprojectionCounts c = reproject(pool, scene, projection, maxAge, image, shown, parallel);
+        const ReprojectionCounts c = reproject(pool, spare, scene, projection, maxAge, image, parallel, scratch);
+        std::swap(pool, spare);
         EXPECT_EQ(c.evicted, 1) << "max age " << maxAge;
         EXPECT_EQ(c.placed, 0);
         EXPECT_EQ(c.lost, 0);
-        EXPECT_TRUE(pool.empty(0));
+        EXPECT_TRUE(pool.empty(image.pixelIndex(4, 4)));
         EXPECT_FALSE(image.hasSample(4, 4));
+    }
+}
+
+// Many samples, many collisions, pixel slots and overflow slots alike (the
+// way a frame leaves them: reprojected, fresh and predicted samples): every
+// sample that wins a pixel lands in that pixel's slot with all its fields,
+// the reshading ones included where they mean something, and one or two
+// threads give the same pool.
+TEST(Reprojection, EveryWinnerMovesToItsPixelsSlotWithAllItsFieldsOnAnyThreadCount) {
+    const Scene scene = twoObjects();
+    const ScreenProjection projection(eyeCamera(), kSize, kSize);
+    SamplePool from;
+    from.reset(kPixelSlots, kOverflow);
+    from.overflowUsed = 20;
+    for (std::size_t slot = 0; slot < from.used(); ++slot) {
+        const std::uint32_t h = static_cast<std::uint32_t>(slot) * 2654435761u;
+        if (h % 5 == 0) continue;  // some slots empty
+        from.objectId[slot] = 0;
+        from.position[slot] = at(-1.0f + static_cast<float>(h % 1200) / 100.0f,
+                                 -1.0f + static_cast<float>((h >> 11) % 1200) / 100.0f,
+                                 1.0f + static_cast<float>((h >> 22) % 5));  // few depths: ties
+        from.color[slot] = Rgb{static_cast<float>(slot), 1.0f, 2.0f};
+        from.age[slot] = static_cast<std::uint16_t>(h % 3);
+        from.viewDependent[slot] = slot % 2;
+        from.primitiveId[slot] = static_cast<int>(slot) + 7;
+        from.baryU[slot] = 0.25f;
+        from.baryV[slot] = static_cast<float>(slot);
+        from.viewIndependent[slot] = Rgb{0.5f, static_cast<float>(slot), 0.0f};
+        from.litMask[slot] = slot * 3;
+    }
+    SamplePool reference;
+    for (int threads : {1, 2}) {
+        SamplePool to;
+        to.reset(kPixelSlots, kOverflow);
+        PointImage image;
+        image.reset(kSize, kSize, kMargin);
+        ReprojectionScratch scratch;
+        const ReprojectionCounts c = reproject(from, to, scene, projection, 32, image, Parallel(threads), scratch);
+        EXPECT_GT(c.lost, 0) << "the samples collide";
+        EXPECT_GT(c.moved, 0);
+        std::int64_t placed = 0;
+        for (int y = -kMargin; y < kSize + kMargin; ++y)
+            for (int x = -kMargin; x < kSize + kMargin; ++x) {
+                const std::size_t pixel = image.pixelIndex(x, y);
+                ASSERT_EQ(image.hasSample(x, y), !to.empty(pixel));
+                if (to.empty(pixel)) continue;
+                ++placed;
+                // The sample it came from: its colour names it.
+                const auto source = static_cast<std::size_t>(to.color[pixel].r);
+                ASSERT_EQ(to.position[pixel], from.position[source]);
+                ASSERT_EQ(to.age[pixel], from.age[source] + 1);
+                ASSERT_EQ(to.viewDependent[pixel], from.viewDependent[source]);
+                if (to.viewDependent[pixel]) {
+                    ASSERT_EQ(to.primitiveId[pixel], from.primitiveId[source]);
+                    ASSERT_EQ(to.baryV[pixel], from.baryV[source]);
+                    ASSERT_EQ(to.viewIndependent[pixel], from.viewIndependent[source]);
+                    ASSERT_EQ(to.litMask[pixel], from.litMask[source]);
+                }
+            }
+        EXPECT_EQ(placed, c.placed);
+        if (threads == 1) {
+            reference = to;
+            continue;
+        }
+        EXPECT_EQ(to.objectId, reference.objectId);
+        EXPECT_EQ(to.color, reference.color);
+        EXPECT_EQ(to.age, reference.age);
+    }
+}
+
+// With the next frame's camera given, reproject() tells for every pixel slot
+// where its sample will land through it, as projecting the moved sample
+// again would: the prediction needs no pass of its own over the pool.
+TEST(Reprojection, ThroughThePredictedCameraEveryPixelSlotKnowsWhereItsSampleWillLand) {
+    const Scene scene = twoObjects();
+    const ScreenProjection projection(eyeCamera(), kSize, kSize);
+    Camera nextCamera = eyeCamera();
+    nextCamera.position = {0.6f, -0.3f, 0.0f};  // about one pixel left and half a pixel up at depth 5
+    nextCamera.lookAt = nextCamera.position + Vec3{0, 0, -1};
+    const ScreenProjection next(nextCamera, kSize, kSize);
+    Fixture f;
+    for (std::size_t i = 0; i < 12; ++i)
+        f.put(i, 0, at(0.5f + static_cast<float>(i % 10), 0.5f + static_cast<float>(i) * 0.8f, 5));
+    f.put(12, 0, at(9.7f, 9.5f, 5));  // lands in the image, off it through the next camera
+    SamplePool to;
+    to.reset(kPixelSlots, kOverflow);
+    PointImage image;
+    image.reset(kSize, kSize, kMargin);
+    ReprojectionScratch scratch;
+    std::vector<std::int32_t> nextPixel;
+    const std::vector<Vec3> origins = objectOrigins(scene);
+    for (int threads : {1, 2}) {
+        image.reset(kSize, kSize, kMargin);
+        reproject(f.pool, to, scene, projection, 32, image, Parallel(threads), scratch, &next, &nextPixel);
+        ASSERT_EQ(nextPixel.size(), kPixelSlots);
+        int landing = 0, off = 0;
+        for (std::size_t slot = 0; slot < kPixelSlots; ++slot) {
+            if (to.empty(slot)) {
+                EXPECT_EQ(nextPixel[slot], -1) << slot;
+                continue;
+            }
+            EXPECT_EQ(nextPixel[slot], imagePixelThrough(to, slot, origins, next, kSize, kSize)) << slot;
+            (nextPixel[slot] >= 0 ? landing : off) += 1;
+        }
+        EXPECT_EQ(landing + off, 13);
+        EXPECT_GT(off, 0);
+    }
+}
+
+namespace {
+
+// The rule of reproject() written plainly, one sample at a time, as the
+// oracle for the banded, list-driven implementation: pixel -> (depth, slot)
+// of its winner, and whether it won on the second chance.
+struct OracleWinner {
+    float depth;
+    std::uint32_t slot;
+    bool moved;
+};
+std::map<std::pair<int, int>, OracleWinner> oracle(const SamplePool& pool, const Scene& scene,
+                                                   const ScreenProjection& projection, int maxAge,
+                                                   const PointImage& shape) {
+    const std::vector<Vec3> origins = objectOrigins(scene);
+    struct Landing {
+        std::uint32_t slot;
+        float x, y, depth;
+    };
+    std::vector<Landing> landed;
+    for (std::size_t slot = 0; slot < pool.used(); ++slot) {
+        if (pool.empty(slot) || pool.age[slot] >= maxAge) continue;
+        float px, py, depth;
+        if (!projectSample(pool, slot, origins, projection, px, py, depth)) continue;
+        if (!shape.covers(static_cast<int>(std::floor(px)), static_cast<int>(std::floor(py)))) continue;
+        landed.push_back({static_cast<std::uint32_t>(slot), px, py, depth});
+    }
+    const auto nearer = [](float d, std::uint32_t s, const OracleWinner& w) {
+        return d < w.depth || (d == w.depth && s < w.slot);
+    };
+    std::map<std::pair<int, int>, OracleWinner> first;
+    for (const Landing& l : landed) {
+        const std::pair<int, int> p{static_cast<int>(std::floor(l.x)), static_cast<int>(std::floor(l.y))};
+        const auto it = first.find(p);
+        if (it == first.end() || nearer(l.depth, l.slot, it->second)) first[p] = {l.depth, l.slot, false};
+    }
+    std::map<std::pair<int, int>, OracleWinner> second;
+    for (const Landing& l : landed) {
+        const int x = static_cast<int>(std::floor(l.x)), y = static_cast<int>(std::floor(l.y));
+        if (first.at({x, y}).slot == l.slot) continue;
+        float best = 1e30f;
+        std::pair<int, int> target{0, 0};
+        bool found = false;
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                if ((dx == 0 && dy == 0) || !shape.covers(x + dx, y + dy) || first.count({x + dx, y + dy})) continue;
+                const float ex = static_cast<float>(dx) - (l.x - static_cast<float>(x) - 0.5f);
+                const float ey = static_cast<float>(dy) - (l.y - static_cast<float>(y) - 0.5f);
+                if (ex * ex + ey * ey < best) {
+                    best = ex * ex + ey * ey;
+                    target = {x + dx, y + dy};
+                    found = true;
+                }
+            }
+        if (!found) continue;
+        const auto it = second.find(target);
+        if (it == second.end() || nearer(l.depth, l.slot, it->second)) second[target] = {l.depth, l.slot, true};
+    }
+    first.insert(second.begin(), second.end());
+    return first;
+}
+
+}  // namespace
+
+// A tall image (several bands of rows tested in parallel) and samples that
+// land far from the rows they sat in (moved more than half a band: tested
+// on one thread afterwards), plus predicted samples in the overflow:
+// whatever the path, the outcome is the plain rule's, on any thread count.
+TEST(Reprojection, BandsFarSamplesAndOverflowGiveThePlainRulesOutcome) {
+    constexpr int kW = 6, kH = 160, kM = 2;
+    const Scene scene = twoObjects();
+    // 90 degrees vertically; at depth d, pixel row py is at height d (80 - py) / 80.
+    const Camera camera{{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 90.0f};
+    const ScreenProjection projection(camera, kW, kH);
+    const auto point = [&](float px, float py, float depth) {
+        return Vec3{depth * (px - 3.0f) / 80.0f, depth * (80.0f - py) / 80.0f, -depth};
+    };
+    PointImage image;
+    image.reset(kW, kH, kM);
+    const std::size_t pixelSlots = image.pixelCount();
+    SamplePool from;
+    from.reset(pixelSlots, 64);
+    from.overflowUsed = 40;
+    for (std::size_t slot = 0; slot < from.used(); ++slot) {
+        const std::uint32_t h = static_cast<std::uint32_t>(slot) * 2654435761u ^ 0x9e3779b9u;
+        if (h % 7 == 0) continue;
+        // Most land near the row their slot belongs to; every fifth lands anywhere.
+        const float row = slot < pixelSlots ? static_cast<float>(slot / (kW + 2 * kM)) - kM : 0.0f;
+        const bool far = h % 5 == 0 || slot >= pixelSlots;
+        const float py = far ? -1.5f + static_cast<float>((h >> 8) % 16300) / 100.0f
+                             : row + static_cast<float>((h >> 8) % 700) / 100.0f - 3.0f;
+        const float px = -1.5f + static_cast<float>((h >> 20) % 850) / 100.0f;
+        from.objectId[slot] = 0;
+        from.position[slot] = point(px, py, 1.0f + static_cast<float>((h >> 3) % 4));  // few depths: ties
+        from.age[slot] = static_cast<std::uint16_t>(h % 4);
+    }
+    const auto expected = oracle(from, scene, projection, 3, image);
+    std::size_t moved = 0;
+    for (const auto& [pixel, winner] : expected) moved += winner.moved ? 1 : 0;
+    ASSERT_GT(moved, 10u) << "the second chance must be exercised";
+    for (int threads : {1, 2, 3}) {
+        image.reset(kW, kH, kM);
+        SamplePool to;
+        to.reset(pixelSlots, 64);
+        ReprojectionScratch scratch;
+        const ReprojectionCounts c = reproject(from, to, scene, projection, 3, image, Parallel(threads), scratch);
+        EXPECT_EQ(c.placed, static_cast<std::int64_t>(expected.size())) << threads << " threads";
+        EXPECT_EQ(c.moved, static_cast<std::int64_t>(moved));
+        std::size_t far = 0;
+        for (const auto& list : scratch.far) far += list.size();
+        EXPECT_GT(far, 20u) << "samples landing far from their band must be exercised";
+        EXPECT_GT(scratch.far.size(), 4u) << "several bands";
+        for (int y = -kM; y < kH + kM; ++y)
+            for (int x = -kM; x < kW + kM; ++x) {
+                const auto e = expected.find({x, y});
+                const std::size_t pixel = image.pixelIndex(x, y);
+                if (e == expected.end()) {
+                    ASSERT_TRUE(to.empty(pixel)) << x << "," << y << ", " << threads << " threads";
+                    continue;
+                }
+                ASSERT_FALSE(to.empty(pixel)) << x << "," << y << ", " << threads << " threads";
+                ASSERT_EQ(to.position[pixel], from.position[e->second.slot]) << x << "," << y;
+                ASSERT_EQ(image.depthAt(x, y), e->second.depth) << x << "," << y;
+            }
     }
 }
