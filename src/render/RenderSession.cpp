@@ -24,7 +24,7 @@ double millisecondsSince(Clock::time_point start) {
 
 RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings)
     : source_(scene), posed_(copyIfAnimated(scene)), scene_(posed_ ? *posed_ : scene), settings_(settings),
-      cache_(scene_, settings.cache), ownTracer_(std::make_unique<TraceScene>(scene_)),
+      cache_(scene_, settings.cache), ownTracer_(std::make_unique<TraceScene>(scene_, settings.trace)),
       ownParallel_(std::make_unique<Parallel>(settings.threads)), tracer_(ownTracer_.get()),
       parallel_(ownParallel_.get()), pipeline_(makeFramePipeline(scene_, *tracer_, settings_, *parallel_, &cache_)) {}
 

@@ -4,6 +4,7 @@
 
 #include "cache/RayCache.h"
 #include "rendercache/RenderCacheSettings.h"
+#include "trace/TraceScene.h"
 
 namespace raycache {
 
@@ -35,6 +36,7 @@ struct RenderSettings {
     PipelineKind pipeline = PipelineKind::Ray;
     GBufferSource gbuffer = GBufferSource::Auto;  // hybrid pipeline only
     RenderCacheSettings renderCache;              // Render Cache pipeline only
+    TraceOptions trace;                           // how the tracer follows an animated scene
     // Time every stage of the tile kernel (FrameStats::stages): two clock
     // reads per stage and wave, so off unless a profile is wanted.
     bool stageTimes = false;

@@ -237,7 +237,7 @@ Representation representationOf(const Scene& scene, std::size_t object) {
 
 }  // namespace
 
-TraceScene::TraceScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
+TraceScene::TraceScene(const Scene& scene, const TraceOptions& options) : impl_(std::make_unique<Impl>()) {
     impl_->device = rtcNewDevice(nullptr);
     if (!impl_->device) throw RuntimeError("Embree could not create a device");
     impl_->scene = rtcNewScene(impl_->device);
@@ -278,10 +278,13 @@ TraceScene::TraceScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
         } else {
             geom = makeMeshGeometry(impl_->device, *std::get<MeshShape>(object.shape).mesh);
         }
-        if (animated && representation != Representation::RigidInstance)
-            rtcSetGeometryBuildQuality(geom, representation == Representation::Still           ? RTC_BUILD_QUALITY_HIGH
-                                             : representation == Representation::DeformingMesh ? RTC_BUILD_QUALITY_REFIT
-                                                                                               : RTC_BUILD_QUALITY_MEDIUM);
+        if (animated && representation != Representation::RigidInstance) {
+            const bool refit = representation == Representation::DeformingMesh &&
+                               options.deformingMeshes == DeformingMeshUpdate::Refit;
+            rtcSetGeometryBuildQuality(geom, representation == Representation::Still ? RTC_BUILD_QUALITY_HIGH
+                                             : refit                                  ? RTC_BUILD_QUALITY_REFIT
+                                                                                      : RTC_BUILD_QUALITY_MEDIUM);
+        }
         rtcCommitGeometry(geom);
         // Geometry ids equal object indices, so hits name objects directly.
         rtcAttachGeometryByID(impl_->scene, geom, static_cast<unsigned>(i));

@@ -11,11 +11,21 @@
 
 namespace raycache {
 
+// How a deforming mesh's hierarchy follows its vertices each frame.
+enum class DeformingMeshUpdate {
+    Refit,    // keep the tree, recompute its boxes: cheap, but the tree ages as the shape drifts
+    Rebuild,  // a new tree (Embree's medium quality) every frame
+};
+
+struct TraceOptions {
+    DeformingMeshUpdate deformingMeshes = DeformingMeshUpdate::Refit;  // chosen by measurement: docs/dynamic-scenes.md
+};
+
 class TraceScene {
 public:
     // Builds the acceleration structure from a copy of the geometry; `scene`
     // may go away afterwards. Throws RuntimeError if Embree fails.
-    explicit TraceScene(const Scene& scene);
+    explicit TraceScene(const Scene& scene, const TraceOptions& options = {});
     ~TraceScene();
     TraceScene(const TraceScene&) = delete;
     TraceScene& operator=(const TraceScene&) = delete;

@@ -50,7 +50,9 @@ void expectFramesMatchFreshRenders(const std::string& name, CacheTechnique techn
         RenderSession fresh(still, smallSettings(CacheTechnique::None, pipeline));
         fresh.render(still.camera, truth);
         EXPECT_TRUE(identical(film, truth)) << name << " frame " << frame;
-        if (frame > 0) EXPECT_GT(stats.sceneUpdate->objectsChanged + stats.sceneUpdate->lightsChanged, 0);
+        if (frame > 0) {
+            EXPECT_GT(stats.sceneUpdate->objectsChanged + stats.sceneUpdate->lightsChanged, 0);
+        }
     }
 }
 
