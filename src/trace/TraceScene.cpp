@@ -249,7 +249,7 @@ TraceScene::TraceScene(const Scene& scene, const TraceOptions& options) : impl_(
     // REFIT (their vertices move, their triangles stay). Measured in
     // docs/dynamic-scenes.md.
     const bool animated = !scene.animation.empty();
-    rtcSetSceneBuildQuality(impl_->scene, animated ? RTC_BUILD_QUALITY_MEDIUM : RTC_BUILD_QUALITY_HIGH);
+    rtcSetSceneBuildQuality(impl_->scene, animated ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_HIGH);
     impl_->spheres.resize(scene.objects.size());
     impl_->instanced.assign(scene.objects.size(), nullptr);
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
