@@ -25,6 +25,19 @@ float wrapTime(float time, float first, float last, Wrap wrap) {
 
 }  // namespace
 
+namespace {
+
+// The span of `keys` (each with a `time`) around `time`.
+template <class Key>
+KeySpan keySpanOf(const std::vector<Key>& keys, float time, Interpolation interpolation, Wrap wrap) {
+    std::vector<float> times;
+    times.reserve(keys.size());
+    for (const Key& k : keys) times.push_back(k.time);
+    return findKeySpan(times, time, interpolation, wrap);
+}
+
+}  // namespace
+
 KeySpan findKeySpan(std::span<const float> keyTimes, float time, Interpolation interpolation, Wrap wrap) {
     const float t = wrapTime(time, keyTimes.front(), keyTimes.back(), wrap);
     // The first key later than t; the span is the key before it and it.
@@ -37,10 +50,7 @@ KeySpan findKeySpan(std::span<const float> keyTimes, float time, Interpolation i
 }
 
 Transform TransformTrack::at(float time) const {
-    std::vector<float> times;
-    times.reserve(keys.size());
-    for (const TransformKey& k : keys) times.push_back(k.time);
-    const KeySpan span = findKeySpan(times, time, interpolation, wrap);
+    const KeySpan span = keySpanOf(keys, time, interpolation, wrap);
     const TransformKey& a = keys[span.from];
     const TransformKey& b = keys[span.to];
     const float s = span.fraction;
@@ -49,10 +59,7 @@ Transform TransformTrack::at(float time) const {
 }
 
 Light LightTrack::at(const Light& base, float time) const {
-    std::vector<float> times;
-    times.reserve(keys.size());
-    for (const LightKey& k : keys) times.push_back(k.time);
-    const KeySpan span = findKeySpan(times, time, interpolation, wrap);
+    const KeySpan span = keySpanOf(keys, time, interpolation, wrap);
     const LightKey& a = keys[span.from];
     const LightKey& b = keys[span.to];
     const float s = span.fraction;
