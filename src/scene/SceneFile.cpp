@@ -651,7 +651,11 @@ private:
         return keys;
     }
 
-    TransformTrack transformTrack(const Node& n, bool sphere) const {
+    // `restReach`: the farthest point of the object's rest shape from the
+    // origin. Every key must keep the shape within ±kMaxWorldCoordinate;
+    // interpolated poses then do too (translations and scales blend between
+    // keys' values, rotations keep distances).
+    TransformTrack transformTrack(const Node& n, bool sphere, double restReach) const {
         expectObject(n, {"keys", "interpolation", "wrap"});
         TransformTrack track;
         trackOptions(n, track.interpolation, track.wrap);
@@ -683,9 +687,23 @@ private:
                     failType(v, "a number or an array of 3 numbers [x, y, z]");
                 }
             }
+            const double reach = static_cast<double>(length(key.translate)) +
+                                 static_cast<double>(std::max({key.scale.x, key.scale.y, key.scale.z})) * restReach;
+            if (!(reach <= kMaxWorldCoordinate))
+                fail(k, "this key moves the object up to " + formatNumber(reach) + " from the origin, beyond the limit of " +
+                            formatFloat(kMaxWorldCoordinate) + " (floats are too coarse to trace beyond)");
             track.keys.push_back(key);
         }
         return track;
+    }
+
+    // The farthest point of a shape from the origin.
+    static double reachOf(const std::variant<Sphere, MeshShape>& shape) {
+        if (const auto* s = std::get_if<Sphere>(&shape)) return static_cast<double>(length(s->center) + s->radius);
+        double reach = 0.0;
+        for (const Vec3& p : std::get<MeshShape>(shape).mesh->positions)
+            reach = std::max(reach, static_cast<double>(length(p)));
+        return reach;
     }
 
     Quaternion rotation(const Node& n) const {
@@ -724,6 +742,7 @@ private:
         Wrap wrap = Wrap::Loop;
         if (const Node v = child(n, "wrap")) wrap = oneOf(v, {"loop", "clamp"}) == "clamp" ? Wrap::Clamp : Wrap::Loop;
         std::vector<std::vector<Vec3>> frames;
+        framesReach_ = 0.0;
         for (const Node& f : elements(required(n, "files"), 1, kMaxKeyframes, "files")) {
             const std::shared_ptr<const TriangleMesh> mesh = meshFile(f);
             if (mesh->positions.size() != rest.positions.size())
@@ -735,6 +754,7 @@ private:
             positions.reserve(mesh->positions.size());
             for (const Vec3& p : mesh->positions) positions.push_back(placement.applyToPoint(p));
             checkMeshBounds(TriangleMesh{positions, {}, {}, mesh->triangles}, f, "");
+            for (const Vec3& p : positions) framesReach_ = std::max(framesReach_, static_cast<double>(length(p)));
             frames.push_back(std::move(positions));
         }
         return std::make_shared<const MeshSequence>(std::move(frames), fps, wrap);
@@ -910,8 +930,13 @@ private:
             const Node frames = child(o, "frames");
             if (animation || frames) {
                 ObjectAnimation a{static_cast<int>(scene.objects.size()), std::nullopt, nullptr, object.shape, object.origin};
-                if (animation) a.transform = transformTrack(animation, kind == ShapeKind::Sphere);
-                if (frames) a.deformation = meshFrames(frames, *std::get<MeshShape>(object.shape).mesh, t.matrix);
+                double reach = reachOf(object.shape);
+                if (frames) {
+                    a.deformation = meshFrames(frames, *std::get<MeshShape>(object.shape).mesh, t.matrix);
+                    // The keys move every frame of the sequence, not only the rest mesh.
+                    reach = std::max(reach, framesReach_);
+                }
+                if (animation) a.transform = transformTrack(animation, kind == ShapeKind::Sphere, reach);
                 scene.animation.objects.push_back(std::move(a));
             }
             scene.objects.push_back(std::move(object));
@@ -959,6 +984,7 @@ private:
         if (const std::string problem = validateMesh(mesh); !problem.empty()) fail(where, problem);
     }
 
+    double framesReach_ = 0.0;  // farthest vertex of the last object's mesh frames from the origin
     std::string fileLabel_;
     fs::path baseDir_;
     const JsonPositions& positions_;

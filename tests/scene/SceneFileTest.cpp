@@ -807,6 +807,15 @@ TEST_F(SceneFileTest, AnimationKeyRejectsUnknownKeysAndBadValues) {
                 "/objects/0/animation/keys/0/time", "expected a number");
 }
 
+TEST_F(SceneFileTest, AnimationKeyMovingTheObjectBeyondTheWorldLimitIsRejected) {
+    expectError(R"({"objects": [{"shape": "sphere", "animation": {"keys": [{"time": 0},
+                   @{"time": 1, "translate": [3e38, 0, 0]}]}}]})",
+                "/objects/0/animation/keys/1", "beyond the limit of 10000000");
+    expectError(R"({"objects": [{"shape": "box", "transform": {"translate": [5, 0, 0]},
+                   "animation": {"keys": [@{"time": 0, "scale": 1e7}]}}]})",
+                "/objects/0/animation/keys/0", "beyond the limit");
+}
+
 TEST_F(SceneFileTest, LightKeyTakesOnlyWhatItsTypeUses) {
     expectError(R"({"lights": [{"type": "point", "position": [0, 1, 0],
                    "animation": {"keys": [{"time": 0, @"direction": [0, -1, 0]}]}}], "objects": []})",
