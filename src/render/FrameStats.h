@@ -63,6 +63,17 @@ struct SceneUpdateStats {
     int objectsChanged = 0;
     int lightsChanged = 0;
     std::int64_t texelsInvalidated = 0;
+
+    SceneUpdateStats& operator+=(const SceneUpdateStats& o) {
+        milliseconds += o.milliseconds;
+        poseMs += o.poseMs;
+        tracerMs += o.tracerMs;
+        cacheMs += o.cacheMs;
+        objectsChanged += o.objectsChanged;
+        lightsChanged += o.lightsChanged;
+        texelsInvalidated += o.texelsInvalidated;
+        return *this;
+    }
 };
 
 // What one rendered frame did.

@@ -62,17 +62,9 @@ SceneUpdateStats RenderSession::setTime(float seconds) {
         pipeline_->sceneChanged(changes);
     }
     update.milliseconds = millisecondsSince(start);
-    if (pendingUpdate_) {  // several updates before one frame: their sum
-        pendingUpdate_->milliseconds += update.milliseconds;
-        pendingUpdate_->poseMs += update.poseMs;
-        pendingUpdate_->tracerMs += update.tracerMs;
-        pendingUpdate_->cacheMs += update.cacheMs;
-        pendingUpdate_->objectsChanged += update.objectsChanged;
-        pendingUpdate_->lightsChanged += update.lightsChanged;
-        pendingUpdate_->texelsInvalidated += update.texelsInvalidated;
-    } else {
-        pendingUpdate_ = update;
-    }
+    // Several updates before one frame: the frame reports their sum.
+    if (pendingUpdate_) *pendingUpdate_ += update;
+    else pendingUpdate_ = update;
     return update;
 }
 

@@ -64,6 +64,10 @@ SceneChanges poseScene(const Scene& scene, float time, Scene& posed) {
     for (const ObjectAnimation& animation : scene.animation.objects) {
         SceneObject& object = posed.objects[static_cast<std::size_t>(animation.object)];
         const Transform placement = animation.placementAt(time);
+        // A rigid object's shape follows from its placement alone (an
+        // object starts as its rest shape with the identity placement): an
+        // unchanged placement needs no copy of the mesh to tell.
+        if (!animation.deformation && placement == object.placement) continue;
         std::variant<Sphere, MeshShape> shape = posedShape(animation, time, placement);
         const Vec3 origin = placement.applyToPoint(animation.restOrigin);
         if (placement == object.placement && origin == object.origin && sameShape(shape, object.shape)) continue;

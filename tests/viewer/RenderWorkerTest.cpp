@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <optional>
 #include <thread>
 
 #include "core/ColorSpace.h"
@@ -38,6 +39,16 @@ RenderSettings smallSettings() {
     return s;
 }
 
+// The frames the offline renderer makes along the scene's path, as 8-bit sRGB.
+std::vector<std::vector<std::uint8_t>> offlineFrames(const Scene& scene, const RenderSettings& settings, int frames,
+                                                     const std::optional<FrameTimeline>& timeline = std::nullopt) {
+    std::vector<std::vector<std::uint8_t>> out;
+    renderFrames(
+        scene, scene.cameraPath, settings, frames,
+        [&](const FrameResult&, const Image& film, const RayCache&) { out.push_back(srgb8(film)); }, {}, timeline);
+    return out;
+}
+
 // Takes frames until `done` says stop (or a generous timeout).
 template <typename Done>
 void takeFrames(FrameHandoff& handoff, RenderWorker& worker, Done&& done) {
@@ -63,9 +74,7 @@ TEST(RenderWorker, ScriptedRunShowsEveryPathFrameAsTheOfflineRendererDoes) {
     settings.cache.techniqueOverride = CacheTechnique::Cct;
     constexpr int kFrames = 5;
 
-    std::vector<std::vector<std::uint8_t>> offline;
-    renderFrames(scene, scene.cameraPath, settings, kFrames,
-                 [&](const FrameResult&, const Image& film, const RayCache&) { offline.push_back(srgb8(film)); });
+    const std::vector<std::vector<std::uint8_t>> offline = offlineFrames(scene, settings, kFrames);
 
     FrameHandoff handoff;
     RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, {}, smallSettings(), kFrames, {}};
@@ -105,10 +114,7 @@ TEST(RenderWorker, ScriptedRunOfAnAnimatedSceneShowsEachFramesMomentAsTheOffline
     constexpr int kFrames = 3;
     const FrameTimeline timeline{0.5f, 10.0f};
 
-    std::vector<std::vector<std::uint8_t>> offline;
-    renderFrames(
-        scene, scene.cameraPath, settings, kFrames,
-        [&](const FrameResult&, const Image& film, const RayCache&) { offline.push_back(srgb8(film)); }, {}, timeline);
+    const std::vector<std::vector<std::uint8_t>> offline = offlineFrames(scene, settings, kFrames, timeline);
 
     FrameHandoff handoff;
     RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, timeline, smallSettings(), kFrames, {}};
@@ -189,9 +195,7 @@ TEST(RenderWorker, RenderCacheFramesAreTheOfflineRenderCachesFrames) {
     settings.pipeline = PipelineKind::RenderCache;
     constexpr int kFrames = 4;
 
-    std::vector<std::vector<std::uint8_t>> offline;
-    renderFrames(scene, scene.cameraPath, settings, kFrames,
-                 [&](const FrameResult&, const Image& film, const RayCache&) { offline.push_back(srgb8(film)); });
+    const std::vector<std::vector<std::uint8_t>> offline = offlineFrames(scene, settings, kFrames);
 
     FrameHandoff handoff;
     RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, {}, smallSettings(), kFrames, {}};
