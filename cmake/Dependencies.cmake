@@ -17,3 +17,10 @@ pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)
 if(RAYCACHE_BUILD_TESTS)
   find_package(GTest REQUIRED)
 endif()
+# Cluster mode (docs/cluster.md): Debian's Open MPI (libopenmpi-dev). Optional:
+# without it raycache builds and runs as one process.
+find_package(MPI COMPONENTS CXX QUIET)
+option(RAYCACHE_MPI "Build the MPI cluster mode (src/cluster/); on when Open MPI is found" ${MPI_CXX_FOUND})
+if(RAYCACHE_MPI AND NOT MPI_CXX_FOUND)
+  message(FATAL_ERROR "RAYCACHE_MPI is on but no MPI (C++) was found: install libopenmpi-dev or turn it off")
+endif()

@@ -11,6 +11,7 @@ packages=(
   libegl-dev libgl1-mesa-dri libegl-mesa0 libepoxy-dev
   libglfw3-dev libimgui-dev xvfb xauth
   clang libclang-rt-14-dev
+  libopenmpi-dev openmpi-bin
 )
 
 missing=()

@@ -1,6 +1,8 @@
 // raycache command line: parses arguments and hands them to the library.
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <optional>
+#include <ostream>
 
 #include "app/BenchCommand.h"
 #include "app/CacheViewCommand.h"
@@ -9,7 +11,9 @@
 #include "app/ScenesCommand.h"
 #include "app/ViewCommand.h"
 #include "bench/ProgressBar.h"
+#include "cluster/ClusterRuntime.h"
 #include "core/Errors.h"
+#include "core/ProcessAgreement.h"
 #include "scene/CacheTechnique.h"
 
 namespace {
@@ -52,6 +56,10 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
                        "ray: primary rays per tile; hybrid: G-buffer (OpenGL or primary-ray packets), then "
                        "deferred shadow and secondary rays; render-cache: reproject earlier frames' samples and "
                        "trace a budget of pixels (docs/render-cache.md); default: the scene file's, else ray");
+    command.add_option("--accel", job.accel,
+                       "embree: primary and shadow rays through Embree's BVH; grids: a perspective grid for "
+                       "primary rays and a light-space grid per light for their shadow rays, rebuilt every frame "
+                       "(docs/grids.md); default: the scene file's, else embree");
     command.add_option("--rc-budget", job.renderCache.budget, "Render cache: share of the pixels traced per frame, (0, 1] (default 0.05)");
     command.add_option("--rc-target-ms", job.renderCache.targetFrameMs,
                        "Render cache: choose the budget each frame to hold this frame time, ms (0 = off; images "
@@ -76,16 +84,49 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
                        "Hybrid G-buffer source: auto (OpenGL if a 4.5 context can be made, else packets), gl or "
                        "packets")
         ->capture_default_str();
+    command.add_option("--tile-balance", job.tileBalance,
+                       "MPI jobs (mpirun -np N raycache render ...): static deals tile i to process i mod N; dynamic "
+                       "(from the second frame) deals tiles by the previous frame's cost of each tile. Images do "
+                       "not depend on it (docs/cluster.md)")
+        ->capture_default_str();
 }
+
+// main() proper, once the process knows its place in an MPI job (if any).
+int run(int argc, char** argv, const raycache::ClusterRuntime& cluster);
 
 }  // namespace
 
 int main(int argc, char** argv) {
+    std::optional<raycache::ClusterRuntime> cluster;
+    try {
+        cluster.emplace(argc, argv);
+    } catch (const std::exception& e) {
+        // Every process of the job fails alike here, before any MPI: process
+        // 0 speaks and carries the exit code; the others end quietly (had
+        // they failed too, the launcher could end process 0 before it spoke).
+        if (raycache::launchedProcessRank() != 0) return 0;
+        std::cerr << "error: " << e.what() << '\n';
+        return 1;
+    }
+    return run(argc, argv, *cluster);
+}
+
+namespace {
+
+int run(int argc, char** argv, const raycache::ClusterRuntime& cluster) {
+    const raycache::ProcessGroup& group = cluster.group();
+    // In an MPI job only process 0 speaks; the others' output goes nowhere
+    // (a stream without a buffer drops what it is given).
+    std::ostream discarded(nullptr);
+    std::ostream& out = group.isRoot() ? std::cout : discarded;
+    std::ostream& err = group.isRoot() ? std::cerr : discarded;
+
     CLI::App app{"raycache: real-time Whitted ray tracing with per-object ray caching"};
     app.require_subcommand(1);
 
     raycache::RenderCommandOptions render;
-    CLI::App* renderCmd = app.add_subcommand("render", "Render a scene along its camera path");
+    CLI::App* renderCmd = app.add_subcommand(
+        "render", "Render a scene along its camera path (under mpirun, over all its processes: docs/cluster.md)");
     addRenderJobOptions(*renderCmd, render.job);
     renderCmd->add_option("--out", render.out,
                           "Image to write (.png sRGB 8-bit, .exr linear float); %04d in the name writes every frame");
@@ -158,19 +199,24 @@ int main(int argc, char** argv) {
     benchCmd->add_option("--out", bench.outDir, "Results directory")->capture_default_str();
     benchCmd->add_flag("--list", bench.list, "List the experiments and exit");
 
+    // Every process parses the same arguments, so they all agree on the outcome.
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
+        return app.exit(e, out, err);
     } catch (const CLI::CallForAllHelp& e) {
-        return app.exit(e);
+        return app.exit(e, out, err);
     } catch (const CLI::ParseError& e) {
-        std::cerr << "error: " << e.what() << " (see --help)\n";
+        err << "error: " << e.what() << " (see --help)\n";
+        return 2;
+    }
+    if (group.size() > 1 && !renderCmd->parsed()) {
+        err << "error: only `raycache render` runs as an MPI job; run the other commands without mpirun\n";
         return 2;
     }
 
     try {
-        if (renderCmd->parsed()) raycache::runRenderCommand(render, std::cout);
+        if (renderCmd->parsed()) raycache::runRenderCommand(render, out, group);
         else if (cacheViewCmd->parsed()) raycache::runCacheViewCommand(cacheView, std::cout);
         else if (viewCmd->parsed()) raycache::runViewCommand(view, std::cout);
         else if (diffCmd->parsed()) raycache::runDiffCommand(diff, std::cout);
@@ -179,12 +225,22 @@ int main(int argc, char** argv) {
             raycache::runBenchCommand(bench, std::cout);
         }
         else raycache::runScenesCommand(std::cout);
-    } catch (const raycache::InputError& e) {
-        std::cerr << "error: " << e.what() << '\n';
-        return 2;
+    } catch (const raycache::ProcessGroupFailure& e) {
+        // Every process of the job threw this together: process 0 reports it.
+        err << "error: " << e.what() << '\n';
+        return e.exitCode();
     } catch (const std::exception& e) {
-        std::cerr << "error: " << e.what() << '\n';
-        return 1;
+        const int code = dynamic_cast<const raycache::InputError*>(&e) ? 2 : 1;
+        if (group.size() == 1) {
+            std::cerr << "error: " << e.what() << '\n';
+            return code;
+        }
+        // A failure on this process alone, mid-job: the others would wait for
+        // it in the next exchange, so the whole job ends here.
+        std::cerr << "error: process " << group.rank() << " of " << group.size() << ": " << e.what() << '\n';
+        cluster.abortJob(code);
     }
     return 0;
 }
+
+}  // namespace

@@ -46,6 +46,24 @@ std::string formatFrameLine(const FrameResult& r, int frameCount) {
         line << "  scene update: " << u->objectsChanged << (u->objectsChanged == 1 ? " object, " : " objects, ")
              << u->lightsChanged << (u->lightsChanged == 1 ? " light" : " lights") << " changed, "
              << formatFixed(u->milliseconds, 2) << " ms, " << u->texelsInvalidated << " texels invalidated";
+    if (const auto& c = r.stats.cluster) {
+        line << "  cluster: " << c->processes << " processes, " << c->assignment;
+        if (!c->tilesPerProcess.empty()) {
+            line << " (tiles";
+            for (std::size_t p = 0; p < c->tilesPerProcess.size(); ++p) line << (p ? "/" : " ") << c->tilesPerProcess[p];
+            line << ", imbalance " << formatFixed(c->imbalance, 2) << ")";
+        }
+        line << ", exchanged: stores " << c->storeBytes << " B";
+        if (c->prefillBytes) line << ", pre-fill " << c->prefillBytes << " B";
+        line << ", image " << c->imageBytes << " B, control "
+             << c->controlBytes << " B";
+    }
+    if (const auto& g = r.stats.trace)
+        line << "  grids: build ms " << formatFixed(r.stats.gridBuildMs, 1) << " (primary "
+             << formatFixed(g->build.primaryBuildMs, 1) << ", shadow " << formatFixed(g->build.shadowBuildMs, 1)
+             << "), pairs " << g->build.primaryPairs << " + " << g->build.shadowPairs << ", rays answered "
+             << g->primaryAnswered << " primary, " << g->shadowAnswered << " shadow; refused (to Embree) "
+             << g->primaryRefused << " primary, " << g->shadowRefused << " shadow";
     if (const auto& s = r.stats.stages)
         line << "  stages cpu ms: first hits " << formatFixed(s->firstHits, 1) << ", surfaces "
              << formatFixed(s->surfaces, 1) << ", shadow rays " << formatFixed(s->shadowRays, 1) << ", direct "

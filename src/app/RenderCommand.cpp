@@ -1,6 +1,7 @@
 #include "app/RenderCommand.h"
 
 #include <algorithm>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <vector>
@@ -12,7 +13,9 @@
 #include "core/AtomicFile.h"
 #include "core/Parallel.h"
 #include "core/Errors.h"
+#include "core/ProcessAgreement.h"
 #include "render/FrameLoop.h"
+#include "render/FrameParallelLoop.h"
 #include "render/ImageWriter.h"
 
 namespace raycache {
@@ -61,6 +64,14 @@ nlohmann::json stagesJson(const StageTimes& s) {
             {"compose_cpu_ms", s.compose},          {"cache_frame_end_ms", s.cacheFrameEnd}};
 }
 
+nlohmann::json clusterJson(const ClusterStats& c) {
+    return {{"processes", c.processes},         {"assignment", c.assignment},
+            {"tiles_per_process", c.tilesPerProcess}, {"imbalance", c.imbalance},
+            {"store_bytes", c.storeBytes},        {"prefill_bytes", c.prefillBytes},
+            {"image_bytes", c.imageBytes},        {"control_bytes", c.controlBytes},
+            {"bytes", c.storeBytes + c.prefillBytes + c.imageBytes + c.controlBytes}};
+}
+
 nlohmann::json raysJson(const RayCounts& r) {
     return {{"primary", r.primary}, {"shadow", r.shadow}, {"reflection", r.reflection},
             {"refraction", r.refraction}, {"prefill", r.prefill}, {"total", r.total()}};
@@ -68,16 +79,33 @@ nlohmann::json raysJson(const RayCounts& r) {
 
 }  // namespace
 
-void runRenderCommand(const RenderCommandOptions& options, std::ostream& out) {
-    validateRenderJobOptions(options.job);
-    const FramePathPattern outPattern(options.out);
-    const RenderJob job = prepareRenderJob(options.job);
-    // Only now that the input is known to be good: no directories left behind by a failed run.
-    if (!options.out.empty()) {
-        createParentDirectories(outPattern.pathFor(1));
-        checkWritableImagePath(outPattern.pathFor(1));
-    }
-    if (!options.statsPath.empty()) createParentDirectories(options.statsPath);
+void runRenderCommand(const RenderCommandOptions& options, std::ostream& out, const ProcessGroup& group) {
+    std::optional<FramePathPattern> outPatternOrNone;
+    std::optional<RenderJob> preparedJob;
+    bool wholeFrames = false;
+    // Every process loads the scene; a failure on any of them stops all.
+    runOnEveryProcess(group, [&] {
+        validateRenderJobOptions(options.job);
+        outPatternOrNone.emplace(options.out);
+        preparedJob.emplace(prepareRenderJob(options.job));
+        if (group.size() > 1) {
+            wholeFrames = preparedJob->frames > 1 && framesAreIndependent(preparedJob->scene, preparedJob->settings);
+            if (!wholeFrames && preparedJob->settings.pipeline != PipelineKind::Ray)
+                throw InputError(std::string("--pipeline ") + pipelineKindName(preparedJob->settings.pipeline) +
+                                 " cannot share a frame's tiles among MPI processes; use --pipeline ray, or caches "
+                                 "off with several frames (whole frames per process; docs/cluster.md)");
+        }
+        // Only now that the input is known to be good: no directories left behind by a failed run.
+        if (!group.isRoot()) return;
+        if (!options.out.empty()) {
+            createParentDirectories(outPatternOrNone->pathFor(1));
+            checkWritableImagePath(outPatternOrNone->pathFor(1));
+        }
+        if (!options.statsPath.empty()) createParentDirectories(options.statsPath);
+    });
+    const FramePathPattern& outPattern = *outPatternOrNone;
+    const RenderJob& job = *preparedJob;
+    const bool writesFiles = group.isRoot();
 
     const Scene& scene = job.scene;
     const RenderSettings& settings = job.settings;
@@ -85,6 +113,12 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out) {
 
     out << "scene " << scene.name << ": " << scene.objects.size() << " objects, " << scene.lights.size()
         << " lights, " << settings.width << "x" << settings.height << ", " << frames << " frames\n";
+    if (group.size() > 1)
+        out << "cluster: " << group.size() << " MPI processes, "
+            << (wholeFrames ? "whole frames per process (caches off)"
+                            : std::string("tiles of every frame shared (") + tileBalanceName(settings.tileBalance) +
+                                  " balance), cache stores exchanged")
+            << "\n";
     if (settings.threads > Parallel::hardwareThreads())
         out << "note: --threads " << settings.threads << " is more than the " << Parallel::hardwareThreads()
             << " hardware threads; using " << Parallel::hardwareThreads() << "\n";
@@ -97,7 +131,7 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out) {
         pipelineLine = description;
         out << description << "\n";
     };
-    renderFrames(scene, job.path, settings, frames, [&](const FrameResult& r, const Image& film, const RayCache&) {
+    const auto onFrame = [&](const FrameResult& r, const Image& film, const RayCache&) {
         const RayCounts& rays = r.stats.rays;
         const double mrays = static_cast<double>(rays.total()) / (r.milliseconds * 1e3);
         out << formatFrameLine(r, frames) << std::endl;
@@ -108,7 +142,20 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out) {
         if (r.stats.cache) frameJson["cache"] = cacheJson(*r.stats.cache);
         if (r.stats.phases) frameJson["phases"] = phasesJson(*r.stats.phases);
         if (r.stats.stages) frameJson["stages"] = stagesJson(*r.stats.stages);
+        if (const auto& g = r.stats.trace)
+            frameJson["grids"] = {{"build_ms", r.stats.gridBuildMs},
+                                  {"primary_build_ms", g->build.primaryBuildMs},
+                                  {"shadow_build_ms", g->build.shadowBuildMs},
+                                  {"primary_pairs", g->build.primaryPairs},
+                                  {"shadow_pairs", g->build.shadowPairs},
+                                  {"light_grids", g->build.lightGrids},
+                                  {"lights_with_six_faces", g->build.lightsWithSixFaces},
+                                  {"primary_answered", g->primaryAnswered},
+                                  {"primary_refused", g->primaryRefused},
+                                  {"shadow_answered", g->shadowAnswered},
+                                  {"shadow_refused", g->shadowRefused}};
         if (r.stats.renderCache) frameJson["render_cache"] = renderCacheJson(*r.stats.renderCache);
+        if (r.stats.cluster) frameJson["cluster"] = clusterJson(*r.stats.cluster);
         if (r.stats.sceneUpdate) {
             frameJson["time"] = job.timeline.timeOf(r.frame);
             frameJson["scene_update"] = sceneUpdateJson(*r.stats.sceneUpdate);
@@ -116,9 +163,20 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out) {
         frameStats.push_back(std::move(frameJson));
         const bool lastFrame = r.frame + 1 == frames;
         // Files count from 1 like the progress lines: "frame 1/N" is _0001.
-        if (!options.out.empty() && (outPattern.perFrame() || lastFrame))
+        if (writesFiles && !options.out.empty() && (outPattern.perFrame() || lastFrame))
             writeImage(film, outPattern.pathFor(r.frame + 1));
-    }, onPipeline, job.timeline);
+    };
+    if (wholeFrames) {
+        const auto needsFilm = [&](int frame) {
+            return !options.out.empty() && (outPattern.perFrame() || frame + 1 == frames);
+        };
+        renderFramesAcrossProcesses(scene, job.path, settings, frames, group, onFrame, needsFilm, onPipeline,
+                                    job.timeline);
+    } else {
+        renderFrames(scene, job.path, settings, frames, onFrame, onPipeline, job.timeline, &group);
+    }
+    // Process 0 alone saw the frames (the others' statistics are partial).
+    if (!group.isRoot()) return;
 
     const SampleSummary summary = summarize(times);
     out << "median " << formatFixed(summary.median, 1) << " ms (min " << formatFixed(summary.min, 1) << ", max "
@@ -131,7 +189,8 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out) {
             {"max_depth", settings.maxDepth},
             {"min_weight", settings.minWeight},
             // What ran, not what was asked: Parallel clamps to the hardware threads.
-            {"threads", Parallel(settings.threads).threadCount()},
+            {"threads", Parallel(settings.threads).threadCount()},  // per process
+            {"processes", group.size()},
             {"threads_requested", settings.threads},  // 0 = all
             {"pipeline", pipelineKindName(settings.pipeline)},
             {"pipeline_description", pipelineLine},

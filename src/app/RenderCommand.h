@@ -5,6 +5,7 @@
 #include <string>
 
 #include "app/RenderJob.h"
+#include "core/ProcessGroup.h"
 
 namespace raycache {
 
@@ -17,6 +18,14 @@ struct RenderCommandOptions {
 // Runs the command, printing progress lines to `out`. Throws InputError for
 // bad options or scene input (checked before rendering starts) and
 // RuntimeError when rendering or writing fails.
-void runRenderCommand(const RenderCommandOptions& options, std::ostream& out);
+//
+// With a `group` of several processes (an MPI job, docs/cluster.md) every
+// process runs this with the same options: the frames' tiles are shared
+// among them (or, with caches off and several frames, whole frames), and
+// only process 0 prints to `out` and writes files. Input that fails on any
+// process throws ProcessGroupFailure (core/ProcessAgreement.h) on all of them
+// before anything is rendered.
+void runRenderCommand(const RenderCommandOptions& options, std::ostream& out,
+                      const ProcessGroup& group = SingleProcessGroup{});
 
 }  // namespace raycache

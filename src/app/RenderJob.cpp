@@ -71,6 +71,8 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
     if (o.cacheResolution &&
         (*o.cacheResolution < RayCache::kMinResolution || *o.cacheResolution > RayCache::kMaxResolution))
         throw InputError("--cache-res must be between 16 and 2048 (got " + std::to_string(*o.cacheResolution) + ")");
+    if (o.accel && !parseAccelerator(*o.accel))
+        throw InputError("--accel must be embree or grids (got '" + *o.accel + "')");
     if (o.pipeline && !parsePipelineKind(*o.pipeline))
         throw InputError("--pipeline must be ray, hybrid or render-cache (got '" + *o.pipeline + "')");
     // The --rc-* values alone, over the defaults: each error names its option.
@@ -80,6 +82,8 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
     ReprojectedReflections reflections;
     if (o.renderCache.reflections && !parseReprojectedReflections(*o.renderCache.reflections, reflections))
         throw InputError("--rc-reflections must be reshade or reproject (got '" + *o.renderCache.reflections + "')");
+    if (!parseTileBalance(o.tileBalance))
+        throw InputError("--tile-balance must be static or dynamic (got '" + o.tileBalance + "')");
     if (o.gbuffer != "auto" && o.gbuffer != "gl" && o.gbuffer != "packets")
         throw InputError("--gbuffer must be auto, gl or packets (got '" + o.gbuffer + "')");
     if (o.path && *o.path != "static" && *o.path != "orbit" && *o.path != "pan")
@@ -108,9 +112,11 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     settings.cache.resolutionOverride = options.cacheResolution;
     settings.cache.ideal = options.cacheIdeal;
     settings.stageTimes = options.stageTimes;
+    settings.tileBalance = *parseTileBalance(options.tileBalance);
     // Command-line options win over the scene file's, which win over the defaults.
     const SceneRenderDefaults& fromScene = job.scene.render;
     settings.pipeline = *parsePipelineKind(options.pipeline.value_or(fromScene.pipeline.value_or("ray")));
+    settings.trace.accelerator = *parseAccelerator(options.accel.value_or(fromScene.accel.value_or("embree")));
     applyRenderCacheOverrides(fromScene.renderCache, settings.renderCache);
     applyRenderCacheOverrides(options.renderCache, settings.renderCache);
     settings.gbuffer = options.gbuffer == "gl"        ? GBufferSource::OpenGl

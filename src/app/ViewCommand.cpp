@@ -34,6 +34,8 @@ void runViewCommand(const ViewCommandOptions& options, std::ostream& out) {
                       : job.settings.pipeline == PipelineKind::RenderCache ? kRenderCacheChoice
                                                                             : 0;
 
+    config.accelerator = job.settings.trace.accelerator;
+
     ViewerOptions viewer;
     // Without --frames the viewer is interactive; the frame count then only
     // matters to RenderJob's validation.

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 
+#include "bench/DynamicExperiment.h"
 #include "bench/FillRateExperiment.h"
+#include "bench/GridsExperiment.h"
 #include "bench/ParallaxExperiment.h"
 #include "bench/QualityExperiment.h"
 #include "bench/RenderCacheExperiment.h"
@@ -20,6 +22,8 @@ std::vector<std::unique_ptr<Experiment>> allExperiments() {
     all.push_back(makeQualityExperiment());
     all.push_back(makeParallaxExperiment());
     all.push_back(makeRenderCacheExperiment());
+    all.push_back(makeDynamicExperiment());
+    all.push_back(makeGridsExperiment());
     return all;
 }
 

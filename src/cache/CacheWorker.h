@@ -3,7 +3,11 @@
 // to make (merged by RayCache::endFrame) and its counters. Owned by the frame
 // (render/CacheFrame.h), one per worker, so nothing here is shared between threads.
 #include <cstdint>
+#include <span>
 #include <vector>
+
+#include "cache/RayTreeRecord.h"
+#include "core/ProcessGroup.h"
 
 namespace raycache {
 
@@ -19,6 +23,18 @@ public:
         closeBatch();
         batches_.push_back({key, pending_.size(), pending_.size()});
     }
+
+    // What `workers` queued this frame (their non-empty batches with their
+    // stores, in worker then queue order, and their lookup counters summed
+    // per cube) as bytes for the other processes of a cluster job
+    // (src/cluster/): 16 bytes per store, 16 per batch, 32 per cube; in an
+    // animated scene also each store's RayTreeRecord (156 bytes).
+    static Bytes pack(std::span<const CacheWorker> workers);
+    // Makes this worker hold what pack() packed in another process, so that
+    // its batches join RayCache::endFrame's merge (in key order, like any
+    // worker's) and its counters the frame's statistics. Throws
+    // std::runtime_error for a message that does not match `cubeCount`.
+    void unpack(std::span<const std::byte> bytes, std::size_t cubeCount);
 
 private:
     friend class RayCache;
@@ -46,6 +62,9 @@ private:
     }
 
     std::vector<PendingStore> pending_;
+    // When the cache tracks what its texels depend on (animated scenes): the
+    // tree of each pending store, same index.
+    std::vector<RayTreeRecord> pendingTrees_;
     std::vector<Batch> batches_;
     std::vector<Counters> counters_;  // per cube
 };

@@ -28,6 +28,16 @@ bool CachingCube::writeIfInvalid(int index, std::uint32_t packed, float depth) {
     return true;
 }
 
+bool CachingCube::invalidate(int index) {
+    if (!isValid(index)) return false;
+    const auto i = static_cast<std::size_t>(index);
+    validBits_[i >> 6] &= ~(std::uint64_t{1} << (i & 63));
+    texels_[i] = kInvalidTexel;
+    if (depths_) (*depths_)[i] = std::bit_cast<std::uint32_t>(kInvalidDepth);
+    --validCount_;
+    return true;
+}
+
 void CachingCube::clear() {
     texels_.fill(kInvalidTexel);
     std::fill(validBits_.begin(), validBits_.end(), 0);

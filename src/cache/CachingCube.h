@@ -63,6 +63,8 @@ public:
     // Writes `packed` (and, in a CDCT cube, `depth`) if the texel is still
     // invalid; returns whether it wrote.
     bool writeIfInvalid(int index, std::uint32_t packed, float depth = kInvalidDepth);
+    // Marks texel `index` invalid again; returns whether it was valid.
+    bool invalidate(int index);
     // Marks every texel invalid again.
     void clear();
     // Moves the cube with its object (the box keeps its size); texels keep

@@ -8,6 +8,7 @@
 #include <variant>
 
 #include "core/Errors.h"
+#include "scene/ObjectBounds.h"
 
 namespace raycache {
 
@@ -91,7 +92,9 @@ void RayCache::validate(const Scene& scene, const RayCacheSettings& settings) {
 }
 
 RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings)
-    : ideal_(settings.ideal), improvements_(settings.cdctImprovements) {
+    : ideal_(settings.ideal), oracle_(settings.invalidationOracle),
+      tracksDependencies_(!scene.animation.empty() || settings.invalidationOracle),
+      improvements_(settings.cdctImprovements) {
     validate(scene, settings);
     cubeOfObject_.assign(scene.objects.size(), -1);
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
@@ -106,33 +109,146 @@ RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings)
             cubes_.push_back(Entry{static_cast<int>(i), object.name, technique,
                                    CachingCube(object.origin, resolution, boundingHalfSize(object)),
                                    cdctParametersFor(object, settings)});
+        Entry& e = cubes_.back();
+        if (tracksDependencies_ && technique == CacheTechnique::Cct) {
+            e.blocksPerSide = (resolution + kBlockSize - 1) / kBlockSize;
+            e.blocks.resize(6u * static_cast<std::size_t>(e.blocksPerSide) * static_cast<std::size_t>(e.blocksPerSide));
+        }
+        if (oracle_) e.storedTrees.resize(e.cube.texelCount());
+        if (tracksDependencies_) e.droppedBits.assign((e.cube.texelCount() + 63) / 64, 0);
+    }
+    if (tracksDependencies_) {
+        // Only animated objects ever change.
+        objectBounds_.resize(scene.objects.size());
+        for (const ObjectAnimation& a : scene.animation.objects)
+            objectBounds_[static_cast<std::size_t>(a.object)] =
+                partedBounds(scene.objects[static_cast<std::size_t>(a.object)], kTrianglesPerPart);
+        lights_ = scene.lights;
     }
 }
 
 std::size_t RayCache::bytes() const {
-    std::size_t total = 0;
+    std::size_t total = dependencyBytes();
     for (const Entry& e : cubes_) total += e.cube.bytes();
     return total;
 }
 
-void RayCache::clear() {
-    for (Entry& e : cubes_) {
-        e.cube.clear();
-        e.prefilled = false;
-        e.farthestSurface = 0.0f;
-        e.pyramid.reset();
-    }
+std::size_t RayCache::dependencyBytes() const {
+    std::size_t total = 0;
+    for (const Entry& e : cubes_)
+        total += e.blocks.size() * sizeof(RayTreeBounds) + e.storedTrees.size() * sizeof(RayTreeRecord);
+    return total;
 }
 
-std::int64_t RayCache::sceneChanged(const Scene& posed, const SceneChanges& changes) {
+void RayCache::clearEntry(Entry& e) {
+    e.cube.clear();
+    e.prefilled = false;
+    e.farthestSurface = 0.0f;
+    e.pyramid.reset();
+    std::fill(e.blocks.begin(), e.blocks.end(), RayTreeBounds{});
+}
+
+void RayCache::clear() {
+    for (Entry& e : cubes_) clearEntry(e);
+}
+
+bool RayCache::dropTexel(Entry& e, int texel) {
+    if (!e.cube.invalidate(texel)) return false;
+    const auto i = static_cast<std::size_t>(texel);
+    if (!e.droppedBits.empty()) e.droppedBits[i >> 6] |= std::uint64_t{1} << (i & 63);
+    return true;
+}
+
+std::int64_t RayCache::dropBlock(Entry& e, int block) {
+    const int n = e.cube.size();
+    const int perFace = e.blocksPerSide * e.blocksPerSide;
+    const int face = block / perFace;
+    const int y0 = (block % perFace) / e.blocksPerSide * kBlockSize;
+    const int x0 = block % e.blocksPerSide * kBlockSize;
+    std::int64_t dropped = 0;
+    for (int y = y0; y < std::min(y0 + kBlockSize, n); ++y)
+        for (int x = x0; x < std::min(x0 + kBlockSize, n); ++x)
+            dropped += dropTexel(e, (face * n + y) * n + x) ? 1 : 0;
+    e.blocks[static_cast<std::size_t>(block)] = RayTreeBounds{};
+    return dropped;
+}
+
+std::int64_t RayCache::sceneChanged(const Scene& posed, const SceneChanges& changes,
+                                   const PartitionRunner& runPartitions) {
     if (changes.empty()) return 0;
     for (Entry& e : cubes_)
         if (std::binary_search(changes.objects.begin(), changes.objects.end(), e.objectId))
             e.cube.moveTo(posed.objects[static_cast<std::size_t>(e.objectId)].origin);
     std::int64_t dropped = 0;
-    for (const Entry& e : cubes_) dropped += static_cast<std::int64_t>(e.cube.validCount());
-    clear();
+    if (!tracksDependencies_) {
+        for (const Entry& e : cubes_) dropped += static_cast<std::int64_t>(e.cube.validCount());
+        clear();
+        return dropped;
+    }
+    // Where the changed objects were and are, whole and by parts. Grown a
+    // little: hit points are computed in float, and ray origins sit a surface
+    // offset (render/LocalShading.h, 1e-4 of the coordinates) off their surfaces.
+    std::vector<PartedBounds> changedRegions;
+    for (const int object : changes.objects) {
+        const auto i = static_cast<std::size_t>(object);
+        PartedBounds now = partedBounds(posed.objects[i], kTrianglesPerPart);
+        for (const PartedBounds* region : {&objectBounds_[i], &now})
+            if (!region->whole.empty()) changedRegions.push_back(region->grownRelative(1e-3f));
+        objectBounds_[i] = std::move(now);
+    }
+    lights_ = posed.lights;
+    const bool lightChanged = !changes.lights.empty();
+    std::vector<unsigned char> reached;
+    for (Entry& e : cubes_) {
+        std::fill(e.droppedBits.begin(), e.droppedBits.end(), 0);
+        if (e.blocks.empty()) {  // CDCT: its searches read across blocks; all or nothing
+            for (int t = 0; t < static_cast<int>(e.cube.texelCount()); ++t) dropped += dropTexel(e, t) ? 1 : 0;
+            clearEntry(e);
+            continue;
+        }
+        // Deciding reads only; dropping writes validity words that blocks
+        // share, so it runs after, on one thread.
+        reached.assign(e.blocks.size(), 0);
+        const auto decide = [&](std::size_t begin, std::size_t end) {
+            for (std::size_t b = begin; b < end; ++b) {
+                const RayTreeBounds& bounds = e.blocks[b];
+                if (bounds.empty()) continue;  // no valid texel
+                bool hit = bounds.dependsOnEverything || (lightChanged && bounds.shaded);
+                for (std::size_t k = 0; k < changedRegions.size() && !hit; ++k)
+                    hit = changedRegions[k].any([&](const Box3& box) { return bounds.mayMeet(box, lights_); });
+                reached[b] = hit ? 1 : 0;
+            }
+        };
+        constexpr int kChunks = 16;
+        const std::size_t perChunk = (e.blocks.size() + kChunks - 1) / kChunks;
+        if (runPartitions)
+            runPartitions(kChunks, [&](int chunk) {
+                const std::size_t begin = static_cast<std::size_t>(chunk) * perChunk;
+                decide(std::min(begin, e.blocks.size()), std::min(begin + perChunk, e.blocks.size()));
+            });
+        else
+            decide(0, e.blocks.size());
+        for (std::size_t b = 0; b < e.blocks.size(); ++b)
+            if (reached[b]) dropped += dropBlock(e, static_cast<int>(b));
+    }
     return dropped;
+}
+
+void RayCache::addAnswerDependencies(int objectId, int texel, RayTreeBounds& into) const {
+    const Entry& e = cubes_[static_cast<std::size_t>(cubeIndexOf(objectId))];
+    if (e.blocks.empty() || texel < 0) {
+        into.dependsOnEverything = true;
+        return;
+    }
+    into.add(e.blocks[static_cast<std::size_t>(blockOf(e, texel))]);
+}
+
+const RayTreeRecord& RayCache::storedTree(int objectId, int texel) const {
+    const Entry& e = cubes_[static_cast<std::size_t>(cubeIndexOf(objectId))];
+    if (!oracle_ || !e.cube.isValid(texel))
+        throw RuntimeError("storedTree: texel " + std::to_string(texel) + " of '" + e.name +
+                           "' keeps no record (invalidation oracle off, or texel invalid)");
+    return e.storedTrees[static_cast<std::size_t>(texel)];
 }
 
 std::vector<CacheWorker> RayCache::makeWorkers(int count) const {
@@ -154,6 +270,7 @@ void RayCache::beginFrame(std::span<CacheWorker> workers) {
             100.0 * static_cast<double>(e.cube.texelCount() - e.cube.validCount()) / static_cast<double>(e.cube.texelCount());
     for (CacheWorker& w : workers) {
         w.pending_.clear();
+        w.pendingTrees_.clear();
         w.batches_.clear();
         w.counters_.assign(cubes_.size(), CacheWorker::Counters{});
     }
@@ -198,6 +315,11 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
                 Entry& e = cubes_[p.cube];
                 if (!e.cube.writeIfInvalid(p.texel, p.packed, p.depth)) continue;
                 ++stats.objects[p.cube].stores;
+                if (tracksDependencies_) {
+                    const RayTreeRecord& tree = workers[b.worker].pendingTrees_[i];
+                    if (!e.blocks.empty()) e.blocks[static_cast<std::size_t>(blockOf(e, p.texel))].add(tree.bounds);
+                    if (oracle_) e.storedTrees[static_cast<std::size_t>(p.texel)] = tree;
+                }
                 if (p.depth < e.cdct.maxDepth) e.farthestSurface = std::max(e.farthestSurface, p.depth);
             }
         }
@@ -218,7 +340,8 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
         s.objectId = cubes_[c].objectId;
         s.name = cubes_[c].name;
         s.resolution = cubes_[c].cube.size();
-        s.bytes = cubes_[c].cube.bytes();
+        // With the dependency records of an animated scene's cube.
+        s.bytes = cubes_[c].cube.bytes() + cubes_[c].blocks.size() * sizeof(RayTreeBounds);
         s.invalidPercentBefore = cubes_[c].invalidPercentBefore;
         s.prefilledTexels = cubes_[c].prefilledTexels;
         cubes_[c].prefilledTexels = 0;
@@ -231,6 +354,7 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
     }
     for (CacheWorker& w : workers) {
         w.pending_.clear();
+        w.pendingTrees_.clear();
         w.batches_.clear();
     }
     return stats;
@@ -299,6 +423,10 @@ std::optional<Rgb> RayCache::lookup(int objectId, const Vec3& origin, const Vec3
     const auto c = static_cast<std::size_t>(cubeIndexOf(objectId));
     CacheWorker::Counters& counters = worker.counters_[c];
     ++counters.lookups;
+    if (oracle_) {
+        ++counters.misses;
+        return std::nullopt;
+    }
     if (auto color = answer(cubes_[c], origin, direction, counters)) {
         ++counters.hits;
         return color;
@@ -309,10 +437,21 @@ std::optional<Rgb> RayCache::lookup(int objectId, const Vec3& origin, const Vec3
 }
 
 void RayCache::store(int objectId, const Vec3& origin, const Vec3& direction, const Rgb& color, float hitDistance,
-                     CacheWorker& worker, int knownTexel) const {
+                     CacheWorker& worker, int knownTexel, const RayTreeRecord* tree) const {
     const auto c = static_cast<std::size_t>(cubeIndexOf(objectId));
+    const auto queueTree = [&] {
+        if (!tracksDependencies_) return;
+        if (tree) {
+            worker.pendingTrees_.push_back(*tree);
+        } else {
+            RayTreeRecord unknown;
+            unknown.bounds.dependsOnEverything = true;
+            worker.pendingTrees_.push_back(unknown);
+        }
+    };
     if (knownTexel >= 0) {
         worker.queue({static_cast<std::uint32_t>(c), knownTexel, CachingCube::encodeTexel(color), CachingCube::kInvalidDepth});
+        queueTree();
         return;
     }
     if (fillsByPrefill(cubes_[c])) return;  // its pre-fill writes every texel
@@ -340,10 +479,11 @@ void RayCache::store(int objectId, const Vec3& origin, const Vec3& direction, co
     // Lookups read the frame-start state, so only texels invalid then are worth queuing.
     if (cube.isValid(texel)) return;
     worker.queue({static_cast<std::uint32_t>(c), texel, CachingCube::encodeTexel(color), depth});
+    queueTree();
 }
 
 void RayCache::lookupBatch(std::span<const Query> queries, std::span<Rgb> colors, std::span<unsigned char> found,
-                           std::span<int> storeTexels, CacheWorker& worker) const {
+                           std::span<int> storeTexels, CacheWorker& worker, std::span<int> answerTexels) const {
     // Chunks small enough for the texel indices to stay on the stack and the
     // prefetched lines to stay in L1/L2 until they are read.
     constexpr std::size_t kChunk = 64;
@@ -367,6 +507,7 @@ void RayCache::lookupBatch(std::span<const Query> queries, std::span<Rgb> colors
             const Query& q = queries[base + k];
             const std::size_t i = base + k;
             storeTexels[i] = -1;
+            if (!answerTexels.empty()) answerTexels[i] = -1;
             if (texel[k] < 0) {
                 const auto color = lookup(q.objectId, q.origin, q.direction, worker);
                 found[i] = color ? 1 : 0;
@@ -377,10 +518,11 @@ void RayCache::lookupBatch(std::span<const Query> queries, std::span<Rgb> colors
             CacheWorker::Counters& counters = worker.counters_[c];
             ++counters.lookups;
             const CachingCube& cube = cubes_[c].cube;
-            if (cube.isValid(texel[k])) {
+            if (cube.isValid(texel[k]) && !oracle_) {
                 ++counters.hits;
                 colors[i] = cube.readValid(texel[k]);
                 found[i] = 1;
+                if (!answerTexels.empty()) answerTexels[i] = texel[k];
             } else {
                 ++counters.misses;
                 found[i] = ideal_ ? 1 : 0;

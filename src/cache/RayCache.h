@@ -30,6 +30,9 @@
 #include "cache/CacheWorker.h"
 #include "cache/CdctSearch.h"
 #include "cache/CachingCube.h"
+#include "cache/RayTreeRecord.h"
+#include "core/Box3.h"
+#include "scene/ObjectBounds.h"
 #include "scene/Scene.h"
 #include "scene/ScenePose.h"
 
@@ -51,10 +54,17 @@ struct RayCacheSettings {
     // Benchmark switch: a miss returns black instead of being traced, giving
     // the cost of a frame in which caching objects trace no secondary rays.
     bool ideal = false;
+    // Test switch for the invalidation oracle (tests/cache/InvalidationOracleTest):
+    // every lookup misses, so each stored colour is its ray's uncached colour,
+    // and every valid texel keeps the record of the ray it was traced for
+    // (storedTree), so a test can trace it again after the scene changed.
+    bool invalidationOracle = false;
 };
 
 class RayCache {
 public:
+    // Runs body(part) for every part in [0, count), possibly in parallel.
+    using PartitionRunner = std::function<void(int count, const std::function<void(int part)>& body)>;
     static constexpr int kMinResolution = 16;
     static constexpr int kMaxResolution = 2048;
     // CDCT: the linear search takes at most ceil(2 * maxDepth / step) steps;
@@ -85,6 +95,7 @@ public:
     static void validate(const Scene& scene, const RayCacheSettings& settings);
 
     bool empty() const { return cubes_.empty(); }
+    std::size_t cubeCount() const { return cubes_.size(); }
     bool cachesObject(int objectId) const { return cubeIndexOf(objectId) >= 0; }
     // The object's cube; the object must be cached.
     const CachingCube& cube(int objectId) const { return cubes_[static_cast<std::size_t>(cubeIndexOf(objectId))].cube; }
@@ -93,19 +104,44 @@ public:
     void clear();
     // After the scene moved to `posed` (changes from scene/ScenePose.h):
     // every cube of a changed object follows its origin, and the texels
-    // whose colour may depend on what changed are invalidated. Today that is
-    // every texel of every cube as soon as anything changed (exact, never
-    // stale, but it throws away texels that are still right; see
-    // docs/dynamic-scenes.md). Returns how many valid texels were dropped.
-    std::int64_t sceneChanged(const Scene& posed, const SceneChanges& changes);
+    // whose colour may depend on what changed are invalidated
+    // (docs/dynamic-scenes.md, "Which texels a change reaches"):
+    //   - CCT cubes, block by block (kBlockSize² texels of one face): a block
+    //     goes when the union of its texels' ray-tree bounds may meet the old
+    //     or new box of a changed object, or when a light changed and one of
+    //     its trees was shaded;
+    //   - CDCT cubes as a whole, when anything changed.
+    // Returns how many valid texels were dropped. With `runPartitions`, the
+    // blocks are tested in parallel.
+    std::int64_t sceneChanged(const Scene& posed, const SceneChanges& changes,
+                              const PartitionRunner& runPartitions = {});
+    // Whether stores carry their tree's record (RayTreeRecord) and texels
+    // keep their blocks' bounds: on for animated scenes, where a change must
+    // find what it reaches.
+    bool tracksDependencies() const { return tracksDependencies_; }
+    // Texels per side of the square blocks whose dependencies are kept together.
+    static constexpr int kBlockSize = 8;
+    // Bytes of the dependency records (included in bytes()).
+    std::size_t dependencyBytes() const;
+    // What the tree behind a found answer depended on, added to `into`: the
+    // bounds of the answering CCT texel's block (`texel`, from lookupBatch's
+    // answerTexels), or "everything" for a CDCT answer, whose search read
+    // texels of many blocks.
+    void addAnswerDependencies(int objectId, int texel, RayTreeBounds& into) const;
+    // Texel by texel (bit i of word i / 64), the texels of `objectId`'s cube
+    // that the last sceneChanged dropped; empty for a still scene.
+    std::span<const std::uint64_t> droppedByLastChange(int objectId) const {
+        return cubes_[static_cast<std::size_t>(cubeIndexOf(objectId))].droppedBits;
+    }
+    // invalidationOracle: the record of the ray that filled texel `texel` of
+    // `objectId`'s cube (valid texels only).
+    const RayTreeRecord& storedTree(int objectId, int texel) const;
 
     std::vector<CacheWorker> makeWorkers(int count) const;
     // `count` workers owned by the cache and reused frame after frame, so
     // their store queues keep their memory (render/CacheFrame.h uses them).
     std::span<CacheWorker> reusableWorkers(int count);
     void beginFrame(std::span<CacheWorker> workers);
-    // Runs body(part) for every part in [0, count), possibly in parallel.
-    using PartitionRunner = std::function<void(int count, const std::function<void(int part)>& body)>;
     // With `runPartitions`, the stores of different cubes are applied by
     // different calls of its body (each cube's stores in the same order as
     // without), so a caller may spread them over threads.
@@ -131,8 +167,10 @@ public:
     // For an unanswered CCT query, storeTexels[i] is the texel its store
     // will fill (invalid when the frame began), -1 otherwise; handing it to
     // store() spares addressing the texel twice.
+    // `answerTexels` (optional): for an answered query, the CCT texel that
+    // answered it, -1 otherwise (see addAnswerDependencies).
     void lookupBatch(std::span<const Query> queries, std::span<Rgb> colors, std::span<unsigned char> found,
-                     std::span<int> storeTexels, CacheWorker& worker) const;
+                     std::span<int> storeTexels, CacheWorker& worker, std::span<int> answerTexels = {}) const;
     // Improved CDCT (technique Cdct with prefill on): the objects whose cubes
     // were asked for during this frame (by `workers`) and are not filled yet.
     // The renderer fills them after the frame's pixels, before endFrame
@@ -158,8 +196,10 @@ public:
     // it at the texel addressed by centre -> hit point, with that distance
     // (misses and hits beyond maxDepth: the point of the ray at maxDepth).
     // `knownTexel`: the storeTexels answer of lookupBatch for this ray, or -1.
+    // `tree`: when tracksDependencies(), what the ray's tree reached; a store
+    // without it counts as depending on everything.
     void store(int objectId, const Vec3& origin, const Vec3& direction, const Rgb& color, float hitDistance,
-               CacheWorker& worker, int knownTexel = -1) const;
+               CacheWorker& worker, int knownTexel = -1, const RayTreeRecord* tree = nullptr) const;
 
 private:
     struct Entry {
@@ -173,7 +213,24 @@ private:
         bool prefilled = false;
         float farthestSurface = 0.0f;       // largest stored depth below cdct.maxDepth
         std::optional<DepthPyramid> pyramid;  // built when the cube is pre-filled
+        // tracksDependencies_, CCT cubes: per block, the union of its valid
+        // texels' tree bounds (face-major, blocksPerSide² per face).
+        std::vector<RayTreeBounds> blocks;
+        int blocksPerSide = 0;
+        std::vector<RayTreeRecord> storedTrees;  // invalidationOracle: per texel
+        std::vector<std::uint64_t> droppedBits;  // tracksDependencies_: see droppedByLastChange
     };
+    // Invalidates texel `texel`; if it was valid, marks it dropped. Returns whether it was valid.
+    static bool dropTexel(Entry& e, int texel);
+    int blockOf(const Entry& e, int texel) const {
+        const int n = e.cube.size();
+        const int face = texel / (n * n), y = (texel / n) % n, x = texel % n;
+        return (face * e.blocksPerSide + y / kBlockSize) * e.blocksPerSide + x / kBlockSize;
+    }
+    // Invalidates the texels of block `block`; returns how many were valid.
+    std::int64_t dropBlock(Entry& e, int block);
+    // Empties one cube: texels, pre-fill state, dependency records.
+    static void clearEntry(Entry& e);
 
     // Improved CDCT cube that fills itself by pre-filling (not by stores).
     bool fillsByPrefill(const Entry& e) const {
@@ -199,7 +256,16 @@ private:
     std::vector<BatchRef> mergeOrder_;
     std::vector<CacheWorker> workerPool_;  // object id -> index into cubes_, -1 if uncached
     bool ideal_ = false;
+    bool oracle_ = false;
+    bool tracksDependencies_ = false;
     CdctImprovements improvements_;
+    // tracksDependencies_: every object's world boxes in the pose the texels
+    // were traced in, and the lights, for sceneChanged.
+    std::vector<PartedBounds> objectBounds_;
+    // Triangles per part of a mesh's bounds: a moving or deforming mesh is
+    // tested part by part once its whole box is reached.
+    static constexpr int kTrianglesPerPart = 256;
+    std::vector<Light> lights_;
 };
 
 }  // namespace raycache

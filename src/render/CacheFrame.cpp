@@ -4,9 +4,17 @@
 
 namespace raycache {
 
-CacheFrame::CacheFrame(RayCache* cache, int workerCount) : cache_(cache && !cache->empty() ? cache : nullptr) {
+namespace {
+
+bool distributed(const ProcessGroup* group) { return group && group->size() > 1; }
+
+}  // namespace
+
+CacheFrame::CacheFrame(RayCache* cache, int workerCount, const ProcessGroup* group)
+    : cache_(cache && !cache->empty() ? cache : nullptr), group_(group), localWorkers_(workerCount) {
     if (!cache_) return;
-    workers_ = cache_->reusableWorkers(workerCount);
+    const int remote = distributed(group_) ? group_->size() - 1 : 0;
+    workers_ = cache_->reusableWorkers(workerCount + remote);
     cache_->beginFrame(workers_);
 }
 
@@ -18,7 +26,21 @@ std::optional<FrameCacheStats> CacheFrame::finish(const TileKernel& kernel, cons
                                                   RayCounts& rays) {
     if (!cache_ || finished_) return std::nullopt;
     finished_ = true;
-    rays += prefillCaches(*cache_, workers_, kernel, parallel);
+    if (distributed(group_)) {
+        const Bytes mine = CacheWorker::pack(workers_.first(static_cast<std::size_t>(localWorkers_)));
+        const std::vector<Bytes> all = group_->allGather(mine);
+        std::size_t slot = static_cast<std::size_t>(localWorkers_);
+        for (std::size_t r = 0; r < all.size(); ++r) {
+            exchangedBytes_ += all[r].size();
+            if (static_cast<int>(r) != group_->rank()) workers_[slot++].unpack(all[r], cache_->cubeCount());
+        }
+    }
+    // With the other processes' counters in workers_, every process sees the
+    // same cubes asked for and pre-fills the same ones, sharing their rows.
+    const PrefillResult prefill =
+        prefillCaches(*cache_, workers_, kernel, parallel, distributed(group_) ? group_ : nullptr);
+    rays += prefill.rays;
+    prefillBytes_ = prefill.exchangedBytes;
     return cache_->endFrame(workers_, [&](int count, const std::function<void(int)>& body) {
         parallel.forEachIndex(count, [&](int part, int) { body(part); });
     });

@@ -3,11 +3,17 @@
 // and the frame begun on construction; finish() runs improved CDCT's pre-fill
 // and merges the queued stores. Caches change only there, never inside the
 // kernel's stages.
+//
+// In a job of several processes (core/ProcessGroup.h) each process renders
+// some tiles; finish() first hands every process the stores and counters all
+// the others queued (one allGather), so every process merges the same
+// batches in the same key order and the caches stay identical everywhere.
 #include <optional>
 #include <span>
 
 #include "cache/RayCache.h"
 #include "core/Parallel.h"
+#include "core/ProcessGroup.h"
 #include "core/RayCounts.h"
 
 namespace raycache {
@@ -17,7 +23,8 @@ class TileKernel;
 class CacheFrame {
 public:
     // `cache` null or empty: an inactive frame, whose workers are null.
-    CacheFrame(RayCache* cache, int workerCount);
+    // `group` (may be null: one process) must outlive the frame.
+    CacheFrame(RayCache* cache, int workerCount, const ProcessGroup* group = nullptr);
     // A frame left unfinished (an exception in the middle) is ended without
     // its statistics, so the cache is ready for the next frame.
     ~CacheFrame();
@@ -27,14 +34,28 @@ public:
     // Worker `index`'s view of the frame, null when the frame is inactive.
     CacheWorker* worker(int index) { return cache_ ? &workers_[static_cast<std::size_t>(index)] : nullptr; }
 
-    // Pre-fills the cubes the frame asked for (adding their rays to `rays`),
-    // then applies the queued stores; the frame's statistics, or nothing when
+    // Exchanges the queued stores with the other processes (if any),
+    // pre-fills the cubes the frame asked for on any process (adding the
+    // rays this process traced for them to `rays`: the processes share the
+    // pre-fill, render/CachePrefill.h), then applies the queued stores; the
+    // frame's cache statistics, summed over the processes, or nothing when
     // inactive.
     std::optional<FrameCacheStats> finish(const TileKernel& kernel, const Parallel& parallel, RayCounts& rays);
 
+    // Bytes the exchange moved: every process's packed stores, summed (what
+    // each process receives, its own included). 0 for one process.
+    std::size_t exchangedBytes() const { return exchangedBytes_; }
+    // Bytes of pre-filled texel rows exchanged (every process's, summed).
+    std::size_t prefillBytes() const { return prefillBytes_; }
+
 private:
     RayCache* cache_;
+    const ProcessGroup* group_;
+    int localWorkers_ = 0;
+    // The local workers first, then one per other process, filled by the exchange.
     std::span<CacheWorker> workers_;
+    std::size_t exchangedBytes_ = 0;
+    std::size_t prefillBytes_ = 0;
     bool finished_ = false;
 };
 

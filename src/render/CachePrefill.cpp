@@ -6,8 +6,11 @@
 
 namespace raycache {
 
-RayCounts prefillCaches(RayCache& cache, std::span<const CacheWorker> workers, const TileKernel& kernel,
-                        const Parallel& parallel) {
+PrefillResult prefillCaches(RayCache& cache, std::span<const CacheWorker> workers, const TileKernel& kernel,
+                            const Parallel& parallel, const ProcessGroup* group) {
+    const int processes = group ? group->size() : 1;
+    const int rank = group ? group->rank() : 0;
+    PrefillResult result;
     std::vector<TileScratch> scratch(static_cast<std::size_t>(parallel.threadCount()));
     for (const int objectId : cache.objectsAwaitingPrefill(workers)) {
         const CachingCube& cube = cache.cube(objectId);
@@ -15,9 +18,13 @@ RayCounts prefillCaches(RayCache& cache, std::span<const CacheWorker> workers, c
         // The cube answers rays one bounce after the primary ray leaves a
         // surface, so its contents are shaded as depth-2 rays are.
         constexpr int kDepth = 2;
-        // One face row of texels is one batch of the kernel, like a tile.
+        // One face row of texels is one batch of the kernel, like a tile;
+        // this process traces rows rank, rank + N, ...
         const auto rowLength = static_cast<std::size_t>(cube.size());
-        parallel.forEachIndex(6 * cube.size(), [&](int row, int worker) {
+        const int rows = 6 * cube.size();
+        const auto rowsOf = [&](int process) { return (rows - process + processes - 1) / processes; };
+        parallel.forEachIndex(rowsOf(rank), [&](int k, int worker) {
+            const int row = rank + k * processes;
             std::vector<Ray> rays(rowLength);
             const std::size_t first = static_cast<std::size_t>(row) * rowLength;
             for (std::size_t i = 0; i < rowLength; ++i)
@@ -25,11 +32,25 @@ RayCounts prefillCaches(RayCache& cache, std::span<const CacheWorker> workers, c
             kernel.renderFromInside(objectId, rays, kDepth, std::span(texels).subspan(first, rowLength),
                                     scratch[static_cast<std::size_t>(worker)]);
         });
+        if (processes > 1) {
+            const auto rowSpan = [&](int row) {
+                return std::span(texels).subspan(static_cast<std::size_t>(row) * rowLength, rowLength);
+            };
+            Bytes mine;
+            for (int row = rank; row < rows; row += processes)
+                appendBytes(mine, std::span<const RayCache::PrefillTexel>(rowSpan(row)));
+            const std::vector<Bytes> all = group->allGather(mine);
+            for (int r = 0; r < processes; ++r) {
+                result.exchangedBytes += all[static_cast<std::size_t>(r)].size();
+                if (r == rank) continue;
+                ByteReader reader(all[static_cast<std::size_t>(r)]);
+                for (int row = r; row < rows; row += processes) reader.readInto(rowSpan(row));
+            }
+        }
         cache.completePrefill(objectId, texels);
     }
-    RayCounts total;
-    for (const TileScratch& s : scratch) total += s.counts;
-    return total;
+    for (const TileScratch& s : scratch) result.rays += s.counts;
+    return result;
 }
 
 }  // namespace raycache

@@ -6,6 +6,7 @@
 
 #include "cache/RayCache.h"
 #include "core/Parallel.h"
+#include "core/ProcessGroup.h"
 #include "core/RayCounts.h"
 
 namespace raycache {
@@ -16,9 +17,18 @@ class TileKernel;
 // awaiting its pre-fill after the frame `workers` rendered, through the tile
 // kernel's pre-fill stage (uncached, so the result depends only on the
 // scene), and hands the cubes their contents. Call after the frame's pixels
-// and before RayCache::endFrame. Returns the rays traced. Deterministic: each
-// texel is computed on its own, whatever the thread count.
-RayCounts prefillCaches(RayCache& cache, std::span<const CacheWorker> workers, const TileKernel& kernel,
-                        const Parallel& parallel);
+// and before RayCache::endFrame. Deterministic: each texel is computed on
+// its own, whatever the thread count.
+//
+// With `group` of several processes (collective: every process must call
+// it, with workers that saw every process's lookup counters), face row i of
+// each cube is traced by process i mod N and the rows are allgathered (16
+// bytes per texel), so every process gets the same cubes for 1/N of the rays.
+struct PrefillResult {
+    RayCounts rays;                   // traced by this process
+    std::uint64_t exchangedBytes = 0;  // every process's rows, summed (0 for one process)
+};
+PrefillResult prefillCaches(RayCache& cache, std::span<const CacheWorker> workers, const TileKernel& kernel,
+                            const Parallel& parallel, const ProcessGroup* group = nullptr);
 
 }  // namespace raycache

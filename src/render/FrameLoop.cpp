@@ -8,9 +8,9 @@ namespace raycache {
 
 void renderFrames(const Scene& scene, const CameraPath& path, const RenderSettings& settings, int frameCount,
                   const FrameCallback& onFrame, const PipelineCallback& onPipeline,
-                  const std::optional<FrameTimeline>& timeline) {
+                  const std::optional<FrameTimeline>& timeline, const ProcessGroup* group) {
     const FrameTimeline times = timeline.value_or(FrameTimeline{0.0f, scene.fps});
-    RenderSession session(scene, settings);
+    RenderSession session(scene, settings, group);
     if (onPipeline) onPipeline(session.description());
     Image film(settings.width, settings.height);
     for (int frame = 0; frame < frameCount; ++frame) {

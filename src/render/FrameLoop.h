@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/Image.h"
+#include "core/ProcessGroup.h"
 #include "cache/RayCache.h"
 #include "render/FrameStats.h"
 #include "render/RenderSettings.h"
@@ -37,8 +38,10 @@ using FrameCallback = std::function<void(const FrameResult&, const Image& film, 
 using PipelineCallback = std::function<void(const std::string& description)>;
 // An animated scene is posed at timeline.timeOf(frame) before each frame
 // (default: from 0 at the scene's fps); the frame's time includes that update.
+// With `group` of several processes, each frame's tiles are shared among
+// them (every process must call this with the same arguments).
 void renderFrames(const Scene& scene, const CameraPath& path, const RenderSettings& settings, int frameCount,
                   const FrameCallback& onFrame, const PipelineCallback& onPipeline = {},
-                  const std::optional<FrameTimeline>& timeline = std::nullopt);
+                  const std::optional<FrameTimeline>& timeline = std::nullopt, const ProcessGroup* group = nullptr);
 
 }  // namespace raycache

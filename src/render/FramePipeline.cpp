@@ -13,8 +13,8 @@ namespace {
 class RayPipeline final : public FramePipeline {
 public:
     RayPipeline(const Scene& scene, const TraceScene& tracer, const RenderSettings& settings,
-                const Parallel& parallel, RayCache* cache)
-        : renderer_(scene, tracer, settings, parallel, cache) {}
+                const Parallel& parallel, RayCache* cache, const ProcessGroup* group)
+        : renderer_(scene, tracer, settings, parallel, cache, group) {}
     FrameStats render(const Camera& camera, Image& film) override { return renderer_.render(camera, film); }
     std::string description() const override { return "pipeline: ray (primary rays as packets)"; }
 
@@ -26,9 +26,15 @@ private:
 
 std::unique_ptr<FramePipeline> makeFramePipeline(const Scene& scene, const TraceScene& tracer,
                                                  const RenderSettings& settings, const Parallel& parallel,
-                                                 RayCache* cache) {
+                                                 RayCache* cache, const ProcessGroup* group) {
     if (settings.pipeline == PipelineKind::Ray)
-        return std::make_unique<RayPipeline>(scene, tracer, settings, parallel, cache);
+        return std::make_unique<RayPipeline>(scene, tracer, settings, parallel, cache, group);
+    // The hybrid pipeline's G-buffer pass and the Render Cache's sample
+    // reprojection are whole-frame passes that do not split by tile.
+    if (group && group->size() > 1)
+        throw InputError(std::string("--pipeline ") + pipelineKindName(settings.pipeline) +
+                         " does not share a frame's tiles among MPI processes; use --pipeline ray (or, with caches "
+                         "off and several frames, the processes render whole frames: docs/cluster.md)");
     if (settings.pipeline == PipelineKind::RenderCache)
         return std::make_unique<RenderCachePipeline>(scene, tracer, settings, parallel, cache);
     std::unique_ptr<GBufferRasterizer> rasterizer;

@@ -11,6 +11,7 @@
 
 #include "core/Image.h"
 #include "core/Parallel.h"
+#include "core/ProcessGroup.h"
 #include "render/FrameStats.h"
 #include "render/RenderSettings.h"
 #include "scene/Camera.h"
@@ -45,9 +46,11 @@ public:
 // The pipeline settings.pipeline asks for. The hybrid pipeline with
 // GBufferSource::Auto uses OpenGL when a 4.5 core context can be made and
 // primary-ray packets otherwise. Throws RuntimeError when GBufferSource::OpenGl
-// is forced and no context can be made. All arguments must outlive the pipeline.
+// is forced and no context can be made. With `group` of several processes
+// only the ray pipeline shares its tiles among them; the others throw
+// InputError. All arguments must outlive the pipeline.
 std::unique_ptr<FramePipeline> makeFramePipeline(const Scene& scene, const TraceScene& tracer,
                                                  const RenderSettings& settings, const Parallel& parallel,
-                                                 RayCache* cache = nullptr);
+                                                 RayCache* cache = nullptr, const ProcessGroup* group = nullptr);
 
 }  // namespace raycache

@@ -1,10 +1,12 @@
 #pragma once
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "cache/CacheStats.h"
 #include "core/RayCounts.h"
 #include "rendercache/RenderCacheStats.h"
+#include "trace/TraceScene.h"
 
 namespace raycache {
 
@@ -76,6 +78,21 @@ struct SceneUpdateStats {
     }
 };
 
+// A frame shared among several processes (core/ProcessGroup.h), as process
+// 0 sees it after gathering the others' results.
+struct ClusterStats {
+    int processes = 1;
+    const char* assignment = "static tiles";  // "static tiles", "dynamic tiles" or "whole frames"
+    std::vector<int> tilesPerProcess;
+    // Sum of the tile kernel's CPU time per process over their mean: 1 is a
+    // perfect balance, 2 means the busiest process worked twice the mean.
+    double imbalance = 1.0;
+    std::uint64_t storeBytes = 0;    // cache stores and counters exchanged: every process's, summed
+    std::uint64_t prefillBytes = 0;  // improved CDCT: pre-filled texel rows exchanged, every process's, summed
+    std::uint64_t imageBytes = 0;    // pixels of other processes' tiles gathered to process 0
+    std::uint64_t controlBytes = 0;  // tile assignment, tile costs and statistics
+};
+
 // What one rendered frame did.
 struct FrameStats {
     RayCounts rays;
@@ -84,6 +101,11 @@ struct FrameStats {
     std::optional<StageTimes> stages;      // present when RenderSettings::stageTimes is set
     std::optional<RenderCacheStats> renderCache;  // present for the Render Cache pipeline
     std::optional<SceneUpdateStats> sceneUpdate;  // present for animated scenes
+    std::optional<ClusterStats> cluster;          // present when several processes rendered the frame
+    // The grids' per-frame build and the rays they answered (present with
+    // the grids accelerator; docs/grids.md).
+    std::optional<FrameTraceStats> trace;
+    double gridBuildMs = 0.0;  // wall time of TraceScene::prepareFrame
 };
 
 }  // namespace raycache

@@ -25,7 +25,7 @@ std::uint64_t PacketGBuffer::fill(const Camera& camera, int width, int height, G
         std::size_t n = 0;
         for (int y = tile.y0; y < tile.y1; ++y)
             for (int x = tile.x0; x < tile.x1; ++x) s.rays[n++] = cameraRays.ray(x, y);
-        tracer_.intersectCoherent(std::span<const Ray>(s.rays.data(), n), std::span(s.hits.data(), n));
+        tracer_.intersectPrimary(std::span<const Ray>(s.rays.data(), n), std::span(s.hits.data(), n));
         const int tileWidth = tile.x1 - tile.x0;
         for (std::size_t k = 0; k < n; ++k) {
             const int x = tile.x0 + static_cast<int>(k) % tileWidth;

@@ -22,11 +22,12 @@ double millisecondsSince(Clock::time_point start) {
 
 }  // namespace
 
-RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings)
+RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings, const ProcessGroup* group)
     : source_(scene), posed_(copyIfAnimated(scene)), scene_(posed_ ? *posed_ : scene), settings_(settings),
       cache_(scene_, settings.cache), ownTracer_(std::make_unique<TraceScene>(scene_, settings.trace)),
       ownParallel_(std::make_unique<Parallel>(settings.threads)), tracer_(ownTracer_.get()),
-      parallel_(ownParallel_.get()), pipeline_(makeFramePipeline(scene_, *tracer_, settings_, *parallel_, &cache_)) {}
+      parallel_(ownParallel_.get()), group_(group),
+      pipeline_(makeFramePipeline(scene_, *tracer_, settings_, *parallel_, &cache_, group_)) {}
 
 RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings, const TraceScene& tracer,
                              const Parallel& parallel)
@@ -37,7 +38,15 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings,
 RenderSession::~RenderSession() = default;
 
 FrameStats RenderSession::render(const Camera& camera, Image& film) {
+    // The grids are rebuilt every frame from the posed scene; their build is part of the frame.
+    const auto buildStart = Clock::now();
+    tracer_->prepareFrame(scene_, camera, settings_.width, settings_.height, *parallel_);
+    const double gridBuildMs = millisecondsSince(buildStart);
     FrameStats stats = pipeline_->render(camera, film);
+    if (tracer_->accelerator() == Accelerator::Grids) {
+        stats.trace = tracer_->frameStats();
+        stats.gridBuildMs = gridBuildMs;
+    }
     stats.sceneUpdate = pendingUpdate_;
     pendingUpdate_.reset();
     return stats;
@@ -57,7 +66,10 @@ SceneUpdateStats RenderSession::setTime(float seconds) {
         ownTracer_->update(*posed_, changes.objects);
         update.tracerMs = millisecondsSince(phase);
         phase = Clock::now();
-        update.texelsInvalidated = cache_.sceneChanged(*posed_, changes);
+        update.texelsInvalidated =
+            cache_.sceneChanged(*posed_, changes, [&](int count, const std::function<void(int)>& body) {
+                parallel_->forEachIndex(count, [&](int part, int) { body(part); });
+            });
         update.cacheMs = millisecondsSince(phase);
         pipeline_->sceneChanged(changes);
     }
@@ -72,7 +84,7 @@ void RenderSession::resize(int width, int height) {
     if (width == settings_.width && height == settings_.height) return;
     settings_.width = width;
     settings_.height = height;
-    pipeline_ = makeFramePipeline(scene_, *tracer_, settings_, *parallel_, &cache_);
+    pipeline_ = makeFramePipeline(scene_, *tracer_, settings_, *parallel_, &cache_, group_);
 }
 
 }  // namespace raycache

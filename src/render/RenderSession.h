@@ -10,6 +10,7 @@
 #include "cache/RayCache.h"
 #include "core/Image.h"
 #include "core/Parallel.h"
+#include "core/ProcessGroup.h"
 #include "render/FramePipeline.h"
 #include "render/FrameStats.h"
 #include "render/RenderSettings.h"
@@ -25,7 +26,10 @@ public:
     // cache settings before building anything, RuntimeError when the hybrid
     // pipeline is forced onto OpenGL and no context can be made. `scene` must
     // outlive the session.
-    RenderSession(const Scene& scene, const RenderSettings& settings);
+    // With `group` (may be null; must outlive the session) of more than one
+    // process, each frame's tiles are shared among them (render/FrameRenderer.h):
+    // every process must make the same calls in the same order.
+    RenderSession(const Scene& scene, const RenderSettings& settings, const ProcessGroup* group = nullptr);
     // Shares a tracer and threads (which must outlive it) with other sessions
     // on the same scene, e.g. the variants an experiment compares.
     RenderSession(const Scene& scene, const RenderSettings& settings, const TraceScene& tracer,
@@ -69,6 +73,7 @@ private:
     std::unique_ptr<Parallel> ownParallel_;
     const TraceScene* tracer_;
     const Parallel* parallel_;
+    const ProcessGroup* group_ = nullptr;
     std::unique_ptr<FramePipeline> pipeline_;
 };
 

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "cache/RayCache.h"
+#include "render/TileAssignment.h"
 #include "rendercache/RenderCacheSettings.h"
 #include "trace/TraceScene.h"
 
@@ -40,6 +41,8 @@ struct RenderSettings {
     // Time every stage of the tile kernel (FrameStats::stages): two clock
     // reads per stage and wave, so off unless a profile is wanted.
     bool stageTimes = false;
+    // How tiles are assigned to the processes of a cluster job (docs/cluster.md).
+    TileBalance tileBalance = TileBalance::Dynamic;
 };
 
 }  // namespace raycache

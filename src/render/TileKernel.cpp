@@ -35,6 +35,7 @@ private:
 
 void TileScratch::beginTile(std::size_t roots) {
     nodes.assign(roots, Node{});
+    trackTrees = false;  // runWaves decides, once it knows the cache
     vertices.clear();
     surfaces.clear();
     albedo.clear();
@@ -57,11 +58,7 @@ void TileKernel::renderCameraTile(const CameraRays& cameraRays, const TileRange&
         std::size_t i = 0;
         for (int y = tile.y0; y < tile.y1; ++y)
             for (int x = tile.x0; x < tile.x1; ++x) s.rays[i++] = cameraRays.ray(x, y);
-        // Packets, in the order the rays were spawned: neighbouring pixels'
-    // reflections off one mirror stay close, so packets beat single rays
-    // even for later bounces (12-20 % less CPU on grid-32, glass and
-    // reflective-32; docs/performance.md). Their shadow rays scatter more.
-    tracer_.intersectCoherent(std::span(s.rays.data(), n), std::span(s.hits.data(), n));
+        tracer_.intersectPrimary(std::span(s.rays.data(), n), std::span(s.hits.data(), n));
         s.counts.primary += n;
         for (i = 0; i < n; ++i) {
             if (s.hits[i].hit())
@@ -165,7 +162,7 @@ void TileKernel::renderCameraPixels(const CameraRays& cameraRays, std::span<cons
         s.rays.resize(n);
         s.hits.resize(n);
         for (std::size_t i = 0; i < n; ++i) s.rays[i] = cameraRays.ray(pixels[i].x, pixels[i].y);
-        tracer_.intersectCoherent(std::span(s.rays.data(), n), std::span(s.hits.data(), n));
+        tracer_.intersectPrimary(std::span(s.rays.data(), n), std::span(s.hits.data(), n));
         s.counts.primary += n;
         for (std::size_t i = 0; i < n; ++i) {
             out[i].hit = s.hits[i];
@@ -198,8 +195,23 @@ void TileKernel::reshadeSurfaces(std::span<const ReshadeRequest> requests, std::
     for (std::size_t i = 0; i < n; ++i) out[i] = s.nodes[i].color();
 }
 
+void TileKernel::renderRays(std::span<const RayTreeRecord> rays, std::span<Rgb> out, TileScratch& s) const {
+    const std::size_t n = rays.size();
+    s.beginTile(n);
+    s.pending.clear();
+    for (std::size_t i = 0; i < n; ++i)
+        s.pending.push_back({Ray{rays[i].origin, rays[i].direction}, static_cast<int>(i), rays[i].pathWeight,
+                             rays[i].depth, TileScratch::Kind::Reflection});
+    traceSecondaryRays(s);
+    runWaves(s, nullptr, FirstWave::Hits, false);
+    resolveNodes(s, nullptr, 0);
+    for (std::size_t i = 0; i < n; ++i) out[i] = s.nodes[i].color();
+}
+
 void TileKernel::runWaves(TileScratch& s, CacheWorker* cache, FirstWave firstWave, bool coherentShadows) const {
     const bool useCache = cache && cache_;
+    s.trackTrees = useCache && cache_->tracksDependencies();
+    if (s.trackTrees) s.nodeBounds.assign(s.nodes.size(), RayTreeBounds{});
     bool first = true;
     while (!s.vertices.empty()) {
         const auto start = Clock::now();
@@ -259,15 +271,31 @@ void TileKernel::traceShadowRays(TileScratch& s, bool coherent) const {
         count += static_cast<std::size_t>(shading_.shadowQueries(s.surfaces[i], s.queries.data() + count));
     }
     s.firstQuery[n] = static_cast<int>(count);
+    if (s.trackTrees)
+        for (std::size_t i = 0; i < n; ++i) {
+            const auto node = static_cast<std::size_t>(s.vertices[i].node);
+            if (!s.nodes[node].tracked) continue;
+            // The hit's light depends on every light (even one below its
+            // horizon, which may rise) and on what its shadow rays cross.
+            RayTreeBounds& bounds = s.nodeBounds[node];
+            bounds.shaded = true;
+            for (int q = s.firstQuery[i]; q < s.firstQuery[i + 1]; ++q)
+                bounds.shadowOrigins.add(s.queries[static_cast<std::size_t>(q)].ray.origin);
+        }
     s.rays.resize(count);
     s.occluded.resize(count);
     for (std::size_t q = 0; q < count; ++q) s.rays[q] = s.queries[q].ray;
     // Shadow rays of camera hits start close together and head for the same
-    // lights: packets. Those of later bounces scatter.
-    if (coherent)
-        tracer_.occludedCoherent(std::span(s.rays.data(), count), std::span(s.occluded.data(), count));
-    else
+    // lights: packets, or the light grids. Those of later bounces scatter.
+    if (coherent) {
+        s.shadowLights.resize(count);
+        for (std::size_t q = 0; q < count; ++q) s.shadowLights[q] = s.queries[q].lightIndex;
+        tracer_.occludedPrimaryShadows(std::span(s.rays.data(), count), std::span(s.shadowLights.data(), count),
+                                       std::span(s.occluded.data(), count));
+    }
+    else {
         tracer_.occludedIncoherent(std::span(s.rays.data(), count), std::span(s.occluded.data(), count));
+    }
     s.counts.shadow += count;
 }
 
@@ -298,14 +326,18 @@ void TileKernel::spawnSecondaryRays(TileScratch& s, bool useCache) const {
     const auto emit = [&](const TileScratch::PathVertex& v, const Ray& ray, TileScratch::Kind kind, float share,
                           bool leavesObject) {
         const int node = static_cast<int>(s.nodes.size());
+        const bool parentTracked = s.nodes[static_cast<std::size_t>(v.node)].tracked;
         TileScratch::Node& added = s.nodes.emplace_back();
         added.parent = v.node;
         added.weightInParent = share;
         const float pathWeight = v.pathWeight * share;
-        if (leavesObject && useCache && cache_->cachesObject(v.hit.objectId))
+        if (leavesObject && useCache && cache_->cachesObject(v.hit.objectId)) {
             s.leaving.push_back({ray, v.hit.objectId, node, pathWeight, v.depth + 1, kind});
-        else
+            added.tracked = s.trackTrees;
+        } else {
             s.pending.push_back({ray, node, pathWeight, v.depth + 1, kind});
+            added.tracked = parentTracked;
+        }
     };
     for (std::size_t i = 0; i < s.vertices.size(); ++i) {
         const TileScratch::PathVertex& v = s.vertices[i];
@@ -338,6 +370,7 @@ void TileKernel::spawnSecondaryRays(TileScratch& s, bool useCache) const {
             // one that enters still has the inside to cross.
             emit(v, *refracted, TileScratch::Kind::Refraction, material.transmissivity, !sp.frontFace);
     }
+    if (s.trackTrees) s.nodeBounds.resize(s.nodes.size());
 }
 
 void TileKernel::lookupReuse(TileScratch& s, CacheWorker& cache) const {
@@ -348,14 +381,18 @@ void TileKernel::lookupReuse(TileScratch& s, CacheWorker& cache) const {
     s.cachedColors.resize(n);
     s.cacheFound.resize(n);
     s.storeTexels.resize(n);
+    s.answerTexels.resize(s.trackTrees ? n : 0);
     for (std::size_t i = 0; i < n; ++i)
         s.cacheQueries[i] = {s.leaving[i].objectId, s.leaving[i].ray.origin, s.leaving[i].ray.direction};
-    cache_->lookupBatch(s.cacheQueries, s.cachedColors, s.cacheFound, s.storeTexels, cache);
+    cache_->lookupBatch(s.cacheQueries, s.cachedColors, s.cacheFound, s.storeTexels, cache, s.answerTexels);
     for (std::size_t i = 0; i < n; ++i) {
         const TileScratch::LeavingRay& l = s.leaving[i];
         TileScratch::Node& node = s.nodes[static_cast<std::size_t>(l.node)];
         if (s.cacheFound[i]) {
             node.direct = s.cachedColors[i];
+            // The answer stands for another tree: whatever it depended on, this one does.
+            if (s.trackTrees)
+                cache_->addAnswerDependencies(l.objectId, s.answerTexels[i], s.nodeBounds[static_cast<std::size_t>(l.node)]);
             continue;
         }
         // A miss: the ray is traced, and what its whole tree brings back is
@@ -364,6 +401,8 @@ void TileKernel::lookupReuse(TileScratch& s, CacheWorker& cache) const {
         node.storeTexel = s.storeTexels[i];
         node.origin = l.ray.origin;
         node.direction = l.ray.direction;
+        node.depth = l.depth;
+        node.pathWeight = l.pathWeight;
         s.pending.push_back({l.ray, l.node, l.pathWeight, l.depth, l.kind});
     }
 }
@@ -378,6 +417,10 @@ void TileKernel::traceSecondaryRays(TileScratch& s) const {
         if (s.pending[i].kind == TileScratch::Kind::Reflection) ++s.counts.reflection;
         else ++s.counts.refraction;
     }
+    // Packets, in the order the rays were spawned: neighbouring pixels'
+    // reflections off one mirror stay close, so packets beat single rays
+    // even for later bounces (12-20 % less CPU on grid-32, glass and
+    // reflective-32; docs/performance.md). Their shadow rays scatter more.
     tracer_.intersectCoherent(std::span(s.rays.data(), n), std::span(s.hits.data(), n));
     s.nextVertices.clear();
     for (std::size_t i = 0; i < n; ++i) {
@@ -385,6 +428,11 @@ void TileKernel::traceSecondaryRays(TileScratch& s) const {
         const TraceHit& hit = s.hits[i];
         TileScratch::Node& node = s.nodes[static_cast<std::size_t>(p.node)];
         if (node.objectId >= 0) node.hitDistance = hit.hit() ? hit.t : kInfinity;
+        if (node.tracked) {
+            RayTreeBounds& bounds = s.nodeBounds[static_cast<std::size_t>(p.node)];
+            if (hit.hit()) bounds.addSegment(p.ray.origin, p.ray.origin + p.ray.direction * hit.t);
+            else bounds.addEscape(p.ray.origin, p.ray.direction);
+        }
         if (!hit.hit())
             node.direct = shading_.background(p.ray);
         else
@@ -402,9 +450,14 @@ void TileKernel::resolveNodes(TileScratch& s, CacheWorker* cache, std::uint64_t 
         const TileScratch::Node& node = s.nodes[i];
         if (node.parent < 0) continue;
         const Rgb color = node.color();
-        if (node.objectId >= 0 && cache)
-            cache_->store(node.objectId, node.origin, node.direction, color, node.hitDistance, *cache,
-                          node.storeTexel);
+        if (node.objectId >= 0 && cache) {
+            std::optional<RayTreeRecord> tree;
+            if (s.trackTrees) tree = RayTreeRecord{s.nodeBounds[i], node.origin, node.direction, node.depth, node.pathWeight};
+            cache_->store(node.objectId, node.origin, node.direction, color, node.hitDistance, *cache, node.storeTexel,
+                          tree ? &*tree : nullptr);
+        }
+        if (s.nodes[static_cast<std::size_t>(node.parent)].tracked)
+            s.nodeBounds[static_cast<std::size_t>(node.parent)].add(s.nodeBounds[i]);
         s.nodes[static_cast<std::size_t>(node.parent)].secondary += color * node.weightInParent;
     }
 }

@@ -110,6 +110,9 @@ private:
         int storeTexel = -1;        // where, when the lookup already knows (RayCache::lookupBatch)
         Vec3 origin, direction;     // that ray, for the store
         float hitDistance = 0.0f;   // distance to its first hit, infinity for a miss
+        int depth = 0;              // that ray's depth and path weight, for the store's RayTreeRecord
+        float pathWeight = 0.0f;
+        bool tracked = false;       // trackTrees: a ray leaving a caching object, or below one (its bounds matter)
         Rgb color() const { return direct + secondary; }
     };
 
@@ -128,12 +131,18 @@ private:
     std::vector<Ray> rays;  // packed for the tracer: shadow, camera or secondary rays
     std::vector<TraceHit> hits;
     std::vector<unsigned char> occluded;
+    std::vector<int> shadowLights;  // the light of each shadow ray, for the light grids
     std::vector<LeavingRay> leaving;
     std::vector<RayCache::Query> cacheQueries;
     std::vector<Rgb> cachedColors;
     std::vector<unsigned char> cacheFound;
     std::vector<int> storeTexels;
+    std::vector<int> answerTexels;
     std::vector<PendingRay> pending;
+    // When the cache tracks dependencies (animated scenes): per node, where
+    // its ray tree reached (cache/RayTreeBounds.h), gathered up like colours.
+    bool trackTrees = false;
+    std::vector<RayTreeBounds> nodeBounds;
     std::vector<float> rootHitDistance;
     // The first hits' view-independent light, recorded for PrimarySample.
     bool recordFirstHits = false;
@@ -181,6 +190,11 @@ public:
     // No shadow rays. out[i] answers requests[i].
     void reshadeSurfaces(std::span<const ReshadeRequest> requests, std::uint64_t batchKey, TileScratch& scratch,
                          CacheWorker* cache, std::span<Rgb> out) const;
+
+    // The colour each ray brings back when traced as a secondary ray at its
+    // depth and path weight, asking no cache: what a cached texel would hold
+    // if its ray were traced now (the invalidation oracle's re-trace).
+    void renderRays(std::span<const RayTreeRecord> rays, std::span<Rgb> out, TileScratch& scratch) const;
 
     const LocalShading& shading() const { return shading_; }
 

@@ -47,8 +47,15 @@ bool dependsOnView(const Material& m) { return m.reflects() || m.refracts() || !
 RenderCachePipeline::RenderCachePipeline(const Scene& scene, const TraceScene& tracer, const RenderSettings& settings,
                                          const Parallel& parallel, RayCache* cache)
     : scene_(scene), settings_(settings), parallel_(parallel), cache_(cache && !cache->empty() ? cache : nullptr),
-      kernel_(scene, tracer, settings, cache_) {
+      kernel_(scene, tracer, settings, cache_), movesNonRigidly_(scene.objects.size(), 0) {
     validateRenderCacheSettings(settings.renderCache);
+    for (const ObjectAnimation& a : scene.animation.objects) {
+        bool turnsOrScales = false;
+        if (a.transform)
+            for (const TransformKey& k : a.transform->keys)
+                turnsOrScales = turnsOrScales || !(k.rotation == Quaternion{}) || !(k.scale == Vec3{1.0f, 1.0f, 1.0f});
+        movesNonRigidly_[static_cast<std::size_t>(a.object)] = turnsOrScales || a.deformation != nullptr;
+    }
 }
 
 std::string RenderCachePipeline::description() const {
@@ -59,6 +66,18 @@ std::string RenderCachePipeline::description() const {
     else line << "at most " << rc.budget * 100.0f << " % of the pixels traced per frame";
     line << ", reflections " << reprojectedReflectionsName(rc.reflections) << ")";
     return line.str();
+}
+
+void RenderCachePipeline::sceneChanged(const SceneChanges& changes) {
+    std::vector<unsigned char> drop(scene_.objects.size(), 0);
+    bool any = false;
+    for (const int object : changes.objects)
+        if (movesNonRigidly_[static_cast<std::size_t>(object)]) drop[static_cast<std::size_t>(object)] = any = true;
+    if (!any) return;
+    for (std::size_t slot = 0; slot < pool_.used(); ++slot) {
+        const int object = pool_.objectId[slot];
+        if (object >= 0 && drop[static_cast<std::size_t>(object)]) pool_.objectId[slot] = SamplePool::kEmpty;
+    }
 }
 
 void RenderCachePipeline::forget() {

@@ -41,6 +41,10 @@ public:
 
     // Drops every sample: the next frame traces every pixel.
     void forget();
+    // Samples follow their object's translation (they are kept relative to
+    // its origin); on an object that turns, scales or deforms they would
+    // land in the wrong place, so a change of such an object drops them.
+    void sceneChanged(const SceneChanges& changes) override;
 
 private:
     // Traces the camera rays through `pixels` in fixed chunks (the chunk
@@ -66,6 +70,9 @@ private:
     // Per pixel slot: the pixel its sample lands in through the predicted
     // camera (imagePixelThrough), on frames that predict.
     std::vector<std::int32_t> nextPixel_;
+    // Per object: animated by more than a translation (rotation or scale
+    // keys, or a deformation).
+    std::vector<unsigned char> movesNonRigidly_;
     PointImage image_;
     RenderCacheOverlays overlays_;
     RequestMap predictedRequests_;

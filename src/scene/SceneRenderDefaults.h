@@ -19,6 +19,7 @@ struct RenderCacheOverrides {
 
 struct SceneRenderDefaults {
     std::optional<std::string> pipeline;  // ray | hybrid | render-cache
+    std::optional<std::string> accel;     // embree | grids (docs/grids.md)
     RenderCacheOverrides renderCache;
 };
 

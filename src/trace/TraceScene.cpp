@@ -3,12 +3,16 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <numeric>
 #include <limits>
 #include <string>
 #include <vector>
 
 #include "core/Errors.h"
+#include "trace/SphereIntersection.h"
 
 namespace raycache {
 
@@ -32,28 +36,6 @@ void sphereBounds(const RTCBoundsFunctionArguments* args) {
     args->bounds_o->upper_x = sphere->center.x + sphere->radius;
     args->bounds_o->upper_y = sphere->center.y + sphere->radius;
     args->bounds_o->upper_z = sphere->center.z + sphere->radius;
-}
-
-// Nearest root of |o + t d - c| = r inside (tnear, tfar), or a negative value.
-// Solved relative to the centre with the numerically stable quadratic form.
-inline float sphereRoot(const Sphere& s, float ox, float oy, float oz, float dx, float dy, float dz, float tnear,
-                        float tfar) {
-    const float px = ox - s.center.x, py = oy - s.center.y, pz = oz - s.center.z;
-    const float a = dx * dx + dy * dy + dz * dz;
-    const float b = px * dx + py * dy + pz * dz;
-    // c computed as |p - (p.d/a) d|^2 - r^2 loses less precision far from the sphere.
-    const float k = b / a;
-    const float qx = px - k * dx, qy = py - k * dy, qz = pz - k * dz;
-    const float disc = s.radius * s.radius - (qx * qx + qy * qy + qz * qz);
-    if (disc < 0.0f) return -1.0f;
-    const float h = std::sqrt(a * disc);
-    const float q = b > 0.0f ? -(b + h) : -(b - h);
-    float t0 = (b > 0.0f ? q / a : ((px * px + py * py + pz * pz) - s.radius * s.radius) / q);
-    float t1 = (b > 0.0f ? ((px * px + py * py + pz * pz) - s.radius * s.radius) / q : q / a);
-    if (t0 > t1) std::swap(t0, t1);
-    if (t0 >= tnear && t0 <= tfar) return t0;
-    if (t1 >= tnear && t1 <= tfar) return t1;
-    return -1.0f;
 }
 
 void sphereIntersect(const RTCIntersectFunctionNArguments* args) {
@@ -209,6 +191,11 @@ struct TraceScene::Impl {
     // scene holding both instances and user geometry (spheres); packets of
     // scenes with instances are traced without the coherence hint.
     bool coherentHint = true;
+    Accelerator accelerator = Accelerator::Embree;
+    std::unique_ptr<GridAccelerator> grids;  // with Accelerator::Grids
+    // Per-frame counts, added to by concurrent batches.
+    GridFrameStats gridBuild;
+    std::atomic<std::uint64_t> primaryAnswered{0}, primaryRefused{0}, shadowAnswered{0}, shadowRefused{0};
 
     ~Impl() {
         if (scene) rtcReleaseScene(scene);
@@ -238,6 +225,8 @@ Representation representationOf(const Scene& scene, std::size_t object) {
 }  // namespace
 
 TraceScene::TraceScene(const Scene& scene, const TraceOptions& options) : impl_(std::make_unique<Impl>()) {
+    impl_->accelerator = options.accelerator;
+    if (options.accelerator == Accelerator::Grids) impl_->grids = std::make_unique<GridAccelerator>(options.grids);
     impl_->device = rtcNewDevice(nullptr);
     if (!impl_->device) throw RuntimeError("Embree could not create a device");
     impl_->scene = rtcNewScene(impl_->device);
@@ -249,7 +238,10 @@ TraceScene::TraceScene(const Scene& scene, const TraceOptions& options) : impl_(
     // REFIT (their vertices move, their triangles stay). Measured in
     // docs/dynamic-scenes.md.
     const bool animated = !scene.animation.empty();
-    rtcSetSceneBuildQuality(impl_->scene, animated ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_HIGH);
+    const RTCBuildQuality stillQuality = options.stillSceneQuality == EmbreeBuildQuality::Low    ? RTC_BUILD_QUALITY_LOW
+                                         : options.stillSceneQuality == EmbreeBuildQuality::Medium ? RTC_BUILD_QUALITY_MEDIUM
+                                                                                                   : RTC_BUILD_QUALITY_HIGH;
+    rtcSetSceneBuildQuality(impl_->scene, animated ? RTC_BUILD_QUALITY_LOW : stillQuality);
     impl_->spheres.resize(scene.objects.size());
     impl_->instanced.assign(scene.objects.size(), nullptr);
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
@@ -285,6 +277,9 @@ TraceScene::TraceScene(const Scene& scene, const TraceOptions& options) : impl_(
                                              : refit                                  ? RTC_BUILD_QUALITY_REFIT
                                                                                       : RTC_BUILD_QUALITY_MEDIUM);
         }
+        // Embree's fastest build is two-level with every geometry built at LOW (Morton codes).
+        if (!animated && options.stillSceneQuality == EmbreeBuildQuality::Low)
+            rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_LOW);
         rtcCommitGeometry(geom);
         // Geometry ids equal object indices, so hits name objects directly.
         rtcAttachGeometryByID(impl_->scene, geom, static_cast<unsigned>(i));
@@ -390,6 +385,108 @@ void TraceScene::intersectIncoherent(std::span<const Ray> rays, std::span<TraceH
 
 void TraceScene::occludedIncoherent(std::span<const Ray> rays, std::span<unsigned char> occluded) const {
     for (std::size_t i = 0; i < rays.size(); ++i) occluded[i] = this->occluded(rays[i]) ? 1 : 0;
+}
+
+Accelerator TraceScene::accelerator() const { return impl_->accelerator; }
+
+void TraceScene::prepareFrame(const Scene& posed, const Camera& camera, int width, int height,
+                              const Parallel& parallel) const {
+    if (!impl_->grids) return;
+    impl_->gridBuild = impl_->grids->buildFrame(posed, camera, width, height, parallel);
+    impl_->primaryAnswered = 0;
+    impl_->primaryRefused = 0;
+    impl_->shadowAnswered = 0;
+    impl_->shadowRefused = 0;
+}
+
+FrameTraceStats TraceScene::frameStats() const {
+    FrameTraceStats stats;
+    stats.build = impl_->gridBuild;
+    stats.primaryAnswered = impl_->primaryAnswered.load();
+    stats.primaryRefused = impl_->primaryRefused.load();
+    stats.shadowAnswered = impl_->shadowAnswered.load();
+    stats.shadowRefused = impl_->shadowRefused.load();
+    return stats;
+}
+
+namespace {
+
+// Per-thread buffers for the rays the grids refuse, reused across batches.
+struct RefusedRays {
+    std::vector<std::size_t> index;
+    std::vector<Ray> rays;
+    std::vector<TraceHit> hits;
+    std::vector<unsigned char> occluded;
+    std::vector<unsigned char> refusedFlags;
+    std::vector<std::uint64_t> order;
+};
+
+RefusedRays& refusedRays() {
+    thread_local RefusedRays buffers;
+    return buffers;
+}
+
+}  // namespace
+
+void TraceScene::intersectPrimary(std::span<const Ray> rays, std::span<TraceHit> hits) const {
+    const GridAccelerator* grids = impl_->grids.get();
+    if (!grids || !grids->built()) {
+        intersectCoherent(rays, hits);
+        return;
+    }
+    RefusedRays& refused = refusedRays();
+    refused.index.clear();
+    refused.rays.clear();
+    refused.refusedFlags.resize(rays.size());
+    grids->intersectPrimaryBatch(rays, hits, refused.refusedFlags);
+    for (std::size_t i = 0; i < rays.size(); ++i)
+        if (refused.refusedFlags[i]) {
+            refused.index.push_back(i);
+            refused.rays.push_back(rays[i]);
+        }
+    impl_->primaryAnswered += rays.size() - refused.index.size();
+    if (refused.index.empty()) return;
+    impl_->primaryRefused += refused.index.size();
+    refused.hits.resize(refused.rays.size());
+    intersectCoherent(refused.rays, refused.hits);
+    for (std::size_t r = 0; r < refused.index.size(); ++r) hits[refused.index[r]] = refused.hits[r];
+}
+
+void TraceScene::occludedPrimaryShadows(std::span<const Ray> rays, std::span<const int> lights,
+                                        std::span<unsigned char> occluded) const {
+    const GridAccelerator* grids = impl_->grids.get();
+    if (!grids || !grids->built()) {
+        occludedCoherent(rays, occluded);
+        return;
+    }
+    RefusedRays& refused = refusedRays();
+    // Rays of one light tile together (SPEC §7): sorted by light, then by
+    // the light-grid column of their origin, then by their place in the batch.
+    refused.order.clear();
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        const auto column = static_cast<std::uint32_t>(grids->lightColumn(rays[i], lights[i]) + 1);
+        refused.order.push_back((static_cast<std::uint64_t>(lights[i]) << 56) |
+                                (static_cast<std::uint64_t>(column) << 24) | i);
+    }
+    std::sort(refused.order.begin(), refused.order.end());
+    refused.index.clear();
+    refused.rays.clear();
+    for (const std::uint64_t key : refused.order) {
+        const std::size_t i = key & ((std::uint64_t{1} << 24) - 1);
+        bool blocked = false;
+        if (grids->occludedShadow(rays[i], lights[i], blocked)) {
+            occluded[i] = blocked ? 1 : 0;
+        } else {
+            refused.index.push_back(i);
+            refused.rays.push_back(rays[i]);
+        }
+    }
+    impl_->shadowAnswered += rays.size() - refused.index.size();
+    if (refused.index.empty()) return;
+    impl_->shadowRefused += refused.index.size();
+    refused.occluded.resize(refused.rays.size());
+    occludedCoherent(refused.rays, refused.occluded);
+    for (std::size_t r = 0; r < refused.index.size(); ++r) occluded[refused.index[r]] = refused.occluded[r];
 }
 
 }  // namespace raycache

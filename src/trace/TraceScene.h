@@ -5,9 +5,13 @@
 #include <memory>
 #include <span>
 
+#include "core/Parallel.h"
 #include "core/Ray.h"
+#include "scene/Camera.h"
 #include "scene/Scene.h"
+#include "trace/Accelerator.h"
 #include "trace/TraceHit.h"
+#include "trace/grids/GridAccelerator.h"
 
 namespace raycache {
 
@@ -17,8 +21,25 @@ enum class DeformingMeshUpdate {
     Rebuild,  // a new tree (Embree's medium quality) every frame
 };
 
+// Embree's build quality for a still scene's hierarchy: Low is its fastest
+// build, Medium its default, High (spatial splits) the best tree.
+enum class EmbreeBuildQuality { Low, Medium, High };
+
 struct TraceOptions {
+    EmbreeBuildQuality stillSceneQuality = EmbreeBuildQuality::High;
     DeformingMeshUpdate deformingMeshes = DeformingMeshUpdate::Refit;  // chosen by measurement: docs/dynamic-scenes.md
+    // Primary rays and the shadow rays of primary hits: Embree or the grids.
+    Accelerator accelerator = Accelerator::Embree;
+    GridSettings grids;
+};
+
+// What the tracer did for one frame beyond Embree's own work: the grids'
+// build, and how many primary and shadow rays they answered or refused
+// (refused rays are traced by Embree). All zero with Accelerator::Embree.
+struct FrameTraceStats {
+    GridFrameStats build;
+    std::uint64_t primaryAnswered = 0, primaryRefused = 0;
+    std::uint64_t shadowAnswered = 0, shadowRefused = 0;
 };
 
 class TraceScene {
@@ -54,6 +75,26 @@ public:
     // diverge.
     void intersectIncoherent(std::span<const Ray> rays, std::span<TraceHit> hits) const;
     void occludedIncoherent(std::span<const Ray> rays, std::span<unsigned char> occluded) const;
+
+    // Gets the tracer ready for a frame of `camera` at width x height: with
+    // the grids accelerator, rebuilds every grid from `posed` (the scene as
+    // update() left it; it must outlive the frame). Does nothing with Embree.
+    // Not thread-safe: no ray may be in flight. Const because sessions share
+    // one tracer read-only; the grids are per-frame state, rebuilt by
+    // whichever session renders next.
+    void prepareFrame(const Scene& posed, const Camera& camera, int width, int height,
+                      const Parallel& parallel) const;
+    // Primary rays (from the camera of the last prepareFrame): the grids
+    // when they are on, otherwise as intersectCoherent. Exact either way:
+    // rays the grids do not cover go to Embree.
+    void intersectPrimary(std::span<const Ray> rays, std::span<TraceHit> hits) const;
+    // Shadow rays of primary hits; lights[i] is the index of the light
+    // rays[i] heads for. The grids when they are on, otherwise as occludedCoherent.
+    void occludedPrimaryShadows(std::span<const Ray> rays, std::span<const int> lights,
+                                std::span<unsigned char> occluded) const;
+    // The grids' build and answer counts since the last prepareFrame.
+    FrameTraceStats frameStats() const;
+    Accelerator accelerator() const;
 
     // Escape hatch for code in src/trace/ that needs the raw RTCScene.
     void* embreeScene() const;

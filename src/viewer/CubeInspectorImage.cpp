@@ -6,7 +6,7 @@
 
 namespace raycache {
 
-Image cubeInspectorImage(const CachingCube& cube, int maxFaceSize) {
+Image cubeInspectorImage(const CachingCube& cube, int maxFaceSize, std::span<const std::uint64_t> dropped) {
     const int n = cube.size();
     const int s = std::clamp(maxFaceSize, 1, n);
     Image image(4 * s, 3 * s);
@@ -18,8 +18,13 @@ Image cubeInspectorImage(const CachingCube& cube, int maxFaceSize) {
             const int ty = static_cast<int>(static_cast<long>(y) * n / s);
             for (int x = 0; x < s; ++x) {
                 const int tx = static_cast<int>(static_cast<long>(x) * n / s);
-                const auto color = cube.read(cubeTexelIndex({face, tx, ty}, n));
-                image.at(cell.column * s + x, cell.row * s + y) = color.value_or(Rgb{0.0f});
+                const int index = cubeTexelIndex({face, tx, ty}, n);
+                const auto color = cube.read(index);
+                Rgb shown = color.value_or(Rgb{0.0f});
+                const auto i = static_cast<std::size_t>(index);
+                if (!dropped.empty() && ((dropped[i >> 6] >> (i & 63)) & 1u))
+                    shown = color ? (shown + kDroppedMagenta) * 0.5f : kDroppedMagenta;
+                image.at(cell.column * s + x, cell.row * s + y) = shown;
             }
         }
     }

@@ -38,6 +38,7 @@ struct DisplayFrame {
     int inspectorHeight = 0;
     std::vector<std::uint8_t> inspectorRgba;
     double inspectedInvalidPercent = 0.0;  // after this frame
+    std::int64_t inspectedDroppedTexels = 0;  // dropped by the last scene change (animated scenes)
 
     std::string configError;  // why the last requested settings were rejected; empty if they were used
 };

@@ -1,6 +1,7 @@
 #include "viewer/RenderWorker.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 
 #include "core/Errors.h"
@@ -151,7 +152,10 @@ void RenderWorker::renderOne(const RenderRequest& request, DisplayFrame& frame) 
     const RayCache& cache = session_->cache();
     if (request.inspectObject >= 0 && cache.cachesObject(request.inspectObject)) {
         const CachingCube& cube = cache.cube(request.inspectObject);
-        const Image cross = cubeInspectorImage(cube, request.inspectorFaceSize);
+        const auto dropped = cache.droppedByLastChange(request.inspectObject);
+        const Image cross = cubeInspectorImage(cube, request.inspectorFaceSize, dropped);
+        frame.inspectedDroppedTexels = 0;
+        for (const std::uint64_t word : dropped) frame.inspectedDroppedTexels += std::popcount(word);
         encode(cross, frame.inspectorRgba);
         frame.inspectedObject = request.inspectObject;
         frame.inspectorWidth = cross.width();

@@ -68,6 +68,11 @@ void drawRenderingSection(const ViewerPanelInput& in, ViewerUiState& state, View
                 config.pipeline = static_cast<int>(i);
         ImGui::EndCombo();
     }
+    if (ImGui::BeginCombo("accelerator", acceleratorName(config.accelerator))) {
+        for (const Accelerator a : {Accelerator::Embree, Accelerator::Grids})
+            if (ImGui::Selectable(acceleratorName(a), a == config.accelerator)) config.accelerator = a;
+        ImGui::EndCombo();
+    }
     const int resolution = config.cacheResolution.value_or(0);
     const std::string resolutionLabel = resolution == 0 ? "scene" : std::to_string(resolution);
     if (ImGui::BeginCombo("face resolution", resolutionLabel.c_str())) {
@@ -188,6 +193,13 @@ void drawInspectorWindow(const ViewerPanelInput& in, ViewerUiState& state) {
     if (ImGui::Begin(title.c_str(), &state.showInspector)) {
         ImGui::Text("invalid texels %.2f%% (black)", in.frame->inspectedInvalidPercent);
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("+Y above +Z; -X, +Z, +X, -Z in the middle row; -Y below +Z");
+        if (in.scene && !in.scene->animation.empty()) {
+            ImGui::Text("dropped by the last change: %lld (magenta; half magenta once filled again)",
+                        static_cast<long long>(in.frame->inspectedDroppedTexels));
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("texels whose ray trees the last move of an object or light could reach "
+                                  "(docs/dynamic-scenes.md)");
+        }
         const float width = std::max(ImGui::GetContentRegionAvail().x, 64.0f);
         const float height = width * static_cast<float>(in.inspectorHeight) / static_cast<float>(in.inspectorWidth);
         ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(in.inspectorTexture)),

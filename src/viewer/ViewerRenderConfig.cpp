@@ -15,6 +15,7 @@ RenderSettings applyViewerRenderConfig(const RenderSettings& base, const ViewerR
     if (config.cdctStep) s.cache.cdctStepOverride = config.cdctStep;
     if (config.cdctEpsilon) s.cache.cdctEpsilonOverride = config.cdctEpsilon;
     kPipelineChoices.at(static_cast<std::size_t>(config.pipeline)).apply(s);
+    s.trace.accelerator = config.accelerator;
     return s;
 }
 

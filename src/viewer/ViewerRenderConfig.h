@@ -11,6 +11,7 @@ namespace raycache {
 struct ViewerRenderConfig {
     int technique = 0;                   // index into kTechniqueChoices
     int pipeline = 0;                    // index into kPipelineChoices
+    Accelerator accelerator = Accelerator::Embree;  // primary and first shadow rays (docs/grids.md)
     std::optional<int> cacheResolution;  // empty: every material's own
     std::optional<float> cdctStep;       // empty: every material's own
     std::optional<float> cdctEpsilon;

@@ -107,12 +107,13 @@ TEST_F(Cli, FramePatternWritesEveryFrame) {
 
 TEST_F(Cli, UsageAndInputErrorsExitTwoWithOneLineAndNoOutput) {
     const std::string png = (dir_ / "x.png").string();
-    const std::array<std::string, 9> cases{
+    const std::array<std::string, 10> cases{
         "render --scene no-such-scene --out " + png,
         "render --scene room --width 0 --out " + png,
         "render --scene room --width abc --out " + png,
         "render --scene room --frames -3 --out " + png,
         "render --scene room --path sideways --out " + png,
+        "render --scene room --accel foo --out " + png,
         "render --scene room --out " + (dir_ / "x.bmp").string(),
         "render --scene room --out /dev/null/missing-dir/x.png",  // a directory that cannot be created
         "render --scene " + (dir_ / "missing.json").string() + " --out " + png,
@@ -191,7 +192,8 @@ TEST_F(Cli, RenderRejectsBadCachingOptionsWithOneLine) {
                                     "render --scene behind-1 --technique cdct --cdct-max-depth nan --out " + png,
                                     "render --scene behind-1 --cdct-step 0.1 --cdct-epsilon 0.2 --out " + png,
                                     "render --scene behind-1 --technique cdct --cdct-tolerance -1 --out " + png,
-                                    "render --scene behind-1 --technique cdct --cdct-tolerance 1e9 --out " + png}) {
+                                    "render --scene behind-1 --technique cdct --cdct-tolerance 1e9 --out " + png,
+                                    "render --scene behind-1 --tile-balance bogus --out " + png}) {
         const RunResult r = runRaycache(args, dir_);
         EXPECT_EQ(r.exitCode, 2) << args;
         EXPECT_EQ(lineCount(r.err), 1) << args << "\n" << r.err;

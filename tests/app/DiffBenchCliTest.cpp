@@ -107,8 +107,10 @@ TEST_F(DiffBenchCli, DiffBadInputIsOneLineExitTwoAndNoHeatmap) {
 TEST_F(DiffBenchCli, BenchListsAndRejectsBadOptionsBeforeRunning) {
     const RunResult list = runRaycache("bench --list", dir_);
     ASSERT_EQ(list.exitCode, 0) << list.err;
-    EXPECT_EQ(lineCount(list.out), 7);
-    for (const char* name : {"table-5.1", "table-5.2", "table-5.3", "fill-rate", "quality", "parallax", "render-cache"})
+    EXPECT_EQ(lineCount(list.out), 9);
+    for (const char* name :
+         {"table-5.1", "table-5.2", "table-5.3", "fill-rate", "quality", "parallax", "render-cache", "dynamic",
+          "grids"})
         EXPECT_NE(list.out.find(name), std::string::npos) << name;
 
     const std::string out = " --out " + (dir_ / "results").string();

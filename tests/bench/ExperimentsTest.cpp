@@ -232,6 +232,20 @@ TEST_F(Experiments, QualityAndParallaxMetricsAreInRange) {
     for (const auto& v : p.at("variants")) EXPECT_EQ(v.at("frames").size(), p.at("settings").at("frames"));
 }
 
+TEST_F(Experiments, DynamicPlaysEveryAnimatedSceneAndFindsNoStaleTexel) {
+    const nlohmann::json j = results("dynamic");
+    const int frames = j.at("settings").at("frames");
+    ASSERT_EQ(j.at("series").size(), 4u);
+    for (const auto& s : j.at("series")) {
+        EXPECT_EQ(s.at("uncached_ms").size(), static_cast<std::size_t>(frames)) << s.at("scene");
+        EXPECT_EQ(s.at("cct_ms").size(), static_cast<std::size_t>(frames)) << s.at("scene");
+        const auto& oracle = s.at("oracle");
+        EXPECT_GT(oracle.at("checked").get<int>(), 0) << s.at("scene");
+        EXPECT_EQ(oracle.at("stale").get<int>(), 0) << s.at("scene");
+        EXPECT_EQ(oracle.at("kept").get<int>() + oracle.at("dropped").get<int>(), oracle.at("checked").get<int>());
+    }
+}
+
 TEST_F(Experiments, RenderCacheSplitsFrameTimeAndItsFirstFrameIsTheFullRender) {
     const nlohmann::json j = results("render-cache");
     const int frames = j.at("settings").at("frames");
@@ -339,6 +353,26 @@ TEST_F(Experiments, RenderCacheSplitsFrameTimeAndItsFirstFrameIsTheFullRender) {
     EXPECT_NE(md.find("123 fps (8.1 ms)"), std::string::npos);
     EXPECT_NE(log_.find("render-cache goal, reconstruction ≤ 2.0 ms at 512² (median): not measured at this size"),
               std::string::npos);
+}
+
+TEST_F(Experiments, GridsTimesEveryTracerAndAgreesWithEmbree) {
+    const nlohmann::json j = results("grids");
+    ASSERT_FALSE(j.at("series").empty());
+    bool animated = false;
+    for (const auto& model : j.at("series")) {
+        SCOPED_TRACE(model.at("model").get<std::string>());
+        EXPECT_GT(model.at("triangles").get<int>(), 0);
+        for (const char* tracer : {"grids", "embree_low", "embree_medium"}) {
+            EXPECT_GT(model.at(tracer).at("build_ms").get<double>(), 0.0) << tracer;
+            EXPECT_GT(model.at(tracer).at("primary_ms").get<double>(), 0.0) << tracer;
+        }
+        const auto& agreement = model.at("agreement");
+        EXPECT_GT(agreement.at("primary_rays").get<int>(), 0);
+        EXPECT_EQ(agreement.at("primary_mismatches").get<int>(), 0);
+        EXPECT_EQ(agreement.at("shadow_mismatches").get<int>(), 0);
+        animated = animated || model.at("animated").get<bool>();
+    }
+    EXPECT_TRUE(animated);
 }
 
 TEST_F(Experiments, ReportLinksResolveAndStateTheSize) {

@@ -10,7 +10,7 @@
 namespace raycache {
 
 PathRender renderPath(const std::string& sceneName, CacheTechnique technique, int frames, bool still, int size,
-                      int threads, int cacheResolution) {
+                      int threads, int cacheResolution, const ProcessGroup* group, TileBalance balance) {
     const auto scene = makeBuiltinScene(sceneName);
     EXPECT_TRUE(scene.has_value()) << sceneName;
     if (!scene) return {};
@@ -19,10 +19,11 @@ PathRender renderPath(const std::string& sceneName, CacheTechnique technique, in
     settings.threads = threads;
     settings.cache.techniqueOverride = technique;
     settings.cache.resolutionOverride = cacheResolution;
+    settings.tileBalance = balance;
     const TraceScene tracer(*scene);
     const Parallel parallel(threads);
     RayCache cache(*scene, settings.cache);
-    const FrameRenderer renderer(*scene, tracer, settings, parallel, &cache);
+    const FrameRenderer renderer(*scene, tracer, settings, parallel, &cache, group);
     PathRender run;
     for (int f = 0; f < frames; ++f) {
         Image film;

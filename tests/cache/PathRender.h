@@ -6,7 +6,9 @@
 #include <vector>
 
 #include "core/Image.h"
+#include "core/ProcessGroup.h"
 #include "render/FrameStats.h"
+#include "render/TileAssignment.h"
 #include "scene/Material.h"
 
 namespace raycache {
@@ -20,7 +22,10 @@ struct PathRender {
 
 // `frames` frames of the scene's own camera path, or of its first camera when
 // `still`; `technique` and `cacheResolution` override every material.
+// With `group` (one of several processes), each frame's tiles are shared
+// among them and only process 0's frames are whole.
 PathRender renderPath(const std::string& sceneName, CacheTechnique technique, int frames, bool still, int size,
-                      int threads = 2, int cacheResolution = 512);
+                      int threads = 2, int cacheResolution = 512, const ProcessGroup* group = nullptr,
+                      TileBalance balance = TileBalance::Dynamic);
 
 }  // namespace raycache

@@ -469,3 +469,34 @@ TEST(RenderCachePipeline, ReshadingBeatsReprojectingOnMirrors) {
         EXPECT_LT(e.reshade, 0.85 * e.reproject) << name;
     }
 }
+
+// Samples follow their object's translation only: on a deforming mesh they
+// are dropped when it changes (the cloth's pixels become holes), while a
+// pose that changes nothing keeps every sample.
+TEST(RenderCachePipeline, SamplesOnADeformingMeshAreDroppedWhenItChanges) {
+    const Scene scene = *makeBuiltinScene("cloth");
+    const RenderSettings settings = renderCacheSettings(96, 64, CacheTechnique::None);
+    // The cloth's share of the image, from the uncached render's hits.
+    RenderSession probe(scene, raySettings(settings));
+    probe.setTime(1.0f);
+    const CameraRays rays(scene.camera, settings.width, settings.height);
+    int clothPixels = 0;
+    const int cloth = static_cast<int>(scene.objects.size()) - 1;
+    ASSERT_EQ(scene.objects[static_cast<std::size_t>(cloth)].name, "cloth");
+    for (int y = 0; y < settings.height; ++y)
+        for (int x = 0; x < settings.width; ++x) clothPixels += probe.tracer().intersect(rays.ray(x, y)).objectId == cloth;
+    ASSERT_GT(clothPixels, 200);
+
+    const auto holesAfter = [&](float next) {
+        RenderSession session(scene, settings);
+        Image film;
+        session.setTime(1.0f);
+        session.render(scene.camera, film);
+        session.setTime(next);
+        return session.render(scene.camera, film).renderCache->holes;
+    };
+    const std::int64_t unchanged = holesAfter(1.0f);
+    const std::int64_t deformed = holesAfter(1.0f + 1.0f / scene.fps);
+    EXPECT_LT(unchanged, clothPixels / 10);
+    EXPECT_GE(deformed, clothPixels);
+}

@@ -160,7 +160,7 @@ TEST_F(SceneFileTest, UnknownKeySuggestionIgnoresCase) {
 TEST_F(SceneFileTest, UnknownKeyWithoutCloseMatchListsValidKeys) {
     expectError("{@\"wibble\": 1, \"objects\": []}", "/wibble",
                 "unknown key \"wibble\" (valid keys: name, camera, path, frames, fps, environment, lights, materials, objects, "
-                "pipeline, renderCache)");
+                "pipeline, accel, renderCache)");
 }
 
 TEST_F(SceneFileTest, RenderCacheKeysAreReadAndChecked) {
@@ -179,6 +179,13 @@ TEST_F(SceneFileTest, RenderCacheKeysAreReadAndChecked) {
     expectError("{\"renderCache\": {\"budget\": @0}, \"objects\": []}", "/renderCache/budget", "(0, 1]");
     expectError("{\"renderCache\": {\"alpha\": @1.5}, \"objects\": []}", "/renderCache/alpha", "between 0 and 1");
     expectError("{\"renderCache\": {@\"gamma\": 1}, \"objects\": []}", "/renderCache/gamma", "unknown key");
+}
+
+TEST_F(SceneFileTest, AccelKeyIsReadAndChecked) {
+    const Scene scene = load(R"({"accel": "grids", "objects": []})");
+    EXPECT_EQ(scene.render.accel, std::optional<std::string>("grids"));
+    EXPECT_FALSE(load(R"({"objects": []})").render.accel);
+    expectError("{\"objects\": [],\n \"accel\": @\"bvh\"}", "/accel", "must be one of embree, grids (got 'bvh')");
 }
 
 TEST_F(SceneFileTest, FirstUnknownKeyInFileOrderIsReported) {

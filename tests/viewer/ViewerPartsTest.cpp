@@ -71,6 +71,25 @@ TEST(CubeInspectorImage, SmallerPicturesSubsampleTheTexels) {
         }
 }
 
+TEST(CubeInspectorImage, DroppedTexelsAreMagentaUntilFilledAgain) {
+    const int n = 16;
+    const CachingCube cube = partlyFilledCube(n);
+    const Image plain = cubeInspectorImage(cube, n);
+    std::vector<std::uint64_t> dropped((cube.texelCount() + 63) / 64, 0);
+    const int filledTexel = cubeTexelIndex({CubeFace::PosZ, 0, 0}, n);  // (0 + 0 + 4) % 3 != 0: filled
+    const int emptyTexel = cubeTexelIndex({CubeFace::PosZ, 1, 1}, n);    // (1 + 1 + 4) % 3 == 0: invalid
+    ASSERT_TRUE(cube.isValid(filledTexel));
+    ASSERT_FALSE(cube.isValid(emptyTexel));
+    for (const int t : {filledTexel, emptyTexel})
+        dropped[static_cast<std::size_t>(t) >> 6] |= std::uint64_t{1} << (static_cast<std::size_t>(t) & 63);
+    const Image marked = cubeInspectorImage(cube, n, dropped);
+    const CubeCrossCell cell = cubeCrossCell(CubeFace::PosZ);
+    const auto at = [&](const Image& image, int x, int y) { return image.at(cell.column * n + x, cell.row * n + y); };
+    EXPECT_EQ(at(marked, 1, 1), kDroppedMagenta);                                    // dropped, still empty
+    EXPECT_EQ(at(marked, 0, 0), (at(plain, 0, 0) + kDroppedMagenta) * 0.5f);        // dropped, filled again
+    EXPECT_EQ(at(marked, 2, 0), at(plain, 2, 0));                                    // not dropped
+}
+
 TEST(DifferenceHeatMap, BlueWhereEqualRedWhereOpposite) {
     const std::vector<std::uint8_t> a = {0, 0, 0, 255, 10, 20, 30, 255, 0, 0, 0, 255};
     const std::vector<std::uint8_t> b = {255, 255, 255, 255, 10, 20, 30, 255, 0, 0, 51, 255};

@@ -1,0 +1,89 @@
+#pragma once
+// The processes of one job (an MPI job: src/cluster/MpiProcessGroup), as the
+// renderer sees them: a few collective byte exchanges. The renderer only
+// talks to this interface, so the build without MPI renders the same code
+// with SingleProcessGroup. Every call is collective: every process of the
+// group must make the same calls in the same order.
+#include <cstddef>
+#include <cstring>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace raycache {
+
+using Bytes = std::vector<std::byte>;
+
+class ProcessGroup {
+public:
+    virtual ~ProcessGroup() = default;
+
+    // This process's index in [0, size()); process 0 writes the outputs.
+    virtual int rank() const = 0;
+    virtual int size() const = 0;
+    bool isRoot() const { return rank() == 0; }
+
+    // Every process's `local`, indexed by rank, on every process.
+    virtual std::vector<Bytes> allGather(std::span<const std::byte> local) const = 0;
+    // Every process's `local`, indexed by rank, on process 0; empty elsewhere.
+    virtual std::vector<Bytes> gatherToRoot(std::span<const std::byte> local) const = 0;
+    // Process 0's `bytes` on every process (in place).
+    virtual void broadcastFromRoot(Bytes& bytes) const = 0;
+};
+
+// A group of one: every exchange returns the process's own bytes.
+class SingleProcessGroup final : public ProcessGroup {
+public:
+    int rank() const override { return 0; }
+    int size() const override { return 1; }
+    std::vector<Bytes> allGather(std::span<const std::byte> local) const override {
+        return {Bytes(local.begin(), local.end())};
+    }
+    std::vector<Bytes> gatherToRoot(std::span<const std::byte> local) const override { return allGather(local); }
+    void broadcastFromRoot(Bytes&) const override {}
+};
+
+// Plain values to and from bytes, for the exchanges above (same binary on
+// every process, so no byte-order conversion).
+template <typename T>
+void appendBytes(Bytes& out, std::span<const T> values) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    if (values.empty()) return;
+    const std::size_t at = out.size();
+    out.resize(at + values.size_bytes());
+    std::memcpy(out.data() + at, values.data(), values.size_bytes());
+}
+template <typename T>
+void appendBytes(Bytes& out, const T& value) {
+    appendBytes(out, std::span<const T>(&value, 1));
+}
+
+// Reads values written by appendBytes in order; throws std::out_of_range
+// when the bytes run out (a malformed message).
+class ByteReader {
+public:
+    explicit ByteReader(std::span<const std::byte> bytes) : bytes_(bytes) {}
+    template <typename T>
+    T read() {
+        T value;
+        readInto(std::span<T>(&value, 1));
+        return value;
+    }
+    template <typename T>
+    void readInto(std::span<T> values) {
+        static_assert(std::is_trivially_copyable_v<T>);
+        if (values.size_bytes() > bytes_.size() - offset_) throw std::out_of_range("truncated process message");
+        if (values.empty()) return;
+        std::memcpy(values.data(), bytes_.data() + offset_, values.size_bytes());
+        offset_ += values.size_bytes();
+    }
+    bool atEnd() const { return offset_ == bytes_.size(); }
+
+private:
+    std::span<const std::byte> bytes_;
+    std::size_t offset_ = 0;
+};
+
+}  // namespace raycache

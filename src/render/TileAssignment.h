@@ -1,0 +1,29 @@
+#pragma once
+// Which process renders which tile of a frame, in a job of several processes
+// (core/ProcessGroup.h). Pure functions of their inputs: the image never
+// depends on the assignment (cache stores are merged by tile key), only the
+// time a frame takes does.
+#include <span>
+#include <string>
+#include <optional>
+#include <vector>
+
+namespace raycache {
+
+// Static: tile i to process i mod n (neighbouring tiles, which cost about
+// the same, land on different processes). Dynamic: from the second frame
+// on, tiles are dealt by the previous frame's measured cost of each tile.
+enum class TileBalance { Static, Dynamic };
+
+const char* tileBalanceName(TileBalance balance);
+std::optional<TileBalance> parseTileBalance(const std::string& name);
+
+// owners[i] = i mod processes.
+std::vector<int> interleavedTileOwners(int tileCount, int processes);
+
+// Longest-processing-time first: tiles in decreasing cost (ties by index)
+// each go to the process with the least cost so far (ties: lowest rank).
+// Deterministic; at most 4/3 of the best possible largest load.
+std::vector<int> balancedTileOwners(std::span<const double> tileCosts, int processes);
+
+}  // namespace raycache

@@ -1,0 +1,570 @@
+#include "trace/grids/FrustumGrid.h"
+
+#include <algorithm>
+#include <tuple>
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "core/Errors.h"
+#include "trace/grids/RadixSort.h"
+
+namespace raycache {
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// Primitives per task when binning: small enough to balance, large enough
+// that the task overhead vanishes.
+constexpr std::uint32_t kBinBlock = 4096;
+
+struct Polygon {
+    Point3d points[9];
+    int count = 0;
+};
+
+// The part of a convex polygon with z >= plane (Sutherland-Hodgman).
+Polygon clipBelow(const Polygon& in, double plane) {
+    Polygon out;
+    for (int i = 0; i < in.count; ++i) {
+        const Point3d& a = in.points[i];
+        const Point3d& b = in.points[(i + 1) % in.count];
+        const bool aIn = a.z >= plane, bIn = b.z >= plane;
+        if (aIn) out.points[out.count++] = a;
+        if (aIn != bIn) {
+            const double f = (plane - a.z) / (b.z - a.z);
+            out.points[out.count++] = {a.x + f * (b.x - a.x), a.y + f * (b.y - a.y), plane};
+        }
+    }
+    return out;
+}
+
+bool boxesOverlap(const FrameBox& a, const FrameBox& b) {
+    return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y && a.lo.z <= b.hi.z &&
+           b.lo.z <= a.hi.z;
+}
+
+bool insideBox(const Point3d& p, const FrameBox& box, double margin) {
+    return p.x >= box.lo.x - margin && p.x <= box.hi.x + margin && p.y >= box.lo.y - margin &&
+           p.y <= box.hi.y + margin && p.z >= box.lo.z - margin && p.z <= box.hi.z + margin;
+}
+
+Point3d along(const Point3d& o, const Point3d& d, double t) { return {o.x + t * d.x, o.y + t * d.y, o.z + t * d.z}; }
+
+// The parameter interval of o + t d with lo <= z <= hi, intersected with [ta, tb].
+bool clipDepth(double oz, double dz, double lo, double hi, double& ta, double& tb) {
+    if (dz == 0.0) return oz >= lo && oz <= hi && ta <= tb;
+    double t1 = (lo - oz) / dz, t2 = (hi - oz) / dz;
+    if (t1 > t2) std::swap(t1, t2);
+    ta = std::max(ta, t1);
+    tb = std::min(tb, t2);
+    return ta <= tb;
+}
+
+int cellIndex(double value, double origin, double size, int count) {
+    return static_cast<int>(std::clamp(std::floor((value - origin) / size), 0.0, static_cast<double>(count - 1)));
+}
+
+}  // namespace
+
+// The primitive's corners in frame coordinates: a triangle's three, or the
+// eight of a sphere's box (a sphere's box is the same in any frame).
+static Polygon cornersOf(const GridFrame& frame, const GridPrimitives& primitives, std::uint32_t primitive,
+                         bool& isBox) {
+    Polygon polygon;
+    if (const Sphere* sphere = primitives.sphere(primitive)) {
+        isBox = true;
+        const Point3d c = frame.toFrame(sphere->center);
+        const double r = sphere->radius;
+        for (int k = 0; k < 8; ++k)
+            polygon.points[k] = {c.x + ((k & 1) ? r : -r), c.y + ((k & 2) ? r : -r), c.z + ((k & 4) ? r : -r)};
+        polygon.count = 8;
+        return polygon;
+    }
+    isBox = false;
+    Vec3 p0, p1, p2;
+    primitives.triangle(primitive, p0, p1, p2);
+    polygon.points[0] = frame.toFrame(p0);
+    polygon.points[1] = frame.toFrame(p1);
+    polygon.points[2] = frame.toFrame(p2);
+    polygon.count = 3;
+    return polygon;
+}
+
+FrustumGrid::CellRange FrustumGrid::binPrimitive(std::uint32_t primitive, bool& inNearZone) const {
+    constexpr CellRange kNone{0, -1, 0, -1, 0, -1};
+    const GridFrame& frame = spec_.frame;
+    const double m = spec_.margin;
+    bool isBox = false;
+    Polygon polygon = cornersOf(frame, *primitives_, primitive, isBox);
+    FrameBox bounds{{kInfinity, kInfinity, kInfinity}, {-kInfinity, -kInfinity, -kInfinity}};
+    for (int i = 0; i < polygon.count; ++i) {
+        const Point3d& p = polygon.points[i];
+        bounds.lo = {std::min(bounds.lo.x, p.x), std::min(bounds.lo.y, p.y), std::min(bounds.lo.z, p.z)};
+        bounds.hi = {std::max(bounds.hi.x, p.x), std::max(bounds.hi.y, p.y), std::max(bounds.hi.z, p.z)};
+    }
+    inNearZone = false;
+    if (frame.perspective() && bounds.lo.z - m < spec_.zNear) {
+        const FrameBox padded{{bounds.lo.x - m, bounds.lo.y - m, bounds.lo.z - m},
+                              {bounds.hi.x + m, bounds.hi.y + m, bounds.hi.z + m}};
+        inNearZone = boxesOverlap(padded, spec_.nearZone);
+    }
+    const double zA = std::max(bounds.lo.z - m, zLo_), zB = std::min(bounds.hi.z + m, zHi_);
+    if (zA > zB) return kNone;
+    double sLo = kInfinity, sHi = -kInfinity, tLo = kInfinity, tHi = -kInfinity;
+    if (frame.perspective()) {
+        // Only the part in front of the first slice projects into the grid.
+        if (bounds.lo.z < zLo_) {
+            if (isBox) {
+                for (int i = 0; i < polygon.count; ++i) polygon.points[i].z = std::max(polygon.points[i].z, zLo_);
+            } else {
+                polygon = clipBelow(polygon, zLo_);
+            }
+        }
+        for (int i = 0; i < polygon.count; ++i) {
+            const Point3d& p = polygon.points[i];
+            const double u = p.x / p.z, v = p.y / p.z;
+            // Moving the point by m moves its projection by at most m (1 + |u|) / z.
+            const double mu = m * (1.0 + std::fabs(u)) / p.z, mv = m * (1.0 + std::fabs(v)) / p.z;
+            sLo = std::min(sLo, u - mu);
+            sHi = std::max(sHi, u + mu);
+            tLo = std::min(tLo, v - mv);
+            tHi = std::max(tHi, v + mv);
+        }
+        if (polygon.count == 0) return kNone;
+        sLo = frame.grid(sLo);
+        sHi = frame.grid(sHi);
+        tLo = frame.grid(tLo);
+        tHi = frame.grid(tHi);
+    } else {
+        sLo = bounds.lo.x - m;
+        sHi = bounds.hi.x + m;
+        tLo = bounds.lo.y - m;
+        tHi = bounds.hi.y + m;
+    }
+    if (sHi < spec_.s0 || sLo > spec_.s1 || tHi < spec_.t0 || tLo > spec_.t1) return kNone;
+    return {cellIndex(sLo, spec_.s0, ds_, spec_.nx), cellIndex(sHi, spec_.s0, ds_, spec_.nx),
+            cellIndex(tLo, spec_.t0, dt_, spec_.ny),  cellIndex(tHi, spec_.t0, dt_, spec_.ny),
+            cellIndex(zA, zLo_, sliceDepth_, nz_),    cellIndex(zB, zLo_, sliceDepth_, nz_)};
+}
+
+void FrustumGrid::build(const FrustumGridSpec& spec, const GridPrimitives& primitives, const Parallel& parallel) {
+    spec_ = spec;
+    primitives_ = &primitives;
+    stats_ = {};
+    const std::uint32_t count = primitives.count();
+    const int blocks = static_cast<int>((count + kBinBlock - 1) / kBinBlock);
+    auto blockRange = [&](int b) {
+        const std::uint32_t begin = static_cast<std::uint32_t>(b) * kBinBlock;
+        return std::pair{begin, std::min(count, begin + kBinBlock)};
+    };
+
+    // 1. The depth range of all geometry in this frame: beyond it a ray meets nothing.
+    std::vector<std::pair<double, double>> blockDepth(static_cast<std::size_t>(blocks), {kInfinity, -kInfinity});
+    parallel.forEachIndex(blocks, [&](int b, int) {
+        auto [begin, end] = blockRange(b);
+        auto& [lo, hi] = blockDepth[static_cast<std::size_t>(b)];
+        for (std::uint32_t p = begin; p < end; ++p) {
+            bool isBox = false;
+            const Polygon polygon = cornersOf(spec_.frame, primitives, p, isBox);
+            for (int i = 0; i < polygon.count; ++i) {
+                lo = std::min(lo, polygon.points[i].z);
+                hi = std::max(hi, polygon.points[i].z);
+            }
+        }
+    });
+    geometryZLo_ = kInfinity;
+    geometryZHi_ = -kInfinity;
+    for (const auto& [lo, hi] : blockDepth) {
+        geometryZLo_ = std::min(geometryZLo_, lo - spec_.margin);
+        geometryZHi_ = std::max(geometryZHi_, hi + spec_.margin);
+    }
+    zLo_ = spec_.frame.perspective() ? std::max(spec_.zNear, geometryZLo_) : geometryZLo_;
+    zHi_ = std::min(geometryZHi_, spec_.zFarLimit);
+    ds_ = (spec_.s1 - spec_.s0) / spec_.nx;
+    dt_ = (spec_.t1 - spec_.t0) / spec_.ny;
+    const double columns = static_cast<double>(spec_.nx) * spec_.ny;
+    nz_ = std::clamp(static_cast<int>(spec_.cellsPerPrimitive * count / columns), 1, spec_.maxSlices);
+    sliceDepth_ = zHi_ > zLo_ ? (zHi_ - zLo_) / nz_ : 1.0;
+    stats_.nx = spec_.nx;
+    stats_.ny = spec_.ny;
+    stats_.nz = nz_;
+    const std::uint64_t cells = static_cast<std::uint64_t>(spec_.nx) * spec_.ny * nz_;
+
+    // 2. Every primitive's cells: counted, offsets scanned, (cell, primitive) pairs written.
+    ranges_.resize(count);
+    nearFlags_.resize(count);
+    pairOffsets_.resize(static_cast<std::size_t>(count) + 1);
+    parallel.forEachIndex(blocks, [&](int b, int) {
+        auto [begin, end] = blockRange(b);
+        for (std::uint32_t p = begin; p < end; ++p) {
+            bool nearZone = false;
+            ranges_[p] = binPrimitive(p, nearZone);
+            nearFlags_[p] = nearZone ? 1 : 0;
+        }
+    });
+    std::uint64_t pairs = 0;
+    for (std::uint32_t p = 0; p < count; ++p) {
+        pairOffsets_[p] = static_cast<std::uint32_t>(pairs);
+        const CellRange& r = ranges_[p];
+        if (r.i1 < r.i0) continue;
+        pairs += static_cast<std::uint64_t>(r.i1 - r.i0 + 1) * (r.j1 - r.j0 + 1) * (r.k1 - r.k0 + 1);
+        ++stats_.primitivesBinned;
+    }
+    if (pairs > std::numeric_limits<std::uint32_t>::max())
+        throw RuntimeError("a frustum grid would need " + std::to_string(pairs) + " (cell, primitive) pairs");
+    pairOffsets_[count] = static_cast<std::uint32_t>(pairs);
+    keys_.resize(pairs);
+    cellPrimitives_.resize(pairs);
+    parallel.forEachIndex(blocks, [&](int b, int) {
+        auto [begin, end] = blockRange(b);
+        for (std::uint32_t p = begin; p < end; ++p) {
+            const CellRange& r = ranges_[p];
+            std::uint32_t at = pairOffsets_[p];
+            for (int k = r.k0; k <= r.k1; ++k)
+                for (int j = r.j0; j <= r.j1; ++j)
+                    for (int i = r.i0; i <= r.i1; ++i) {
+                        keys_[at] = static_cast<std::uint32_t>(flatCell(k, j, i));
+                        cellPrimitives_[at++] = p;
+                    }
+        }
+    });
+    stats_.pairs = pairs;
+    nearZone_.clear();
+    for (std::uint32_t p = 0; p < count; ++p)
+        if (nearFlags_[p]) nearZone_.push_back(p);
+    stats_.nearZone = nearZone_.size();
+
+    // 3. Sort by cell; primitives of one cell stay in primitive order (stable sort).
+    const int keyBits = cells > 1 ? static_cast<int>(std::bit_width(cells - 1)) : 0;
+    radixSortPairs(keys_, cellPrimitives_, keyBits, parallel, keyScratch_, valueScratch_);
+
+    // 4. Each cell's range: every sorted position that starts a new key
+    //    writes the starts of the cells from the previous key up to its own.
+    cellStart_.assign(cells + 1, 0);
+    const int pairBlocks = static_cast<int>((pairs + kBinBlock - 1) / kBinBlock);
+    parallel.forEachIndex(pairBlocks, [&](int b, int) {
+        const std::uint64_t begin = static_cast<std::uint64_t>(b) * kBinBlock;
+        const std::uint64_t end = std::min<std::uint64_t>(pairs, begin + kBinBlock);
+        for (std::uint64_t i = begin; i < end; ++i) {
+            const std::uint64_t previous = i == 0 ? 0 : static_cast<std::uint64_t>(keys_[i - 1]) + 1;
+            for (std::uint64_t c = previous; c <= keys_[i]; ++c) cellStart_[c] = static_cast<std::uint32_t>(i);
+        }
+    });
+    const std::uint64_t afterLast = pairs == 0 ? 0 : static_cast<std::uint64_t>(keys_[pairs - 1]) + 1;
+    for (std::uint64_t c = afterLast; c <= cells; ++c) cellStart_[c] = static_cast<std::uint32_t>(pairs);
+}
+
+FrustumGrid::Traversal FrustumGrid::traversalOf(const Ray& ray) const {
+    Traversal tr;
+    const GridFrame& frame = spec_.frame;
+    tr.origin = frame.toFrame(ray.origin);
+    tr.direction = frame.directionToFrame(ray.direction);
+    const Point3d& o = tr.origin;
+    const Point3d& d = tr.direction;
+    double ta = ray.tNear, tb = ray.tFar;
+    // Outside the depth range of all geometry there is nothing to meet.
+    if (geometryZLo_ > geometryZHi_ || !clipDepth(o.z, d.z, geometryZLo_, geometryZHi_, ta, tb)) return tr;
+    if (frame.perspective() && geometryZLo_ < spec_.zNear) {
+        double na = ta, nb = tb;
+        if (clipDepth(o.z, d.z, -kInfinity, spec_.zNear, na, nb)) {
+            if (!std::isfinite(na) || !std::isfinite(nb) ||
+                !insideBox(along(o, d, na), spec_.nearZone, spec_.margin) ||
+                !insideBox(along(o, d, nb), spec_.nearZone, spec_.margin)) {
+                tr.covered = false;
+                return tr;
+            }
+            tr.nearPart = true;
+        }
+    }
+    if (zLo_ > zHi_) return tr;
+    double ga = ta, gb = tb;
+    if (!clipDepth(o.z, d.z, zLo_, kInfinity, ga, gb)) return tr;
+    // Geometry beyond the last slice (a light grid ends at the farthest shadow-ray origin).
+    double fa = ga, fb = gb;
+    if (zHi_ < geometryZHi_ && clipDepth(o.z, d.z, zHi_ + spec_.margin, kInfinity, fa, fb)) {
+        tr.covered = false;
+        return tr;
+    }
+    if (!std::isfinite(ga) || !std::isfinite(gb)) {
+        tr.covered = false;
+        return tr;
+    }
+    const Point3d a = along(o, d, ga), b = along(o, d, gb);
+    const double sa = frame.grid(frame.planar(a.x, a.z)), sb = frame.grid(frame.planar(b.x, b.z));
+    const double va = frame.grid(frame.planar(a.y, a.z)), vb = frame.grid(frame.planar(b.y, b.z));
+    const double sLo = std::min(sa, sb), sHi = std::max(sa, sb), tLo = std::min(va, vb), tHi = std::max(va, vb);
+    if (sLo < spec_.s0 || sHi > spec_.s1 || tLo < spec_.t0 || tHi > spec_.t1) {
+        tr.covered = false;
+        return tr;
+    }
+    tr.gridPart = true;
+    tr.i0 = cellIndex(sLo, spec_.s0, ds_, spec_.nx);
+    tr.i1 = cellIndex(sHi, spec_.s0, ds_, spec_.nx);
+    tr.j0 = cellIndex(tLo, spec_.t0, dt_, spec_.ny);
+    tr.j1 = cellIndex(tHi, spec_.t0, dt_, spec_.ny);
+    const double zA = std::min(a.z, b.z), zB = std::max(a.z, b.z);
+    tr.k0 = cellIndex(zA, zLo_, sliceDepth_, nz_);
+    tr.k1 = cellIndex(zB, zLo_, sliceDepth_, nz_);
+    tr.ascending = d.z >= 0.0;
+    return tr;
+}
+
+bool FrustumGrid::intersect(const Ray& ray, TraceHit& hit) const {
+    const Traversal tr = traversalOf(ray);
+    if (!tr.covered) return false;
+    TraceHit best;
+    const WatertightRay watertight(ray);
+    if (tr.nearPart)
+        for (const std::uint32_t p : nearZone_) primitives_->intersect(p, ray, watertight, best);
+    if (tr.gridPart) {
+        const int steps = tr.k1 - tr.k0 + 1;
+        for (int step = 0; step < steps; ++step) {
+            const int k = tr.ascending ? tr.k0 + step : tr.k1 - step;
+            for (int j = tr.j0; j <= tr.j1; ++j)
+                for (int i = tr.i0; i <= tr.i1; ++i) {
+                    const std::size_t cell = flatCell(k, j, i);
+                    for (std::uint32_t at = cellStart_[cell]; at < cellStart_[cell + 1]; ++at)
+                        if (firstVisit(cellPrimitives_[at], tr, k, j, i))
+                            primitives_->intersect(cellPrimitives_[at], ray, watertight, best);
+                }
+            // Early exit: a primitive not met yet lies wholly beyond this
+            // slice (by the margin), so it cannot be nearer than a hit inside it.
+            if (best.hit()) {
+                const double z = tr.origin.z + static_cast<double>(best.t) * tr.direction.z;
+                if (tr.ascending ? z + spec_.margin <= sliceLower(k + 1) : z - spec_.margin >= sliceLower(k)) break;
+            }
+        }
+    }
+    hit = best;
+    return true;
+}
+
+namespace {
+
+constexpr std::size_t kLanes = 16;
+
+// What decides whether two rays can share a packet.
+struct PacketKey {
+    float ox, oy, oz;
+    int kz, kx, ky;
+    int i0, i1, j0, j1, k0, k1;
+    bool ascending;
+    auto tie() const { return std::tie(ox, oy, oz, kz, kx, ky, i0, i1, j0, j1, k0, k1, ascending); }
+};
+
+}  // namespace
+
+void FrustumGrid::intersectBatch(std::span<const Ray> rays, std::span<TraceHit> hits,
+                                 std::span<unsigned char> refused) const {
+    thread_local std::vector<std::pair<PacketKey, std::uint32_t>> packable;
+    thread_local std::vector<Traversal> traversals;
+    thread_local std::vector<std::uint32_t> lanes;
+    packable.clear();
+    traversals.resize(rays.size());
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        refused[i] = 0;
+        traversals[i] = traversalOf(rays[i]);
+        const Traversal& tr = traversals[i];
+        if (!tr.covered) {
+            refused[i] = 1;
+            continue;
+        }
+        if (tr.nearPart || !tr.gridPart) {
+            intersect(rays[i], hits[i]);
+            continue;
+        }
+        const WatertightRay wr(rays[i]);
+        packable.push_back({PacketKey{rays[i].origin.x, rays[i].origin.y, rays[i].origin.z, wr.kz, wr.kx, wr.ky,
+                                      tr.i0, tr.i1, tr.j0, tr.j1, tr.k0, tr.k1, tr.ascending},
+                            static_cast<std::uint32_t>(i)});
+    }
+    // Rays with equal keys next to each other, in batch order within a key.
+    std::stable_sort(packable.begin(), packable.end(),
+                     [](const auto& a, const auto& b) { return a.first.tie() < b.first.tie(); });
+    for (std::size_t begin = 0; begin < packable.size();) {
+        std::size_t end = begin + 1;
+        while (end < packable.size() && end - begin < kLanes && packable[end].first.tie() == packable[begin].first.tie())
+            ++end;
+        lanes.clear();
+        for (std::size_t p = begin; p < end; ++p) lanes.push_back(packable[p].second);
+        intersectPacket(rays, lanes, traversals[lanes[0]], hits);
+        begin = end;
+    }
+}
+
+void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes,
+                                  const Traversal& tr, std::span<TraceHit> hits) const {
+    const std::size_t n = lanes.size();
+    alignas(64) float sx[kLanes], sy[kLanes], sz[kLanes], tNear[kLanes], tFar[kLanes];
+    alignas(64) float edgeV[kLanes], edgeW[kLanes], numerator[kLanes], determinant[kLanes];
+    double directionZ[kLanes];
+    alignas(64) int accepted[kLanes], zeroEdge[kLanes];
+    TraceHit best[kLanes];
+    const Ray& first = rays[lanes[0]];
+    const WatertightRay shape(first);
+    const int kx = shape.kx, ky = shape.ky, kz = shape.kz;
+    for (std::size_t l = 0; l < kLanes; ++l) {
+        // Lanes past n repeat the first ray; their answers are dropped.
+        const Ray& ray = rays[lanes[l < n ? l : 0]];
+        const WatertightRay wr(ray);
+        sx[l] = wr.sx;
+        sy[l] = wr.sy;
+        sz[l] = wr.sz;
+        tNear[l] = wr.tNear;
+        tFar[l] = wr.tFar;
+        directionZ[l] = spec_.frame.directionToFrame(ray.direction).z;
+    }
+    const int steps = tr.k1 - tr.k0 + 1;
+    for (int step = 0; step < steps; ++step) {
+        const int k = tr.ascending ? tr.k0 + step : tr.k1 - step;
+        for (int j = tr.j0; j <= tr.j1; ++j)
+            for (int i = tr.i0; i <= tr.i1; ++i) {
+                const std::size_t cell = flatCell(k, j, i);
+                for (std::uint32_t at = cellStart_[cell]; at < cellStart_[cell + 1]; ++at) {
+                    const std::uint32_t primitive = cellPrimitives_[at];
+                    if (!firstVisit(primitive, tr, k, j, i)) continue;
+                    if (primitives_->sphere(primitive)) {
+                        for (std::size_t l = 0; l < n; ++l) {
+                            const Ray& ray = rays[lanes[l]];
+                            primitives_->intersect(primitive, ray, WatertightRay(ray), best[l]);
+                        }
+                        continue;
+                    }
+                    Vec3 p0, p1, p2;
+                    primitives_->triangle(primitive, p0, p1, p2);
+                    // The packet shares its origin: the corners relative to it are computed once.
+                    const Vec3 a = p0 - first.origin, b = p1 - first.origin, c = p2 - first.origin;
+                    const float akx = a[kx], aky = a[ky], akz = a[kz];
+                    const float bkx = b[kx], bky = b[ky], bkz = b[kz];
+                    const float ckx = c[kx], cky = c[ky], ckz = c[kz];
+                    for (std::size_t l = 0; l < kLanes; ++l)
+                        if (best[l].hit()) tFar[l] = best[l].t;
+                    // The watertight test's float path, lane by lane, in the same operations as
+                    // intersectWatertight (WatertightTriangle.h) so the answers are identical.
+                    for (std::size_t l = 0; l < kLanes; ++l) {
+                        const float ax = akx - sx[l] * akz, ay = aky - sy[l] * akz;
+                        const float bx = bkx - sx[l] * bkz, by = bky - sy[l] * bkz;
+                        const float cx = ckx - sx[l] * ckz, cy = cky - sy[l] * ckz;
+                        const float u = cx * by - cy * bx;
+                        const float v = ax * cy - ay * cx;
+                        const float w = bx * ay - by * ax;
+                        const float det = u + v + w;
+                        const float t = u * (sz[l] * akz) + v * (sz[l] * bkz) + w * (sz[l] * ckz);
+                        const float absDet = std::fabs(det);
+                        const float signedT = det < 0.0f ? -t : t;
+                        // Bitwise, not short-circuit, so the loop has no branches to stop vectorisation.
+                        const bool negative = (u < 0.0f) | (v < 0.0f) | (w < 0.0f);
+                        const bool positive = (u > 0.0f) | (v > 0.0f) | (w > 0.0f);
+                        zeroEdge[l] = static_cast<int>((u == 0.0f) | (v == 0.0f) | (w == 0.0f));
+                        accepted[l] = static_cast<int>(!(negative & positive) & (det != 0.0f) &
+                                                       (signedT > tNear[l] * absDet) & (signedT <= tFar[l] * absDet));
+                        edgeV[l] = v;
+                        edgeW[l] = w;
+                        numerator[l] = t;
+                        determinant[l] = det;
+                    }
+                    const int object = primitives_->objectOf(primitive);
+                    const int local = primitives_->localIndex(primitive);
+                    for (std::size_t l = 0; l < n; ++l) {
+                        if (zeroEdge[l]) {
+                            // An edge value of exactly zero: the double-precision path, as the scalar test.
+                            const Ray& ray = rays[lanes[l]];
+                            primitives_->intersect(primitive, ray, WatertightRay(ray), best[l]);
+                            continue;
+                        }
+                        if (!accepted[l]) continue;
+                        const float inverseDet = 1.0f / determinant[l];
+                        const float t = numerator[l] * inverseDet;
+                        if (GridPrimitives::nearer(t, object, local, best[l]))
+                            best[l] = TraceHit{t, object, local, edgeV[l] * inverseDet, edgeW[l] * inverseDet};
+                    }
+                }
+            }
+        bool allDone = true;
+        for (std::size_t l = 0; l < n && allDone; ++l) {
+            if (!best[l].hit()) {
+                allDone = false;
+                break;
+            }
+            const double z = tr.origin.z + static_cast<double>(best[l].t) * directionZ[l];
+            allDone = tr.ascending ? z + spec_.margin <= sliceLower(k + 1) : z - spec_.margin >= sliceLower(k);
+        }
+        if (allDone) break;
+    }
+    for (std::size_t l = 0; l < n; ++l) hits[lanes[l]] = best[l];
+}
+
+bool FrustumGrid::occluded(const Ray& ray, bool& blocked) const {
+    const Traversal tr = traversalOf(ray);
+    if (!tr.covered) return false;
+    blocked = false;
+    const WatertightRay watertight(ray);
+    if (tr.nearPart)
+        for (const std::uint32_t p : nearZone_)
+            if (primitives_->occludes(p, ray, watertight)) {
+                blocked = true;
+                return true;
+            }
+    if (!tr.gridPart) return true;
+    const int steps = tr.k1 - tr.k0 + 1;
+    for (int step = 0; step < steps; ++step) {
+        const int k = tr.ascending ? tr.k0 + step : tr.k1 - step;
+        for (int j = tr.j0; j <= tr.j1; ++j)
+            for (int i = tr.i0; i <= tr.i1; ++i) {
+                const std::size_t cell = flatCell(k, j, i);
+                for (std::uint32_t at = cellStart_[cell]; at < cellStart_[cell + 1]; ++at)
+                    if (firstVisit(cellPrimitives_[at], tr, k, j, i) &&
+                        primitives_->occludes(cellPrimitives_[at], ray, watertight)) {
+                        blocked = true;
+                        return true;
+                    }
+            }
+    }
+    return true;
+}
+
+std::vector<Vec3> FrustumGrid::occupiedColumnCorners() const {
+    std::vector<Vec3> corners;
+    if (zLo_ > zHi_ || !spec_.frame.perspective()) return corners;
+    const GridFrame& f = spec_.frame;
+    const std::size_t columns = static_cast<std::size_t>(spec_.nx) * static_cast<std::size_t>(spec_.ny);
+    for (int j = 0; j < spec_.ny; ++j)
+        for (int i = 0; i < spec_.nx; ++i) {
+            const std::size_t column = static_cast<std::size_t>(j) * static_cast<std::size_t>(spec_.nx) +
+                                       static_cast<std::size_t>(i);
+            int first = -1, last = -1;
+            for (int k = 0; k < nz_; ++k) {
+                const std::size_t cell = static_cast<std::size_t>(k) * columns + column;
+                if (cellStart_[cell + 1] > cellStart_[cell]) {
+                    if (first < 0) first = k;
+                    last = k;
+                }
+            }
+            if (first < 0) continue;
+            for (int corner = 0; corner < 8; ++corner) {
+                const double u = std::tan(spec_.s0 + (i + (corner & 1)) * ds_);
+                const double v = std::tan(spec_.t0 + (j + ((corner >> 1) & 1)) * dt_);
+                const double z = sliceLower((corner & 4) ? last + 1 : first);
+                // Angular grids store atan(u): tan undoes it; perspective ones store u itself.
+                const double uu = f.mapping == GridMapping::Angular ? u : spec_.s0 + (i + (corner & 1)) * ds_;
+                const double vv = f.mapping == GridMapping::Angular ? v : spec_.t0 + (j + ((corner >> 1) & 1)) * dt_;
+                corners.push_back(Vec3{static_cast<float>(f.apex.x + z * (uu * f.right.x + vv * f.up.x + f.forward.x)),
+                                       static_cast<float>(f.apex.y + z * (uu * f.right.y + vv * f.up.y + f.forward.y)),
+                                       static_cast<float>(f.apex.z + z * (uu * f.right.z + vv * f.up.z + f.forward.z))});
+            }
+        }
+    return corners;
+}
+
+int FrustumGrid::columnOf(const Vec3& point) const {
+    const GridFrame& frame = spec_.frame;
+    const Point3d p = frame.toFrame(point);
+    if (frame.perspective() && p.z <= 0.0) return -1;
+    const double s = frame.grid(frame.planar(p.x, p.z)), t = frame.grid(frame.planar(p.y, p.z));
+    if (s < spec_.s0 || s > spec_.s1 || t < spec_.t0 || t > spec_.t1) return -1;
+    return cellIndex(s, spec_.s0, ds_, spec_.nx) + spec_.nx * cellIndex(t, spec_.t0, dt_, spec_.ny);
+}
+
+}  // namespace raycache

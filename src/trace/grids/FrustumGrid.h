@@ -1,0 +1,138 @@
+#pragma once
+// A grid over a frustum, rebuilt every frame (SPEC §7): cells are a regular
+// nx x ny lattice of the frame's 2D grid coordinates (s, t) (GridFrame.h)
+// times nz slices of depth z. Built by listing a (cell, primitive) pair for
+// every cell a primitive's conservative bounds overlap, sorting the pairs by
+// cell with a parallel radix sort, and scanning the sorted keys for each
+// cell's range. Used with a perspective frame for primary rays and with the
+// angular or orthographic frames of lights for shadow rays.
+//
+// Exactness: a ray is answered only when the grid covers its whole segment
+// (every part of it inside the rectangle of cells, or in the near zone of a
+// perspective grid, or where no geometry is); then every primitive it can
+// meet is in one of the cells it visits, with a margin far above the
+// rounding of the bounds. A ray the grid does not cover is refused, and the
+// caller answers it another way (trace/TraceScene.cpp: Embree, counted).
+#include <algorithm>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/Parallel.h"
+#include "core/Ray.h"
+#include "trace/TraceHit.h"
+#include "trace/grids/GridFrame.h"
+#include "trace/grids/GridPrimitives.h"
+
+namespace raycache {
+
+// A box in frame coordinates.
+struct FrameBox {
+    Point3d lo, hi;
+};
+
+struct FrustumGridSpec {
+    GridFrame frame;
+    double s0 = -1.0, s1 = 1.0, t0 = -1.0, t1 = 1.0;  // the rectangle of cells, in grid coordinates
+    // Perspective frames: the slices start here; what lies nearer (toward
+    // the apex) is the near zone, whose primitives every ray tests.
+    double zNear = 0.0;
+    // Where rays may run at z < zNear (frame coordinates). Rays that leave it
+    // there are refused.
+    FrameBox nearZone;
+    // The slices end at min(zFarLimit, the farthest geometry).
+    double zFarLimit = 1e300;
+    int nx = 1, ny = 1;
+    // Slices: about cellsPerPrimitive cells per primitive in the rectangle, at most maxSlices.
+    double cellsPerPrimitive = 2.0;
+    int maxSlices = 64;
+    // Positional margin in world units added around every primitive's
+    // bounds; covers the rounding of the float intersection tests.
+    double margin = 1e-5;
+};
+
+struct FrustumGridStats {
+    std::uint64_t primitivesBinned = 0;  // primitives with at least one cell
+    std::uint64_t pairs = 0;             // (cell, primitive) pairs sorted
+    std::uint64_t nearZone = 0;          // primitives every ray tests
+    int nx = 0, ny = 0, nz = 0;
+};
+
+class FrustumGrid {
+public:
+    // Rebuilds the grid over `primitives` (which must outlive the queries).
+    void build(const FrustumGridSpec& spec, const GridPrimitives& primitives, const Parallel& parallel);
+
+    // Nearest hit, as TraceScene::intersect. False: the ray is not covered (`hit` untouched).
+    bool intersect(const Ray& ray, TraceHit& hit) const;
+    // Nearest hits of a batch, hits[i] for rays[i]; refused[i] = 1 for the
+    // rays the grid does not cover (their hits untouched). Rays that share
+    // an origin, a shear axis and a traversal (a tile's camera rays, column
+    // by column) are traced as packets of up to 16 lanes, the lanes' loop of
+    // the watertight test vectorised; the answers are bit for bit those of
+    // intersect().
+    void intersectBatch(std::span<const Ray> rays, std::span<TraceHit> hits, std::span<unsigned char> refused) const;
+    // Any hit in the segment. False: the ray is not covered.
+    bool occluded(const Ray& ray, bool& blocked) const;
+    // The column (i + nx * j) a world point projects into, or -1 outside the
+    // rectangle or the perspective grid's depth range.
+    int columnOf(const Vec3& point) const;
+
+    // World-space corners of the part of every column between its first and
+    // last occupied slice (8 per column that holds anything): their hull
+    // holds every point a ray could hit in the grid. Perspective grids only.
+    std::vector<Vec3> occupiedColumnCorners() const;
+
+    const FrustumGridStats& stats() const { return stats_; }
+    const FrustumGridSpec& spec() const { return spec_; }
+
+private:
+    struct CellRange {
+        int i0, i1, j0, j1, k0, k1;  // inclusive; i1 < i0 when the primitive has no cell
+    };
+    // The part of a ray's segment the grid must cover, in ray parameter t.
+    struct Traversal {
+        bool covered = true;
+        bool nearPart = false, gridPart = false;
+        int i0 = 0, i1 = -1, j0 = 0, j1 = -1, k0 = 0, k1 = -1;
+        bool ascending = true;
+        Point3d origin, direction;  // frame coordinates
+    };
+    Traversal traversalOf(const Ray& ray) const;
+    void intersectPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& tr,
+                         std::span<TraceHit> hits) const;
+    CellRange binPrimitive(std::uint32_t primitive, bool& inNearZone) const;
+    // True in the first cell, in the traversal's order, where the ray meets
+    // `primitive`: a primitive spanning many cells (a floor, a wall) is
+    // tested once per ray, not once per cell. Testing it again would give
+    // the same answer.
+    // Index of cell (i, j) of depth slice k in cellStart_.
+    std::size_t flatCell(int k, int j, int i) const {
+        return (static_cast<std::size_t>(k) * static_cast<std::size_t>(spec_.ny) + static_cast<std::size_t>(j)) *
+                   static_cast<std::size_t>(spec_.nx) +
+               static_cast<std::size_t>(i);
+    }
+    bool firstVisit(std::uint32_t primitive, const Traversal& tr, int k, int j, int i) const {
+        const CellRange& r = ranges_[primitive];
+        const int firstK = tr.ascending ? std::max(r.k0, tr.k0) : std::min(r.k1, tr.k1);
+        return k == firstK && j == std::max(r.j0, tr.j0) && i == std::max(r.i0, tr.i0);
+    }
+    double sliceLower(int k) const { return zLo_ + k * sliceDepth_; }
+
+    FrustumGridSpec spec_;
+    const GridPrimitives* primitives_ = nullptr;
+    double geometryZLo_ = 0.0, geometryZHi_ = -1.0;  // every primitive's depth range (margins included)
+    double zLo_ = 0.0, zHi_ = 0.0, sliceDepth_ = 1.0;
+    int nz_ = 1;
+    double ds_ = 1.0, dt_ = 1.0;
+    std::vector<std::uint32_t> cellStart_;  // cells + 1 offsets into cellPrimitives_
+    std::vector<std::uint32_t> cellPrimitives_;
+    std::vector<std::uint32_t> nearZone_;
+    FrustumGridStats stats_;
+    // Reused from frame to frame.
+    std::vector<CellRange> ranges_;
+    std::vector<unsigned char> nearFlags_;
+    std::vector<std::uint32_t> pairOffsets_, keys_, keyScratch_, valueScratch_;
+};
+
+}  // namespace raycache

@@ -1,0 +1,58 @@
+#include "trace/grids/RadixSort.h"
+
+#include <algorithm>
+#include <array>
+
+namespace raycache {
+
+namespace {
+
+constexpr int kDigitBits = 8;
+constexpr std::size_t kDigits = std::size_t{1} << kDigitBits;
+// Below this many pairs a block is not worth a task of its own.
+constexpr std::size_t kMinBlock = 1 << 15;
+
+}  // namespace
+
+void radixSortPairs(std::vector<std::uint32_t>& keys, std::vector<std::uint32_t>& values, int keyBits,
+                    const Parallel& parallel, std::vector<std::uint32_t>& keyScratch,
+                    std::vector<std::uint32_t>& valueScratch) {
+    const std::size_t n = keys.size();
+    if (n < 2 || keyBits <= 0) return;
+    keyScratch.resize(n);
+    valueScratch.resize(n);
+    const std::size_t blocks =
+        std::clamp<std::size_t>(n / kMinBlock, 1, static_cast<std::size_t>(4 * parallel.threadCount()));
+    const std::size_t blockSize = (n + blocks - 1) / blocks;
+    std::vector<std::array<std::size_t, kDigits>> offsets(blocks);
+    for (int shift = 0; shift < keyBits; shift += kDigitBits) {
+        parallel.forEachIndex(static_cast<int>(blocks), [&](int b, int) {
+            auto& histogram = offsets[static_cast<std::size_t>(b)];
+            histogram.fill(0);
+            const std::size_t begin = static_cast<std::size_t>(b) * blockSize, end = std::min(n, begin + blockSize);
+            for (std::size_t i = begin; i < end; ++i) ++histogram[(keys[i] >> shift) & (kDigits - 1)];
+        });
+        // Digit-major, block-minor exclusive scan: block b's pairs of digit d
+        // follow every pair of a smaller digit and those of digit d in earlier blocks.
+        std::size_t running = 0;
+        for (std::size_t d = 0; d < kDigits; ++d)
+            for (std::size_t b = 0; b < blocks; ++b) {
+                const std::size_t count = offsets[b][d];
+                offsets[b][d] = running;
+                running += count;
+            }
+        parallel.forEachIndex(static_cast<int>(blocks), [&](int b, int) {
+            auto& next = offsets[static_cast<std::size_t>(b)];
+            const std::size_t begin = static_cast<std::size_t>(b) * blockSize, end = std::min(n, begin + blockSize);
+            for (std::size_t i = begin; i < end; ++i) {
+                const std::size_t at = next[(keys[i] >> shift) & (kDigits - 1)]++;
+                keyScratch[at] = keys[i];
+                valueScratch[at] = values[i];
+            }
+        });
+        keys.swap(keyScratch);
+        values.swap(valueScratch);
+    }
+}
+
+}  // namespace raycache

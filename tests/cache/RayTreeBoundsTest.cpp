@@ -1,0 +1,167 @@
+// The geometric tests behind per-block invalidation (cache/RayTreeBounds.h),
+// against brute force: any point found by sampling the hull, sweep or ray
+// set that lies in the box must make the test answer "meets" (the direction
+// that keeps cached texels from going stale), and hand-made cases check that
+// clearly separated boxes are not reported.
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <random>
+
+#include "cache/RayTreeBounds.h"
+
+namespace raycache {
+namespace {
+
+Box3 box(const Vec3& lo, const Vec3& hi) {
+    Box3 b;
+    b.add(lo);
+    b.add(hi);
+    return b;
+}
+
+bool contains(const Box3& b, const Vec3& p) {
+    return p.x >= b.lo.x && p.x <= b.hi.x && p.y >= b.lo.y && p.y <= b.hi.y && p.z >= b.lo.z && p.z <= b.hi.z;
+}
+
+Vec3 lerp(const Box3& b, float u, float v, float w) {
+    return {b.lo.x + (b.hi.x - b.lo.x) * u, b.lo.y + (b.hi.y - b.lo.y) * v, b.lo.z + (b.hi.z - b.lo.z) * w};
+}
+
+struct RandomCase {
+    std::mt19937 rng;
+    explicit RandomCase(unsigned seed) : rng(seed) {}
+    float uniform(float a, float b) { return std::uniform_real_distribution<float>(a, b)(rng); }
+    Vec3 point(float r) { return {uniform(-r, r), uniform(-r, r), uniform(-r, r)}; }
+    Box3 randomBox(float r, float size) {
+        const Vec3 c = point(r);
+        const Vec3 h{uniform(0.0f, size), uniform(0.0f, size), uniform(0.0f, size)};
+        return box(c - h, c + h);
+    }
+};
+
+// One random case: the box, the test's answer, and a sampler of the set's points.
+struct SampledCase {
+    Box3 target;
+    bool reported;
+    std::function<Vec3(RandomCase&)> samplePoint;
+};
+
+// 3000 random cases from makeCase: whenever one of 400 sampled points of
+// the set lies in the box, the test must have answered "meets". The sampler
+// must find some meetings and the test must say "no" to some boxes, or the
+// check proves nothing.
+void expectNoMissedMeeting(unsigned seed, const std::function<SampledCase(RandomCase&)>& makeCase) {
+    RandomCase random(seed);
+    int meetings = 0, reportedCount = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        const SampledCase c = makeCase(random);
+        reportedCount += c.reported ? 1 : 0;
+        bool found = false;
+        for (int k = 0; k < 400 && !found; ++k) found = contains(c.target, c.samplePoint(random));
+        if (found) {
+            ++meetings;
+            EXPECT_TRUE(c.reported) << "trial " << trial;
+        }
+    }
+    EXPECT_GT(meetings, 30);
+    EXPECT_LT(reportedCount, 3000);
+}
+
+Vec3 pointIn(const Box3& b, RandomCase& random) {
+    return lerp(b, random.uniform(0, 1), random.uniform(0, 1), random.uniform(0, 1));
+}
+
+TEST(RayTreeBounds, HullTestNeverMissesASampledMeeting) {
+    expectNoMissedMeeting(7, [](RandomCase& random) {
+        const Box3 points = random.randomBox(4.0f, 2.0f);
+        const Vec3 apex = random.point(6.0f);
+        const Box3 target = random.randomBox(4.0f, 1.0f);
+        return SampledCase{target, boxMeetsHull(target, points, apex), [=](RandomCase& r) {
+                               return apex + (pointIn(points, r) - apex) * r.uniform(0, 1);
+                           }};
+    });
+}
+
+TEST(RayTreeBounds, SegmentsTestNeverMissesASampledMeeting) {
+    expectNoMissedMeeting(5, [](RandomCase& random) {
+        const Box3 starts = random.randomBox(4.0f, 1.0f);
+        const Box3 ends = random.randomBox(4.0f, 1.5f);
+        const Box3 target = random.randomBox(4.0f, 1.0f);
+        return SampledCase{target, boxMeetsSegments(target, starts, ends), [=](RandomCase& r) {
+                               const Vec3 a = pointIn(starts, r);
+                               return a + (pointIn(ends, r) - a) * r.uniform(0, 1);
+                           }};
+    });
+}
+
+TEST(RayTreeBounds, SweepTestNeverMissesASampledMeeting) {
+    expectNoMissedMeeting(11, [](RandomCase& random) {
+        const Box3 points = random.randomBox(4.0f, 2.0f);
+        const Vec3 direction = normalize(random.point(1.0f) + Vec3{0.0f, 1e-3f, 0.0f});
+        const Box3 target = random.randomBox(6.0f, 1.0f);
+        return SampledCase{target, boxMeetsSweep(target, points, direction), [=](RandomCase& r) {
+                               return pointIn(points, r) + direction * r.uniform(0, 20);
+                           }};
+    });
+}
+
+TEST(RayTreeBounds, RaysTestNeverMissesASampledMeeting) {
+    expectNoMissedMeeting(13, [](RandomCase& random) {
+        const Box3 origins = random.randomBox(3.0f, 1.0f);
+        const Vec3 d0 = normalize(random.point(1.0f) + Vec3{1e-3f, 0.0f, 0.0f});
+        Box3 directions = box(d0, d0);
+        directions.add(normalize(d0 + random.point(0.2f)));
+        const Box3 target = random.randomBox(6.0f, 1.0f);
+        return SampledCase{target, boxMeetsRays(target, origins, directions), [=](RandomCase& r) {
+                               return pointIn(origins, r) + pointIn(directions, r) * r.uniform(0, 20);
+                           }};
+    });
+}
+
+TEST(RayTreeBounds, SeparatedBoxesAreNotReported) {
+    const Box3 points = box({-1, -1, -1}, {1, 1, 1});
+    // Light above, box far to the side: no shadow ray passes it.
+    EXPECT_FALSE(boxMeetsHull(box({5, 2, -1}, {6, 3, 1}), points, {0, 10, 0}));
+    // The same box between the points and the light is reported.
+    EXPECT_TRUE(boxMeetsHull(box({-0.5f, 4, -0.5f}, {0.5f, 5, 0.5f}), points, {0, 10, 0}));
+    // Beyond the light: shadow rays stop at the light.
+    EXPECT_FALSE(boxMeetsHull(box({-0.5f, 11, -0.5f}, {0.5f, 12, 0.5f}), points, {0, 10, 0}));
+    // Directional light travelling down (-y): shadow rays go up, forever.
+    EXPECT_TRUE(boxMeetsSweep(box({-0.5f, 50, -0.5f}, {0.5f, 51, 0.5f}), points, {0, 1, 0}));
+    EXPECT_FALSE(boxMeetsSweep(box({-0.5f, -5, -0.5f}, {0.5f, -4, 0.5f}), points, {0, 1, 0}));
+    // Segments from a box at the origin to a box far along +x+y: a box on
+    // that diagonal is reached, one in the corner of the pair's bounding box is not.
+    const Box3 far = box({9, 9, -1}, {11, 11, 1});
+    EXPECT_TRUE(boxMeetsSegments(box({4.5f, 4.5f, -0.5f}, {5.5f, 5.5f, 0.5f}), points, far));
+    EXPECT_FALSE(boxMeetsSegments(box({8, -1, -0.5f}, {9, 0, 0.5f}), points, far));
+    // Rays leaving along +x do not reach a box behind them.
+    const Box3 directions = box({0.9f, -0.1f, -0.1f}, {1.0f, 0.1f, 0.1f});
+    EXPECT_TRUE(boxMeetsRays(box({10, -1, -1}, {11, 1, 1}), points, directions));
+    EXPECT_FALSE(boxMeetsRays(box({-11, -1, -1}, {-10, 1, 1}), points, directions));
+}
+
+TEST(RayTreeBounds, MayMeetCombinesSegmentsEscapesAndShadowRays) {
+    std::vector<Light> lights(1);
+    lights[0].position = {0, 10, 0};
+    RayTreeBounds bounds;
+    bounds.addSegment({-1, 0, 0}, {1, 0, 0});
+    const Box3 between = box({-0.2f, 5, -0.2f}, {0.2f, 6, 0.2f});
+    EXPECT_FALSE(bounds.mayMeet(between, lights));  // no shadow rays
+    bounds.shaded = true;
+    bounds.shadowOrigins.add({0, 0, 0});
+    EXPECT_TRUE(bounds.mayMeet(between, lights));
+    // Only shadow rays from where they start: none passes far to the left.
+    EXPECT_FALSE(bounds.mayMeet(box({-3.2f, 5, -0.2f}, {-2.8f, 6, 0.2f}), lights));
+    EXPECT_TRUE(bounds.mayMeet(box({0, -0.1f, -0.1f}, {0.1f, 0.1f, 0.1f}), lights));  // on the segment
+    RayTreeBounds escaping;
+    escaping.addEscape({0, 0, 0}, {0, 0, 1});
+    EXPECT_TRUE(escaping.mayMeet(box({-1, -1, 30}, {1, 1, 31}), lights));
+    EXPECT_FALSE(escaping.mayMeet(box({-1, -1, -31}, {1, 1, -30}), lights));
+    RayTreeBounds everything;
+    everything.dependsOnEverything = true;
+    EXPECT_TRUE(everything.mayMeet(box({100, 100, 100}, {101, 101, 101}), lights));
+}
+
+}  // namespace
+}  // namespace raycache
