@@ -48,6 +48,14 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
                        "many texels from it (default: each material's own, 2)");
     command.add_option("--cache-res", job.cacheResolution, "Caching-cube face resolution, 16..2048 "
                                                            "(default: each material's own, 512 in built-in scenes)");
+    command.add_option("--cache-levels", job.cacheLevels,
+                       "CCT cubes' resolution levels, 1..8: each level halves the last's face resolution; a lookup "
+                       "takes the finest valid texel no wider than its pixel's footprint allows (docs/caching.md)")
+        ->capture_default_str();
+    command.add_option("--cache-level-error", job.cacheLevelError,
+                       "Multi-resolution cubes: a coarser texel may span this many times the angle between "
+                       "neighbouring pixels' reflected rays, (0, 1000]")
+        ->capture_default_str();
     command.add_flag("--cache-ideal", job.cacheIdeal,
                      "Benchmark switch: cache misses return black instead of being traced");
     command.add_flag("--stage-times", job.stageTimes,

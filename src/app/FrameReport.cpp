@@ -25,6 +25,15 @@ std::string formatFrameLine(const FrameResult& r, int frameCount) {
             c->lookups() ? 100.0 * static_cast<double>(c->hits()) / static_cast<double>(c->lookups()) : 0.0;
         line << "  cache: " << c->objects.size() << (c->objects.size() == 1 ? " cube" : " cubes") << ", hits " << formatFixed(hitRate, 1) << "% of "
              << c->lookups() << ", stores " << c->stores();
+        if (c->levels() > 1) {
+            // Where the hits came from, finest level first.
+            line << " (by level";
+            for (int k = 0; k < c->levels(); ++k) {
+                const double share = c->hits() ? 100.0 * static_cast<double>(c->hitsAtLevel(k)) / static_cast<double>(c->hits()) : 0.0;
+                line << (k ? " " : ": ") << formatFixed(share, 0) << "%";
+            }
+            line << ")";
+        }
         if (c->rejected()) line << ", rejected " << c->rejected();
         if (c->prefilledTexels()) line << ", pre-filled " << c->prefilledTexels();
         line << ", invalid before "

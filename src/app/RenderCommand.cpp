@@ -28,6 +28,8 @@ nlohmann::json cacheJson(const FrameCacheStats& c) {
         objects.push_back({{"object", o.name}, {"resolution", o.resolution}, {"lookups", o.lookups},
                            {"hits", o.hits}, {"misses", o.misses}, {"rejected", o.rejected}, {"stores", o.stores},
                            {"prefilled_texels", o.prefilledTexels},
+                           {"levels", o.levels},
+                           {"hits_by_level", std::vector<std::uint64_t>(o.hitsByLevel.begin(), o.hitsByLevel.begin() + o.levels)},
                            {"invalid_percent_before", o.invalidPercentBefore}, {"bytes", o.bytes}});
     return {{"lookups", c.lookups()}, {"hits", c.hits()}, {"misses", c.misses()}, {"rejected", c.rejected()},
             {"stores", c.stores()}, {"prefilled_texels", c.prefilledTexels()},

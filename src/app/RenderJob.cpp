@@ -71,6 +71,11 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
     if (o.cacheResolution &&
         (*o.cacheResolution < RayCache::kMinResolution || *o.cacheResolution > RayCache::kMaxResolution))
         throw InputError("--cache-res must be between 16 and 2048 (got " + std::to_string(*o.cacheResolution) + ")");
+    if (o.cacheLevels < 1 || o.cacheLevels > kMaxCubeLevels)
+        throw InputError("--cache-levels must be between 1 and " + std::to_string(kMaxCubeLevels) + " (got " +
+                         std::to_string(o.cacheLevels) + ")");
+    if (!(std::isfinite(o.cacheLevelError) && o.cacheLevelError > 0.0f && o.cacheLevelError <= 1000.0f))
+        throw InputError("--cache-level-error must be a finite number in (0, 1000]");
     if (o.accel && !parseAccelerator(*o.accel))
         throw InputError("--accel must be embree or grids (got '" + *o.accel + "')");
     if (o.pipeline && !parsePipelineKind(*o.pipeline))
@@ -110,6 +115,8 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     settings.cache.cdctMaxDepthOverride = options.cdctMaxDepth;
     settings.cache.cdctToleranceOverride = options.cdctTolerance;
     settings.cache.resolutionOverride = options.cacheResolution;
+    settings.cache.cubeLevels = options.cacheLevels;
+    settings.cache.levelErrorBound = options.cacheLevelError;
     settings.cache.ideal = options.cacheIdeal;
     settings.stageTimes = options.stageTimes;
     settings.tileBalance = *parseTileBalance(options.tileBalance);

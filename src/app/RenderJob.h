@@ -30,6 +30,8 @@ struct RenderJobOptions {
     std::optional<float> cdctMaxDepth;
     std::optional<float> cdctTolerance;    // improved CDCT error control, texels
     std::optional<int> cacheResolution;    // default: each material's own setting
+    int cacheLevels = 1;                   // CCT cubes' resolution levels (RayCacheSettings::cubeLevels)
+    float cacheLevelError = 0.25f;         // RayCacheSettings::levelErrorBound
     bool cacheIdeal = false;               // benchmark switch, see RayCacheSettings::ideal
     bool stageTimes = false;               // time the tile kernel's stages (RenderSettings::stageTimes)
     std::optional<std::string> pipeline;   // ray | hybrid | render-cache; default: the scene file's, else ray

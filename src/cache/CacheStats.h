@@ -1,10 +1,14 @@
 #pragma once
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 namespace raycache {
+
+// Resolution levels a CCT cube may keep (cache/CoarseLevels.h), the finest included.
+inline constexpr int kMaxCubeLevels = 8;
 
 // One caching object's activity during one frame.
 struct ObjectCacheStats {
@@ -13,12 +17,16 @@ struct ObjectCacheStats {
     int resolution = 0;                 // texels per face side
     std::uint64_t lookups = 0;          // secondary rays that asked the cache
     std::uint64_t hits = 0;             // answered from a valid texel
+    // Of the hits, how many each level answered (0: the finest; CCT cubes
+    // with coarser levels, RayCacheSettings::cubeLevels); others count at 0.
+    std::array<std::uint64_t, kMaxCubeLevels> hitsByLevel{};
+    int levels = 1;                     // resolution levels of the cube, the finest included
     std::uint64_t misses = 0;           // not answered (invalid texel, CDCT search gave up or rejected): traced
     std::uint64_t rejected = 0;         // of the misses: improved-CDCT error control found the texel off the ray
     std::uint64_t stores = 0;           // texels written at the end of the frame
     std::uint64_t prefilledTexels = 0;  // improved CDCT: texels filled from the centre after this frame
     double invalidPercentBefore = 0.0;  // invalid texels when the frame started
-    std::size_t bytes = 0;              // memory of the cube's texels
+    std::size_t bytes = 0;              // memory of the cube's texels (all levels)
 };
 
 struct FrameCacheStats {
@@ -30,6 +38,17 @@ struct FrameCacheStats {
     std::uint64_t stores() const { return sum(&ObjectCacheStats::stores); }
     std::uint64_t rejected() const { return sum(&ObjectCacheStats::rejected); }
     std::uint64_t prefilledTexels() const { return sum(&ObjectCacheStats::prefilledTexels); }
+    std::uint64_t hitsAtLevel(int level) const {
+        std::uint64_t s = 0;
+        for (const auto& o : objects) s += o.hitsByLevel[static_cast<std::size_t>(level)];
+        return s;
+    }
+    // The most levels any cube has.
+    int levels() const {
+        int most = 1;
+        for (const auto& o : objects) most = o.levels > most ? o.levels : most;
+        return most;
+    }
     std::size_t bytes() const {
         std::size_t b = 0;
         for (const auto& o : objects) b += o.bytes;

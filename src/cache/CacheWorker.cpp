@@ -17,6 +17,7 @@ Bytes CacheWorker::pack(std::span<const CacheWorker> workers) {
     std::vector<PackedBatch> batches;
     std::vector<PendingStore> stores;
     std::vector<RayTreeRecord> trees;  // animated scenes: one per store
+    std::vector<SeenPoint> seen;       // multi-resolution cubes: one per store
     std::vector<Counters> counters;
     for (const CacheWorker& w : workers) {
         if (counters.size() < w.counters_.size()) counters.resize(w.counters_.size());
@@ -25,6 +26,8 @@ Bytes CacheWorker::pack(std::span<const CacheWorker> workers) {
             counters[c].hits += w.counters_[c].hits;
             counters[c].misses += w.counters_[c].misses;
             counters[c].rejected += w.counters_[c].rejected;
+            for (std::size_t k = 0; k < counters[c].levelHits.size(); ++k)
+                counters[c].levelHits[k] += w.counters_[c].levelHits[k];
         }
         for (std::size_t b = 0; b < w.batches_.size(); ++b) {
             // The last batch is still open (closeBatch sets its end at endFrame).
@@ -37,6 +40,9 @@ Bytes CacheWorker::pack(std::span<const CacheWorker> workers) {
             if (!w.pendingTrees_.empty())
                 trees.insert(trees.end(), w.pendingTrees_.begin() + static_cast<std::ptrdiff_t>(begin),
                              w.pendingTrees_.begin() + static_cast<std::ptrdiff_t>(end));
+            if (!w.pendingSeen_.empty())
+                seen.insert(seen.end(), w.pendingSeen_.begin() + static_cast<std::ptrdiff_t>(begin),
+                            w.pendingSeen_.begin() + static_cast<std::ptrdiff_t>(end));
         }
     }
     Bytes bytes;
@@ -47,6 +53,8 @@ Bytes CacheWorker::pack(std::span<const CacheWorker> workers) {
     appendBytes(bytes, std::span<const PendingStore>(stores));
     appendBytes(bytes, static_cast<std::uint64_t>(trees.size()));
     appendBytes(bytes, std::span<const RayTreeRecord>(trees));
+    appendBytes(bytes, static_cast<std::uint64_t>(seen.size()));
+    appendBytes(bytes, std::span<const SeenPoint>(seen));
     return bytes;
 }
 
@@ -76,6 +84,12 @@ void CacheWorker::unpack(std::span<const std::byte> bytes, std::size_t cubeCount
                                  " ray-tree records for " + std::to_string(total) + " stores");
     pendingTrees_.resize(treeCount);
     reader.readInto(std::span<RayTreeRecord>(pendingTrees_));
+    const auto seenCount = reader.read<std::uint64_t>();
+    if (seenCount != 0 && seenCount != total)
+        throw std::runtime_error("cache stores from another process: " + std::to_string(seenCount) +
+                                 " seen points for " + std::to_string(total) + " stores");
+    pendingSeen_.resize(seenCount);
+    reader.readInto(std::span<SeenPoint>(pendingSeen_));
     if (!reader.atEnd()) throw std::runtime_error("cache stores from another process: trailing bytes");
     for (const PendingStore& s : pending_)
         if (s.cube >= cubeCount) throw std::runtime_error("cache stores from another process name a cube out of range");

@@ -2,10 +2,13 @@
 // One worker thread's view of the caches during a frame: the stores it wants
 // to make (merged by RayCache::endFrame) and its counters. Owned by the frame
 // (render/CacheFrame.h), one per worker, so nothing here is shared between threads.
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
 
+#include "cache/CacheStats.h"
+#include "cache/CoarseLevels.h"
 #include "cache/RayTreeRecord.h"
 #include "core/ProcessGroup.h"
 
@@ -27,8 +30,9 @@ public:
     // What `workers` queued this frame (their non-empty batches with their
     // stores, in worker then queue order, and their lookup counters summed
     // per cube) as bytes for the other processes of a cluster job
-    // (src/cluster/): 16 bytes per store, 16 per batch, 32 per cube; in an
-    // animated scene also each store's RayTreeRecord (156 bytes).
+    // (src/cluster/): 16 bytes per store, 16 per batch, 96 per cube; in an
+    // animated scene also each store's RayTreeRecord (156 bytes); with
+    // multi-resolution cubes each store's SeenPoint (16 bytes).
     static Bytes pack(std::span<const CacheWorker> workers);
     // Makes this worker hold what pack() packed in another process, so that
     // its batches join RayCache::endFrame's merge (in key order, like any
@@ -51,6 +55,7 @@ private:
     };
     struct Counters {
         std::uint64_t lookups = 0, hits = 0, misses = 0, rejected = 0;
+        std::array<std::uint64_t, kMaxCubeLevels> levelHits{};  // of the hits, per level (0: the finest)
     };
 
     void closeBatch() {
@@ -65,6 +70,9 @@ private:
     // When the cache tracks what its texels depend on (animated scenes): the
     // tree of each pending store, same index.
     std::vector<RayTreeRecord> pendingTrees_;
+    // When the cache has multi-resolution cubes: what each pending store's
+    // ray saw (cache/CoarseLevels.h), same index.
+    std::vector<SeenPoint> pendingSeen_;
     std::vector<Batch> batches_;
     std::vector<Counters> counters_;  // per cube
 };

@@ -81,6 +81,13 @@ void RayCache::validate(const Scene& scene, const RayCacheSettings& settings) {
         throw InputError("cache resolution must be between " + std::to_string(kMinResolution) + " and " +
                          std::to_string(kMaxResolution) + " (got " + std::to_string(*settings.resolutionOverride) +
                          ")");
+    if (settings.cubeLevels < 1 || settings.cubeLevels > kMaxCubeLevels)
+        throw InputError("cache levels must be between 1 and " + std::to_string(kMaxCubeLevels) + " (got " +
+                         std::to_string(settings.cubeLevels) + ")");
+    if (!(std::isfinite(settings.levelErrorBound) && settings.levelErrorBound > 0.0f &&
+          settings.levelErrorBound <= 1000.0f))
+        throw InputError("cache level error bound must be a finite number in (0, 1000] (got " +
+                         formatNumber(settings.levelErrorBound) + ")");
     for (const SceneObject& object : scene.objects) {
         const CacheTechnique technique = techniqueFor(object, settings);
         if (technique == CacheTechnique::Cdct || technique == CacheTechnique::CdctParity)
@@ -92,7 +99,7 @@ void RayCache::validate(const Scene& scene, const RayCacheSettings& settings) {
 }
 
 RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings)
-    : ideal_(settings.ideal), oracle_(settings.invalidationOracle),
+    : ideal_(settings.ideal), oracle_(settings.invalidationOracle), levelErrorBound_(settings.levelErrorBound),
       tracksDependencies_(!scene.animation.empty() || settings.invalidationOracle),
       improvements_(settings.cdctImprovements) {
     validate(scene, settings);
@@ -110,6 +117,10 @@ RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings)
                                    CachingCube(object.origin, resolution, boundingHalfSize(object)),
                                    cdctParametersFor(object, settings)});
         Entry& e = cubes_.back();
+        if (technique == CacheTechnique::Cct && settings.cubeLevels > 1) {
+            e.coarse = CoarseLevels(object.origin, resolution, settings.cubeLevels);
+            multiLevel_ = multiLevel_ || e.coarse.levelCount() > 1;
+        }
         if (tracksDependencies_ && technique == CacheTechnique::Cct) {
             e.blocksPerSide = (resolution + kBlockSize - 1) / kBlockSize;
             e.blocks.resize(6u * static_cast<std::size_t>(e.blocksPerSide) * static_cast<std::size_t>(e.blocksPerSide));
@@ -129,7 +140,7 @@ RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings)
 
 std::size_t RayCache::bytes() const {
     std::size_t total = dependencyBytes();
-    for (const Entry& e : cubes_) total += e.cube.bytes();
+    for (const Entry& e : cubes_) total += e.cube.bytes() + e.coarse.bytes();
     return total;
 }
 
@@ -142,6 +153,7 @@ std::size_t RayCache::dependencyBytes() const {
 
 void RayCache::clearEntry(Entry& e) {
     e.cube.clear();
+    e.coarse.clear();
     e.prefilled = false;
     e.farthestSurface = 0.0f;
     e.pyramid.reset();
@@ -166,9 +178,11 @@ std::int64_t RayCache::dropBlock(Entry& e, int block) {
     const int y0 = (block % perFace) / e.blocksPerSide * kBlockSize;
     const int x0 = block % e.blocksPerSide * kBlockSize;
     std::int64_t dropped = 0;
-    for (int y = y0; y < std::min(y0 + kBlockSize, n); ++y)
-        for (int x = x0; x < std::min(x0 + kBlockSize, n); ++x)
-            dropped += dropTexel(e, (face * n + y) * n + x) ? 1 : 0;
+    const int y1 = std::min(y0 + kBlockSize, n), x1 = std::min(x0 + kBlockSize, n);
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) dropped += dropTexel(e, (face * n + y) * n + x) ? 1 : 0;
+    // A coarser texel over the block may hold a store of one of its texels.
+    dropped += e.coarse.dropOver(face, x0, y0, x1, y1);
     e.blocks[static_cast<std::size_t>(block)] = RayTreeBounds{};
     return dropped;
 }
@@ -177,11 +191,13 @@ std::int64_t RayCache::sceneChanged(const Scene& posed, const SceneChanges& chan
                                    const PartitionRunner& runPartitions) {
     if (changes.empty()) return 0;
     for (Entry& e : cubes_)
-        if (std::binary_search(changes.objects.begin(), changes.objects.end(), e.objectId))
+        if (std::binary_search(changes.objects.begin(), changes.objects.end(), e.objectId)) {
             e.cube.moveTo(posed.objects[static_cast<std::size_t>(e.objectId)].origin);
+            e.coarse.moveTo(posed.objects[static_cast<std::size_t>(e.objectId)].origin);
+        }
     std::int64_t dropped = 0;
     if (!tracksDependencies_) {
-        for (const Entry& e : cubes_) dropped += static_cast<std::int64_t>(e.cube.validCount());
+        for (const Entry& e : cubes_) dropped += static_cast<std::int64_t>(e.cube.validCount() + e.coarse.validCount());
         clear();
         return dropped;
     }
@@ -271,6 +287,7 @@ void RayCache::beginFrame(std::span<CacheWorker> workers) {
     for (CacheWorker& w : workers) {
         w.pending_.clear();
         w.pendingTrees_.clear();
+        w.pendingSeen_.clear();
         w.batches_.clear();
         w.counters_.assign(cubes_.size(), CacheWorker::Counters{});
     }
@@ -313,12 +330,17 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
                 const auto& p = pending[i];
                 if (p.cube % parts != part) continue;
                 Entry& e = cubes_[p.cube];
-                if (!e.cube.writeIfInvalid(p.texel, p.packed, p.depth)) continue;
-                ++stats.objects[p.cube].stores;
+                const bool finest = e.cube.writeIfInvalid(p.texel, p.packed, p.depth);
+                const bool coarser =
+                    e.coarse.levelCount() > 1 && e.coarse.writeOver(p.texel, p.packed, workers[b.worker].pendingSeen_[i]) > 0;
+                if (!finest && !coarser) continue;
+                if (finest) ++stats.objects[p.cube].stores;
                 if (tracksDependencies_) {
+                    // The block covers the coarser texels written too (their
+                    // answers take its bounds, see addAnswerDependencies).
                     const RayTreeRecord& tree = workers[b.worker].pendingTrees_[i];
                     if (!e.blocks.empty()) e.blocks[static_cast<std::size_t>(blockOf(e, p.texel))].add(tree.bounds);
-                    if (oracle_) e.storedTrees[static_cast<std::size_t>(p.texel)] = tree;
+                    if (oracle_ && finest) e.storedTrees[static_cast<std::size_t>(p.texel)] = tree;
                 }
                 if (p.depth < e.cdct.maxDepth) e.farthestSurface = std::max(e.farthestSurface, p.depth);
             }
@@ -340,8 +362,9 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
         s.objectId = cubes_[c].objectId;
         s.name = cubes_[c].name;
         s.resolution = cubes_[c].cube.size();
-        // With the dependency records of an animated scene's cube.
-        s.bytes = cubes_[c].cube.bytes() + cubes_[c].blocks.size() * sizeof(RayTreeBounds);
+        s.levels = cubes_[c].coarse.levelCount();
+        // All levels, with the dependency records of an animated scene's cube.
+        s.bytes = cubes_[c].cube.bytes() + cubes_[c].coarse.bytes() + cubes_[c].blocks.size() * sizeof(RayTreeBounds);
         s.invalidPercentBefore = cubes_[c].invalidPercentBefore;
         s.prefilledTexels = cubes_[c].prefilledTexels;
         cubes_[c].prefilledTexels = 0;
@@ -350,11 +373,13 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
             s.hits += w.counters_[c].hits;
             s.misses += w.counters_[c].misses;
             s.rejected += w.counters_[c].rejected;
+            for (std::size_t k = 0; k < s.hitsByLevel.size(); ++k) s.hitsByLevel[k] += w.counters_[c].levelHits[k];
         }
     }
     for (CacheWorker& w : workers) {
         w.pending_.clear();
         w.pendingTrees_.clear();
+        w.pendingSeen_.clear();
         w.batches_.clear();
     }
     return stats;
@@ -429,6 +454,7 @@ std::optional<Rgb> RayCache::lookup(int objectId, const Vec3& origin, const Vec3
     }
     if (auto color = answer(cubes_[c], origin, direction, counters)) {
         ++counters.hits;
+        ++counters.levelHits[0];
         return color;
     }
     ++counters.misses;
@@ -449,8 +475,18 @@ void RayCache::store(int objectId, const Vec3& origin, const Vec3& direction, co
             worker.pendingTrees_.push_back(unknown);
         }
     };
+    // What the ray saw, for the coarser levels' error check.
+    SeenPoint seen;
+    if (cubes_[c].coarse.levelCount() > 1) {
+        const Vec3 d = normalize(direction);
+        seen = std::isfinite(hitDistance) ? SeenPoint{origin + d * hitDistance, 1.0f} : SeenPoint{d, 0.0f};
+    }
+    const auto queueSeen = [&] {
+        if (multiLevel_) worker.pendingSeen_.push_back(seen);
+    };
     if (knownTexel >= 0) {
         worker.queue({static_cast<std::uint32_t>(c), knownTexel, CachingCube::encodeTexel(color), CachingCube::kInvalidDepth});
+        queueSeen();
         queueTree();
         return;
     }
@@ -479,7 +515,23 @@ void RayCache::store(int objectId, const Vec3& origin, const Vec3& direction, co
     // Lookups read the frame-start state, so only texels invalid then are worth queuing.
     if (cube.isValid(texel)) return;
     worker.queue({static_cast<std::uint32_t>(c), texel, CachingCube::encodeTexel(color), depth});
+    queueSeen();
     queueTree();
+}
+
+int RayCache::cctAnswerLevel(const Entry& e, int texel, const Query& q, CacheWorker::Counters& counters) const {
+    if (e.cube.isValid(texel)) return 0;
+    const int coarsest = CoarseLevels::coarsestAllowed(q.spread, levelErrorBound_, e.cube.size(), e.coarse.levelCount());
+    bool rejected = false;
+    for (int level = 1; level <= coarsest; ++level) {
+        const int t = e.coarse.texelOver(texel, level);
+        if (!e.coarse.level(level).isValid(t)) continue;
+        if (CoarseLevels::seesWithin(e.coarse.seen(level, t), q.origin, q.direction, levelErrorBound_ * q.spread))
+            return level;
+        rejected = true;
+    }
+    if (rejected) ++counters.rejected;
+    return -1;
 }
 
 void RayCache::lookupBatch(std::span<const Query> queries, std::span<Rgb> colors, std::span<unsigned char> found,
@@ -517,12 +569,16 @@ void RayCache::lookupBatch(std::span<const Query> queries, std::span<Rgb> colors
             const auto c = static_cast<std::size_t>(cubeIndexOf(q.objectId));
             CacheWorker::Counters& counters = worker.counters_[c];
             ++counters.lookups;
-            const CachingCube& cube = cubes_[c].cube;
-            if (cube.isValid(texel[k]) && !oracle_) {
+            const Entry& e = cubes_[c];
+            const int level = oracle_ ? -1 : cctAnswerLevel(e, texel[k], q, counters);
+            if (level >= 0) {
                 ++counters.hits;
-                colors[i] = cube.readValid(texel[k]);
+                ++counters.levelHits[static_cast<std::size_t>(level)];
+                colors[i] = level == 0 ? e.cube.readValid(texel[k])
+                                       : e.coarse.level(level).readValid(e.coarse.texelOver(texel[k], level));
                 found[i] = 1;
-                if (!answerTexels.empty()) answerTexels[i] = texel[k];
+                // A coarser texel up to a block wide lies within the finest texel's block.
+                if (!answerTexels.empty()) answerTexels[i] = (1 << level) <= kBlockSize ? texel[k] : -1;
             } else {
                 ++counters.misses;
                 found[i] = ideal_ ? 1 : 0;

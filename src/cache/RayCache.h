@@ -30,6 +30,7 @@
 #include "cache/CacheWorker.h"
 #include "cache/CdctSearch.h"
 #include "cache/CachingCube.h"
+#include "cache/CoarseLevels.h"
 #include "cache/RayTreeRecord.h"
 #include "core/Box3.h"
 #include "scene/ObjectBounds.h"
@@ -51,6 +52,16 @@ struct RayCacheSettings {
     // Which of the improved CDCT's changes are on (benchmark switches: each
     // is measured on its own in docs/performance.md).
     CdctImprovements cdctImprovements;
+    // Resolution levels of every CCT cube, the finest included (1..8; 1: a
+    // single resolution). Coarser levels fill from the same stores and answer
+    // lookups whose pixel footprint is wide enough (cache/CoarseLevels.h,
+    // docs/caching.md "Multi-resolution cubes").
+    int cubeLevels = 1;
+    // A coarser level answers a lookup when its texels span at most this many
+    // times the angle between neighbouring pixels' rays leaving the object
+    // (Query::spread), and the point its stored ray saw lies within that
+    // angle of the looked-up ray. Larger: more answers, further off. In (0, 1000].
+    float levelErrorBound = 0.25f;
     // Benchmark switch: a miss returns black instead of being traced, giving
     // the cost of a frame in which caching objects trace no secondary rays.
     bool ideal = false;
@@ -99,6 +110,10 @@ public:
     bool cachesObject(int objectId) const { return cubeIndexOf(objectId) >= 0; }
     // The object's cube; the object must be cached.
     const CachingCube& cube(int objectId) const { return cubes_[static_cast<std::size_t>(cubeIndexOf(objectId))].cube; }
+    // The coarser levels of the object's cube (none unless a CCT cube with cubeLevels > 1).
+    const CoarseLevels& coarseLevels(int objectId) const {
+        return cubes_[static_cast<std::size_t>(cubeIndexOf(objectId))].coarse;
+    }
     std::size_t bytes() const;
     // Invalidates every texel of every cube.
     void clear();
@@ -158,17 +173,23 @@ public:
         int objectId;
         Vec3 origin;
         Vec3 direction;
+        // The spread of the ray's cone (radians): the angle between it and
+        // the rays of neighbouring pixels. 0: only the finest level answers.
+        float spread = 0.0f;
     };
     // lookup() for a batch: found[i] = 1 and colors[i] set when queries[i]
     // is answered, found[i] = 0 otherwise. The same answers and counters as
-    // one lookup() per query, but CCT's validity bits and texels are
+    // one lookup() per query, except that a CCT cube with coarser levels
+    // answers from the finest valid level its query's spread allows
+    // (CoarseLevels::coarsestAllowed). CCT's validity bits and texels are
     // prefetched for many queries before any is read, so their memory
     // latencies overlap instead of adding up.
     // For an unanswered CCT query, storeTexels[i] is the texel its store
     // will fill (invalid when the frame began), -1 otherwise; handing it to
     // store() spares addressing the texel twice.
-    // `answerTexels` (optional): for an answered query, the CCT texel that
-    // answered it, -1 otherwise (see addAnswerDependencies).
+    // `answerTexels` (optional): for an answered query, the finest CCT texel
+    // whose dependency block covers the texel that answered it, -1 otherwise
+    // (also for a coarse texel wider than a block; see addAnswerDependencies).
     void lookupBatch(std::span<const Query> queries, std::span<Rgb> colors, std::span<unsigned char> found,
                      std::span<int> storeTexels, CacheWorker& worker, std::span<int> answerTexels = {}) const;
     // Improved CDCT (technique Cdct with prefill on): the objects whose cubes
@@ -208,6 +229,7 @@ private:
         CacheTechnique technique;
         CachingCube cube;
         CdctParameters cdct;  // used by CDCT cubes (cube.hasDepth())
+        CoarseLevels coarse;  // CCT cubes with cubeLevels > 1
         double invalidPercentBefore = 100.0;
         std::uint64_t prefilledTexels = 0;  // written by completePrefill since the last endFrame
         bool prefilled = false;
@@ -236,6 +258,12 @@ private:
     bool fillsByPrefill(const Entry& e) const {
         return e.technique == CacheTechnique::Cdct && improvements_.prefill;
     }
+    // The finest level of CCT cube `e` whose texel over finest texel `texel`
+    // may answer `q`: valid, and at a coarser level no wider than q's
+    // footprint allows and seeing its point within that footprint
+    // (CoarseLevels); -1 if none (counted as rejected when a valid coarse
+    // texel failed the point test).
+    int cctAnswerLevel(const Entry& e, int texel, const Query& q, CacheWorker::Counters& counters) const;
     std::optional<Rgb> answer(const Entry& entry, const Vec3& origin, const Vec3& direction,
                               CacheWorker::Counters& counters) const;
 
@@ -257,6 +285,8 @@ private:
     std::vector<CacheWorker> workerPool_;  // object id -> index into cubes_, -1 if uncached
     bool ideal_ = false;
     bool oracle_ = false;
+    float levelErrorBound_ = 0.25f;
+    bool multiLevel_ = false;  // some cube has coarser levels: stores carry what their ray saw
     bool tracksDependencies_ = false;
     CdctImprovements improvements_;
     // tracksDependencies_: every object's world boxes in the pose the texels

@@ -16,6 +16,7 @@ CameraRays::CameraRays(const Camera& camera, int width, int height)
     const Vec3 up = cross(right, forward_);
     right_ = right * (tanHalf * aspect);
     up_ = up * tanHalf;
+    pixelSpread_ = tanHalf;
 }
 
 }  // namespace raycache

@@ -22,7 +22,12 @@ public:
         return Ray{origin_, normalize(forward_ + right_ * sx + up_ * sy)};
     }
 
+    // The angle between the rays of neighbouring pixels at the image's
+    // centre (radians): where a pixel's cone starts (render/RayCone.h).
+    float pixelSpread() const { return 2.0f * pixelSpread_ * invHeight_; }
+
 private:
+    float pixelSpread_ = 0.0f;  // tan(fov / 2)
     Vec3 origin_, forward_, right_, up_;  // right_/up_ scaled to the image plane at distance 1
     float invWidth_, invHeight_;
 };

@@ -60,9 +60,10 @@ void TileKernel::renderCameraTile(const CameraRays& cameraRays, const TileRange&
             for (int x = tile.x0; x < tile.x1; ++x) s.rays[i++] = cameraRays.ray(x, y);
         tracer_.intersectPrimary(std::span(s.rays.data(), n), std::span(s.hits.data(), n));
         s.counts.primary += n;
+        const RayCone pixel{0.0f, cameraRays.pixelSpread()};
         for (i = 0; i < n; ++i) {
             if (s.hits[i].hit())
-                s.vertices.push_back({s.rays[i], s.hits[i], static_cast<int>(i), 1.0f, 1});
+                s.vertices.push_back({s.rays[i], s.hits[i], static_cast<int>(i), 1.0f, 1, pixel});
             else
                 s.nodes[i].direct = shading_.background(s.rays[i]);
         }
@@ -83,6 +84,7 @@ void TileKernel::renderGBufferTile(const CameraRays& cameraRays, const GBufferVi
     s.beginTile(n);
     {
         StageTimer timer(settings_.stageTimes, s.stages.firstHits);
+        const RayCone pixel{0.0f, cameraRays.pixelSpread()};
         std::size_t k = 0;
         for (int y = tile.y0; y < tile.y1; ++y)
             for (int x = tile.x0; x < tile.x1; ++x, ++k) {
@@ -95,8 +97,9 @@ void TileKernel::renderGBufferTile(const CameraRays& cameraRays, const GBufferVi
                 TraceHit hit;
                 hit.objectId = gbuffer.objectId(i);
                 hit.primitiveId = gbuffer.primitiveId(i);
-                s.vertices.push_back({ray, hit, static_cast<int>(k), 1.0f, 1});
                 s.surfaces.push_back(surfacePointFromGBuffer(scene_, gbuffer, i, ray.direction));
+                hit.t = length(s.surfaces.back().position - ray.origin);
+                s.vertices.push_back({ray, hit, static_cast<int>(k), 1.0f, 1, pixel});
                 s.albedo.push_back(gbuffer.albedoAt(i));
             }
     }
@@ -164,10 +167,11 @@ void TileKernel::renderCameraPixels(const CameraRays& cameraRays, std::span<cons
         for (std::size_t i = 0; i < n; ++i) s.rays[i] = cameraRays.ray(pixels[i].x, pixels[i].y);
         tracer_.intersectPrimary(std::span(s.rays.data(), n), std::span(s.hits.data(), n));
         s.counts.primary += n;
+        const RayCone pixel{0.0f, cameraRays.pixelSpread()};
         for (std::size_t i = 0; i < n; ++i) {
             out[i].hit = s.hits[i];
             if (s.hits[i].hit())
-                s.vertices.push_back({s.rays[i], s.hits[i], static_cast<int>(i), 1.0f, 1});
+                s.vertices.push_back({s.rays[i], s.hits[i], static_cast<int>(i), 1.0f, 1, pixel});
             else
                 s.nodes[i].direct = shading_.background(s.rays[i]);
         }
@@ -323,8 +327,8 @@ void TileKernel::spawnSecondaryRays(TileScratch& s, bool useCache) const {
     s.pending.clear();
     // Every secondary ray gets a node of its own, whether a cache answers it
     // or not, so caching never changes how the colours are summed.
-    const auto emit = [&](const TileScratch::PathVertex& v, const Ray& ray, TileScratch::Kind kind, float share,
-                          bool leavesObject) {
+    const auto emit = [&](const TileScratch::PathVertex& v, const Ray& ray, const RayCone& cone,
+                          TileScratch::Kind kind, float share, bool leavesObject) {
         const int node = static_cast<int>(s.nodes.size());
         const bool parentTracked = s.nodes[static_cast<std::size_t>(v.node)].tracked;
         TileScratch::Node& added = s.nodes.emplace_back();
@@ -332,10 +336,10 @@ void TileKernel::spawnSecondaryRays(TileScratch& s, bool useCache) const {
         added.weightInParent = share;
         const float pathWeight = v.pathWeight * share;
         if (leavesObject && useCache && cache_->cachesObject(v.hit.objectId)) {
-            s.leaving.push_back({ray, v.hit.objectId, node, pathWeight, v.depth + 1, kind});
+            s.leaving.push_back({ray, v.hit.objectId, node, pathWeight, v.depth + 1, kind, cone});
             added.tracked = s.trackTrees;
         } else {
-            s.pending.push_back({ray, node, pathWeight, v.depth + 1, kind});
+            s.pending.push_back({ray, node, pathWeight, v.depth + 1, kind, cone});
             added.tracked = parentTracked;
         }
     };
@@ -346,6 +350,7 @@ void TileKernel::spawnSecondaryRays(TileScratch& s, bool useCache) const {
         if (!material.reflects() && !material.refracts()) continue;
         const SurfacePoint& sp = s.surfaces[i];
         const float offset = surfaceOffset(sp.position);
+        const RayCone cone = v.cone.bounced(v.hit.t, coneCurvature(scene_.objects[static_cast<std::size_t>(v.hit.objectId)]));
         float reflectWeight = material.reflectivity;
         std::optional<Ray> refracted;
         if (material.refracts()) {
@@ -363,12 +368,12 @@ void TileKernel::spawnSecondaryRays(TileScratch& s, bool useCache) const {
         // first, so the refracted colour is added first, as Whitted's sum has it.
         if (reflectWeight > 0.0f && v.pathWeight * reflectWeight >= settings_.minWeight)
             // Reflection off the outside leaves the object; inside, it stays in.
-            emit(v, Ray{sp.position + sp.geometricNormal * offset, normalize(reflect(v.ray.direction, sp.normal))},
+            emit(v, Ray{sp.position + sp.geometricNormal * offset, normalize(reflect(v.ray.direction, sp.normal))}, cone,
                  TileScratch::Kind::Reflection, reflectWeight, sp.frontFace);
         if (refracted)
             // A refracted ray that exits the object leaves it for the scene;
             // one that enters still has the inside to cross.
-            emit(v, *refracted, TileScratch::Kind::Refraction, material.transmissivity, !sp.frontFace);
+            emit(v, *refracted, cone, TileScratch::Kind::Refraction, material.transmissivity, !sp.frontFace);
     }
     if (s.trackTrees) s.nodeBounds.resize(s.nodes.size());
 }
@@ -383,7 +388,8 @@ void TileKernel::lookupReuse(TileScratch& s, CacheWorker& cache) const {
     s.storeTexels.resize(n);
     s.answerTexels.resize(s.trackTrees ? n : 0);
     for (std::size_t i = 0; i < n; ++i)
-        s.cacheQueries[i] = {s.leaving[i].objectId, s.leaving[i].ray.origin, s.leaving[i].ray.direction};
+        s.cacheQueries[i] = {s.leaving[i].objectId, s.leaving[i].ray.origin, s.leaving[i].ray.direction,
+                             s.leaving[i].cone.spread};
     cache_->lookupBatch(s.cacheQueries, s.cachedColors, s.cacheFound, s.storeTexels, cache, s.answerTexels);
     for (std::size_t i = 0; i < n; ++i) {
         const TileScratch::LeavingRay& l = s.leaving[i];
@@ -403,7 +409,7 @@ void TileKernel::lookupReuse(TileScratch& s, CacheWorker& cache) const {
         node.direction = l.ray.direction;
         node.depth = l.depth;
         node.pathWeight = l.pathWeight;
-        s.pending.push_back({l.ray, l.node, l.pathWeight, l.depth, l.kind});
+        s.pending.push_back({l.ray, l.node, l.pathWeight, l.depth, l.kind, l.cone});
     }
 }
 
@@ -436,7 +442,7 @@ void TileKernel::traceSecondaryRays(TileScratch& s) const {
         if (!hit.hit())
             node.direct = shading_.background(p.ray);
         else
-            s.nextVertices.push_back({p.ray, hit, p.node, p.pathWeight, p.depth});
+            s.nextVertices.push_back({p.ray, hit, p.node, p.pathWeight, p.depth, p.cone});
     }
     std::swap(s.vertices, s.nextVertices);
 }

@@ -31,6 +31,7 @@
 #include "render/FrameStats.h"
 #include "render/GBuffer.h"
 #include "render/LocalShading.h"
+#include "render/RayCone.h"
 #include "render/RenderSettings.h"
 #include "render/SurfacePoint.h"
 #include "trace/TraceScene.h"
@@ -81,6 +82,7 @@ private:
         int node;          // the node of the ray: what it brings back adds up there
         float pathWeight;  // product of kr/kt since the camera, for the minimum-weight rule
         int depth;         // rays on its path so far, the primary ray being 1
+        RayCone cone{};    // the pixel's cone along the ray (zero where no pixel stands behind it)
     };
     struct PendingRay {  // a secondary ray waiting to be traced
         Ray ray;
@@ -88,6 +90,7 @@ private:
         float pathWeight;
         int depth;
         Kind kind;
+        RayCone cone{};
     };
     struct LeavingRay {  // a secondary ray leaving a caching object: the cache is asked first
         Ray ray;
@@ -96,6 +99,7 @@ private:
         float pathWeight;
         int depth;
         Kind kind;
+        RayCone cone{};
     };
     // What one ray brings back: the light at its hit (or the background, or
     // the cache's answer) plus its reflected and refracted rays' colours times

@@ -10,7 +10,7 @@
 namespace raycache {
 
 PathRender renderPath(const std::string& sceneName, CacheTechnique technique, int frames, bool still, int size,
-                      int threads, int cacheResolution, const ProcessGroup* group, TileBalance balance) {
+                      int threads, int cacheResolution, const ProcessGroup* group, TileBalance balance, int cubeLevels) {
     const auto scene = makeBuiltinScene(sceneName);
     EXPECT_TRUE(scene.has_value()) << sceneName;
     if (!scene) return {};
@@ -20,6 +20,7 @@ PathRender renderPath(const std::string& sceneName, CacheTechnique technique, in
     settings.cache.techniqueOverride = technique;
     settings.cache.resolutionOverride = cacheResolution;
     settings.tileBalance = balance;
+    settings.cache.cubeLevels = cubeLevels;
     const TraceScene tracer(*scene);
     const Parallel parallel(threads);
     RayCache cache(*scene, settings.cache);
@@ -36,6 +37,9 @@ PathRender renderPath(const std::string& sceneName, CacheTechnique technique, in
         const CachingCube& cube = cache.cube(static_cast<int>(i));
         run.texels.emplace_back(cube.texels().begin(), cube.texels().end());
         if (cube.hasDepth()) run.texels.emplace_back(cube.depthWords().begin(), cube.depthWords().end());
+        const CoarseLevels& coarse = cache.coarseLevels(static_cast<int>(i));
+        for (int k = 1; k < coarse.levelCount(); ++k)
+            run.texels.emplace_back(coarse.level(k).texels().begin(), coarse.level(k).texels().end());
     }
     return run;
 }

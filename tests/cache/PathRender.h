@@ -16,7 +16,8 @@ namespace raycache {
 struct PathRender {
     std::vector<Image> frames;
     std::vector<FrameStats> stats;
-    // Per caching object: its color words, then (CDCT cubes only) its depth words.
+    // Per caching object: its color words, then (CDCT cubes only) its depth
+    // words, then (multi-resolution CCT cubes) each coarser level's words.
     std::vector<std::vector<std::uint32_t>> texels;
 };
 
@@ -26,6 +27,6 @@ struct PathRender {
 // among them and only process 0's frames are whole.
 PathRender renderPath(const std::string& sceneName, CacheTechnique technique, int frames, bool still, int size,
                       int threads = 2, int cacheResolution = 512, const ProcessGroup* group = nullptr,
-                      TileBalance balance = TileBalance::Dynamic);
+                      TileBalance balance = TileBalance::Dynamic, int cubeLevels = 1);
 
 }  // namespace raycache

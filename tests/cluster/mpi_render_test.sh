@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # MPI cluster mode end to end (docs/cluster.md), on localhost:
-#   mpi_render_test.sh <raycache> <mpiexec> identical <processes> <technique> [<tile-balance>]
+#   mpi_render_test.sh <raycache> <mpiexec> identical <processes> <technique|cct-levels> [<tile-balance>]
 #       the image of `mpiexec -np N raycache render` equals the single-process
 #       one bit for bit (orbit path, 3 frames, so later frames read the caches
 #       the earlier ones filled on every process)
@@ -35,8 +35,12 @@ identical)
   processes=$1
   technique=$2
   balance=${3:-dynamic}
+  # cct-levels: CCT with multi-resolution cubes, whose coarse answers depend on
+  # the exchanged stores' seen points too.
+  technique_args=(--technique "$technique")
+  [ "$technique" = cct-levels ] && technique_args=(--technique cct --cache-levels 4 --cache-level-error 1)
   for scene in room glass; do
-    args=(render --scene "$scene" "${common[@]}" --frames 3 --path orbit --technique "$technique")
+    args=(render --scene "$scene" "${common[@]}" --frames 3 --path orbit "${technique_args[@]}")
     "$raycache" "${args[@]}" --threads 2 --out "$scratch/one-$scene.exr" >"$scratch/one.log" 2>&1 ||
       { cat "$scratch/one.log"; fail "single-process render of $scene"; }
     "${mpi[@]}" -np "$processes" "$raycache" "${args[@]}" --threads 1 --tile-balance "$balance" \
