@@ -134,6 +134,51 @@ TEST(AnimatedSession, InvalidatedTexelsAreCountedAndCubesFollowTheirObjects) {
     }
 }
 
+// Multi-resolution cubes (cache/CoarseLevels.h): a coarse texel may hold the
+// store of any finest texel under it, so every coarse texel over a dropped
+// finest texel must go too. The camera orbits so that coarse texels answer.
+TEST(AnimatedSession, CoarseLevelsOverDroppedTexelsAreDroppedToo) {
+    for (const char* name : {"room-moving", "light-sweep"}) {
+        const Scene scene = *makeBuiltinScene(name);
+        RenderSettings settings = smallSettings(CacheTechnique::Cct);
+        settings.cache.cubeLevels = 4;
+        settings.cache.levelErrorBound = 1.0f;
+        settings.cache.resolutionOverride = 64;
+        RenderSession session(scene, settings);
+        CameraPath orbit;
+        orbit.kind = CameraPathKind::Orbit;
+        orbit.center = scene.camera.lookAt;
+        orbit.degreesPerFrame = 2.0f;
+        Image film;
+        std::uint64_t coarseHits = 0;
+        std::int64_t checked = 0;
+        for (int frame = 0; frame < 6; ++frame) {
+            const SceneUpdateStats update = session.setTime(static_cast<float>(frame) / scene.fps);
+            if (frame > 0) {
+                EXPECT_GT(update.texelsInvalidated, 0) << name << " frame " << frame;
+            }
+            for (int object = 0; object < static_cast<int>(scene.objects.size()); ++object) {
+                if (!session.cache().cachesObject(object)) continue;
+                const auto bits = session.cache().droppedByLastChange(object);
+                const CoarseLevels& levels = session.cache().coarseLevels(object);
+                ASSERT_EQ(levels.levelCount(), 4);
+                for (std::size_t t = 0; t < bits.size() * 64 && t < session.cache().cube(object).texelCount(); ++t) {
+                    if (!((bits[t >> 6] >> (t & 63)) & 1u)) continue;
+                    for (int k = 1; k < levels.levelCount(); ++k) {
+                        ++checked;
+                        EXPECT_FALSE(levels.level(k).isValid(levels.texelOver(static_cast<int>(t), k)))
+                            << name << " frame " << frame << " texel " << t << " level " << k;
+                    }
+                }
+            }
+            const FrameStats stats = session.render(orbit.cameraAt(scene.camera, frame), film);
+            for (int k = 1; k < stats.cache->levels(); ++k) coarseHits += stats.cache->hitsAtLevel(k);
+        }
+        EXPECT_GT(checked, 0) << name;
+        EXPECT_GT(coarseHits, 0u) << name;
+    }
+}
+
 TEST(AnimatedSession, StillSceneIgnoresTime) {
     const Scene scene = *makeBuiltinScene("grid-4");
     RenderSession session(scene, smallSettings(CacheTechnique::Cct));
