@@ -27,13 +27,7 @@ int CoarseLevels::coarsestAllowed(float spread, float errorBound, int finestSize
 }
 
 bool CoarseLevels::seesWithin(const SeenPoint& seen, const Vec3& origin, const Vec3& direction, float maxAngle) {
-    // The stored ray's point as seen from this ray's origin (its direction
-    // alone when it met nothing: a point at infinity looks the same from anywhere).
-    const Vec3 toSeen = seen.w != 0.0f ? seen.v - origin : seen.v;
-    const float along = dot(toSeen, direction);
-    if (!(along > 0.0f)) return false;
-    // tan(angle) = |toSeen x direction| / along.
-    return length(cross(toSeen, direction)) <= std::tan(std::min(maxAngle, 1.5f)) * along;
+    return seesWithinTangent(seen, origin, direction, std::tan(std::clamp(maxAngle, 0.0f, 1.5f)));
 }
 
 int CoarseLevels::texelOver(int finestTexel, int level) const {
@@ -44,9 +38,11 @@ int CoarseLevels::texelOver(int finestTexel, int level) const {
 }
 
 int CoarseLevels::writeOver(int finestTexel, std::uint32_t packed, const SeenPoint& seen) {
+    const int n = finestSize_;
+    const int face = finestTexel / (n * n), y = (finestTexel / n) % n, x = finestTexel % n;
     int written = 0;
     for (int k = 1; k < levelCount(); ++k) {
-        const int t = texelOver(finestTexel, k);
+        const int t = texelOver(face, x, y, k);
         if (!levels_[static_cast<std::size_t>(k - 1)].writeIfInvalid(t, packed)) continue;
         seen_[static_cast<std::size_t>(k - 1)][static_cast<std::size_t>(t)] = seen;
         ++written;

@@ -50,6 +50,18 @@ public:
     // Whether a ray from `origin` along unit `direction` sees `seen` within
     // `maxAngle` radians (taken as at most 1.5) of its direction.
     static bool seesWithin(const SeenPoint& seen, const Vec3& origin, const Vec3& direction, float maxAngle);
+    // The same test with the angle given by its tangent (>= 0), for callers
+    // testing one ray against several levels.
+    static bool seesWithinTangent(const SeenPoint& seen, const Vec3& origin, const Vec3& direction, float tangent) {
+        // The stored ray's point as seen from this ray's origin (its direction
+        // alone when it met nothing: a point at infinity looks the same from anywhere).
+        const Vec3 toSeen = seen.w != 0.0f ? seen.v - origin : seen.v;
+        const float along = dot(toSeen, direction);
+        if (!(along > 0.0f)) return false;
+        // tan(angle) = |toSeen x direction| / along.
+        const Vec3 aside = cross(toSeen, direction);
+        return dot(aside, aside) <= tangent * tangent * along * along;
+    }
 
     // Levels in all, the finest included (1: none coarser).
     int levelCount() const { return static_cast<int>(levels_.size()) + 1; }
@@ -61,6 +73,11 @@ public:
     }
     // The texel of level `level` over finest texel `finestTexel`.
     int texelOver(int finestTexel, int level) const;
+    // The same for the finest texel (face, x, y), without divisions.
+    int texelOver(int face, int x, int y, int level) const {
+        const int size = levels_[static_cast<std::size_t>(level - 1)].size();
+        return (face * size + (y >> level)) * size + (x >> level);
+    }
     // Fills every coarser texel over `finestTexel` that is still invalid with
     // `packed` and `seen`; returns how many it wrote.
     int writeOver(int finestTexel, std::uint32_t packed, const SeenPoint& seen);

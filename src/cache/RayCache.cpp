@@ -521,13 +521,16 @@ void RayCache::store(int objectId, const Vec3& origin, const Vec3& direction, co
 
 int RayCache::cctAnswerLevel(const Entry& e, int texel, const Query& q, CacheWorker::Counters& counters) const {
     if (e.cube.isValid(texel)) return 0;
-    const int coarsest = CoarseLevels::coarsestAllowed(q.spread, levelErrorBound_, e.cube.size(), e.coarse.levelCount());
+    const int n = e.cube.size();
+    const int coarsest = CoarseLevels::coarsestAllowed(q.spread, levelErrorBound_, n, e.coarse.levelCount());
+    if (coarsest == 0) return -1;
+    const int face = texel / (n * n), y = (texel / n) % n, x = texel % n;
+    const float tangent = std::tan(std::clamp(levelErrorBound_ * q.spread, 0.0f, 1.5f));
     bool rejected = false;
     for (int level = 1; level <= coarsest; ++level) {
-        const int t = e.coarse.texelOver(texel, level);
+        const int t = e.coarse.texelOver(face, x, y, level);
         if (!e.coarse.level(level).isValid(t)) continue;
-        if (CoarseLevels::seesWithin(e.coarse.seen(level, t), q.origin, q.direction, levelErrorBound_ * q.spread))
-            return level;
+        if (CoarseLevels::seesWithinTangent(e.coarse.seen(level, t), q.origin, q.direction, tangent)) return level;
         rejected = true;
     }
     if (rejected) ++counters.rejected;
