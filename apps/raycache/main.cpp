@@ -56,6 +56,10 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
                        "Multi-resolution cubes: a coarser texel may span this many times the angle between "
                        "neighbouring pixels' reflected rays, (0, 1000]")
         ->capture_default_str();
+    command.add_option("--cache-budget", job.cacheBudgetMiB,
+                       "Most memory the caching cubes may take, MiB: over it, cube resolutions are lowered "
+                       "(smallest objects' first) and a note says so; a scene that cannot fit even at 16² faces "
+                       "is refused (default: the scene file's cacheBudget, else half the machine's memory)");
     command.add_flag("--cache-ideal", job.cacheIdeal,
                      "Benchmark switch: cache misses return black instead of being traced");
     command.add_flag("--stage-times", job.stageTimes,

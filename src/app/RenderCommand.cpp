@@ -121,6 +121,7 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out, co
                             : std::string("tiles of every frame shared (") + tileBalanceName(settings.tileBalance) +
                                   " balance), cache stores exchanged")
             << "\n";
+    if (!job.cacheBudgetNote.empty()) out << "note: " << job.cacheBudgetNote << "\n";
     if (settings.threads > Parallel::hardwareThreads())
         out << "note: --threads " << settings.threads << " is more than the " << Parallel::hardwareThreads()
             << " hardware threads; using " << Parallel::hardwareThreads() << "\n";

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/Errors.h"
+#include "core/SystemMemory.h"
 #include "scene/SceneLoader.h"
 
 namespace raycache {
@@ -76,6 +77,8 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
                          std::to_string(o.cacheLevels) + ")");
     if (!(std::isfinite(o.cacheLevelError) && o.cacheLevelError > 0.0f && o.cacheLevelError <= 1000.0f))
         throw InputError("--cache-level-error must be a finite number in (0, 1000]");
+    if (o.cacheBudgetMiB && !(std::isfinite(*o.cacheBudgetMiB) && *o.cacheBudgetMiB > 0.0 && *o.cacheBudgetMiB <= 1e9))
+        throw InputError("--cache-budget must be a finite number of MiB in (0, 1e9]");
     if (o.accel && !parseAccelerator(*o.accel))
         throw InputError("--accel must be embree or grids (got '" + *o.accel + "')");
     if (o.pipeline && !parsePipelineKind(*o.pipeline))
@@ -129,7 +132,12 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     settings.gbuffer = options.gbuffer == "gl"        ? GBufferSource::OpenGl
                        : options.gbuffer == "packets" ? GBufferSource::Packets
                                                       : GBufferSource::Auto;
+    // The cubes' budget: the option, else the scene file's, else half the machine's memory.
+    const double budgetMiB = options.cacheBudgetMiB.value_or(
+        fromScene.cacheBudgetMiB.value_or(static_cast<double>(physicalMemoryBytes()) / 2.0 / (1024.0 * 1024.0)));
+    if (budgetMiB > 0.0) settings.cache.memoryBudget = static_cast<std::size_t>(budgetMiB * 1024.0 * 1024.0);
     RayCache::validate(job.scene, settings.cache);
+    job.cacheBudgetNote = RayCache::planBudget(job.scene, settings.cache).note;
     return job;
 }
 

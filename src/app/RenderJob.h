@@ -32,6 +32,7 @@ struct RenderJobOptions {
     std::optional<int> cacheResolution;    // default: each material's own setting
     int cacheLevels = 1;                   // CCT cubes' resolution levels (RayCacheSettings::cubeLevels)
     float cacheLevelError = 0.25f;         // RayCacheSettings::levelErrorBound
+    std::optional<double> cacheBudgetMiB;  // cubes' memory budget; default: the scene file's, else half the machine's memory
     bool cacheIdeal = false;               // benchmark switch, see RayCacheSettings::ideal
     bool stageTimes = false;               // time the tile kernel's stages (RenderSettings::stageTimes)
     std::optional<std::string> pipeline;   // ray | hybrid | render-cache; default: the scene file's, else ray
@@ -48,6 +49,7 @@ struct RenderJob {
     FrameTimeline timeline;  // the moment of the animation each frame shows
     RenderSettings settings;
     int frames = 1;
+    std::string cacheBudgetNote;  // what the cubes' memory budget lowered (RayCache::budgetNote), or empty
 };
 
 // The technique a --technique name stands for (none, cct, cdct,

@@ -96,6 +96,20 @@ void RayCache::validate(const Scene& scene, const RayCacheSettings& settings) {
         if (technique != CacheTechnique::None && (resolution < kMinResolution || resolution > kMaxResolution))
             throw InputError("object '" + object.name + "': cache resolution must be between 16 and 2048");
     }
+    planBudget(scene, settings);
+}
+
+CubeBudgetPlan RayCache::planBudget(const Scene& scene, const RayCacheSettings& settings) {
+    std::vector<CubeRequest> requests;
+    for (const SceneObject& object : scene.objects) {
+        const CacheTechnique technique = techniqueFor(object, settings);
+        if (technique == CacheTechnique::None) continue;
+        requests.push_back({object.name, technique != CacheTechnique::Cct,
+                            settings.resolutionOverride.value_or(object.material.cache.faceResolution),
+                            std::max(length(boundingHalfSize(object)), 1e-6f)});
+    }
+    const bool tracks = !scene.animation.empty() || settings.invalidationOracle;
+    return planCubeBudget(requests, settings.memoryBudget, settings.cubeLevels, tracks, kMinBudgetResolution);
 }
 
 RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings)
@@ -103,12 +117,14 @@ RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings)
       tracksDependencies_(!scene.animation.empty() || settings.invalidationOracle),
       improvements_(settings.cdctImprovements) {
     validate(scene, settings);
+    const CubeBudgetPlan plan = planBudget(scene, settings);
+    budgetNote_ = plan.note;
     cubeOfObject_.assign(scene.objects.size(), -1);
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
         const SceneObject& object = scene.objects[i];
         const CacheTechnique technique = techniqueFor(object, settings);
         if (technique == CacheTechnique::None) continue;
-        const int resolution = settings.resolutionOverride.value_or(object.material.cache.faceResolution);
+        const int resolution = plan.resolutions[cubes_.size()];
         cubeOfObject_[i] = static_cast<int>(cubes_.size());
         if (technique == CacheTechnique::Cct)
             cubes_.push_back(Entry{static_cast<int>(i), object.name, technique, CachingCube(object.origin, resolution)});

@@ -31,6 +31,7 @@
 #include "cache/CdctSearch.h"
 #include "cache/CachingCube.h"
 #include "cache/CoarseLevels.h"
+#include "cache/CubeBudget.h"
 #include "cache/RayTreeRecord.h"
 #include "core/Box3.h"
 #include "scene/ObjectBounds.h"
@@ -62,6 +63,9 @@ struct RayCacheSettings {
     // (Query::spread), and the point its stored ray saw lies within that
     // angle of the looked-up ray. Larger: more answers, further off. In (0, 1000].
     float levelErrorBound = 0.25f;
+    // The most memory the cubes may take (bytes; cache/CubeBudget.h): over
+    // it, resolutions are lowered before anything is allocated. None: no limit.
+    std::optional<std::size_t> memoryBudget;
     // Benchmark switch: a miss returns black instead of being traced, giving
     // the cost of a frame in which caching objects trace no secondary rays.
     bool ideal = false;
@@ -78,6 +82,9 @@ public:
     using PartitionRunner = std::function<void(int count, const std::function<void(int part)>& body)>;
     static constexpr int kMinResolution = 16;
     static constexpr int kMaxResolution = 2048;
+    // The memory budget may lower a cube below kMinResolution, down to this
+    // (a scene of 100 000 caching spheres fits 256 MiB only so).
+    static constexpr int kMinBudgetResolution = 4;
     // CDCT: the linear search takes at most ceil(2 * maxDepth / step) steps;
     // parameters asking for more than this are rejected.
     static constexpr double kMaxCdctLinearSteps = 1e6;
@@ -104,6 +111,12 @@ public:
     // Throws the InputError the constructor would throw, without allocating
     // any cube: lets callers reject bad settings before doing any work.
     static void validate(const Scene& scene, const RayCacheSettings& settings);
+    // Every cube's resolution under settings.memoryBudget, in object order
+    // of the cached objects (what the constructor allocates). Throws
+    // InputError when the cubes cannot fit even at kMinResolution.
+    static CubeBudgetPlan planBudget(const Scene& scene, const RayCacheSettings& settings);
+    // What the budget lowered, one line; empty when nothing was.
+    const std::string& budgetNote() const { return budgetNote_; }
 
     bool empty() const { return cubes_.empty(); }
     std::size_t cubeCount() const { return cubes_.size(); }
@@ -286,7 +299,8 @@ private:
     bool ideal_ = false;
     bool oracle_ = false;
     float levelErrorBound_ = 0.25f;
-    bool multiLevel_ = false;  // some cube has coarser levels: stores carry what their ray saw
+    bool multiLevel_ = false;
+    std::string budgetNote_;  // some cube has coarser levels: stores carry what their ray saw
     bool tracksDependencies_ = false;
     CdctImprovements improvements_;
     // tracksDependencies_: every object's world boxes in the pose the texels

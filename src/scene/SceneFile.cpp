@@ -230,7 +230,7 @@ public:
     Scene read(const json& root, const std::string& defaultName) {
         const Node r{&root, ""};
         expectObject(r, {"name", "camera", "path", "frames", "fps", "environment", "lights", "materials", "objects",
-                         "pipeline", "accel", "renderCache"});
+                         "pipeline", "accel", "renderCache", "cacheBudget"});
         Scene scene;
         scene.name = defaultName;
         if (const Node n = child(r, "name")) scene.name = nonEmptyString(n);
@@ -246,6 +246,7 @@ public:
         if (const Node n = child(r, "pipeline"))
             scene.render.pipeline = oneOf(n, {"ray", "hybrid", "render-cache"});
         if (const Node n = child(r, "accel")) scene.render.accel = oneOf(n, {"embree", "grids"});
+        if (const Node n = child(r, "cacheBudget")) scene.render.cacheBudgetMiB = number(n, {0.0, 1e9, false, true});
         if (const Node n = child(r, "renderCache")) renderCache(n, scene.render.renderCache);
 
         if (const Node n = child(r, "environment")) scene.environment = environment(n);

@@ -20,6 +20,7 @@ struct RenderCacheOverrides {
 struct SceneRenderDefaults {
     std::optional<std::string> pipeline;  // ray | hybrid | render-cache
     std::optional<std::string> accel;     // embree | grids (docs/grids.md)
+    std::optional<double> cacheBudgetMiB;  // the caching cubes' memory budget (cache/CubeBudget.h)
     RenderCacheOverrides renderCache;
 };
 

@@ -193,13 +193,30 @@ TEST_F(Cli, RenderRejectsBadCachingOptionsWithOneLine) {
                                     "render --scene behind-1 --cdct-step 0.1 --cdct-epsilon 0.2 --out " + png,
                                     "render --scene behind-1 --technique cdct --cdct-tolerance -1 --out " + png,
                                     "render --scene behind-1 --technique cdct --cdct-tolerance 1e9 --out " + png,
-                                    "render --scene behind-1 --tile-balance bogus --out " + png}) {
+                                    "render --scene behind-1 --tile-balance bogus --out " + png,
+                                    "render --scene behind-1 --cache-levels 9 --out " + png,
+                                    "render --scene behind-1 --cache-levels 0 --out " + png,
+                                    "render --scene behind-1 --cache-level-error 0 --out " + png,
+                                    "render --scene behind-1 --cache-level-error nan --out " + png,
+                                    "render --scene behind-1 --cache-budget -1 --out " + png,
+                                    "render --scene behind-1 --cache-budget inf --out " + png,
+                                    // grid-32's 32 cubes need 12.5 KiB even at 4² faces.
+                                    "render --scene grid-32 --cache-budget 0.001 --out " + png}) {
         const RunResult r = runRaycache(args, dir_);
         EXPECT_EQ(r.exitCode, 2) << args;
         EXPECT_EQ(lineCount(r.err), 1) << args << "\n" << r.err;
         EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << args << "\n" << r.err;
         EXPECT_TRUE(outputs().empty()) << args;
     }
+}
+
+TEST_F(Cli, RenderNotesWhatTheCacheBudgetLowered) {
+    const RunResult r = runRaycache("render --scene grid-8 --width 16 --height 16 --frames 1 --cache-budget 1", dir_);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    // 8 cubes of 512² (49.5 MiB) into 1 MiB.
+    EXPECT_NE(r.out.find("note: cache budget 1.0 MiB: the cubes would take 49.5 MiB; lowered 8 of 8 cubes"),
+              std::string::npos)
+        << r.out;
 }
 
 TEST_F(Cli, CacheViewWritesTheCubeCross) {

@@ -160,7 +160,7 @@ TEST_F(SceneFileTest, UnknownKeySuggestionIgnoresCase) {
 TEST_F(SceneFileTest, UnknownKeyWithoutCloseMatchListsValidKeys) {
     expectError("{@\"wibble\": 1, \"objects\": []}", "/wibble",
                 "unknown key \"wibble\" (valid keys: name, camera, path, frames, fps, environment, lights, materials, objects, "
-                "pipeline, accel, renderCache)");
+                "pipeline, accel, renderCache, cacheBudget)");
 }
 
 TEST_F(SceneFileTest, RenderCacheKeysAreReadAndChecked) {
@@ -186,6 +186,14 @@ TEST_F(SceneFileTest, AccelKeyIsReadAndChecked) {
     EXPECT_EQ(scene.render.accel, std::optional<std::string>("grids"));
     EXPECT_FALSE(load(R"({"objects": []})").render.accel);
     expectError("{\"objects\": [],\n \"accel\": @\"bvh\"}", "/accel", "must be one of embree, grids (got 'bvh')");
+}
+
+TEST_F(SceneFileTest, CacheBudgetKeyIsReadAndChecked) {
+    EXPECT_EQ(load(R"({"cacheBudget": 256, "objects": []})").render.cacheBudgetMiB, std::optional<double>(256.0));
+    EXPECT_FALSE(load(R"({"objects": []})").render.cacheBudgetMiB);
+    expectError("{\"objects\": [],\n \"cacheBudget\": @0}", "/cacheBudget", "(got 0)");
+    expectError("{\"objects\": [],\n \"cacheBudget\": @\"big\"}", "/cacheBudget", "a number");
+    expectError("{\"objects\": [],\n \"cacheBudget\": @2e9}", "/cacheBudget", "(got 2000000000)");
 }
 
 TEST_F(SceneFileTest, FirstUnknownKeyInFileOrderIsReported) {
