@@ -136,8 +136,7 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     const double budgetMiB = options.cacheBudgetMiB.value_or(
         fromScene.cacheBudgetMiB.value_or(static_cast<double>(physicalMemoryBytes()) / 2.0 / (1024.0 * 1024.0)));
     if (budgetMiB > 0.0) settings.cache.memoryBudget = static_cast<std::size_t>(budgetMiB * 1024.0 * 1024.0);
-    RayCache::validate(job.scene, settings.cache);
-    job.cacheBudgetNote = RayCache::planBudget(job.scene, settings.cache).note;
+    job.cacheBudgetNote = RayCache::validate(job.scene, settings.cache).note;
     return job;
 }
 

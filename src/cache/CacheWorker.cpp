@@ -11,6 +11,33 @@ struct PackedBatch {
     std::uint64_t stores;
 };
 
+// Appends source[begin, end) to `out`, unless `source` is empty (a per-store
+// array the cache does not keep, e.g. ray-tree records of a still scene).
+template <typename T>
+void appendStoreRange(std::vector<T>& out, const std::vector<T>& source, std::size_t begin, std::size_t end) {
+    if (source.empty()) return;
+    out.insert(out.end(), source.begin() + static_cast<std::ptrdiff_t>(begin),
+               source.begin() + static_cast<std::ptrdiff_t>(end));
+}
+
+// Appends the count and the values of a per-store array.
+template <typename T>
+void appendCounted(Bytes& bytes, const std::vector<T>& values) {
+    appendBytes(bytes, static_cast<std::uint64_t>(values.size()));
+    appendBytes(bytes, std::span<const T>(values));
+}
+
+// Reads what appendCounted wrote into `out`: none, or one per store.
+template <typename T>
+void readCounted(ByteReader& reader, std::size_t stores, const char* what, std::vector<T>& out) {
+    const auto count = reader.read<std::uint64_t>();
+    if (count != 0 && count != stores)
+        throw std::runtime_error("cache stores from another process: " + std::to_string(count) + " " + what + " for " +
+                                 std::to_string(stores) + " stores");
+    out.resize(count);
+    reader.readInto(std::span<T>(out));
+}
+
 }  // namespace
 
 Bytes CacheWorker::pack(std::span<const CacheWorker> workers) {
@@ -35,14 +62,9 @@ Bytes CacheWorker::pack(std::span<const CacheWorker> workers) {
             const std::size_t begin = w.batches_[b].begin;
             if (end <= begin) continue;
             batches.push_back({w.batches_[b].key, end - begin});
-            stores.insert(stores.end(), w.pending_.begin() + static_cast<std::ptrdiff_t>(begin),
-                          w.pending_.begin() + static_cast<std::ptrdiff_t>(end));
-            if (!w.pendingTrees_.empty())
-                trees.insert(trees.end(), w.pendingTrees_.begin() + static_cast<std::ptrdiff_t>(begin),
-                             w.pendingTrees_.begin() + static_cast<std::ptrdiff_t>(end));
-            if (!w.pendingSeen_.empty())
-                seen.insert(seen.end(), w.pendingSeen_.begin() + static_cast<std::ptrdiff_t>(begin),
-                            w.pendingSeen_.begin() + static_cast<std::ptrdiff_t>(end));
+            appendStoreRange(stores, w.pending_, begin, end);
+            appendStoreRange(trees, w.pendingTrees_, begin, end);
+            appendStoreRange(seen, w.pendingSeen_, begin, end);
         }
     }
     Bytes bytes;
@@ -51,10 +73,8 @@ Bytes CacheWorker::pack(std::span<const CacheWorker> workers) {
     appendBytes(bytes, std::span<const Counters>(counters));
     appendBytes(bytes, std::span<const PackedBatch>(batches));
     appendBytes(bytes, std::span<const PendingStore>(stores));
-    appendBytes(bytes, static_cast<std::uint64_t>(trees.size()));
-    appendBytes(bytes, std::span<const RayTreeRecord>(trees));
-    appendBytes(bytes, static_cast<std::uint64_t>(seen.size()));
-    appendBytes(bytes, std::span<const SeenPoint>(seen));
+    appendCounted(bytes, trees);
+    appendCounted(bytes, seen);
     return bytes;
 }
 
@@ -78,18 +98,8 @@ void CacheWorker::unpack(std::span<const std::byte> bytes, std::size_t cubeCount
     }
     pending_.resize(total);
     reader.readInto(std::span<PendingStore>(pending_));
-    const auto treeCount = reader.read<std::uint64_t>();
-    if (treeCount != 0 && treeCount != total)
-        throw std::runtime_error("cache stores from another process: " + std::to_string(treeCount) +
-                                 " ray-tree records for " + std::to_string(total) + " stores");
-    pendingTrees_.resize(treeCount);
-    reader.readInto(std::span<RayTreeRecord>(pendingTrees_));
-    const auto seenCount = reader.read<std::uint64_t>();
-    if (seenCount != 0 && seenCount != total)
-        throw std::runtime_error("cache stores from another process: " + std::to_string(seenCount) +
-                                 " seen points for " + std::to_string(total) + " stores");
-    pendingSeen_.resize(seenCount);
-    reader.readInto(std::span<SeenPoint>(pendingSeen_));
+    readCounted(reader, total, "ray-tree records", pendingTrees_);
+    readCounted(reader, total, "seen points", pendingSeen_);
     if (!reader.atEnd()) throw std::runtime_error("cache stores from another process: trailing bytes");
     for (const PendingStore& s : pending_)
         if (s.cube >= cubeCount) throw std::runtime_error("cache stores from another process name a cube out of range");

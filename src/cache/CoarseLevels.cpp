@@ -32,9 +32,7 @@ bool CoarseLevels::seesWithin(const SeenPoint& seen, const Vec3& origin, const V
 
 int CoarseLevels::texelOver(int finestTexel, int level) const {
     const int n = finestSize_;
-    const int face = finestTexel / (n * n), y = (finestTexel / n) % n, x = finestTexel % n;
-    const int size = levels_[static_cast<std::size_t>(level - 1)].size();
-    return (face * size + (y >> level)) * size + (x >> level);
+    return texelOver(finestTexel / (n * n), finestTexel % n, (finestTexel / n) % n, level);
 }
 
 int CoarseLevels::writeOver(int finestTexel, std::uint32_t packed, const SeenPoint& seen) {

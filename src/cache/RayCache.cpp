@@ -75,7 +75,7 @@ CacheTechnique RayCache::techniqueFor(const SceneObject& object, const RayCacheS
     return settings.techniqueOverride.value_or(m.cache.technique);
 }
 
-void RayCache::validate(const Scene& scene, const RayCacheSettings& settings) {
+CubeBudgetPlan RayCache::validate(const Scene& scene, const RayCacheSettings& settings) {
     if (settings.resolutionOverride &&
         (*settings.resolutionOverride < kMinResolution || *settings.resolutionOverride > kMaxResolution))
         throw InputError("cache resolution must be between " + std::to_string(kMinResolution) + " and " +
@@ -96,7 +96,7 @@ void RayCache::validate(const Scene& scene, const RayCacheSettings& settings) {
         if (technique != CacheTechnique::None && (resolution < kMinResolution || resolution > kMaxResolution))
             throw InputError("object '" + object.name + "': cache resolution must be between 16 and 2048");
     }
-    planBudget(scene, settings);
+    return planBudget(scene, settings);
 }
 
 CubeBudgetPlan RayCache::planBudget(const Scene& scene, const RayCacheSettings& settings) {
@@ -116,8 +116,7 @@ RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings)
     : ideal_(settings.ideal), oracle_(settings.invalidationOracle), levelErrorBound_(settings.levelErrorBound),
       tracksDependencies_(!scene.animation.empty() || settings.invalidationOracle),
       improvements_(settings.cdctImprovements) {
-    validate(scene, settings);
-    const CubeBudgetPlan plan = planBudget(scene, settings);
+    const CubeBudgetPlan plan = validate(scene, settings);
     budgetNote_ = plan.note;
     cubeOfObject_.assign(scene.objects.size(), -1);
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {

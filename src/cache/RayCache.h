@@ -110,11 +110,10 @@ public:
 
     // Throws the InputError the constructor would throw, without allocating
     // any cube: lets callers reject bad settings before doing any work.
-    static void validate(const Scene& scene, const RayCacheSettings& settings);
-    // Every cube's resolution under settings.memoryBudget, in object order
-    // of the cached objects (what the constructor allocates). Throws
-    // InputError when the cubes cannot fit even at kMinResolution.
-    static CubeBudgetPlan planBudget(const Scene& scene, const RayCacheSettings& settings);
+    // Returns what the constructor will allocate: every cube's resolution
+    // under settings.memoryBudget, in the order of the cached objects (the
+    // cubes not fitting even at kMinBudgetResolution is one of the errors).
+    static CubeBudgetPlan validate(const Scene& scene, const RayCacheSettings& settings);
     // What the budget lowered, one line; empty when nothing was.
     const std::string& budgetNote() const { return budgetNote_; }
 
@@ -266,6 +265,8 @@ private:
     std::int64_t dropBlock(Entry& e, int block);
     // Empties one cube: texels, pre-fill state, dependency records.
     static void clearEntry(Entry& e);
+
+    static CubeBudgetPlan planBudget(const Scene& scene, const RayCacheSettings& settings);
 
     // Improved CDCT cube that fills itself by pre-filling (not by stores).
     bool fillsByPrefill(const Entry& e) const {

@@ -20,7 +20,7 @@ namespace {
 
 constexpr std::size_t kMiB = 1024 * 1024;
 
-// `count` mirror spheres of radius `radius` on a line along x, over a floor light.
+// `count` caching mirror spheres of radius `radius`, 400 to a row in the z = 0 plane.
 Scene spheres(int count, float radius, int resolution, CacheTechnique technique = CacheTechnique::Cct) {
     Scene s;
     Material mirror;

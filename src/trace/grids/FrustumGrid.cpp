@@ -1,11 +1,11 @@
 #include "trace/grids/FrustumGrid.h"
 
 #include <algorithm>
-#include <tuple>
 #include <bit>
 #include <cmath>
 #include <limits>
 #include <string>
+#include <tuple>
 
 #include "core/Errors.h"
 #include "trace/grids/RadixSort.h"
@@ -50,7 +50,9 @@ bool insideBox(const Point3d& p, const FrameBox& box, double margin) {
            p.y <= box.hi.y + margin && p.z >= box.lo.z - margin && p.z <= box.hi.z + margin;
 }
 
-Point3d along(const Point3d& o, const Point3d& d, double t) { return {o.x + t * d.x, o.y + t * d.y, o.z + t * d.z}; }
+Point3d along(const Point3d& o, const Point3d& d, double t) {
+    return {o.x + t * d.x, o.y + t * d.y, o.z + t * d.z};
+}
 
 // The parameter interval of o + t d with lo <= z <= hi, intersected with [ta, tb].
 bool clipDepth(double oz, double dz, double lo, double hi, double& ta, double& tb) {
@@ -145,8 +147,8 @@ FrustumGrid::CellRange FrustumGrid::binPrimitive(std::uint32_t primitive, bool& 
     }
     if (sHi < spec_.s0 || sLo > spec_.s1 || tHi < spec_.t0 || tLo > spec_.t1) return kNone;
     return {cellIndex(sLo, spec_.s0, ds_, spec_.nx), cellIndex(sHi, spec_.s0, ds_, spec_.nx),
-            cellIndex(tLo, spec_.t0, dt_, spec_.ny),  cellIndex(tHi, spec_.t0, dt_, spec_.ny),
-            cellIndex(zA, zLo_, sliceDepth_, nz_),    cellIndex(zB, zLo_, sliceDepth_, nz_)};
+            cellIndex(tLo, spec_.t0, dt_, spec_.ny), cellIndex(tHi, spec_.t0, dt_, spec_.ny),
+            cellIndex(zA, zLo_, sliceDepth_, nz_),   cellIndex(zB, zLo_, sliceDepth_, nz_)};
 }
 
 void FrustumGrid::build(const FrustumGridSpec& spec, const GridPrimitives& primitives, const Parallel& parallel) {
@@ -269,8 +271,7 @@ FrustumGrid::Traversal FrustumGrid::traversalOf(const Ray& ray) const {
     if (frame.perspective() && geometryZLo_ < spec_.zNear) {
         double na = ta, nb = tb;
         if (clipDepth(o.z, d.z, -kInfinity, spec_.zNear, na, nb)) {
-            if (!std::isfinite(na) || !std::isfinite(nb) ||
-                !insideBox(along(o, d, na), spec_.nearZone, spec_.margin) ||
+            if (!std::isfinite(na) || !std::isfinite(nb) || !insideBox(along(o, d, na), spec_.nearZone, spec_.margin) ||
                 !insideBox(along(o, d, nb), spec_.nearZone, spec_.margin)) {
                 tr.covered = false;
                 return tr;
@@ -318,25 +319,16 @@ bool FrustumGrid::intersect(const Ray& ray, TraceHit& hit) const {
     const WatertightRay watertight(ray);
     if (tr.nearPart)
         for (const std::uint32_t p : nearZone_) primitives_->intersect(p, ray, watertight, best);
-    if (tr.gridPart) {
-        const int steps = tr.k1 - tr.k0 + 1;
-        for (int step = 0; step < steps; ++step) {
-            const int k = tr.ascending ? tr.k0 + step : tr.k1 - step;
-            for (int j = tr.j0; j <= tr.j1; ++j)
-                for (int i = tr.i0; i <= tr.i1; ++i) {
-                    const std::size_t cell = flatCell(k, j, i);
-                    for (std::uint32_t at = cellStart_[cell]; at < cellStart_[cell + 1]; ++at)
-                        if (firstVisit(cellPrimitives_[at], tr, k, j, i))
-                            primitives_->intersect(cellPrimitives_[at], ray, watertight, best);
-                }
-            // Early exit: a primitive not met yet lies wholly beyond this
-            // slice (by the margin), so it cannot be nearer than a hit inside it.
-            if (best.hit()) {
-                const double z = tr.origin.z + static_cast<double>(best.t) * tr.direction.z;
-                if (tr.ascending ? z + spec_.margin <= sliceLower(k + 1) : z - spec_.margin >= sliceLower(k)) break;
-            }
-        }
-    }
+    if (tr.gridPart)
+        walkCells(
+            tr,
+            [&](std::uint32_t primitive) {
+                primitives_->intersect(primitive, ray, watertight, best);
+                return false;
+            },
+            [&](int k) {
+                return best.hit() && hitEndsWalk(tr, tr.origin.z + static_cast<double>(best.t) * tr.direction.z, k);
+            });
     hit = best;
     return true;
 }
@@ -376,8 +368,8 @@ void FrustumGrid::intersectBatch(std::span<const Ray> rays, std::span<TraceHit> 
             continue;
         }
         const WatertightRay wr(rays[i]);
-        packable.push_back({PacketKey{rays[i].origin.x, rays[i].origin.y, rays[i].origin.z, wr.kz, wr.kx, wr.ky,
-                                      tr.i0, tr.i1, tr.j0, tr.j1, tr.k0, tr.k1, tr.ascending},
+        packable.push_back({PacketKey{rays[i].origin.x, rays[i].origin.y, rays[i].origin.z, wr.kz, wr.kx, wr.ky, tr.i0,
+                                      tr.i1, tr.j0, tr.j1, tr.k0, tr.k1, tr.ascending},
                             static_cast<std::uint32_t>(i)});
     }
     // Rays with equal keys next to each other, in batch order within a key.
@@ -385,7 +377,8 @@ void FrustumGrid::intersectBatch(std::span<const Ray> rays, std::span<TraceHit> 
                      [](const auto& a, const auto& b) { return a.first.tie() < b.first.tie(); });
     for (std::size_t begin = 0; begin < packable.size();) {
         std::size_t end = begin + 1;
-        while (end < packable.size() && end - begin < kLanes && packable[end].first.tie() == packable[begin].first.tie())
+        while (end < packable.size() && end - begin < kLanes &&
+               packable[end].first.tie() == packable[begin].first.tie())
             ++end;
         lanes.clear();
         for (std::size_t p = begin; p < end; ++p) lanes.push_back(packable[p].second);
@@ -394,8 +387,8 @@ void FrustumGrid::intersectBatch(std::span<const Ray> rays, std::span<TraceHit> 
     }
 }
 
-void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes,
-                                  const Traversal& tr, std::span<TraceHit> hits) const {
+void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& tr,
+                                  std::span<TraceHit> hits) const {
     const std::size_t n = lanes.size();
     alignas(64) float sx[kLanes], sy[kLanes], sz[kLanes], tNear[kLanes], tFar[kLanes];
     alignas(64) float edgeV[kLanes], edgeW[kLanes], numerator[kLanes], determinant[kLanes];
@@ -416,83 +409,72 @@ void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std
         tFar[l] = wr.tFar;
         directionZ[l] = spec_.frame.directionToFrame(ray.direction).z;
     }
-    const int steps = tr.k1 - tr.k0 + 1;
-    for (int step = 0; step < steps; ++step) {
-        const int k = tr.ascending ? tr.k0 + step : tr.k1 - step;
-        for (int j = tr.j0; j <= tr.j1; ++j)
-            for (int i = tr.i0; i <= tr.i1; ++i) {
-                const std::size_t cell = flatCell(k, j, i);
-                for (std::uint32_t at = cellStart_[cell]; at < cellStart_[cell + 1]; ++at) {
-                    const std::uint32_t primitive = cellPrimitives_[at];
-                    if (!firstVisit(primitive, tr, k, j, i)) continue;
-                    if (primitives_->sphere(primitive)) {
-                        for (std::size_t l = 0; l < n; ++l) {
-                            const Ray& ray = rays[lanes[l]];
-                            primitives_->intersect(primitive, ray, WatertightRay(ray), best[l]);
-                        }
-                        continue;
-                    }
-                    Vec3 p0, p1, p2;
-                    primitives_->triangle(primitive, p0, p1, p2);
-                    // The packet shares its origin: the corners relative to it are computed once.
-                    const Vec3 a = p0 - first.origin, b = p1 - first.origin, c = p2 - first.origin;
-                    const float akx = a[kx], aky = a[ky], akz = a[kz];
-                    const float bkx = b[kx], bky = b[ky], bkz = b[kz];
-                    const float ckx = c[kx], cky = c[ky], ckz = c[kz];
-                    for (std::size_t l = 0; l < kLanes; ++l)
-                        if (best[l].hit()) tFar[l] = best[l].t;
-                    // The watertight test's float path, lane by lane, in the same operations as
-                    // intersectWatertight (WatertightTriangle.h) so the answers are identical.
-                    for (std::size_t l = 0; l < kLanes; ++l) {
-                        const float ax = akx - sx[l] * akz, ay = aky - sy[l] * akz;
-                        const float bx = bkx - sx[l] * bkz, by = bky - sy[l] * bkz;
-                        const float cx = ckx - sx[l] * ckz, cy = cky - sy[l] * ckz;
-                        const float u = cx * by - cy * bx;
-                        const float v = ax * cy - ay * cx;
-                        const float w = bx * ay - by * ax;
-                        const float det = u + v + w;
-                        const float t = u * (sz[l] * akz) + v * (sz[l] * bkz) + w * (sz[l] * ckz);
-                        const float absDet = std::fabs(det);
-                        const float signedT = det < 0.0f ? -t : t;
-                        // Bitwise, not short-circuit, so the loop has no branches to stop vectorisation.
-                        const bool negative = (u < 0.0f) | (v < 0.0f) | (w < 0.0f);
-                        const bool positive = (u > 0.0f) | (v > 0.0f) | (w > 0.0f);
-                        zeroEdge[l] = static_cast<int>((u == 0.0f) | (v == 0.0f) | (w == 0.0f));
-                        accepted[l] = static_cast<int>(!(negative & positive) & (det != 0.0f) &
-                                                       (signedT > tNear[l] * absDet) & (signedT <= tFar[l] * absDet));
-                        edgeV[l] = v;
-                        edgeW[l] = w;
-                        numerator[l] = t;
-                        determinant[l] = det;
-                    }
-                    const int object = primitives_->objectOf(primitive);
-                    const int local = primitives_->localIndex(primitive);
-                    for (std::size_t l = 0; l < n; ++l) {
-                        if (zeroEdge[l]) {
-                            // An edge value of exactly zero: the double-precision path, as the scalar test.
-                            const Ray& ray = rays[lanes[l]];
-                            primitives_->intersect(primitive, ray, WatertightRay(ray), best[l]);
-                            continue;
-                        }
-                        if (!accepted[l]) continue;
-                        const float inverseDet = 1.0f / determinant[l];
-                        const float t = numerator[l] * inverseDet;
-                        if (GridPrimitives::nearer(t, object, local, best[l]))
-                            best[l] = TraceHit{t, object, local, edgeV[l] * inverseDet, edgeW[l] * inverseDet};
-                    }
+    walkCells(
+        tr,
+        [&](std::uint32_t primitive) {
+            if (primitives_->sphere(primitive)) {
+                for (std::size_t l = 0; l < n; ++l) {
+                    const Ray& ray = rays[lanes[l]];
+                    primitives_->intersect(primitive, ray, WatertightRay(ray), best[l]);
                 }
+                return false;
             }
-        bool allDone = true;
-        for (std::size_t l = 0; l < n && allDone; ++l) {
-            if (!best[l].hit()) {
-                allDone = false;
-                break;
+            Vec3 p0, p1, p2;
+            primitives_->triangle(primitive, p0, p1, p2);
+            // The packet shares its origin: the corners relative to it are computed once.
+            const Vec3 a = p0 - first.origin, b = p1 - first.origin, c = p2 - first.origin;
+            const float akx = a[kx], aky = a[ky], akz = a[kz];
+            const float bkx = b[kx], bky = b[ky], bkz = b[kz];
+            const float ckx = c[kx], cky = c[ky], ckz = c[kz];
+            for (std::size_t l = 0; l < kLanes; ++l)
+                if (best[l].hit()) tFar[l] = best[l].t;
+            // The watertight test's float path, lane by lane, in the same operations as
+            // intersectWatertight (WatertightTriangle.h) so the answers are identical.
+            for (std::size_t l = 0; l < kLanes; ++l) {
+                const float ax = akx - sx[l] * akz, ay = aky - sy[l] * akz;
+                const float bx = bkx - sx[l] * bkz, by = bky - sy[l] * bkz;
+                const float cx = ckx - sx[l] * ckz, cy = cky - sy[l] * ckz;
+                const float u = cx * by - cy * bx;
+                const float v = ax * cy - ay * cx;
+                const float w = bx * ay - by * ax;
+                const float det = u + v + w;
+                const float t = u * (sz[l] * akz) + v * (sz[l] * bkz) + w * (sz[l] * ckz);
+                const float absDet = std::fabs(det);
+                const float signedT = det < 0.0f ? -t : t;
+                // Bitwise, not short-circuit, so the loop has no branches to stop vectorisation.
+                const bool negative = (u < 0.0f) | (v < 0.0f) | (w < 0.0f);
+                const bool positive = (u > 0.0f) | (v > 0.0f) | (w > 0.0f);
+                zeroEdge[l] = static_cast<int>((u == 0.0f) | (v == 0.0f) | (w == 0.0f));
+                accepted[l] = static_cast<int>(!(negative & positive) & (det != 0.0f) & (signedT > tNear[l] * absDet) &
+                                               (signedT <= tFar[l] * absDet));
+                edgeV[l] = v;
+                edgeW[l] = w;
+                numerator[l] = t;
+                determinant[l] = det;
             }
-            const double z = tr.origin.z + static_cast<double>(best[l].t) * directionZ[l];
-            allDone = tr.ascending ? z + spec_.margin <= sliceLower(k + 1) : z - spec_.margin >= sliceLower(k);
-        }
-        if (allDone) break;
-    }
+            const int object = primitives_->objectOf(primitive);
+            const int local = primitives_->localIndex(primitive);
+            for (std::size_t l = 0; l < n; ++l) {
+                if (zeroEdge[l]) {
+                    // An edge value of exactly zero: the double-precision path, as the scalar test.
+                    const Ray& ray = rays[lanes[l]];
+                    primitives_->intersect(primitive, ray, WatertightRay(ray), best[l]);
+                    continue;
+                }
+                if (!accepted[l]) continue;
+                const float inverseDet = 1.0f / determinant[l];
+                const float t = numerator[l] * inverseDet;
+                if (GridPrimitives::nearer(t, object, local, best[l]))
+                    best[l] = TraceHit{t, object, local, edgeV[l] * inverseDet, edgeW[l] * inverseDet};
+            }
+            return false;
+        },
+        [&](int k) {
+            for (std::size_t l = 0; l < n; ++l)
+                if (!best[l].hit() || !hitEndsWalk(tr, tr.origin.z + static_cast<double>(best[l].t) * directionZ[l], k))
+                    return false;
+            return true;
+        });
     for (std::size_t l = 0; l < n; ++l) hits[lanes[l]] = best[l];
 }
 
@@ -508,20 +490,9 @@ bool FrustumGrid::occluded(const Ray& ray, bool& blocked) const {
                 return true;
             }
     if (!tr.gridPart) return true;
-    const int steps = tr.k1 - tr.k0 + 1;
-    for (int step = 0; step < steps; ++step) {
-        const int k = tr.ascending ? tr.k0 + step : tr.k1 - step;
-        for (int j = tr.j0; j <= tr.j1; ++j)
-            for (int i = tr.i0; i <= tr.i1; ++i) {
-                const std::size_t cell = flatCell(k, j, i);
-                for (std::uint32_t at = cellStart_[cell]; at < cellStart_[cell + 1]; ++at)
-                    if (firstVisit(cellPrimitives_[at], tr, k, j, i) &&
-                        primitives_->occludes(cellPrimitives_[at], ray, watertight)) {
-                        blocked = true;
-                        return true;
-                    }
-            }
-    }
+    walkCells(
+        tr, [&](std::uint32_t primitive) { return blocked = primitives_->occludes(primitive, ray, watertight); },
+        [](int) { return false; });
     return true;
 }
 
@@ -532,8 +503,8 @@ std::vector<Vec3> FrustumGrid::occupiedColumnCorners() const {
     const std::size_t columns = static_cast<std::size_t>(spec_.nx) * static_cast<std::size_t>(spec_.ny);
     for (int j = 0; j < spec_.ny; ++j)
         for (int i = 0; i < spec_.nx; ++i) {
-            const std::size_t column = static_cast<std::size_t>(j) * static_cast<std::size_t>(spec_.nx) +
-                                       static_cast<std::size_t>(i);
+            const std::size_t column =
+                static_cast<std::size_t>(j) * static_cast<std::size_t>(spec_.nx) + static_cast<std::size_t>(i);
             int first = -1, last = -1;
             for (int k = 0; k < nz_; ++k) {
                 const std::size_t cell = static_cast<std::size_t>(k) * columns + column;
@@ -550,9 +521,10 @@ std::vector<Vec3> FrustumGrid::occupiedColumnCorners() const {
                 // Angular grids store atan(u): tan undoes it; perspective ones store u itself.
                 const double uu = f.mapping == GridMapping::Angular ? u : spec_.s0 + (i + (corner & 1)) * ds_;
                 const double vv = f.mapping == GridMapping::Angular ? v : spec_.t0 + (j + ((corner >> 1) & 1)) * dt_;
-                corners.push_back(Vec3{static_cast<float>(f.apex.x + z * (uu * f.right.x + vv * f.up.x + f.forward.x)),
-                                       static_cast<float>(f.apex.y + z * (uu * f.right.y + vv * f.up.y + f.forward.y)),
-                                       static_cast<float>(f.apex.z + z * (uu * f.right.z + vv * f.up.z + f.forward.z))});
+                corners.push_back(
+                    Vec3{static_cast<float>(f.apex.x + z * (uu * f.right.x + vv * f.up.x + f.forward.x)),
+                         static_cast<float>(f.apex.y + z * (uu * f.right.y + vv * f.up.y + f.forward.y)),
+                         static_cast<float>(f.apex.z + z * (uu * f.right.z + vv * f.up.z + f.forward.z))});
             }
         }
     return corners;

@@ -102,22 +102,45 @@ private:
     void intersectPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& tr,
                          std::span<TraceHit> hits) const;
     CellRange binPrimitive(std::uint32_t primitive, bool& inNearZone) const;
-    // True in the first cell, in the traversal's order, where the ray meets
-    // `primitive`: a primitive spanning many cells (a floor, a wall) is
-    // tested once per ray, not once per cell. Testing it again would give
-    // the same answer.
     // Index of cell (i, j) of depth slice k in cellStart_.
     std::size_t flatCell(int k, int j, int i) const {
         return (static_cast<std::size_t>(k) * static_cast<std::size_t>(spec_.ny) + static_cast<std::size_t>(j)) *
                    static_cast<std::size_t>(spec_.nx) +
                static_cast<std::size_t>(i);
     }
+    // True in the first cell, in the traversal's order, where the ray meets
+    // `primitive`: a primitive spanning many cells (a floor, a wall) is
+    // tested once per ray, not once per cell. Testing it again would give
+    // the same answer.
     bool firstVisit(std::uint32_t primitive, const Traversal& tr, int k, int j, int i) const {
         const CellRange& r = ranges_[primitive];
         const int firstK = tr.ascending ? std::max(r.k0, tr.k0) : std::min(r.k1, tr.k1);
         return k == firstK && j == std::max(r.j0, tr.j0) && i == std::max(r.i0, tr.i0);
     }
     double sliceLower(int k) const { return zLo_ + k * sliceDepth_; }
+    // Whether a hit at frame depth `z` ends a front-to-back walk after slice
+    // k: a primitive not met yet lies wholly beyond the slice (by the
+    // margin), so it cannot be nearer.
+    bool hitEndsWalk(const Traversal& tr, double z, int k) const {
+        return tr.ascending ? z + spec_.margin <= sliceLower(k + 1) : z - spec_.margin >= sliceLower(k);
+    }
+    // The grid part of a traversal, slice by slice front to back: visit(p)
+    // once for every primitive p of the covered cells (in its first cell),
+    // then sliceDone(k) after slice k; stops as soon as either returns true.
+    template <typename Visit, typename SliceDone>
+    void walkCells(const Traversal& tr, Visit&& visit, SliceDone&& sliceDone) const {
+        const int steps = tr.k1 - tr.k0 + 1;
+        for (int step = 0; step < steps; ++step) {
+            const int k = tr.ascending ? tr.k0 + step : tr.k1 - step;
+            for (int j = tr.j0; j <= tr.j1; ++j)
+                for (int i = tr.i0; i <= tr.i1; ++i) {
+                    const std::size_t cell = flatCell(k, j, i);
+                    for (std::uint32_t at = cellStart_[cell]; at < cellStart_[cell + 1]; ++at)
+                        if (firstVisit(cellPrimitives_[at], tr, k, j, i) && visit(cellPrimitives_[at])) return;
+                }
+            if (sliceDone(k)) return;
+        }
+    }
 
     FrustumGridSpec spec_;
     const GridPrimitives* primitives_ = nullptr;
