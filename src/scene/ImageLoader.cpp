@@ -9,7 +9,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
+#include <iterator>
 #include <memory>
 #include <optional>
 #include <string>
@@ -139,33 +141,39 @@ std::string takeExrError(const char* err, int code) {
 
 // The "type" attribute, which tinyexr asserts on (aborting the process) when
 // it contradicts the file's layout or names an unknown type (found by
-// fuzzing, docs/testing.md). Read by hand before tinyexr sees the header;
-// anything else malformed is left to tinyexr.
+// fuzzing, docs/testing.md). Read by hand before tinyexr sees the header,
+// walking the attributes exactly as tinyexr 1.0.1's ParseEXRHeader does (names
+// of any length, at most 1024 attributes, an empty value only for a string), so
+// that no "type" it would see can be missed here; anything else malformed is
+// left to tinyexr.
 std::optional<std::string> exrTypeAttribute(const std::filesystem::path& path) {
-    std::optional<std::string> result;  // the last "type" attribute, up to its first NUL
     std::ifstream in(path, std::ios::binary);
-    in.seekg(8);  // magic number and version field
-    const auto readName = [&in](std::string& out) {
-        out.clear();
-        for (char c; in.get(c);) {
-            if (c == '\0') return true;
-            if (out.size() >= 255) return false;  // longer than any valid name: tinyexr rejects it
-            out += c;
-        }
-        return false;
+    const std::string file((std::istreambuf_iterator<char>(in)), {});
+    constexpr std::size_t kHeaderStart = 8;      // magic number and version field
+    constexpr std::size_t kMaxAttributes = 1024;  // TINYEXR_MAX_HEADER_ATTRIBUTES
+    std::optional<std::string> result;            // the last "type" attribute, up to its first NUL
+    std::size_t at = kHeaderStart;
+    // One NUL-terminated string starting at `at`, or nothing if the file ends first.
+    const auto readString = [&file, &at]() -> std::optional<std::string> {
+        const std::size_t end = file.find('\0', at);
+        if (end == std::string::npos) return std::nullopt;
+        std::string text = file.substr(at, end - at);
+        at = end + 1;
+        return text;
     };
-    std::string name, type;
-    while (readName(name) && !name.empty() && readName(type)) {
-        std::int32_t size = 0;
-        if (!in.read(reinterpret_cast<char*>(&size), sizeof size) || size < 0) break;
-        if (name == "type") {
-            std::string value(static_cast<std::size_t>(std::min(size, 256)), '\0');
-            if (!in.read(value.data(), static_cast<std::streamsize>(value.size()))) break;
-            if (!value.empty() && value[0] != '\0') result = std::string(value.c_str());
-            in.seekg(size - static_cast<std::int32_t>(value.size()), std::ios::cur);
-            continue;
+    for (std::size_t n = 0; n < kMaxAttributes && at < file.size() && file[at] != '\0'; ++n) {
+        const std::optional<std::string> name = readString();
+        const std::optional<std::string> type = name ? readString() : std::nullopt;
+        if (!type || file.size() - at < sizeof(std::uint32_t)) break;
+        std::uint32_t size = 0;  // little-endian, as the machines we build on
+        std::memcpy(&size, file.data() + at, sizeof size);
+        at += sizeof size;
+        if ((size == 0 && *type != "string") || file.size() - at < size) break;
+        if (*name == "type" && size > 0 && file[at] != '\0') {
+            const std::string value = file.substr(at, size);
+            result = std::string(value.c_str());
         }
-        in.seekg(size, std::ios::cur);
+        at += size;
     }
     return result;
 }

@@ -257,6 +257,24 @@ TEST(ImageLoader, ExrHeaderThatWouldAbortTinyexrThrows) {
     expectKnownExrPixels(loadImageFile(edited("same.exr", "scanlineimage")));
 }
 
+// Found by fuzzing (CI run of stop 22): an unknown "type" behind an attribute
+// whose name is longer than 255 bytes. tinyexr reads names of any length, so
+// the check must too, or the type slips past it and tinyexr aborts.
+TEST(ImageLoader, ExrTypeBehindALongAttributeNameThrows) {
+    std::ifstream in(imageDir / "known-half-typed.exr", std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    const std::size_t typeAt = bytes.find("scanlineimage");
+    ASSERT_NE(typeAt, std::string::npos);
+    bytes.replace(typeAt, 13, "scanlineimagX");
+    // An empty string attribute with a 300-byte name, first in the header.
+    const std::string longNamed = std::string(300, 'n') + std::string("\0string\0\0\0\0\0", 12);
+    bytes.insert(8, longNamed);
+    TempDir dir;
+    const auto path = dir.path() / "long-name.exr";
+    std::ofstream(path, std::ios::binary) << bytes;
+    expectInputErrorNamingFile(path, "type \"scanlineimagX\"");
+}
+
 TEST(ImageLoader, NonFiniteExrPixelThrows) {
     TempDir dir;
     const auto path = dir.path() / "nan.exr";
