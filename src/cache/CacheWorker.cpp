@@ -11,23 +11,8 @@ struct PackedBatch {
     std::uint64_t stores;
 };
 
-// Appends source[begin, end) to `out`, unless `source` is empty (a per-store
-// array the cache does not keep, e.g. ray-tree records of a still scene).
-template <typename T>
-void appendStoreRange(std::vector<T>& out, const std::vector<T>& source, std::size_t begin, std::size_t end) {
-    if (source.empty()) return;
-    out.insert(out.end(), source.begin() + static_cast<std::ptrdiff_t>(begin),
-               source.begin() + static_cast<std::ptrdiff_t>(end));
-}
-
-// Appends the count and the values of a per-store array.
-template <typename T>
-void appendCounted(Bytes& bytes, const std::vector<T>& values) {
-    appendBytes(bytes, static_cast<std::uint64_t>(values.size()));
-    appendBytes(bytes, std::span<const T>(values));
-}
-
-// Reads what appendCounted wrote into `out`: none, or one per store.
+// Reads a per-store array pack() wrote (its count, then its values) into
+// `out`: none, or one per store.
 template <typename T>
 void readCounted(ByteReader& reader, std::size_t stores, const char* what, std::vector<T>& out) {
     const auto count = reader.read<std::uint64_t>();
@@ -40,12 +25,15 @@ void readCounted(ByteReader& reader, std::size_t stores, const char* what, std::
 
 }  // namespace
 
-Bytes CacheWorker::pack(std::span<const CacheWorker> workers) {
+void CacheWorker::pack(std::span<const CacheWorker> workers, Bytes& out) {
     std::vector<PackedBatch> batches;
-    std::vector<PendingStore> stores;
-    std::vector<RayTreeRecord> trees;  // animated scenes: one per store
-    std::vector<SeenPoint> seen;       // multi-resolution cubes: one per store
     std::vector<Counters> counters;
+    std::size_t stores = 0, trees = 0, seen = 0;
+    // The stores of batch b of worker w are [begin, end) of its pending arrays.
+    const auto batchEnd = [](const CacheWorker& w, std::size_t b) {
+        // The last batch is still open (closeBatch sets its end at endFrame).
+        return b + 1 == w.batches_.size() ? w.pending_.size() : w.batches_[b].end;
+    };
     for (const CacheWorker& w : workers) {
         if (counters.size() < w.counters_.size()) counters.resize(w.counters_.size());
         for (std::size_t c = 0; c < w.counters_.size(); ++c) {
@@ -57,25 +45,39 @@ Bytes CacheWorker::pack(std::span<const CacheWorker> workers) {
                 counters[c].levelHits[k] += w.counters_[c].levelHits[k];
         }
         for (std::size_t b = 0; b < w.batches_.size(); ++b) {
-            // The last batch is still open (closeBatch sets its end at endFrame).
-            const std::size_t end = b + 1 == w.batches_.size() ? w.pending_.size() : w.batches_[b].end;
-            const std::size_t begin = w.batches_[b].begin;
+            const std::size_t begin = w.batches_[b].begin, end = batchEnd(w, b);
             if (end <= begin) continue;
             batches.push_back({w.batches_[b].key, end - begin});
-            appendStoreRange(stores, w.pending_, begin, end);
-            appendStoreRange(trees, w.pendingTrees_, begin, end);
-            appendStoreRange(seen, w.pendingSeen_, begin, end);
+            stores += end - begin;
+            if (!w.pendingTrees_.empty()) trees += end - begin;
+            if (!w.pendingSeen_.empty()) seen += end - begin;
         }
     }
-    Bytes bytes;
-    appendBytes(bytes, static_cast<std::uint64_t>(counters.size()));
-    appendBytes(bytes, static_cast<std::uint64_t>(batches.size()));
-    appendBytes(bytes, std::span<const Counters>(counters));
-    appendBytes(bytes, std::span<const PackedBatch>(batches));
-    appendBytes(bytes, std::span<const PendingStore>(stores));
-    appendCounted(bytes, trees);
-    appendCounted(bytes, seen);
-    return bytes;
+    // One pass per per-store array, straight from the workers into `out`,
+    // whose capacity is kept from frame to frame.
+    const auto appendRanges = [&](const auto member) {
+        for (const CacheWorker& w : workers) {
+            const auto& source = w.*member;
+            if (source.empty()) continue;  // an array the cache does not keep, e.g. ray trees of a still scene
+            for (std::size_t b = 0; b < w.batches_.size(); ++b) {
+                const std::size_t begin = w.batches_[b].begin, end = batchEnd(w, b);
+                if (end > begin) appendBytes(out, std::span(source).subspan(begin, end - begin));
+            }
+        }
+    };
+    out.clear();
+    out.reserve(2 * sizeof(std::uint64_t) + counters.size() * sizeof(Counters) + batches.size() * sizeof(PackedBatch) +
+                stores * sizeof(PendingStore) + sizeof(std::uint64_t) + trees * sizeof(RayTreeRecord) +
+                sizeof(std::uint64_t) + seen * sizeof(SeenPoint));
+    appendBytes(out, static_cast<std::uint64_t>(counters.size()));
+    appendBytes(out, static_cast<std::uint64_t>(batches.size()));
+    appendBytes(out, std::span<const Counters>(counters));
+    appendBytes(out, std::span<const PackedBatch>(batches));
+    appendRanges(&CacheWorker::pending_);
+    appendBytes(out, static_cast<std::uint64_t>(trees));
+    appendRanges(&CacheWorker::pendingTrees_);
+    appendBytes(out, static_cast<std::uint64_t>(seen));
+    appendRanges(&CacheWorker::pendingSeen_);
 }
 
 void CacheWorker::unpack(std::span<const std::byte> bytes, std::size_t cubeCount) {

@@ -32,8 +32,9 @@ public:
     // per cube) as bytes for the other processes of a cluster job
     // (src/cluster/): 16 bytes per store, 16 per batch, 96 per cube; in an
     // animated scene also each store's RayTreeRecord (156 bytes); with
-    // multi-resolution cubes each store's SeenPoint (16 bytes).
-    static Bytes pack(std::span<const CacheWorker> workers);
+    // multi-resolution cubes each store's SeenPoint (16 bytes). Written into
+    // `out` (replacing what it held; its capacity is reused).
+    static void pack(std::span<const CacheWorker> workers, Bytes& out);
     // Makes this worker hold what pack() packed in another process, so that
     // its batches join RayCache::endFrame's merge (in key order, like any
     // worker's) and its counters the frame's statistics. Throws

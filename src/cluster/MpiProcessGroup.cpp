@@ -38,13 +38,6 @@ std::vector<int> offsetsOf(const std::vector<int>& sizes, std::size_t& total) {
     return offsets;
 }
 
-std::vector<Bytes> split(const Bytes& all, const std::vector<int>& sizes, const std::vector<int>& offsets) {
-    std::vector<Bytes> parts(sizes.size());
-    for (std::size_t r = 0; r < sizes.size(); ++r)
-        parts[r].assign(all.begin() + offsets[r], all.begin() + offsets[r] + sizes[r]);
-    return parts;
-}
-
 }  // namespace
 
 MpiProcessGroup::MpiProcessGroup() {
@@ -54,35 +47,32 @@ MpiProcessGroup::MpiProcessGroup() {
     MPI_Comm_size(MPI_COMM_WORLD, &size_);
 }
 
-std::vector<Bytes> MpiProcessGroup::allGather(std::span<const std::byte> local) const {
+void MpiProcessGroup::allGather(std::span<const std::byte> local, GatheredBytes& into) const {
     const int mine = messageSize(local.size());
     std::vector<int> sizes(static_cast<std::size_t>(size_));
     check(MPI_Allgather(&mine, 1, MPI_INT, sizes.data(), 1, MPI_INT, MPI_COMM_WORLD), "MPI_Allgather");
     std::size_t total = 0;
     const std::vector<int> offsets = offsetsOf(sizes, total);
-    Bytes all(total);
-    check(MPI_Allgatherv(local.data(), mine, MPI_BYTE, all.data(), sizes.data(), offsets.data(), MPI_BYTE,
-                         MPI_COMM_WORLD),
+    std::byte* all = into.reset(std::span<const int>(sizes));
+    check(MPI_Allgatherv(local.data(), mine, MPI_BYTE, all, sizes.data(), offsets.data(), MPI_BYTE, MPI_COMM_WORLD),
           "MPI_Allgatherv");
-    return split(all, sizes, offsets);
 }
 
-std::vector<Bytes> MpiProcessGroup::gatherToRoot(std::span<const std::byte> local) const {
+void MpiProcessGroup::gatherToRoot(std::span<const std::byte> local, GatheredBytes& into) const {
     const int mine = messageSize(local.size());
     std::vector<int> sizes(static_cast<std::size_t>(size_));
     check(MPI_Gather(&mine, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, MPI_COMM_WORLD), "MPI_Gather");
     if (rank_ != 0) {
+        into.clear();
         check(MPI_Gatherv(local.data(), mine, MPI_BYTE, nullptr, nullptr, nullptr, MPI_BYTE, 0, MPI_COMM_WORLD),
               "MPI_Gatherv");
-        return {};
+        return;
     }
     std::size_t total = 0;
     const std::vector<int> offsets = offsetsOf(sizes, total);
-    Bytes all(total);
-    check(MPI_Gatherv(local.data(), mine, MPI_BYTE, all.data(), sizes.data(), offsets.data(), MPI_BYTE, 0,
-                      MPI_COMM_WORLD),
+    std::byte* all = into.reset(std::span<const int>(sizes));
+    check(MPI_Gatherv(local.data(), mine, MPI_BYTE, all, sizes.data(), offsets.data(), MPI_BYTE, 0, MPI_COMM_WORLD),
           "MPI_Gatherv");
-    return split(all, sizes, offsets);
 }
 
 void MpiProcessGroup::broadcastFromRoot(Bytes& bytes) const {

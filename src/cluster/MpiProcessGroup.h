@@ -10,8 +10,8 @@ public:
     MpiProcessGroup();
     int rank() const override { return rank_; }
     int size() const override { return size_; }
-    std::vector<Bytes> allGather(std::span<const std::byte> local) const override;
-    std::vector<Bytes> gatherToRoot(std::span<const std::byte> local) const override;
+    void allGather(std::span<const std::byte> local, GatheredBytes& into) const override;
+    void gatherToRoot(std::span<const std::byte> local, GatheredBytes& into) const override;
     void broadcastFromRoot(Bytes& bytes) const override;
 
 private:

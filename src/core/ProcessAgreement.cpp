@@ -1,6 +1,7 @@
 #include "core/ProcessAgreement.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "core/Errors.h"
 
@@ -26,15 +27,22 @@ void runOnEveryProcess(const ProcessGroup& group, const std::function<void()>& s
     Bytes mine;
     appendBytes(mine, outcome);
     appendBytes(mine, std::span<const char>(message.data(), message.size()));
-    const std::vector<Bytes> all = group.allGather(mine);
+    GatheredBytes all;
+    group.allGather(mine, all);
+    const auto same = [](std::span<const std::byte> a, std::span<const std::byte> b) {
+        return std::equal(a.begin(), a.end(), b.begin(), b.end());
+    };
     // Bad options fail the same way everywhere: then no process is named.
-    const bool everyProcessAlike = std::all_of(all.begin(), all.end(), [&](const Bytes& b) { return b == all[0]; });
-    for (std::size_t r = 0; r < all.size(); ++r) {
-        const auto code = static_cast<std::uint8_t>(all[r].at(0));
+    bool everyProcessAlike = true;
+    for (std::size_t r = 1; r < all.count(); ++r) everyProcessAlike = everyProcessAlike && same(all.of(r), all.of(0));
+    for (std::size_t r = 0; r < all.count(); ++r) {
+        const std::span<const std::byte> part = all.of(r);
+        if (part.empty()) throw std::out_of_range("empty process message");
+        const auto code = static_cast<std::uint8_t>(part[0]);
         if (code == 0) continue;
-        const std::string what(reinterpret_cast<const char*>(all[r].data()) + 1, all[r].size() - 1);
+        const std::string what(reinterpret_cast<const char*>(part.data()) + 1, part.size() - 1);
         if (everyProcessAlike) throw ProcessGroupFailure(what, code);
-        throw ProcessGroupFailure("process " + std::to_string(r) + " of " + std::to_string(all.size()) + ": " + what,
+        throw ProcessGroupFailure("process " + std::to_string(r) + " of " + std::to_string(all.count()) + ": " + what,
                                   code);
     }
 }

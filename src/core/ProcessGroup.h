@@ -16,6 +16,35 @@ namespace raycache {
 
 using Bytes = std::vector<std::byte>;
 
+// Every process's bytes after a gather, back to back in one buffer. Kept by
+// the caller from frame to frame: a frame gathers megabytes, and a fresh
+// buffer each time costs the page faults of touching it (docs/cluster.md,
+// "Where the time goes").
+class GatheredBytes {
+public:
+    // How many processes' parts it holds (0 on a process that received none).
+    std::size_t count() const { return offsets_.empty() ? 0 : offsets_.size() - 1; }
+    std::span<const std::byte> of(std::size_t rank) const {
+        return std::span<const std::byte>(all_).subspan(offsets_.at(rank), offsets_.at(rank + 1) - offsets_.at(rank));
+    }
+    std::size_t totalSize() const { return offsets_.empty() ? 0 : offsets_.back(); }
+
+    // For the exchanges: room for parts of `sizes` bytes, in rank order; returns
+    // where part 0 starts. The buffer's capacity is kept.
+    template <typename Size>
+    std::byte* reset(std::span<const Size> sizes) {
+        offsets_.assign(1, 0);
+        for (const Size size : sizes) offsets_.push_back(offsets_.back() + static_cast<std::size_t>(size));
+        all_.resize(offsets_.back());
+        return all_.data();
+    }
+    void clear() { offsets_.clear(); }
+
+private:
+    Bytes all_;
+    std::vector<std::size_t> offsets_;
+};
+
 class ProcessGroup {
 public:
     virtual ~ProcessGroup() = default;
@@ -25,10 +54,11 @@ public:
     virtual int size() const = 0;
     bool isRoot() const { return rank() == 0; }
 
-    // Every process's `local`, indexed by rank, on every process.
-    virtual std::vector<Bytes> allGather(std::span<const std::byte> local) const = 0;
-    // Every process's `local`, indexed by rank, on process 0; empty elsewhere.
-    virtual std::vector<Bytes> gatherToRoot(std::span<const std::byte> local) const = 0;
+    // Every process's `local`, indexed by rank, into `into` on every process.
+    virtual void allGather(std::span<const std::byte> local, GatheredBytes& into) const = 0;
+    // Every process's `local`, indexed by rank, into `into` on process 0;
+    // `into` is emptied elsewhere.
+    virtual void gatherToRoot(std::span<const std::byte> local, GatheredBytes& into) const = 0;
     // Process 0's `bytes` on every process (in place).
     virtual void broadcastFromRoot(Bytes& bytes) const = 0;
 };
@@ -38,10 +68,12 @@ class SingleProcessGroup final : public ProcessGroup {
 public:
     int rank() const override { return 0; }
     int size() const override { return 1; }
-    std::vector<Bytes> allGather(std::span<const std::byte> local) const override {
-        return {Bytes(local.begin(), local.end())};
+    void allGather(std::span<const std::byte> local, GatheredBytes& into) const override {
+        const std::size_t size = local.size();
+        if (size != 0) std::memcpy(into.reset(std::span<const std::size_t>(&size, 1)), local.data(), size);
+        else into.reset(std::span<const std::size_t>(&size, 1));
     }
-    std::vector<Bytes> gatherToRoot(std::span<const std::byte> local) const override { return allGather(local); }
+    void gatherToRoot(std::span<const std::byte> local, GatheredBytes& into) const override { allGather(local, into); }
     void broadcastFromRoot(Bytes&) const override {}
 };
 

@@ -2,6 +2,8 @@
 
 #include "render/CachePrefill.h"
 
+#include <stdexcept>
+
 namespace raycache {
 
 namespace {
@@ -10,9 +12,10 @@ bool distributed(const ProcessGroup* group) { return group && group->size() > 1;
 
 }  // namespace
 
-CacheFrame::CacheFrame(RayCache* cache, int workerCount, const ProcessGroup* group)
-    : cache_(cache && !cache->empty() ? cache : nullptr), group_(group), localWorkers_(workerCount) {
+CacheFrame::CacheFrame(RayCache* cache, int workerCount, const ProcessGroup* group, StoreExchangeBuffers* buffers)
+    : cache_(cache && !cache->empty() ? cache : nullptr), group_(group), buffers_(buffers), localWorkers_(workerCount) {
     if (!cache_) return;
+    if (distributed(group_) && !buffers_) throw std::logic_error("CacheFrame: a cluster frame needs exchange buffers");
     const int remote = distributed(group_) ? group_->size() - 1 : 0;
     workers_ = cache_->reusableWorkers(workerCount + remote);
     cache_->beginFrame(workers_);
@@ -27,12 +30,13 @@ std::optional<FrameCacheStats> CacheFrame::finish(const TileKernel& kernel, cons
     if (!cache_ || finished_) return std::nullopt;
     finished_ = true;
     if (distributed(group_)) {
-        const Bytes mine = CacheWorker::pack(workers_.first(static_cast<std::size_t>(localWorkers_)));
-        const std::vector<Bytes> all = group_->allGather(mine);
+        CacheWorker::pack(workers_.first(static_cast<std::size_t>(localWorkers_)), buffers_->packed);
+        GatheredBytes& all = buffers_->gathered;
+        group_->allGather(buffers_->packed, all);
         std::size_t slot = static_cast<std::size_t>(localWorkers_);
-        for (std::size_t r = 0; r < all.size(); ++r) {
-            exchangedBytes_ += all[r].size();
-            if (static_cast<int>(r) != group_->rank()) workers_[slot++].unpack(all[r], cache_->cubeCount());
+        for (std::size_t r = 0; r < all.count(); ++r) {
+            exchangedBytes_ += all.of(r).size();
+            if (static_cast<int>(r) != group_->rank()) workers_[slot++].unpack(all.of(r), cache_->cubeCount());
         }
     }
     // With the other processes' counters in workers_, every process sees the

@@ -20,11 +20,21 @@ namespace raycache {
 
 class TileKernel;
 
+// What the store exchange of a cluster job fills every frame, kept by the
+// renderer from frame to frame so that megabytes of stores do not land in
+// freshly allocated pages each frame.
+struct StoreExchangeBuffers {
+    Bytes packed;            // this process's stores and counters
+    GatheredBytes gathered;  // every process's
+};
+
 class CacheFrame {
 public:
     // `cache` null or empty: an inactive frame, whose workers are null.
-    // `group` (may be null: one process) must outlive the frame.
-    CacheFrame(RayCache* cache, int workerCount, const ProcessGroup* group = nullptr);
+    // `group` (may be null: one process) and `buffers` (needed only with a
+    // group of several processes) must outlive the frame.
+    CacheFrame(RayCache* cache, int workerCount, const ProcessGroup* group = nullptr,
+               StoreExchangeBuffers* buffers = nullptr);
     // A frame left unfinished (an exception in the middle) is ended without
     // its statistics, so the cache is ready for the next frame.
     ~CacheFrame();
@@ -51,6 +61,7 @@ public:
 private:
     RayCache* cache_;
     const ProcessGroup* group_;
+    StoreExchangeBuffers* buffers_;
     int localWorkers_ = 0;
     // The local workers first, then one per other process, filled by the exchange.
     std::span<CacheWorker> workers_;

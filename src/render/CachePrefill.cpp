@@ -39,11 +39,12 @@ PrefillResult prefillCaches(RayCache& cache, std::span<const CacheWorker> worker
             Bytes mine;
             for (int row = rank; row < rows; row += processes)
                 appendBytes(mine, std::span<const RayCache::PrefillTexel>(rowSpan(row)));
-            const std::vector<Bytes> all = group->allGather(mine);
+            GatheredBytes all;
+            group->allGather(mine, all);
             for (int r = 0; r < processes; ++r) {
-                result.exchangedBytes += all[static_cast<std::size_t>(r)].size();
+                result.exchangedBytes += all.of(static_cast<std::size_t>(r)).size();
                 if (r == rank) continue;
-                ByteReader reader(all[static_cast<std::size_t>(r)]);
+                ByteReader reader(all.of(static_cast<std::size_t>(r)));
                 for (int row = r; row < rows; row += processes) reader.readInto(rowSpan(row));
             }
         }

@@ -49,10 +49,12 @@ void renderFramesAcrossProcesses(const Scene& scene, const CameraPath& path, con
     if (onPipeline) onPipeline(session.description());
     Image film(settings.width, settings.height);
     const int processes = group.size();
+    Bytes part;
+    GatheredBytes parts;  // process 0: every process's frame, buffers kept from round to round
     for (int first = 0; first < frameCount; first += processes) {
         // Each round, process r renders frame first + r.
         const int frame = first + group.rank();
-        Bytes part;
+        part.clear();
         if (frame < frameCount) {
             const auto start = std::chrono::steady_clock::now();
             session.setTime(timeline.timeOf(frame));
@@ -64,11 +66,11 @@ void renderFramesAcrossProcesses(const Scene& scene, const CameraPath& path, con
             packStats(part, result);
             if (needsFilm(frame)) appendBytes(part, std::span<const Rgb>(film.pixels()));
         }
-        const std::vector<Bytes> parts = group.gatherToRoot(part);
+        group.gatherToRoot(part, parts);
         if (!group.isRoot()) continue;
         const Image own = film;  // process 0's frame, before the others' overwrite the film
         for (int r = 0; r < processes && first + r < frameCount; ++r) {
-            ByteReader reader(parts[static_cast<std::size_t>(r)]);
+            ByteReader reader(parts.of(static_cast<std::size_t>(r)));
             FrameResult result;
             result.frame = first + r;
             unpackStats(reader, result);
@@ -82,7 +84,7 @@ void renderFramesAcrossProcesses(const Scene& scene, const CameraPath& path, con
                 reader.readInto(std::span<Rgb>(film.pixels()));
                 cluster.imageBytes = film.pixels().size() * sizeof(Rgb);
             }
-            cluster.controlBytes = parts[static_cast<std::size_t>(r)].size() - cluster.imageBytes;
+            cluster.controlBytes = parts.of(static_cast<std::size_t>(r)).size() - cluster.imageBytes;
             if (r == 0) cluster.controlBytes = 0;
             result.stats.cluster = cluster;
             onFrame(result, film, session.cache());

@@ -93,7 +93,7 @@ FrameStats FrameRenderer::renderDistributed(const CameraRays& cameraRays, Image&
     scratch.resize(static_cast<std::size_t>(parallel_.threadCount()));
     for (TileScratch& s : scratch) s.beginFrame();
     std::vector<double> costs(mine.size());
-    CacheFrame cacheFrame(cache_, parallel_.threadCount(), &group);
+    CacheFrame cacheFrame(cache_, parallel_.threadCount(), &group, &storeExchange_);
     parallel_.forEachIndex(static_cast<int>(mine.size()), [&](int k, int worker) {
         const auto tileStart = Clock::now();
         const TileRange tile = tileAt(mine[static_cast<std::size_t>(k)], width, height, tileSize);
@@ -117,7 +117,14 @@ FrameStats FrameRenderer::renderDistributed(const CameraRays& cameraRays, Image&
     stages.cacheFrameEnd = millisecondsSince(start);
 
     // Every process's part, in its tiles' increasing index order.
-    Bytes part;
+    Bytes& part = imagePart_;
+    part.clear();
+    std::size_t pixels = 0;
+    for (const int t : mine) {
+        const TileRange tile = tileAt(t, width, height, tileSize);
+        pixels += static_cast<std::size_t>(tile.x1 - tile.x0) * static_cast<std::size_t>(tile.y1 - tile.y0);
+    }
+    part.reserve(sizeof tileRays + sizeof stages + costs.size() * sizeof(double) + pixels * sizeof(Rgb));
     appendBytes(part, tileRays);
     appendBytes(part, stages);
     appendBytes(part, std::span<const double>(costs));
@@ -126,7 +133,8 @@ FrameStats FrameRenderer::renderDistributed(const CameraRays& cameraRays, Image&
         for (int y = tile.y0; y < tile.y1; ++y)
             appendBytes(part, std::span<const Rgb>(&film.at(tile.x0, y), static_cast<std::size_t>(tile.x1 - tile.x0)));
     }
-    const std::vector<Bytes> parts = group.gatherToRoot(part);
+    GatheredBytes& parts = imageParts_;
+    group.gatherToRoot(part, parts);
     if (!group.isRoot()) {
         stats.cluster = cluster;
         return stats;
@@ -136,9 +144,9 @@ FrameStats FrameRenderer::renderDistributed(const CameraRays& cameraRays, Image&
     for (const int owner : owners) ++cluster.tilesPerProcess[static_cast<std::size_t>(owner)];
     lastTileCosts_.assign(static_cast<std::size_t>(tiles), 0.0);
     StageTimes allStages;
-    std::vector<double> busy(parts.size(), 0.0);
-    for (std::size_t r = 0; r < parts.size(); ++r) {
-        ByteReader reader(parts[r]);
+    std::vector<double> busy(parts.count(), 0.0);
+    for (std::size_t r = 0; r < parts.count(); ++r) {
+        ByteReader reader(parts.of(r));
         stats.rays += reader.read<RayCounts>();
         allStages += reader.read<StageTimes>();
         std::vector<double> theirCosts(static_cast<std::size_t>(cluster.tilesPerProcess[r]));
@@ -156,7 +164,7 @@ FrameStats FrameRenderer::renderDistributed(const CameraRays& cameraRays, Image&
         if (static_cast<int>(r) != group.rank()) {
             const std::size_t control = sizeof(RayCounts) + sizeof(StageTimes) + theirCosts.size() * sizeof(double);
             cluster.controlBytes += control;
-            cluster.imageBytes += parts[r].size() - control;
+            cluster.imageBytes += parts.of(r).size() - control;
         }
     }
     double mean = 0.0, most = 0.0;

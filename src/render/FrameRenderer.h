@@ -9,6 +9,7 @@
 #include "core/Image.h"
 #include "core/Parallel.h"
 #include "core/ProcessGroup.h"
+#include "render/CacheFrame.h"
 #include "render/FrameStats.h"
 #include "render/RenderSettings.h"
 #include "render/TileKernel.h"
@@ -45,6 +46,11 @@ private:
     mutable std::vector<double> lastTileCosts_;
     // Per-worker buffers kept from frame to frame (render() is not reentrant).
     mutable std::vector<TileScratch> scratch_;
+    // A cluster job's exchanges, kept from frame to frame: the cache stores,
+    // this process's tiles for process 0, and on process 0 every process's.
+    mutable StoreExchangeBuffers storeExchange_;
+    mutable Bytes imagePart_;
+    mutable GatheredBytes imageParts_;
 };
 
 // Tile `index` of a frame (row-major, as tileKey counts) clipped to the image.

@@ -3,6 +3,7 @@
 // process, exchanging through shared memory, so the distributed frame's
 // logic (tile assignment, store exchange, gather) runs in-process and under
 // the sanitizers, without MPI. One hub per job; one group per thread.
+#include <algorithm>
 #include <barrier>
 #include <functional>
 #include <thread>
@@ -29,16 +30,18 @@ public:
     ThreadProcessGroup(ThreadProcessHub& hub, int rank) : hub_(hub), rank_(rank) {}
     int rank() const override { return rank_; }
     int size() const override { return hub_.size(); }
-    std::vector<Bytes> allGather(std::span<const std::byte> local) const override {
+    void allGather(std::span<const std::byte> local, GatheredBytes& into) const override {
         hub_.slots_[static_cast<std::size_t>(rank_)].assign(local.begin(), local.end());
         hub_.barrier_.arrive_and_wait();
-        std::vector<Bytes> all = hub_.slots_;
+        std::vector<std::size_t> sizes;
+        for (const Bytes& slot : hub_.slots_) sizes.push_back(slot.size());
+        std::byte* out = into.reset(std::span<const std::size_t>(sizes));
+        for (const Bytes& slot : hub_.slots_) out = std::copy(slot.begin(), slot.end(), out);
         hub_.barrier_.arrive_and_wait();  // nobody writes a slot before everyone has read them
-        return all;
     }
-    std::vector<Bytes> gatherToRoot(std::span<const std::byte> local) const override {
-        std::vector<Bytes> all = allGather(local);
-        return isRoot() ? all : std::vector<Bytes>{};
+    void gatherToRoot(std::span<const std::byte> local, GatheredBytes& into) const override {
+        allGather(local, into);
+        if (!isRoot()) into.clear();
     }
     void broadcastFromRoot(Bytes& bytes) const override {
         if (isRoot()) hub_.slots_[0] = bytes;
