@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "core/ProcessGroup.h"
+
 namespace raycache {
 
 struct BenchCommandOptions {
@@ -23,6 +25,13 @@ struct BenchCommandOptions {
 // Runs the experiments, printing progress and findings to `out`. Throws
 // InputError for unknown experiments or conflicting options (before running
 // anything) and RuntimeError when rendering or writing results fails.
-void runBenchCommand(const BenchCommandOptions& options, std::ostream& out);
+//
+// In an MPI job (`group` of several processes, docs/cluster.md) the
+// experiments are dealt over the processes by their estimated work, each run
+// whole on one process (their frames depend on each other through the caches
+// and the interleaved timing); process 0 receives the others' results and
+// files, prints and writes everything, as one process would.
+void runBenchCommand(const BenchCommandOptions& options, std::ostream& out,
+                     const ProcessGroup& group = SingleProcessGroup());
 
 }  // namespace raycache

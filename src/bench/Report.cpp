@@ -49,6 +49,7 @@ std::string reportMarkdown(const ReportInput& in) {
     if (!in.loadAverageAfter.empty())
         env.addRow({"finished", "load average " + in.loadAverageAfter + " (1, 5, 15 min); other processes used " +
                                     formatOthersShare(in.othersCpuShare) + " of the CPU time during the run"});
+    if (!in.processes.empty()) env.addRow({"processes", in.processes});
     s += env.toMarkdown() + "\n";
     if (!in.busyWarning.empty()) s += "**" + in.busyWarning + ".**\n\n";
 

@@ -18,6 +18,7 @@ struct ReportInput {
     std::string loadAverageAfter;  // /proc/loadavg's figures when the last experiment ended
     double othersCpuShare = -1.0;  // othersCpuShare() over the whole run; negative = unknown
     std::string busyWarning;       // busyMachineWarning() for the whole run, empty when quiet
+    std::string processes;         // an MPI job: which process ran which experiment; empty for one process
     std::vector<ExperimentOutput> experiments;
 };
 

@@ -9,6 +9,9 @@
 #       (their ray-tree records travel with the stores) alike on every process
 #   mpi_render_test.sh <raycache> <mpiexec> whole-frames <processes>
 #       caches off, several frames: every frame's image equals the single-process one
+#   mpi_render_test.sh <raycache> <mpiexec> bench <processes>
+#       `raycache bench all --tiny` over N processes writes the same files
+#       as one process, and its report names the processes
 #   mpi_render_test.sh <raycache> <mpiexec> load-failure
 #       one process cannot load its scene: one error line naming it, exit 2, no image
 #   mpi_render_test.sh <raycache> <mpiexec> dead-process
@@ -83,6 +86,21 @@ whole-frames)
   for f in 0001 0002 0003 0004; do
     cmp "$scratch/one_$f.exr" "$scratch/many_$f.exr" || fail "frame $f differs"
   done
+  ;;
+bench)
+  processes=$1
+  args=(bench all --tiny --threads 1)
+  "$raycache" "${args[@]}" --out "$scratch/one" >"$scratch/one.log" 2>&1 || { cat "$scratch/one.log"; fail "single"; }
+  "${mpi[@]}" -np "$processes" "$raycache" "${args[@]}" --out "$scratch/many" >"$scratch/many.log" 2>&1 ||
+    { cat "$scratch/many.log"; fail "$processes-process bench"; }
+  cat "$scratch/many.log"
+  (cd "$scratch/one" && find . -type f | sort) >"$scratch/one.files"
+  (cd "$scratch/many" && find . -type f | sort) >"$scratch/many.files"
+  diff "$scratch/one.files" "$scratch/many.files" || fail "$processes processes wrote other files than one"
+  grep -q "$processes MPI processes, each experiment run whole on one" "$scratch/many/report.md" ||
+    fail "the report does not say which process ran what"
+  grep -q "(process 1)" "$scratch/many.log" || fail "process 1 ran no experiment"
+  [ "$(grep -c '^raycache bench:' "$scratch/many.log")" = 1 ] || fail "expected one header line, from process 0 only"
   ;;
 load-failure)
   # MPMD: process 0 gets a good scene, processes 1 and 2 one that does not exist.

@@ -7,34 +7,13 @@
 #include <filesystem>
 #include <string>
 
+#include "TempDir.h"
 #include "core/ColorSpace.h"
 #include "core/Errors.h"
 #include "scene/ImageLoader.h"
 
 namespace raycache {
 namespace {
-
-// A fresh directory under the system temp dir, removed with everything in it.
-class TempDir {
-public:
-    TempDir() {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        path_ = std::filesystem::temp_directory_path() /
-                ("raycache-" + std::string(info->test_suite_name()) + "-" + info->name());
-        std::filesystem::remove_all(path_);
-        std::filesystem::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        std::filesystem::remove_all(path_, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    const std::filesystem::path& path() const { return path_; }
-
-private:
-    std::filesystem::path path_;
-};
 
 bool isEmptyDir(const std::filesystem::path& dir) {
     return std::filesystem::directory_iterator(dir) == std::filesystem::directory_iterator();

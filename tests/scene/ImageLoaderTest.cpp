@@ -6,6 +6,7 @@
 #include <limits>
 #include <string>
 
+#include "TempDir.h"
 #include "core/ColorSpace.h"
 #include "core/Errors.h"
 #include "render/ImageWriter.h"
@@ -18,28 +19,6 @@ const std::filesystem::path imageDir = std::filesystem::path(RAYCACHE_TEST_DATA_
 // Inputs the fuzzers found (docs/testing.md), kept beside the fuzzers.
 const std::filesystem::path findingsDir =
     std::filesystem::path(RAYCACHE_TEST_DATA_DIR).parent_path() / "fuzz" / "findings";
-
-// A fresh directory under the system temp dir, removed with everything in it.
-class TempDir {
-public:
-    TempDir() {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        path_ = std::filesystem::temp_directory_path() /
-                ("raycache-" + std::string(info->test_suite_name()) + "-" + info->name());
-        std::filesystem::remove_all(path_);
-        std::filesystem::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        std::filesystem::remove_all(path_, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    const std::filesystem::path& path() const { return path_; }
-
-private:
-    std::filesystem::path path_;
-};
 
 void expectInputErrorNamingFile(const std::filesystem::path& path, const std::string& detail = "") {
     try {
