@@ -170,9 +170,12 @@ public:
     std::span<CacheWorker> reusableWorkers(int count);
     void beginFrame(std::span<CacheWorker> workers);
     // With `runPartitions`, the stores of different cubes are applied by
-    // different calls of its body (each cube's stores in the same order as
-    // without), so a caller may spread them over threads.
-    FrameCacheStats endFrame(std::span<CacheWorker> workers, const PartitionRunner& runPartitions = {});
+    // `partitions` calls of its body (each cube's stores in the same order as
+    // without), so a caller may spread them over that many threads. Every
+    // call scans all queued stores: more partitions than threads add scans,
+    // not parallelism.
+    FrameCacheStats endFrame(std::span<CacheWorker> workers, const PartitionRunner& runPartitions = {},
+                             int partitions = 1);
 
     // What the ray leaving object `objectId` at `origin` along `direction`
     // brought back in an earlier frame, or nothing if it has to be traced.

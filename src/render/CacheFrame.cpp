@@ -45,9 +45,12 @@ std::optional<FrameCacheStats> CacheFrame::finish(const TileKernel& kernel, cons
         prefillCaches(*cache_, workers_, kernel, parallel, distributed(group_) ? group_ : nullptr);
     rays += prefill.rays;
     prefillBytes_ = prefill.exchangedBytes;
-    return cache_->endFrame(workers_, [&](int count, const std::function<void(int)>& body) {
-        parallel.forEachIndex(count, [&](int part, int) { body(part); });
-    });
+    return cache_->endFrame(
+        workers_,
+        [&](int count, const std::function<void(int)>& body) {
+            parallel.forEachIndex(count, [&](int part, int) { body(part); });
+        },
+        parallel.threadCount());
 }
 
 }  // namespace raycache
