@@ -46,6 +46,11 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
     command.add_option("--cdct-tolerance", job.cdctTolerance,
                        "Improved CDCT error control: trace the ray when the cached point lies farther than this "
                        "many texels from it (default: each material's own, 2)");
+    command.add_option("--cdct-prefill-per-frame", job.cdctPrefillPerFrame,
+                       "Improved CDCT: trace at most this many pre-fill rays (cube texels) per frame, whole face rows, "
+                       "so no frame stalls filling cubes; 0 = fill every cube whole in the frame that first asks "
+                       "for it")
+        ->capture_default_str();
     command.add_option("--cache-res", job.cacheResolution, "Caching-cube face resolution, 16..2048 "
                                                            "(default: each material's own, 512 in built-in scenes)");
     command.add_option("--cache-levels", job.cacheLevels,

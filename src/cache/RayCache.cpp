@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 #include <variant>
 
 #include "core/Errors.h"
@@ -88,6 +89,9 @@ CubeBudgetPlan RayCache::validate(const Scene& scene, const RayCacheSettings& se
           settings.levelErrorBound <= 1000.0f))
         throw InputError("cache level error bound must be a finite number in (0, 1000] (got " +
                          formatNumber(settings.levelErrorBound) + ")");
+    if (settings.prefillTexelsPerFrame < 0)
+        throw InputError("pre-fill texels per frame must be 0 (whole cubes) or more (got " +
+                         std::to_string(settings.prefillTexelsPerFrame) + ")");
     for (const SceneObject& object : scene.objects) {
         const CacheTechnique technique = techniqueFor(object, settings);
         if (technique == CacheTechnique::Cdct || technique == CacheTechnique::CdctParity)
@@ -115,7 +119,7 @@ CubeBudgetPlan RayCache::planBudget(const Scene& scene, const RayCacheSettings& 
 RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings)
     : ideal_(settings.ideal), oracle_(settings.invalidationOracle), levelErrorBound_(settings.levelErrorBound),
       tracksDependencies_(!scene.animation.empty() || settings.invalidationOracle),
-      improvements_(settings.cdctImprovements) {
+      improvements_(settings.cdctImprovements), prefillTexelsPerFrame_(settings.prefillTexelsPerFrame) {
     const CubeBudgetPlan plan = validate(scene, settings);
     budgetNote_ = plan.note;
     cubeOfObject_.assign(scene.objects.size(), -1);
@@ -170,6 +174,9 @@ void RayCache::clearEntry(Entry& e) {
     e.cube.clear();
     e.coarse.clear();
     e.prefilled = false;
+    // A pre-fill under way starts again: its rows saw the scene before the change.
+    e.prefillRowsDone = 0;
+    e.prefillRows = {};
     e.farthestSurface = 0.0f;
     e.pyramid.reset();
     std::fill(e.blocks.begin(), e.blocks.end(), RayTreeBounds{});
@@ -434,6 +441,60 @@ void RayCache::completePrefill(int objectId, std::span<const PrefillTexel> texel
     e.prefilled = true;
     // Pre-filled cubes receive no stores, so the pyramid stays current.
     if (improvements_.skipEmptySpace) e.pyramid.emplace(e.cube);
+}
+
+std::vector<RayCache::PrefillPiece> RayCache::planPrefill(std::span<const CacheWorker> workers) {
+    for (const int objectId : objectsAwaitingPrefill(workers)) {
+        Entry& e = cubes_[static_cast<std::size_t>(cubeIndexOf(objectId))];
+        if (e.prefillQueued) continue;
+        e.prefillQueued = true;
+        prefillQueue_.push_back(cubeIndexOf(objectId));
+    }
+    std::vector<PrefillPiece> pieces;
+    std::int64_t left = prefillTexelsPerFrame_;  // 0: no limit
+    for (const int c : prefillQueue_) {
+        const Entry& e = cubes_[static_cast<std::size_t>(c)];
+        const int n = e.cube.size();
+        int rows = 6 * n - e.prefillRowsDone;
+        if (prefillTexelsPerFrame_ > 0) {
+            // Whole rows within what is left; at least one row a frame.
+            const std::int64_t fit = left / n;
+            if (fit == 0 && !pieces.empty()) break;
+            rows = static_cast<int>(std::clamp<std::int64_t>(fit, 1, rows));
+            left -= static_cast<std::int64_t>(rows) * n;
+        }
+        pieces.push_back({e.objectId, e.prefillRowsDone, rows});
+        if (prefillTexelsPerFrame_ > 0 && left <= 0) break;
+    }
+    return pieces;
+}
+
+void RayCache::addPrefillRows(int objectId, int firstRow, std::span<const PrefillTexel> texels) {
+    const int c = cubeIndexOf(objectId);
+    if (c < 0) throw std::logic_error("addPrefillRows: object " + std::to_string(objectId) + " has no cube");
+    Entry& e = cubes_[static_cast<std::size_t>(c)];
+    const auto n = static_cast<std::size_t>(e.cube.size());
+    const int totalRows = 6 * e.cube.size();
+    if (firstRow != e.prefillRowsDone || texels.size() % n != 0 ||
+        firstRow + static_cast<int>(texels.size() / n) > totalRows)
+        throw std::logic_error("addPrefillRows: rows out of order for '" + e.name + "'");
+    const int rows = static_cast<int>(texels.size() / n);
+    const auto finish = [&](std::span<const PrefillTexel> all) {
+        e.prefillRowsDone = 0;
+        e.prefillRows = {};
+        e.prefillQueued = false;
+        prefillQueue_.erase(std::find(prefillQueue_.begin(), prefillQueue_.end(), c));
+        completePrefill(objectId, all);
+    };
+    // A whole cube in one piece needs no copy.
+    if (firstRow == 0 && rows == totalRows) return finish(texels);
+    if (e.prefillRows.empty()) e.prefillRows.resize(e.cube.texelCount());
+    std::copy(texels.begin(), texels.end(), e.prefillRows.begin() + static_cast<std::ptrdiff_t>(firstRow * n));
+    e.prefillRowsDone += rows;
+    if (e.prefillRowsDone == totalRows) {
+        const std::vector<PrefillTexel> all = std::move(e.prefillRows);
+        finish(all);
+    }
 }
 
 std::optional<Rgb> RayCache::answer(const Entry& e, const Vec3& origin, const Vec3& direction,

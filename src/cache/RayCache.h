@@ -63,6 +63,12 @@ struct RayCacheSettings {
     // (Query::spread), and the point its stored ray saw lies within that
     // angle of the looked-up ray. Larger: more answers, further off. In (0, 1000].
     float levelErrorBound = 0.25f;
+    // Improved CDCT's pre-fill spread over frames: at most this many texels
+    // (rays from a cube's centre) are traced per frame, whole face rows, at
+    // least one row; a cube answers lookups once all its rows are in. 0: every
+    // cube asked for is filled whole in the frame that first asks for it (a
+    // frame that traces a whole 512² cube, 1.5 M rays, per caching object).
+    std::int64_t prefillTexelsPerFrame = 0;
     // The most memory the cubes may take (bytes; cache/CubeBudget.h): over
     // it, resolutions are lowered before anything is allocated. None: no limit.
     std::optional<std::size_t> memoryBudget;
@@ -227,6 +233,23 @@ public:
     // cube's texel count): color, and depth clamped to maxDepth.
     void completePrefill(int objectId, std::span<const PrefillTexel> texels);
 
+    // The pre-fill spread over frames (RayCacheSettings::prefillTexelsPerFrame):
+    // the cubes asked for by `workers` join a queue (in the frame they are
+    // first asked for, in cube order); this frame's pieces are the next face
+    // rows of the queue, within the budget. Each piece is traced and handed
+    // back, in order, with addPrefillRows. With no budget: every queued cube
+    // whole, as objectsAwaitingPrefill.
+    struct PrefillPiece {
+        int objectId;
+        int firstRow;  // face-major rows of cube.size() texels, 6·size() in all
+        int rows;
+    };
+    std::vector<PrefillPiece> planPrefill(std::span<const CacheWorker> workers);
+    // The traced texels of a planned piece (rows × size() of them); the cube
+    // is filled (completePrefill) when its last row is in. Throws
+    // std::logic_error for rows out of order.
+    void addPrefillRows(int objectId, int firstRow, std::span<const PrefillTexel> texels);
+
     // Queues what a traced ray brought back (`hitDistance` from origin to its
     // first hit, infinity for a miss) for the end of the frame. CDCT stores
     // it at the texel addressed by centre -> hit point, with that distance
@@ -248,6 +271,9 @@ private:
         double invalidPercentBefore = 100.0;
         std::uint64_t prefilledTexels = 0;  // written by completePrefill since the last endFrame
         bool prefilled = false;
+        bool prefillQueued = false;              // in prefillQueue_
+        int prefillRowsDone = 0;                 // rows of a pre-fill spread over frames
+        std::vector<PrefillTexel> prefillRows;  // those rows, until the last is in
         float farthestSurface = 0.0f;       // largest stored depth below cdct.maxDepth
         std::optional<DepthPyramid> pyramid;  // built when the cube is pre-filled
         // tracksDependencies_, CCT cubes: per block, the union of its valid
@@ -292,6 +318,7 @@ private:
 
     std::vector<Entry> cubes_;
     std::vector<int> cubeOfObject_;
+    std::vector<int> prefillQueue_;  // cube indices awaiting a pre-fill spread over frames, oldest first
     // endFrame's batches in merge order; kept to reuse its memory.
     struct BatchRef {
         std::uint64_t key;
@@ -307,6 +334,7 @@ private:
     std::string budgetNote_;  // some cube has coarser levels: stores carry what their ray saw
     bool tracksDependencies_ = false;
     CdctImprovements improvements_;
+    std::int64_t prefillTexelsPerFrame_ = 0;
     // tracksDependencies_: every object's world boxes in the pose the texels
     // were traced in, and the lights, for sceneChanged.
     std::vector<PartedBounds> objectBounds_;

@@ -12,32 +12,31 @@ PrefillResult prefillCaches(RayCache& cache, std::span<const CacheWorker> worker
     const int rank = group ? group->rank() : 0;
     PrefillResult result;
     std::vector<TileScratch> scratch(static_cast<std::size_t>(parallel.threadCount()));
-    for (const int objectId : cache.objectsAwaitingPrefill(workers)) {
-        const CachingCube& cube = cache.cube(objectId);
-        std::vector<RayCache::PrefillTexel> texels(cube.texelCount());
+    for (const RayCache::PrefillPiece& piece : cache.planPrefill(workers)) {
+        const CachingCube& cube = cache.cube(piece.objectId);
+        const auto rowLength = static_cast<std::size_t>(cube.size());
+        std::vector<RayCache::PrefillTexel> texels(static_cast<std::size_t>(piece.rows) * rowLength);
+        const auto rowSpan = [&](int row) {  // row of the piece, from 0
+            return std::span(texels).subspan(static_cast<std::size_t>(row) * rowLength, rowLength);
+        };
         // The cube answers rays one bounce after the primary ray leaves a
         // surface, so its contents are shaded as depth-2 rays are.
         constexpr int kDepth = 2;
         // One face row of texels is one batch of the kernel, like a tile;
-        // this process traces rows rank, rank + N, ...
-        const auto rowLength = static_cast<std::size_t>(cube.size());
-        const int rows = 6 * cube.size();
-        const auto rowsOf = [&](int process) { return (rows - process + processes - 1) / processes; };
+        // this process traces the piece's rows rank, rank + N, ...
+        const auto rowsOf = [&](int process) { return (piece.rows - process + processes - 1) / processes; };
         parallel.forEachIndex(rowsOf(rank), [&](int k, int worker) {
             const int row = rank + k * processes;
             std::vector<Ray> rays(rowLength);
-            const std::size_t first = static_cast<std::size_t>(row) * rowLength;
+            const std::size_t first = static_cast<std::size_t>(piece.firstRow + row) * rowLength;
             for (std::size_t i = 0; i < rowLength; ++i)
-                rays[i] = Ray{cube.center(), cache.prefillDirection(objectId, static_cast<int>(first + i))};
-            kernel.renderFromInside(objectId, rays, kDepth, std::span(texels).subspan(first, rowLength),
+                rays[i] = Ray{cube.center(), cache.prefillDirection(piece.objectId, static_cast<int>(first + i))};
+            kernel.renderFromInside(piece.objectId, rays, kDepth, rowSpan(row),
                                     scratch[static_cast<std::size_t>(worker)]);
         });
         if (processes > 1) {
-            const auto rowSpan = [&](int row) {
-                return std::span(texels).subspan(static_cast<std::size_t>(row) * rowLength, rowLength);
-            };
             Bytes mine;
-            for (int row = rank; row < rows; row += processes)
+            for (int row = rank; row < piece.rows; row += processes)
                 appendBytes(mine, std::span<const RayCache::PrefillTexel>(rowSpan(row)));
             GatheredBytes all;
             group->allGather(mine, all);
@@ -45,10 +44,10 @@ PrefillResult prefillCaches(RayCache& cache, std::span<const CacheWorker> worker
                 result.exchangedBytes += all.of(static_cast<std::size_t>(r)).size();
                 if (r == rank) continue;
                 ByteReader reader(all.of(static_cast<std::size_t>(r)));
-                for (int row = r; row < rows; row += processes) reader.readInto(rowSpan(row));
+                for (int row = r; row < piece.rows; row += processes) reader.readInto(rowSpan(row));
             }
         }
-        cache.completePrefill(objectId, texels);
+        cache.addPrefillRows(piece.objectId, piece.firstRow, texels);
     }
     for (const TileScratch& s : scratch) result.rays += s.counts;
     return result;

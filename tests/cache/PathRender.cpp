@@ -10,7 +10,8 @@
 namespace raycache {
 
 PathRender renderPath(const std::string& sceneName, CacheTechnique technique, int frames, bool still, int size,
-                      int threads, int cacheResolution, const ProcessGroup* group, TileBalance balance, int cubeLevels) {
+                      int threads, int cacheResolution, const ProcessGroup* group, TileBalance balance, int cubeLevels,
+                      std::int64_t prefillPerFrame) {
     const auto scene = makeBuiltinScene(sceneName);
     EXPECT_TRUE(scene.has_value()) << sceneName;
     if (!scene) return {};
@@ -21,6 +22,7 @@ PathRender renderPath(const std::string& sceneName, CacheTechnique technique, in
     settings.cache.resolutionOverride = cacheResolution;
     settings.tileBalance = balance;
     settings.cache.cubeLevels = cubeLevels;
+    settings.cache.prefillTexelsPerFrame = prefillPerFrame;
     const TraceScene tracer(*scene);
     const Parallel parallel(threads);
     RayCache cache(*scene, settings.cache);

@@ -24,9 +24,11 @@ struct PathRender {
 // `frames` frames of the scene's own camera path, or of its first camera when
 // `still`; `technique` and `cacheResolution` override every material.
 // With `group` (one of several processes), each frame's tiles are shared
-// among them and only process 0's frames are whole.
+// among them and only process 0's frames are whole. `prefillPerFrame`:
+// RayCacheSettings::prefillTexelsPerFrame.
 PathRender renderPath(const std::string& sceneName, CacheTechnique technique, int frames, bool still, int size,
                       int threads = 2, int cacheResolution = 512, const ProcessGroup* group = nullptr,
-                      TileBalance balance = TileBalance::Dynamic, int cubeLevels = 1);
+                      TileBalance balance = TileBalance::Dynamic, int cubeLevels = 1,
+                      std::int64_t prefillPerFrame = 0);
 
 }  // namespace raycache

@@ -1,0 +1,60 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+
+#include "PathRender.h"
+
+namespace raycache {
+namespace {
+
+// room: one mirror sphere. 16² faces: 96 rows of 16 texels, 1536 texels.
+constexpr int kSize = 40;
+constexpr int kResolution = 16;
+constexpr int kRows = 6 * kResolution;
+constexpr int kCubeTexels = kRows * kResolution;
+
+// Improved CDCT with its pre-fill spread over frames fills the same cube
+// as the pre-fill in one frame, bit for bit, once its last row is in; the
+// frames before that trace every reflected ray, so they equal the uncached
+// render exactly; every frame traces at most its budget of pre-fill rays.
+TEST(PrefillSpread, FillsTheSameCubeOverSeveralFramesWithinTheBudget) {
+    constexpr int kRowsPerFrame = 10;
+    constexpr std::int64_t kBudget = kRowsPerFrame * kResolution;
+    constexpr int kFillFrames = (kRows + kRowsPerFrame - 1) / kRowsPerFrame;  // 10
+    constexpr int kFrames = kFillFrames + 2;
+    const PathRender atOnce = renderPath("room", CacheTechnique::Cdct, kFrames, true, kSize, 2, kResolution);
+    const PathRender spread = renderPath("room", CacheTechnique::Cdct, kFrames, true, kSize, 2, kResolution, nullptr,
+                                         TileBalance::Dynamic, 1, kBudget);
+    const PathRender uncached = renderPath("room", CacheTechnique::None, kFrames, true, kSize, 2, kResolution);
+    ASSERT_EQ(spread.frames.size(), static_cast<std::size_t>(kFrames));
+
+    EXPECT_EQ(spread.texels, atOnce.texels);
+    std::uint64_t prefilled = 0;
+    for (int f = 0; f < kFrames; ++f) {
+        const std::uint64_t rays = spread.stats[static_cast<std::size_t>(f)].rays.prefill;
+        EXPECT_LE(rays, static_cast<std::uint64_t>(kBudget)) << "frame " << f;
+        prefilled += rays;
+        // The cube is complete after the pre-fill of frame kFillFrames - 1
+        // (counting from 0); up to and including that frame, every lookup
+        // misses and the image is the uncached one.
+        if (f < kFillFrames)
+            EXPECT_EQ(spread.frames[static_cast<std::size_t>(f)].pixels(),
+                      uncached.frames[static_cast<std::size_t>(f)].pixels())
+                << "frame " << f;
+    }
+    EXPECT_EQ(prefilled, static_cast<std::uint64_t>(kCubeTexels));
+    // Once filled, the images are the filled cube's, as with the pre-fill at once.
+    EXPECT_EQ(spread.frames.back().pixels(), atOnce.frames.back().pixels());
+    EXPECT_NE(spread.frames.back().pixels(), uncached.frames.back().pixels());
+}
+
+// A budget smaller than one row still makes progress: one row a frame.
+TEST(PrefillSpread, BudgetBelowOneRowTracesOneRowAFrame) {
+    const PathRender run = renderPath("room", CacheTechnique::Cdct, 4, true, kSize, 1, kResolution, nullptr,
+                                      TileBalance::Dynamic, 1, /*prefillPerFrame=*/3);
+    for (const FrameStats& s : run.stats) EXPECT_EQ(s.rays.prefill, static_cast<std::uint64_t>(kResolution));
+}
+
+}  // namespace
+}  // namespace raycache
