@@ -198,6 +198,8 @@ TEST_F(Cli, RenderRejectsBadCachingOptionsWithOneLine) {
                                     "render --scene behind-1 --cache-levels 0 --out " + png,
                                     "render --scene behind-1 --cache-level-error 0 --out " + png,
                                     "render --scene behind-1 --cache-level-error nan --out " + png,
+                                    "render --scene behind-1 --cdct-prefill-per-frame -1 --out " + png,
+                                    "render --scene behind-1 --cdct-prefill-per-frame 1e3 --out " + png,
                                     "render --scene behind-1 --cache-budget -1 --out " + png,
                                     "render --scene behind-1 --cache-budget inf --out " + png,
                                     // grid-32's 32 cubes need 12.5 KiB even at 4² faces.
