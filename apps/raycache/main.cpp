@@ -49,8 +49,7 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
     command.add_option("--cdct-prefill-per-frame", job.cdctPrefillPerFrame,
                        "Improved CDCT: trace at most this many pre-fill rays (cube texels) per frame, whole face rows, "
                        "so no frame stalls filling cubes; 0 = fill every cube whole in the frame that first asks "
-                       "for it")
-        ->capture_default_str();
+                       "for it (default: 0, but half the image's pixels a frame in the viewer)");
     command.add_option("--cache-res", job.cacheResolution, "Caching-cube face resolution, 16..2048 "
                                                            "(default: each material's own, 512 in built-in scenes)");
     command.add_option("--cache-levels", job.cacheLevels,

@@ -67,9 +67,9 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
     positive(o.cdctEpsilon, "--cdct-epsilon");
     positive(o.cdctMaxDepth, "--cdct-max-depth");
     positive(o.cdctTolerance, "--cdct-tolerance");
-    if (o.cdctPrefillPerFrame < 0 || o.cdctPrefillPerFrame > (std::int64_t{1} << 40))
+    if (o.cdctPrefillPerFrame && (*o.cdctPrefillPerFrame < 0 || *o.cdctPrefillPerFrame > (std::int64_t{1} << 40)))
         throw InputError("--cdct-prefill-per-frame must be between 0 (whole cubes at once) and 2^40 (got " +
-                         std::to_string(o.cdctPrefillPerFrame) + ")");
+                         std::to_string(*o.cdctPrefillPerFrame) + ")");
     if (o.cdctStep && o.cdctEpsilon && !(*o.cdctEpsilon < *o.cdctStep))
         throw InputError("--cdct-epsilon must be smaller than --cdct-step");
     if (o.cacheResolution &&
@@ -120,7 +120,7 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     settings.cache.cdctEpsilonOverride = options.cdctEpsilon;
     settings.cache.cdctMaxDepthOverride = options.cdctMaxDepth;
     settings.cache.cdctToleranceOverride = options.cdctTolerance;
-    settings.cache.prefillTexelsPerFrame = options.cdctPrefillPerFrame;
+    settings.cache.prefillTexelsPerFrame = options.cdctPrefillPerFrame.value_or(0);
     settings.cache.resolutionOverride = options.cacheResolution;
     settings.cache.cubeLevels = options.cacheLevels;
     settings.cache.levelErrorBound = options.cacheLevelError;

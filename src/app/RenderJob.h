@@ -29,7 +29,9 @@ struct RenderJobOptions {
     std::optional<float> cdctEpsilon;
     std::optional<float> cdctMaxDepth;
     std::optional<float> cdctTolerance;    // improved CDCT error control, texels
-    std::int64_t cdctPrefillPerFrame = 0;  // RayCacheSettings::prefillTexelsPerFrame
+    // RayCacheSettings::prefillTexelsPerFrame; default: 0 (whole cubes at
+    // once), but half the image's pixels a frame in the viewer.
+    std::optional<std::int64_t> cdctPrefillPerFrame;
     std::optional<int> cacheResolution;    // default: each material's own setting
     int cacheLevels = 1;                   // CCT cubes' resolution levels (RayCacheSettings::cubeLevels)
     float cacheLevelError = 0.25f;         // RayCacheSettings::levelErrorBound

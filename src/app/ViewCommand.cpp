@@ -21,6 +21,12 @@ void runViewCommand(const ViewCommandOptions& options, std::ostream& out) {
     if (options.job.cacheIdeal) throw InputError("--cache-ideal is a benchmark switch; the viewer does not take it");
 
     RenderJob job = prepareRenderJob(options.job);
+    // An interactive frame must not stall for seconds while improved CDCT
+    // fills whole cubes (1.5 M rays per 512² cube): spread it, about half
+    // an uncached frame's rays a frame (docs/viewer.md).
+    if (!options.job.cdctPrefillPerFrame)
+        job.settings.cache.prefillTexelsPerFrame =
+            std::max<std::int64_t>(1, static_cast<std::int64_t>(job.settings.width) * job.settings.height / 2);
     ViewerRenderConfig config;
     // The command line's choices become the panel's starting values.
     config.technique = techniqueChoiceIndex(options.job.technique.value_or(""));
