@@ -216,8 +216,13 @@ TEST_F(Experiments, FillRateStartsEmptyAndNeverLosesTexels) {
 
 TEST_F(Experiments, QualityAndParallaxMetricsAreInRange) {
     const nlohmann::json q = results("quality");
-    ASSERT_EQ(q.at("rows").size(), 2u * 2u * 3u);  // views x fill protocols x resolutions
+    ASSERT_EQ(q.at("rows").size(), 2u * 4u * 3u);  // views x fill protocols x resolutions
+    int multiResolutionRows = 0;
     for (const auto& row : q.at("rows")) {
+        // The third and fourth fill protocols measure multi-resolution cubes.
+        const bool multiResolution = row.at("fill") == "orbit-levels" || row.at("fill") == "orbit-levels-wide";
+        EXPECT_EQ(row.at("cube_levels").get<int>(), multiResolution ? 4 : 1) << row.at("fill");
+        multiResolutionRows += multiResolution ? 1 : 0;
         const auto& m = row.at("metrics");
         EXPECT_GE(m.at("mae").get<double>(), 0.0);
         EXPECT_LE(m.at("mae").get<double>(), 1.0);
@@ -227,6 +232,7 @@ TEST_F(Experiments, QualityAndParallaxMetricsAreInRange) {
         for (const char* image : {"image", "heatmap", "heatmap_x4"})
             EXPECT_TRUE(fs::exists(dir_ / "quality" / row.at(image).get<std::string>())) << row.at(image);
     }
+    EXPECT_EQ(multiResolutionRows, 2 * 2 * 3);
     const nlohmann::json p = results("parallax");
     ASSERT_GE(p.at("variants").size(), 2u);
     for (const auto& v : p.at("variants")) EXPECT_EQ(v.at("frames").size(), p.at("settings").at("frames"));
