@@ -212,6 +212,19 @@ TEST_F(Experiments, FillRateStartsEmptyAndNeverLosesTexels) {
         }
         EXPECT_LE(s.at("invalid_percent_after_last_frame").get<double>(), previous);
     }
+    // Multi-resolution cubes along the same path: every lookup of the first
+    // frame is traced (the cubes start empty), and every share is a percentage.
+    ASSERT_EQ(j.at("multi_resolution").size(), 2u);
+    for (const auto& m : j.at("multi_resolution")) {
+        EXPECT_EQ(m.at("levels").get<int>(), 4);
+        const auto& traced = m.at("traced_percent");
+        ASSERT_EQ(traced.size(), 10u);
+        EXPECT_DOUBLE_EQ(traced.at(0).get<double>(), 100.0);
+        for (const auto& t : traced) {
+            EXPECT_GE(t.get<double>(), 0.0);
+            EXPECT_LE(t.get<double>(), 100.0);
+        }
+    }
 }
 
 TEST_F(Experiments, QualityAndParallaxMetricsAreInRange) {
