@@ -2,8 +2,12 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <stdexcept>
+#include <vector>
 
+#include "CdctFixtures.h"
 #include "PathRender.h"
+#include "cache/RayCache.h"
 
 namespace raycache {
 namespace {
@@ -54,6 +58,60 @@ TEST(PrefillSpread, BudgetBelowOneRowTracesOneRowAFrame) {
     const PathRender run = renderPath("room", CacheTechnique::Cdct, 4, true, kSize, 1, kResolution, nullptr,
                                       TileBalance::Dynamic, 1, /*prefillPerFrame=*/3);
     for (const FrameStats& s : run.stats) EXPECT_EQ(s.rays.prefill, static_cast<std::uint64_t>(kResolution));
+}
+
+// The queue protocol on the cache alone: pieces come in row order within
+// the budget, rows out of order are refused, and a cube emptied while its
+// rows come in (a scene change, RayCache::clear) starts again from row 0.
+TEST(PrefillSpread, PiecesInRowOrderAndARestartAfterTheCubeIsEmptied) {
+    RayCacheSettings settings;
+    settings.prefillTexelsPerFrame = 10 * kResolution;  // 10 rows a frame
+    RayCache cache(cdct_test::oneMirror(CacheTechnique::Cdct, kResolution), settings);
+    auto workers = cache.makeWorkers(1);
+    const auto frameAsking = [&] {
+        cache.beginFrame(workers);
+        workers[0].beginBatch(0);
+        EXPECT_FALSE(cache.lookup(0, {0, 0, 1.001f}, {0, 0, 1}, workers[0]).has_value());
+        return cache.planPrefill(workers);
+    };
+    const auto rowsOf = [&](int rows) {
+        return std::vector<RayCache::PrefillTexel>(static_cast<std::size_t>(rows * kResolution),
+                                                   RayCache::PrefillTexel{Rgb{0.5f, 0.5f, 0.5f}, 2.0f});
+    };
+
+    std::vector<RayCache::PrefillPiece> plan = frameAsking();
+    ASSERT_EQ(plan.size(), 1u);
+    EXPECT_EQ(plan[0].firstRow, 0);
+    EXPECT_EQ(plan[0].rows, 10);
+    EXPECT_THROW(cache.addPrefillRows(0, 5, rowsOf(10)), std::logic_error);  // not the next row
+    cache.addPrefillRows(0, 0, rowsOf(10));
+    cache.endFrame(workers);
+
+    plan = frameAsking();
+    ASSERT_EQ(plan.size(), 1u);
+    EXPECT_EQ(plan[0].firstRow, 10);
+    cache.endFrame(workers);  // the frame's piece is not handed back: the next frame asks for it again
+
+    cache.clear();  // what a scene change does to the cube
+    plan = frameAsking();
+    ASSERT_EQ(plan.size(), 1u);
+    EXPECT_EQ(plan[0].firstRow, 0) << "rows traced before the change are dropped";
+    for (int row = 0; row < kRows; row += 10) {
+        const int rows = std::min(10, kRows - row);
+        if (row > 0) {
+            plan = frameAsking();
+            ASSERT_EQ(plan.size(), 1u);
+            EXPECT_EQ(plan[0].firstRow, row);
+            EXPECT_EQ(plan[0].rows, rows);
+        }
+        EXPECT_EQ(cache.cube(0).validCount(), 0u) << "no texel before the last row";
+        cache.addPrefillRows(0, row, rowsOf(rows));
+        cache.endFrame(workers);
+    }
+    EXPECT_EQ(cache.cube(0).validCount(), cache.cube(0).texelCount());
+    cache.beginFrame(workers);
+    EXPECT_TRUE(cache.planPrefill(workers).empty());
+    cache.endFrame(workers);
 }
 
 }  // namespace
