@@ -1,7 +1,5 @@
 #include "app/BenchCommand.h"
 
-#include <stdlib.h>  // mkdtemp
-
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -19,32 +17,12 @@
 #include "core/Errors.h"
 #include "core/Parallel.h"
 #include "core/ProcessAgreement.h"
+#include "core/ScratchDirectory.h"
 #include "render/TileAssignment.h"
 
 namespace raycache {
 
 namespace {
-
-// Where a process other than 0 writes its experiments before sending them
-// to process 0: a fresh directory of its own, removed afterwards.
-class ScratchResultsDirectory {
-public:
-    ScratchResultsDirectory() {
-        std::string pattern = (std::filesystem::temp_directory_path() / "raycache-bench-XXXXXX").string();
-        if (!mkdtemp(pattern.data())) throw RuntimeError("cannot create a scratch directory under " + pattern);
-        path_ = pattern;
-    }
-    ~ScratchResultsDirectory() {
-        std::error_code ec;
-        std::filesystem::remove_all(path_, ec);
-    }
-    ScratchResultsDirectory(const ScratchResultsDirectory&) = delete;
-    ScratchResultsDirectory& operator=(const ScratchResultsDirectory&) = delete;
-    const std::filesystem::path& path() const { return path_; }
-
-private:
-    std::filesystem::path path_;
-};
 
 void printOutput(ProgressBar& progress, const ExperimentOutput& output, const std::filesystem::path& dir,
                  const std::string& ranOn = "") {
@@ -92,8 +70,10 @@ void runBenchCommand(const BenchCommandOptions& options, std::ostream& out, cons
     for (const auto& e : experiments) work.push_back(e->estimatedWork(settings));
     const std::vector<int> owners = group.size() > 1 ? balancedTileOwners(work, group.size())
                                                      : std::vector<int>(experiments.size(), 0);
-    std::optional<ScratchResultsDirectory> scratch;
-    if (!group.isRoot()) scratch.emplace();
+    // A process other than 0 writes its experiments into a directory of its
+    // own, removed once they are sent to process 0.
+    std::optional<ScratchDirectory> scratch;
+    if (!group.isRoot()) scratch.emplace("raycache-bench-");
     const std::filesystem::path myOutDir = scratch ? scratch->path() : settings.outDir;
 
     const Parallel parallel(settings.threads);

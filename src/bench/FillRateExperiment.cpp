@@ -60,13 +60,19 @@ public:
         plot.yLabel = "invalid texels (%)";
         plot.yMin = 0.0;
         plot.yMax = 100.0;
-        for (int resolution : kResolutions) {
-            context.progress.step("fill-rate: " + std::to_string(resolution) + "² faces");
+        // CCT at `resolution`, every other setting the experiment's.
+        const auto cctSettings = [&](int resolution) {
             RenderSettings settings;
             settings.width = settings.height = side;
             settings.threads = context.settings.threads;
             settings.cache.techniqueOverride = CacheTechnique::Cct;
             settings.cache.resolutionOverride = resolution;
+            return settings;
+        };
+        std::vector<double> plainTraced;  // lookups traced per frame at kMultiResolutionFaces, one level
+        for (int resolution : kResolutions) {
+            context.progress.step("fill-rate: " + std::to_string(resolution) + "² faces");
+            const RenderSettings settings = cctSettings(resolution);
             std::vector<double> before, ms, hits;
             double afterLast = 100.0;
             renderFrames(
@@ -83,6 +89,8 @@ public:
                 });
             std::vector<double> after(before.begin(), before.end());
             after.push_back(afterLast);  // after k frames, k = 0..10
+            if (resolution == kMultiResolutionFaces)
+                for (const double h : hits) plainTraced.push_back(100.0 - h);
             invalid.push_back(after);
             series.push_back({{"resolution", resolution},
                               {"invalid_percent_before_frame", before},
@@ -94,19 +102,12 @@ public:
             plot.series.push_back(std::move(s));
         }
         // The same path with multi-resolution cubes: lookups traced per frame.
-        std::vector<double> plainTraced;
-        for (const double h : series[std::size(kResolutions) - 1].at("hit_percent").get<std::vector<double>>())
-            plainTraced.push_back(100.0 - h);
         std::vector<std::vector<double>> levelsTraced;
         nlohmann::json multiResolution = nlohmann::json::array();
         for (const float bound : kErrorBounds) {
             context.progress.step("fill-rate: " + std::to_string(kMultiResolutionFaces) + "² faces, " +
                                   std::to_string(kMultiResolutionLevels) + " levels, bound " + cellNumber(bound, 2));
-            RenderSettings settings;
-            settings.width = settings.height = side;
-            settings.threads = context.settings.threads;
-            settings.cache.techniqueOverride = CacheTechnique::Cct;
-            settings.cache.resolutionOverride = kMultiResolutionFaces;
+            RenderSettings settings = cctSettings(kMultiResolutionFaces);
             settings.cache.cubeLevels = kMultiResolutionLevels;
             settings.cache.levelErrorBound = bound;
             std::vector<double> traced;

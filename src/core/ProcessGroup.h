@@ -27,7 +27,6 @@ public:
     std::span<const std::byte> of(std::size_t rank) const {
         return std::span<const std::byte>(all_).subspan(offsets_.at(rank), offsets_.at(rank + 1) - offsets_.at(rank));
     }
-    std::size_t totalSize() const { return offsets_.empty() ? 0 : offsets_.back(); }
 
     // For the exchanges: room for parts of `sizes` bytes, in rank order; returns
     // where part 0 starts. The buffer's capacity is kept.
@@ -70,8 +69,8 @@ public:
     int size() const override { return 1; }
     void allGather(std::span<const std::byte> local, GatheredBytes& into) const override {
         const std::size_t size = local.size();
-        if (size != 0) std::memcpy(into.reset(std::span<const std::size_t>(&size, 1)), local.data(), size);
-        else into.reset(std::span<const std::size_t>(&size, 1));
+        std::byte* out = into.reset(std::span<const std::size_t>(&size, 1));
+        if (size != 0) std::memcpy(out, local.data(), size);
     }
     void gatherToRoot(std::span<const std::byte> local, GatheredBytes& into) const override { allGather(local, into); }
     void broadcastFromRoot(Bytes&) const override {}
