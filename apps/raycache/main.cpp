@@ -102,7 +102,8 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
         ->capture_default_str();
     command.add_option("--tile-balance", job.tileBalance,
                        "MPI jobs (mpirun -np N raycache render ...): static deals tile i to process i mod N; dynamic "
-                       "(from the second frame) deals tiles by the previous frame's cost of each tile. Images do "
+                       "(from the second frame) deals tiles by the previous frame's cost of each tile; claim lets "
+                       "every thread take the next tile from a counter on process 0 when it is free. Images do "
                        "not depend on it (docs/cluster.md)")
         ->capture_default_str();
 }

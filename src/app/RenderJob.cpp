@@ -94,7 +94,7 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
     if (o.renderCache.reflections && !parseReprojectedReflections(*o.renderCache.reflections, reflections))
         throw InputError("--rc-reflections must be reshade or reproject (got '" + *o.renderCache.reflections + "')");
     if (!parseTileBalance(o.tileBalance))
-        throw InputError("--tile-balance must be static or dynamic (got '" + o.tileBalance + "')");
+        throw InputError("--tile-balance must be static, dynamic or claim (got '" + o.tileBalance + "')");
     if (o.gbuffer != "auto" && o.gbuffer != "gl" && o.gbuffer != "packets")
         throw InputError("--gbuffer must be auto, gl or packets (got '" + o.gbuffer + "')");
     if (o.path && *o.path != "static" && *o.path != "orbit" && *o.path != "pan")

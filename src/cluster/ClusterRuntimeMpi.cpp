@@ -16,10 +16,15 @@ ClusterRuntime::ClusterRuntime(int& argc, char**& argv) {
         group_ = std::make_unique<SingleProcessGroup>();
         return;
     }
-    // Only the main thread calls MPI; the worker threads never do.
+    // Worker threads claim tiles (MpiProcessGroup::drawTickets), one at a
+    // time behind a mutex; every other call is the main thread's.
     int provided = 0;
-    if (MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS)
+    if (MPI_Init_thread(&argc, &argv, MPI_THREAD_SERIALIZED, &provided) != MPI_SUCCESS)
         throw RuntimeError("MPI_Init_thread failed");
+    if (provided < MPI_THREAD_SERIALIZED) {
+        MPI_Finalize();
+        throw RuntimeError("the MPI library does not allow calls from several threads (MPI_THREAD_SERIALIZED)");
+    }
     initialised_ = true;
     group_ = std::make_unique<MpiProcessGroup>();
 }

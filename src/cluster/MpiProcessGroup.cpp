@@ -2,6 +2,7 @@
 
 #include <mpi.h>
 
+#include <exception>
 #include <limits>
 
 #include "core/Errors.h"
@@ -40,11 +41,36 @@ std::vector<int> offsetsOf(const std::vector<int>& sizes, std::size_t& total) {
 
 }  // namespace
 
-MpiProcessGroup::MpiProcessGroup() {
+struct MpiProcessGroup::TicketWindow {
+    MPI_Win window = MPI_WIN_NULL;
+    std::int64_t* counter = nullptr;  // on process 0; null elsewhere
+};
+
+MpiProcessGroup::MpiProcessGroup() : tickets_(std::make_unique<TicketWindow>()) {
     // Errors are returned, not fatal, so they reach the CLI's one error line.
     MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
     MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
     MPI_Comm_size(MPI_COMM_WORLD, &size_);
+    // The counter lives on process 0; one passive-target epoch for the
+    // group's whole life lets any process draw without process 0's help.
+    const MPI_Aint bytes = rank_ == 0 ? static_cast<MPI_Aint>(sizeof(std::int64_t)) : 0;
+    check(MPI_Win_allocate(bytes, sizeof(std::int64_t), MPI_INFO_NULL, MPI_COMM_WORLD, &tickets_->counter,
+                           &tickets_->window),
+          "MPI_Win_allocate");
+    MPI_Win_set_errhandler(tickets_->window, MPI_ERRORS_RETURN);
+    if (rank_ == 0) *tickets_->counter = 0;
+    // Nobody draws before process 0 has zeroed its counter.
+    check(MPI_Barrier(MPI_COMM_WORLD), "MPI_Barrier");
+    check(MPI_Win_lock_all(MPI_MODE_NOCHECK, tickets_->window), "MPI_Win_lock_all");
+}
+
+MpiProcessGroup::~MpiProcessGroup() {
+    // MPI_Win_free is collective: while an exception unwinds (a failing
+    // job, which then ends with MPI_Abort) the other processes may never
+    // call it, so the window is left to MPI's end.
+    if (std::uncaught_exceptions() > 0) return;
+    MPI_Win_unlock_all(tickets_->window);
+    MPI_Win_free(&tickets_->window);
 }
 
 void MpiProcessGroup::allGather(std::span<const std::byte> local, GatheredBytes& into) const {
@@ -73,6 +99,25 @@ void MpiProcessGroup::gatherToRoot(std::span<const std::byte> local, GatheredByt
     std::byte* all = into.reset(std::span<const int>(sizes));
     check(MPI_Gatherv(local.data(), mine, MPI_BYTE, all, sizes.data(), offsets.data(), MPI_BYTE, 0, MPI_COMM_WORLD),
           "MPI_Gatherv");
+}
+
+void MpiProcessGroup::barrier() const { check(MPI_Barrier(MPI_COMM_WORLD), "MPI_Barrier"); }
+
+std::int64_t MpiProcessGroup::drawTickets(std::int64_t count) const {
+    std::int64_t before = 0;
+    const std::lock_guard lock(ticketsMutex_);
+    check(MPI_Fetch_and_op(&count, &before, MPI_INT64_T, 0, 0, MPI_SUM, tickets_->window), "MPI_Fetch_and_op");
+    check(MPI_Win_flush(0, tickets_->window), "MPI_Win_flush");
+    return before;
+}
+
+void MpiProcessGroup::resetTickets() const {
+    const std::int64_t zero = 0;
+    std::int64_t before = 0;
+    const std::lock_guard lock(ticketsMutex_);
+    check(MPI_Fetch_and_op(&zero, &before, MPI_INT64_T, 0, 0, MPI_REPLACE, tickets_->window),
+          "MPI_Fetch_and_op");
+    check(MPI_Win_flush(0, tickets_->window), "MPI_Win_flush");
 }
 
 void MpiProcessGroup::broadcastFromRoot(Bytes& bytes) const {

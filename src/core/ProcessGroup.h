@@ -4,7 +4,9 @@
 // talks to this interface, so the build without MPI renders the same code
 // with SingleProcessGroup. Every call is collective: every process of the
 // group must make the same calls in the same order.
+#include <atomic>
 #include <cstddef>
+#include <cstdint>
 #include <cstring>
 #include <span>
 #include <stdexcept>
@@ -60,6 +62,29 @@ public:
     virtual void gatherToRoot(std::span<const std::byte> local, GatheredBytes& into) const = 0;
     // Process 0's `bytes` on every process (in place).
     virtual void broadcastFromRoot(Bytes& bytes) const = 0;
+    // Returns once every process has called it.
+    virtual void barrier() const = 0;
+
+    // Work sharing without a collective: process 0 holds a counter, 0 at
+    // the start, from which any thread of any process may draw at any time
+    // without the other processes taking part (the tiles claimed by
+    // TileBalance::Claim). Returns the counter's value before `count` was added.
+    virtual std::int64_t drawTickets(std::int64_t count) const = 0;
+    // Sets the counter back to 0; process 0 only. The caller makes sure that
+    // no process draws meanwhile (barriers before and after).
+    virtual void resetTickets() const = 0;
+};
+
+// The ticket counter in this process's memory, for the groups whose
+// processes share it (one process; processes simulated by threads in tests).
+// Relaxed: the tickets order nothing else, the collectives around them do.
+class LocalTicketCounter {
+public:
+    std::int64_t draw(std::int64_t count) { return counter_.fetch_add(count, std::memory_order_relaxed); }
+    void reset() { counter_.store(0, std::memory_order_relaxed); }
+
+private:
+    std::atomic<std::int64_t> counter_{0};
 };
 
 // A group of one: every exchange returns the process's own bytes.
@@ -74,6 +99,12 @@ public:
     }
     void gatherToRoot(std::span<const std::byte> local, GatheredBytes& into) const override { allGather(local, into); }
     void broadcastFromRoot(Bytes&) const override {}
+    void barrier() const override {}
+    std::int64_t drawTickets(std::int64_t count) const override { return tickets_.draw(count); }
+    void resetTickets() const override { tickets_.reset(); }
+
+private:
+    mutable LocalTicketCounter tickets_;
 };
 
 // Plain values to and from bytes, for the exchanges above (same binary on

@@ -1,6 +1,8 @@
 #include "render/FrameRenderer.h"
 
+#include <algorithm>
 #include <chrono>
+#include <stdexcept>
 #include <vector>
 
 #include "render/CacheFrame.h"
@@ -76,31 +78,64 @@ FrameStats FrameRenderer::render(const Camera& camera, Image& film) const {
 // One frame over several processes: the same tile kernel on this process's
 // tiles, then (collectives, in this order on every process) the cache
 // exchange inside CacheFrame::finish and one gather to process 0 of the
-// tiles' pixels, costs and ray counts.
+// tiles' indices, pixels, costs and ray counts.
 FrameStats FrameRenderer::renderDistributed(const CameraRays& cameraRays, Image& film) const {
     const ProcessGroup& group = *group_;
     const int width = settings_.width, height = settings_.height, tileSize = settings_.tileSize;
     const int tiles = tileCount(width, height, tileSize);
     ClusterStats cluster;
     cluster.processes = group.size();
-    const std::vector<int> owners =
-        agreeTileOwners(group, settings_.tileBalance, tiles, lastTileCosts_, cluster.assignment, cluster.controlBytes);
-    std::vector<int> mine;
-    for (int t = 0; t < tiles; ++t)
-        if (owners[static_cast<std::size_t>(t)] == group.rank()) mine.push_back(t);
 
     std::vector<TileScratch>& scratch = scratch_;
     scratch.resize(static_cast<std::size_t>(parallel_.threadCount()));
     for (TileScratch& s : scratch) s.beginFrame();
-    std::vector<double> costs(mine.size());
     CacheFrame cacheFrame(cache_, parallel_.threadCount(), &group, &storeExchange_);
-    parallel_.forEachIndex(static_cast<int>(mine.size()), [&](int k, int worker) {
+    // This process's message to process 0: the pixels of its tiles (none
+    // from process 0 itself), then a trailer of the tiles' indices, kernel
+    // times and ray counts. Each tile's pixels are copied right after the
+    // tile is rendered, while they are still in the cache: worker 0's
+    // straight into the message, the others' into buffers appended to it.
+    const bool sendsPixels = !group.isRoot();
+    const auto workers = static_cast<std::size_t>(parallel_.threadCount());
+    Bytes& part = imagePart_;
+    part.clear();
+    workerPixels_.resize(workers);
+    for (Bytes& pixels : workerPixels_) pixels.clear();
+    std::vector<std::vector<int>> doneTiles(workers);
+    std::vector<std::vector<double>> doneCosts(workers);
+    const auto renderTile = [&](int t, int worker) {
+        const auto w = static_cast<std::size_t>(worker);
         const auto tileStart = Clock::now();
-        const TileRange tile = tileAt(mine[static_cast<std::size_t>(k)], width, height, tileSize);
-        kernel_.renderCameraTile(cameraRays, tile, tileKey(tile, width, tileSize),
-                                 scratch[static_cast<std::size_t>(worker)], cacheFrame.worker(worker), film);
-        costs[static_cast<std::size_t>(k)] = millisecondsSince(tileStart);
-    });
+        const TileRange tile = tileAt(t, width, height, tileSize);
+        kernel_.renderCameraTile(cameraRays, tile, tileKey(tile, width, tileSize), scratch[w], cacheFrame.worker(worker),
+                                 film);
+        doneTiles[w].push_back(t);
+        doneCosts[w].push_back(millisecondsSince(tileStart));
+        if (!sendsPixels) return;
+        Bytes& out = w == 0 ? part : workerPixels_[w];
+        for (int y = tile.y0; y < tile.y1; ++y)
+            appendBytes(out, std::span<const Rgb>(&film.at(tile.x0, y), static_cast<std::size_t>(tile.x1 - tile.x0)));
+    };
+    if (settings_.tileBalance == TileBalance::Claim) {
+        cluster.assignment = "claimed tiles";
+        parallel_.forEachIndex(parallel_.threadCount(), [&](int, int worker) {
+            for (std::int64_t t = group.drawTickets(1); t < tiles; t = group.drawTickets(1))
+                renderTile(static_cast<int>(t), worker);
+        });
+        // Every process has drawn its last ticket of the frame before the
+        // counter is reset, and nobody draws the next frame's before.
+        group.barrier();
+        if (group.isRoot()) group.resetTickets();
+        group.barrier();
+    } else {
+        const std::vector<int> owners = agreeTileOwners(group, settings_.tileBalance, tiles, lastTileCosts_,
+                                                        cluster.assignment, cluster.controlBytes);
+        std::vector<int> mine;
+        for (int t = 0; t < tiles; ++t)
+            if (owners[static_cast<std::size_t>(t)] == group.rank()) mine.push_back(t);
+        parallel_.forEachIndex(static_cast<int>(mine.size()),
+                               [&](int k, int worker) { renderTile(mine[static_cast<std::size_t>(k)], worker); });
+    }
 
     FrameStats stats;
     StageTimes stages;
@@ -116,23 +151,17 @@ FrameStats FrameRenderer::renderDistributed(const CameraRays& cameraRays, Image&
     cluster.prefillBytes = cacheFrame.prefillBytes();
     stages.cacheFrameEnd = millisecondsSince(start);
 
-    // Every process's part, in its tiles' increasing index order.
-    Bytes& part = imagePart_;
-    part.clear();
-    std::size_t pixels = 0;
-    for (const int t : mine) {
-        const TileRange tile = tileAt(t, width, height, tileSize);
-        pixels += static_cast<std::size_t>(tile.x1 - tile.x0) * static_cast<std::size_t>(tile.y1 - tile.y0);
+    // The tiles in the order of their pixels: worker 0's, then worker 1's, ...
+    std::uint64_t tileTotal = 0;
+    for (std::size_t w = 0; w < workers; ++w) {
+        if (w > 0) part.insert(part.end(), workerPixels_[w].begin(), workerPixels_[w].end());
+        tileTotal += doneTiles[w].size();
     }
-    part.reserve(sizeof tileRays + sizeof stages + costs.size() * sizeof(double) + pixels * sizeof(Rgb));
+    for (const std::vector<int>& t : doneTiles) appendBytes(part, std::span<const int>(t));
+    for (const std::vector<double>& c : doneCosts) appendBytes(part, std::span<const double>(c));
+    appendBytes(part, tileTotal);
     appendBytes(part, tileRays);
     appendBytes(part, stages);
-    appendBytes(part, std::span<const double>(costs));
-    for (const int t : mine) {
-        const TileRange tile = tileAt(t, width, height, tileSize);
-        for (int y = tile.y0; y < tile.y1; ++y)
-            appendBytes(part, std::span<const Rgb>(&film.at(tile.x0, y), static_cast<std::size_t>(tile.x1 - tile.x0)));
-    }
     GatheredBytes& parts = imageParts_;
     group.gatherToRoot(part, parts);
     if (!group.isRoot()) {
@@ -141,30 +170,43 @@ FrameStats FrameRenderer::renderDistributed(const CameraRays& cameraRays, Image&
     }
 
     cluster.tilesPerProcess.assign(static_cast<std::size_t>(group.size()), 0);
-    for (const int owner : owners) ++cluster.tilesPerProcess[static_cast<std::size_t>(owner)];
     lastTileCosts_.assign(static_cast<std::size_t>(tiles), 0.0);
     StageTimes allStages;
     std::vector<double> busy(parts.count(), 0.0);
+    std::vector<int> theirTiles;
+    std::vector<double> theirCosts;
+    constexpr std::size_t kFixedTrailer = sizeof(std::uint64_t) + sizeof(RayCounts) + sizeof(StageTimes);
     for (std::size_t r = 0; r < parts.count(); ++r) {
-        ByteReader reader(parts.of(r));
-        stats.rays += reader.read<RayCounts>();
-        allStages += reader.read<StageTimes>();
-        std::vector<double> theirCosts(static_cast<std::size_t>(cluster.tilesPerProcess[r]));
-        reader.readInto(std::span<double>(theirCosts));
-        std::size_t k = 0;
-        for (int t = 0; t < tiles; ++t) {
-            if (owners[static_cast<std::size_t>(t)] != static_cast<int>(r)) continue;
+        const std::span<const std::byte> message = parts.of(r);
+        if (message.size() < kFixedTrailer) throw std::out_of_range("truncated process message");
+        ByteReader fixed(message.last(kFixedTrailer));
+        const auto count = fixed.read<std::uint64_t>();
+        stats.rays += fixed.read<RayCounts>();
+        allStages += fixed.read<StageTimes>();
+        if (count > static_cast<std::uint64_t>(tiles)) throw std::out_of_range("process message: too many tiles");
+        const std::size_t trailer = kFixedTrailer + static_cast<std::size_t>(count) * (sizeof(int) + sizeof(double));
+        if (message.size() < trailer) throw std::out_of_range("truncated process message");
+        theirTiles.resize(static_cast<std::size_t>(count));
+        theirCosts.resize(static_cast<std::size_t>(count));
+        ByteReader lists(message.subspan(message.size() - trailer, trailer - kFixedTrailer));
+        lists.readInto(std::span<int>(theirTiles));
+        lists.readInto(std::span<double>(theirCosts));
+        ByteReader pixels(message.first(message.size() - trailer));
+        cluster.tilesPerProcess[r] = static_cast<int>(count);
+        for (std::size_t k = 0; k < theirTiles.size(); ++k) {
+            const int t = theirTiles[k];
+            if (t < 0 || t >= tiles) throw std::out_of_range("process message: tile index out of range");
             lastTileCosts_[static_cast<std::size_t>(t)] = theirCosts[k];
-            busy[r] += theirCosts[k++];
+            busy[r] += theirCosts[k];
             if (static_cast<int>(r) == group.rank()) continue;  // already in the film
             const TileRange tile = tileAt(t, width, height, tileSize);
             for (int y = tile.y0; y < tile.y1; ++y)
-                reader.readInto(std::span<Rgb>(&film.at(tile.x0, y), static_cast<std::size_t>(tile.x1 - tile.x0)));
+                pixels.readInto(std::span<Rgb>(&film.at(tile.x0, y), static_cast<std::size_t>(tile.x1 - tile.x0)));
         }
+        if (!pixels.atEnd()) throw std::out_of_range("process message: more pixels than tiles");
         if (static_cast<int>(r) != group.rank()) {
-            const std::size_t control = sizeof(RayCounts) + sizeof(StageTimes) + theirCosts.size() * sizeof(double);
-            cluster.controlBytes += control;
-            cluster.imageBytes += parts.of(r).size() - control;
+            cluster.controlBytes += trailer;
+            cluster.imageBytes += message.size() - trailer;
         }
     }
     double mean = 0.0, most = 0.0;

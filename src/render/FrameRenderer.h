@@ -50,6 +50,7 @@ private:
     // this process's tiles for process 0, and on process 0 every process's.
     mutable StoreExchangeBuffers storeExchange_;
     mutable Bytes imagePart_;
+    mutable std::vector<Bytes> workerPixels_;  // workers 1, 2, ...: their tiles' pixels (worker 0's go into imagePart_)
     mutable GatheredBytes imageParts_;
 };
 

@@ -5,11 +5,19 @@
 
 namespace raycache {
 
-const char* tileBalanceName(TileBalance balance) { return balance == TileBalance::Static ? "static" : "dynamic"; }
+const char* tileBalanceName(TileBalance balance) {
+    switch (balance) {
+        case TileBalance::Static: return "static";
+        case TileBalance::Dynamic: return "dynamic";
+        case TileBalance::Claim: return "claim";
+    }
+    return "?";
+}
 
 std::optional<TileBalance> parseTileBalance(const std::string& name) {
     if (name == "static") return TileBalance::Static;
     if (name == "dynamic") return TileBalance::Dynamic;
+    if (name == "claim") return TileBalance::Claim;
     return std::nullopt;
 }
 

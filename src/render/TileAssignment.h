@@ -13,7 +13,10 @@ namespace raycache {
 // Static: tile i to process i mod n (neighbouring tiles, which cost about
 // the same, land on different processes). Dynamic: from the second frame
 // on, tiles are dealt by the previous frame's measured cost of each tile.
-enum class TileBalance { Static, Dynamic };
+// Claim: nothing is dealt; every worker thread of every process takes the
+// next tile from a counter on process 0 (ProcessGroup::drawTickets) when it
+// is free, so the processes finish together whatever the tiles cost.
+enum class TileBalance { Static, Dynamic, Claim };
 
 const char* tileBalanceName(TileBalance balance);
 std::optional<TileBalance> parseTileBalance(const std::string& name);

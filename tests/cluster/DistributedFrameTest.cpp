@@ -4,11 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <mutex>
+#include <numeric>
 
 #include "ThreadProcessGroup.h"
 #include "cache/PathRender.h"
 #include "core/Errors.h"
 #include "core/ProcessAgreement.h"
+#include "render/FrameRenderer.h"
 #include "render/FrameParallelLoop.h"
 #include "render/TileAssignment.h"
 #include "scene/BuiltinScenes.h"
@@ -21,12 +23,12 @@ constexpr int kSize = 48;
 constexpr int kCacheResolution = 32;
 
 void expectSameAsOneProcess(const std::string& scene, CacheTechnique technique, int processes, TileBalance balance,
-                            std::int64_t prefillPerFrame = 0) {
+                            std::int64_t prefillPerFrame = 0, int threadsPerProcess = 1) {
     const PathRender one =
         renderPath(scene, technique, kFrames, false, kSize, 2, kCacheResolution, nullptr, balance, 1, prefillPerFrame);
     std::vector<PathRender> runs(static_cast<std::size_t>(processes));
     runAsProcesses(processes, [&](const ProcessGroup& group) {
-        runs[static_cast<std::size_t>(group.rank())] = renderPath(scene, technique, kFrames, false, kSize, 1,
+        runs[static_cast<std::size_t>(group.rank())] = renderPath(scene, technique, kFrames, false, kSize, threadsPerProcess,
                                                                   kCacheResolution, &group, balance, 1, prefillPerFrame);
     });
     const PathRender& root = runs[0];
@@ -46,6 +48,10 @@ void expectSameAsOneProcess(const std::string& scene, CacheTechnique technique, 
             EXPECT_EQ(run.stats[f].cache->stores(), one.stats[f].cache->stores());
         }
         ASSERT_TRUE(root.stats[f].cluster.has_value());
+        // Every tile rendered once, by some process.
+        const std::vector<int>& dealt = root.stats[f].cluster->tilesPerProcess;
+        EXPECT_EQ(dealt.size(), static_cast<std::size_t>(processes));
+        EXPECT_EQ(std::accumulate(dealt.begin(), dealt.end(), 0), tileCount(kSize, kSize, 16)) << "frame " << f;
         if (technique == CacheTechnique::Cct) {
             EXPECT_GT(root.stats[f].cluster->storeBytes, 0u);
         }
@@ -54,18 +60,46 @@ void expectSameAsOneProcess(const std::string& scene, CacheTechnique technique, 
 
 TEST(DistributedFrame, UncachedEqualsOneProcess) {
     expectSameAsOneProcess("room", CacheTechnique::None, 2, TileBalance::Dynamic);
+    expectSameAsOneProcess("room", CacheTechnique::None, 3, TileBalance::Claim);
 }
 
 TEST(DistributedFrame, CctCachesIdenticalOnEveryProcess) {
     for (const int processes : {2, 3}) {
         expectSameAsOneProcess("room", CacheTechnique::Cct, processes, TileBalance::Dynamic);
         expectSameAsOneProcess("glass", CacheTechnique::Cct, processes, TileBalance::Static);
+        expectSameAsOneProcess("room", CacheTechnique::Cct, processes, TileBalance::Claim);
     }
 }
 
 TEST(DistributedFrame, CdctCachesIdenticalOnEveryProcess) {
     expectSameAsOneProcess("glass", CacheTechnique::Cdct, 3, TileBalance::Dynamic);
     expectSameAsOneProcess("room", CacheTechnique::CdctParity, 2, TileBalance::Dynamic);
+    expectSameAsOneProcess("glass", CacheTechnique::Cdct, 2, TileBalance::Claim);
+}
+
+// Several workers per process claim tiles each and pack their own pixels.
+TEST(DistributedFrame, ClaimedTilesWithSeveralThreadsPerProcess) {
+    expectSameAsOneProcess("glass", CacheTechnique::Cct, 2, TileBalance::Claim, 0, 2);
+}
+
+// The claim counter is reset after every frame, so a second path rendered
+// by the same processes (a new renderer) claims its tiles from 0 again.
+TEST(DistributedFrame, ClaimCounterStartsAfreshForTheNextRenderer) {
+    const PathRender room = renderPath("room", CacheTechnique::Cct, 2, false, kSize, 2, kCacheResolution);
+    const PathRender glass = renderPath("glass", CacheTechnique::Cct, 2, false, kSize, 2, kCacheResolution);
+    std::vector<PathRender> rooms(2), glasses(2);
+    runAsProcesses(2, [&](const ProcessGroup& group) {
+        const auto r = static_cast<std::size_t>(group.rank());
+        rooms[r] = renderPath("room", CacheTechnique::Cct, 2, false, kSize, 1, kCacheResolution, &group,
+                              TileBalance::Claim);
+        glasses[r] = renderPath("glass", CacheTechnique::Cct, 2, false, kSize, 1, kCacheResolution, &group,
+                                TileBalance::Claim);
+    });
+    for (std::size_t f = 0; f < 2; ++f) {
+        EXPECT_EQ(rooms[0].frames[f].pixels(), room.frames[f].pixels()) << "room frame " << f;
+        EXPECT_EQ(glasses[0].frames[f].pixels(), glass.frames[f].pixels()) << "glass frame " << f;
+    }
+    EXPECT_EQ(glasses[1].texels, glass.texels);
 }
 
 // The pre-fill spread over frames: each frame's rows are shared among the
@@ -170,6 +204,8 @@ TEST(TileAssignment, BalancedEvensOutUnevenCosts) {
 TEST(TileAssignment, ParsesItsNames) {
     EXPECT_EQ(parseTileBalance("static"), TileBalance::Static);
     EXPECT_EQ(parseTileBalance("dynamic"), TileBalance::Dynamic);
+    EXPECT_EQ(parseTileBalance("claim"), TileBalance::Claim);
+    EXPECT_STREQ(tileBalanceName(TileBalance::Claim), "claim");
     EXPECT_FALSE(parseTileBalance("Dynamic"));
 }
 

@@ -23,6 +23,7 @@ private:
     int size_;
     std::barrier<> barrier_;
     std::vector<Bytes> slots_;
+    LocalTicketCounter tickets_;
 };
 
 class ThreadProcessGroup final : public ProcessGroup {
@@ -49,6 +50,9 @@ public:
         if (!isRoot()) bytes = hub_.slots_[0];
         hub_.barrier_.arrive_and_wait();
     }
+    void barrier() const override { hub_.barrier_.arrive_and_wait(); }
+    std::int64_t drawTickets(std::int64_t count) const override { return hub_.tickets_.draw(count); }
+    void resetTickets() const override { hub_.tickets_.reset(); }
 
 private:
     ThreadProcessHub& hub_;

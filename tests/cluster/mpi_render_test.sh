@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # MPI cluster mode end to end (docs/cluster.md), on localhost:
-#   mpi_render_test.sh <raycache> <mpiexec> identical <processes> <technique|cct-levels> [<tile-balance>]
+#   mpi_render_test.sh <raycache> <mpiexec> identical <processes> <technique|cct-levels> [<tile-balance> [<threads>]]
 #       the image of `mpiexec -np N raycache render` equals the single-process
 #       one bit for bit (orbit path, 3 frames, so later frames read the caches
 #       the earlier ones filled on every process)
@@ -37,7 +37,8 @@ case "$case_name" in
 identical)
   processes=$1
   technique=$2
-  balance=${3:-dynamic}
+  balance=${3:-claim}
+  threads=${4:-1}
   # cct-levels: CCT with multi-resolution cubes, whose coarse answers depend on
   # the exchanged stores' seen points too.
   technique_args=(--technique "$technique")
@@ -46,7 +47,7 @@ identical)
     args=(render --scene "$scene" "${common[@]}" --frames 3 --path orbit "${technique_args[@]}")
     "$raycache" "${args[@]}" --threads 2 --out "$scratch/one-$scene.exr" >"$scratch/one.log" 2>&1 ||
       { cat "$scratch/one.log"; fail "single-process render of $scene"; }
-    "${mpi[@]}" -np "$processes" "$raycache" "${args[@]}" --threads 1 --tile-balance "$balance" \
+    "${mpi[@]}" -np "$processes" "$raycache" "${args[@]}" --threads "$threads" --tile-balance "$balance" \
       --out "$scratch/many-$scene.exr" --stats "$scratch/many-$scene.json" >"$scratch/many.log" 2>&1 ||
       { cat "$scratch/many.log"; fail "$processes-process render of $scene"; }
     cat "$scratch/many.log"
