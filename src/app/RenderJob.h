@@ -41,7 +41,7 @@ struct RenderJobOptions {
     std::optional<std::string> pipeline;   // ray | hybrid | render-cache; default: the scene file's, else ray
     std::optional<std::string> accel;      // embree | grids; default: the scene file's, else embree
     std::string gbuffer = "auto";          // hybrid G-buffer source: auto | gl | packets
-    std::string tileBalance = "claim";     // MPI jobs: static | dynamic | claim tile assignment (docs/cluster.md)
+    std::string tileBalance = "dynamic";   // MPI jobs: static | dynamic | claim tile assignment (docs/cluster.md)
     // The Render Cache's --rc-* options; default: the scene file's, else RenderCacheSettings'.
     RenderCacheOverrides renderCache;
 };

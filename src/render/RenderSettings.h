@@ -42,7 +42,7 @@ struct RenderSettings {
     // reads per stage and wave, so off unless a profile is wanted.
     bool stageTimes = false;
     // How tiles are assigned to the processes of a cluster job (docs/cluster.md).
-    TileBalance tileBalance = TileBalance::Claim;
+    TileBalance tileBalance = TileBalance::Dynamic;
 };
 
 }  // namespace raycache

@@ -37,7 +37,7 @@ case "$case_name" in
 identical)
   processes=$1
   technique=$2
-  balance=${3:-claim}
+  balance=${3:-dynamic}
   threads=${4:-1}
   # cct-levels: CCT with multi-resolution cubes, whose coarse answers depend on
   # the exchanged stores' seen points too.
