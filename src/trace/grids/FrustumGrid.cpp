@@ -343,7 +343,8 @@ struct PacketKey {
     int kz, kx, ky;
     int i0, i1, j0, j1, k0, k1;
     bool ascending;
-    auto tie() const { return std::tie(ox, oy, oz, kz, kx, ky, i0, i1, j0, j1, k0, k1, ascending); }
+    bool nearPart;
+    auto tie() const { return std::tie(ox, oy, oz, kz, kx, ky, i0, i1, j0, j1, k0, k1, ascending, nearPart); }
 };
 
 }  // namespace
@@ -363,13 +364,15 @@ void FrustumGrid::intersectBatch(std::span<const Ray> rays, std::span<TraceHit> 
             refused[i] = 1;
             continue;
         }
-        if (tr.nearPart || !tr.gridPart) {
+        if (!tr.gridPart) {
             intersect(rays[i], hits[i]);
             continue;
         }
+        // Camera rays share the apex, so those that also cross the near zone
+        // (geometry behind or beside the eye: a floor, a room) pack as well.
         const WatertightRay wr(rays[i]);
         packable.push_back({PacketKey{rays[i].origin.x, rays[i].origin.y, rays[i].origin.z, wr.kz, wr.kx, wr.ky, tr.i0,
-                                      tr.i1, tr.j0, tr.j1, tr.k0, tr.k1, tr.ascending},
+                                      tr.i1, tr.j0, tr.j1, tr.k0, tr.k1, tr.ascending, tr.nearPart},
                             static_cast<std::uint32_t>(i)});
     }
     // Rays with equal keys next to each other, in batch order within a key.
@@ -409,72 +412,73 @@ void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std
         tFar[l] = wr.tFar;
         directionZ[l] = spec_.frame.directionToFrame(ray.direction).z;
     }
-    walkCells(
-        tr,
-        [&](std::uint32_t primitive) {
-            if (primitives_->sphere(primitive)) {
-                for (std::size_t l = 0; l < n; ++l) {
-                    const Ray& ray = rays[lanes[l]];
-                    primitives_->intersect(primitive, ray, WatertightRay(ray), best[l]);
-                }
-                return false;
-            }
-            Vec3 p0, p1, p2;
-            primitives_->triangle(primitive, p0, p1, p2);
-            // The packet shares its origin: the corners relative to it are computed once.
-            const Vec3 a = p0 - first.origin, b = p1 - first.origin, c = p2 - first.origin;
-            const float akx = a[kx], aky = a[ky], akz = a[kz];
-            const float bkx = b[kx], bky = b[ky], bkz = b[kz];
-            const float ckx = c[kx], cky = c[ky], ckz = c[kz];
-            for (std::size_t l = 0; l < kLanes; ++l)
-                if (best[l].hit()) tFar[l] = best[l].t;
-            // The watertight test's float path, lane by lane, in the same operations as
-            // intersectWatertight (WatertightTriangle.h) so the answers are identical.
-            for (std::size_t l = 0; l < kLanes; ++l) {
-                const float ax = akx - sx[l] * akz, ay = aky - sy[l] * akz;
-                const float bx = bkx - sx[l] * bkz, by = bky - sy[l] * bkz;
-                const float cx = ckx - sx[l] * ckz, cy = cky - sy[l] * ckz;
-                const float u = cx * by - cy * bx;
-                const float v = ax * cy - ay * cx;
-                const float w = bx * ay - by * ax;
-                const float det = u + v + w;
-                const float t = u * (sz[l] * akz) + v * (sz[l] * bkz) + w * (sz[l] * ckz);
-                const float absDet = std::fabs(det);
-                const float signedT = det < 0.0f ? -t : t;
-                // Bitwise, not short-circuit, so the loop has no branches to stop vectorisation.
-                const bool negative = (u < 0.0f) | (v < 0.0f) | (w < 0.0f);
-                const bool positive = (u > 0.0f) | (v > 0.0f) | (w > 0.0f);
-                zeroEdge[l] = static_cast<int>((u == 0.0f) | (v == 0.0f) | (w == 0.0f));
-                accepted[l] = static_cast<int>(!(negative & positive) & (det != 0.0f) & (signedT > tNear[l] * absDet) &
-                                               (signedT <= tFar[l] * absDet));
-                edgeV[l] = v;
-                edgeW[l] = w;
-                numerator[l] = t;
-                determinant[l] = det;
-            }
-            const int object = primitives_->objectOf(primitive);
-            const int local = primitives_->localIndex(primitive);
+    const auto visit = [&](std::uint32_t primitive) {
+        if (primitives_->sphere(primitive)) {
             for (std::size_t l = 0; l < n; ++l) {
-                if (zeroEdge[l]) {
-                    // An edge value of exactly zero: the double-precision path, as the scalar test.
-                    const Ray& ray = rays[lanes[l]];
-                    primitives_->intersect(primitive, ray, WatertightRay(ray), best[l]);
-                    continue;
-                }
-                if (!accepted[l]) continue;
-                const float inverseDet = 1.0f / determinant[l];
-                const float t = numerator[l] * inverseDet;
-                if (GridPrimitives::nearer(t, object, local, best[l]))
-                    best[l] = TraceHit{t, object, local, edgeV[l] * inverseDet, edgeW[l] * inverseDet};
+                const Ray& ray = rays[lanes[l]];
+                primitives_->intersect(primitive, ray, WatertightRay(ray), best[l]);
             }
             return false;
-        },
-        [&](int k) {
-            for (std::size_t l = 0; l < n; ++l)
-                if (!best[l].hit() || !hitEndsWalk(tr, tr.origin.z + static_cast<double>(best[l].t) * directionZ[l], k))
-                    return false;
-            return true;
-        });
+        }
+        Vec3 p0, p1, p2;
+        primitives_->triangle(primitive, p0, p1, p2);
+        // The packet shares its origin: the corners relative to it are computed once.
+        const Vec3 a = p0 - first.origin, b = p1 - first.origin, c = p2 - first.origin;
+        const float akx = a[kx], aky = a[ky], akz = a[kz];
+        const float bkx = b[kx], bky = b[ky], bkz = b[kz];
+        const float ckx = c[kx], cky = c[ky], ckz = c[kz];
+        for (std::size_t l = 0; l < kLanes; ++l)
+            if (best[l].hit()) tFar[l] = best[l].t;
+        // The watertight test's float path, lane by lane, in the same operations as
+        // intersectWatertight (WatertightTriangle.h) so the answers are identical.
+        for (std::size_t l = 0; l < kLanes; ++l) {
+            const float ax = akx - sx[l] * akz, ay = aky - sy[l] * akz;
+            const float bx = bkx - sx[l] * bkz, by = bky - sy[l] * bkz;
+            const float cx = ckx - sx[l] * ckz, cy = cky - sy[l] * ckz;
+            const float u = cx * by - cy * bx;
+            const float v = ax * cy - ay * cx;
+            const float w = bx * ay - by * ax;
+            const float det = u + v + w;
+            const float t = u * (sz[l] * akz) + v * (sz[l] * bkz) + w * (sz[l] * ckz);
+            const float absDet = std::fabs(det);
+            const float signedT = det < 0.0f ? -t : t;
+            // Bitwise, not short-circuit, so the loop has no branches to stop vectorisation.
+            const bool negative = (u < 0.0f) | (v < 0.0f) | (w < 0.0f);
+            const bool positive = (u > 0.0f) | (v > 0.0f) | (w > 0.0f);
+            zeroEdge[l] = static_cast<int>((u == 0.0f) | (v == 0.0f) | (w == 0.0f));
+            accepted[l] = static_cast<int>(!(negative & positive) & (det != 0.0f) & (signedT > tNear[l] * absDet) &
+                                           (signedT <= tFar[l] * absDet));
+            edgeV[l] = v;
+            edgeW[l] = w;
+            numerator[l] = t;
+            determinant[l] = det;
+        }
+        const int object = primitives_->objectOf(primitive);
+        const int local = primitives_->localIndex(primitive);
+        for (std::size_t l = 0; l < n; ++l) {
+            if (zeroEdge[l]) {
+                // An edge value of exactly zero: the double-precision path, as the scalar test.
+                const Ray& ray = rays[lanes[l]];
+                primitives_->intersect(primitive, ray, WatertightRay(ray), best[l]);
+                continue;
+            }
+            if (!accepted[l]) continue;
+            const float inverseDet = 1.0f / determinant[l];
+            const float t = numerator[l] * inverseDet;
+            if (GridPrimitives::nearer(t, object, local, best[l]))
+                best[l] = TraceHit{t, object, local, edgeV[l] * inverseDet, edgeW[l] * inverseDet};
+        }
+        return false;
+    };
+    // As intersect(): the near zone's primitives first, then the cells.
+    if (tr.nearPart)
+        for (const std::uint32_t p : nearZone_) visit(p);
+    walkCells(tr, visit, [&](int k) {
+        for (std::size_t l = 0; l < n; ++l)
+            if (!best[l].hit() || !hitEndsWalk(tr, tr.origin.z + static_cast<double>(best[l].t) * directionZ[l], k))
+                return false;
+        return true;
+    });
     for (std::size_t l = 0; l < n; ++l) hits[lanes[l]] = best[l];
 }
 
