@@ -35,6 +35,9 @@ std::string formatFrameLine(const FrameResult& r, int frameCount) {
             line << ")";
         }
         if (c->rejected()) line << ", rejected " << c->rejected();
+        if (c->cdctSearches())
+            line << ", CDCT steps/search "
+                 << formatFixed(static_cast<double>(c->cdctSteps()) / static_cast<double>(c->cdctSearches()), 1);
         if (c->prefilledTexels()) line << ", pre-filled " << c->prefilledTexels();
         line << ", invalid before "
              << formatFixed(c->invalidPercentBefore(), 1) << "%, "

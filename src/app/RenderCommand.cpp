@@ -30,6 +30,8 @@ nlohmann::json cacheJson(const FrameCacheStats& c) {
                            {"prefilled_texels", o.prefilledTexels},
                            {"levels", o.levels},
                            {"hits_by_level", std::vector<std::uint64_t>(o.hitsByLevel.begin(), o.hitsByLevel.begin() + o.levels)},
+                           {"cdct_searches", o.cdctSearches}, {"cdct_steps", o.cdctSteps},
+                           {"cdct_steps_histogram", o.cdctStepsHistogram},
                            {"invalid_percent_before", o.invalidPercentBefore}, {"bytes", o.bytes}});
     return {{"lookups", c.lookups()}, {"hits", c.hits()}, {"misses", c.misses()}, {"rejected", c.rejected()},
             {"stores", c.stores()}, {"prefilled_texels", c.prefilledTexels()},

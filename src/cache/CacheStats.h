@@ -10,6 +10,16 @@ namespace raycache {
 // Resolution levels a CCT cube may keep (cache/CoarseLevels.h), the finest included.
 inline constexpr int kMaxCubeLevels = 8;
 
+// CDCT searches counted by the texels they sampled: fewer than 4, 16, 64,
+// 256, 1024, and 1024 or more (a cost that grows with the face resolution
+// shows as a shift to the right).
+inline constexpr int kCdctStepBuckets = 6;
+inline int cdctStepBucket(std::uint64_t steps) {
+    int bucket = 0;
+    for (std::uint64_t limit = 4; bucket < kCdctStepBuckets - 1 && steps >= limit; limit *= 4) ++bucket;
+    return bucket;
+}
+
 // One caching object's activity during one frame.
 struct ObjectCacheStats {
     int objectId = -1;
@@ -23,6 +33,11 @@ struct ObjectCacheStats {
     int levels = 1;                     // resolution levels of the cube, the finest included
     std::uint64_t misses = 0;           // not answered (invalid texel, CDCT search gave up or rejected): traced
     std::uint64_t rejected = 0;         // of the misses: improved-CDCT error control found the texel off the ray
+    // CDCT: searches of the cube's depths, the texels they sampled in all
+    // (march and bisection steps), and the searches by steps (cdctStepBucket).
+    std::uint64_t cdctSearches = 0;
+    std::uint64_t cdctSteps = 0;
+    std::array<std::uint64_t, kCdctStepBuckets> cdctStepsHistogram{};
     std::uint64_t stores = 0;           // texels written at the end of the frame
     std::uint64_t prefilledTexels = 0;  // improved CDCT: texels filled from the centre after this frame
     double invalidPercentBefore = 0.0;  // invalid texels when the frame started
@@ -37,6 +52,8 @@ struct FrameCacheStats {
     std::uint64_t misses() const { return sum(&ObjectCacheStats::misses); }
     std::uint64_t stores() const { return sum(&ObjectCacheStats::stores); }
     std::uint64_t rejected() const { return sum(&ObjectCacheStats::rejected); }
+    std::uint64_t cdctSearches() const { return sum(&ObjectCacheStats::cdctSearches); }
+    std::uint64_t cdctSteps() const { return sum(&ObjectCacheStats::cdctSteps); }
     std::uint64_t prefilledTexels() const { return sum(&ObjectCacheStats::prefilledTexels); }
     std::uint64_t hitsAtLevel(int level) const {
         std::uint64_t s = 0;

@@ -36,14 +36,7 @@ void CacheWorker::pack(std::span<const CacheWorker> workers, Bytes& out) {
     };
     for (const CacheWorker& w : workers) {
         if (counters.size() < w.counters_.size()) counters.resize(w.counters_.size());
-        for (std::size_t c = 0; c < w.counters_.size(); ++c) {
-            counters[c].lookups += w.counters_[c].lookups;
-            counters[c].hits += w.counters_[c].hits;
-            counters[c].misses += w.counters_[c].misses;
-            counters[c].rejected += w.counters_[c].rejected;
-            for (std::size_t k = 0; k < counters[c].levelHits.size(); ++k)
-                counters[c].levelHits[k] += w.counters_[c].levelHits[k];
-        }
+        for (std::size_t c = 0; c < w.counters_.size(); ++c) counters[c] += w.counters_[c];
         for (std::size_t b = 0; b < w.batches_.size(); ++b) {
             const std::size_t begin = w.batches_[b].begin, end = batchEnd(w, b);
             if (end <= begin) continue;

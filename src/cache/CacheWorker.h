@@ -30,7 +30,7 @@ public:
     // What `workers` queued this frame (their non-empty batches with their
     // stores, in worker then queue order, and their lookup counters summed
     // per cube) as bytes for the other processes of a cluster job
-    // (src/cluster/): 16 bytes per store, 16 per batch, 96 per cube; in an
+    // (src/cluster/): 16 bytes per store, 16 per batch, 160 per cube; in an
     // animated scene also each store's RayTreeRecord (156 bytes); with
     // multi-resolution cubes each store's SeenPoint (16 bytes). Written into
     // `out` (replacing what it held; its capacity is reused).
@@ -57,6 +57,26 @@ private:
     struct Counters {
         std::uint64_t lookups = 0, hits = 0, misses = 0, rejected = 0;
         std::array<std::uint64_t, kMaxCubeLevels> levelHits{};  // of the hits, per level (0: the finest)
+        std::uint64_t cdctSearches = 0, cdctSteps = 0;
+        std::array<std::uint64_t, kCdctStepBuckets> cdctStepsHistogram{};
+
+        void countCdctSearch(int steps) {
+            const auto n = static_cast<std::uint64_t>(steps);
+            ++cdctSearches;
+            cdctSteps += n;
+            ++cdctStepsHistogram[static_cast<std::size_t>(cdctStepBucket(n))];
+        }
+        Counters& operator+=(const Counters& o) {
+            lookups += o.lookups;
+            hits += o.hits;
+            misses += o.misses;
+            rejected += o.rejected;
+            for (std::size_t k = 0; k < levelHits.size(); ++k) levelHits[k] += o.levelHits[k];
+            cdctSearches += o.cdctSearches;
+            cdctSteps += o.cdctSteps;
+            for (std::size_t k = 0; k < cdctStepsHistogram.size(); ++k) cdctStepsHistogram[k] += o.cdctStepsHistogram[k];
+            return *this;
+        }
     };
 
     void closeBatch() {

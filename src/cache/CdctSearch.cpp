@@ -120,8 +120,10 @@ CdctResult searchCdctParity(const CachingCube& cube, const CdctParameters& p, co
     const double cap = std::ceil(2.0 * p.maxDepth / p.step) + 1.0;
     const int steps = static_cast<int>(std::clamp(wanted, 1.0, cap));
 
+    int samples = 0;
     // The texel addressed by centre -> point at t; -1 if invalid (aborts the search).
     const auto texelAt = [&](float t, float& distance) {
+        ++samples;
         const Vec3 v = origin + d * t - c;
         distance = length(v);
         const int texel = cube.texelIndexFor(v);
@@ -133,7 +135,7 @@ CdctResult searchCdctParity(const CachingCube& cube, const CdctParameters& p, co
         const float t = i == steps ? tEnd : tStart + static_cast<float>(i) * p.step;
         float distance;
         const int texel = texelAt(t, distance);
-        if (texel < 0) return {CdctOutcome::Invalid};
+        if (texel < 0) return {CdctOutcome::Invalid, {}, samples};
         if (cube.depth(texel) <= distance) {
             // Crossed between `previous` (in front of the stored surface) and t (at or behind it).
             float lo = previous, hi = t;
@@ -142,7 +144,7 @@ CdctResult searchCdctParity(const CachingCube& cube, const CdctParameters& p, co
                 const float mid = 0.5f * (lo + hi);
                 if (!(mid > lo && mid < hi)) break;  // float resolution reached
                 const int midTexel = texelAt(mid, distance);
-                if (midTexel < 0) return {CdctOutcome::Invalid};
+                if (midTexel < 0) return {CdctOutcome::Invalid, {}, samples};
                 if (cube.depth(midTexel) <= distance) {
                     hi = mid;
                     found = midTexel;
@@ -150,10 +152,10 @@ CdctResult searchCdctParity(const CachingCube& cube, const CdctParameters& p, co
                     lo = mid;
                 }
             }
-            return {CdctOutcome::Found, *cube.read(found)};
+            return {CdctOutcome::Found, *cube.read(found), samples};
         }
         // Reached maxDepth without crossing (rounding only): what lies there is the environment.
-        if (i == steps) return {CdctOutcome::Found, *cube.read(texel)};
+        if (i == steps) return {CdctOutcome::Found, *cube.read(texel), samples};
         previous = t;
     }
     return {};  // not reached: the last step returns
@@ -206,7 +208,9 @@ CdctResult searchCdctImproved(const CachingCube& cube, const CdctParameters& p, 
         CubeCoord coord;
         int x, y;        // texel column and row on coord.face
     };
+    int samples = 0;
     const auto sampleAt = [&](float t) {
+        ++samples;
         Sample s;
         s.v = origin + d * t - c;
         s.distance = length(s.v);
@@ -223,7 +227,7 @@ CdctResult searchCdctImproved(const CachingCube& cube, const CdctParameters& p, 
     int found = -1;
     Vec3 foundV;
     for (long step = 0;; ++step) {
-        if (!cube.isValid(s.texel)) return {CdctOutcome::Invalid};
+        if (!cube.isValid(s.texel)) return {CdctOutcome::Invalid, {}, samples};
         if (cube.depth(s.texel) <= s.distance) {
             // Crossed between `previous` (in front of the stored surface) and t.
             float lo = previous, hi = t;
@@ -235,7 +239,7 @@ CdctResult searchCdctImproved(const CachingCube& cube, const CdctParameters& p, 
                 const float mid = 0.5f * (lo + hi);
                 if (!(mid > lo && mid < hi)) break;  // float resolution reached
                 const Sample m = sampleAt(mid);
-                if (!cube.isValid(m.texel)) return {CdctOutcome::Invalid};
+                if (!cube.isValid(m.texel)) return {CdctOutcome::Invalid, {}, samples};
                 if (cube.depth(m.texel) <= m.distance) {
                     hi = mid;
                     found = m.texel;
@@ -250,12 +254,12 @@ CdctResult searchCdctImproved(const CachingCube& cube, const CdctParameters& p, 
         if (t >= tEnd) {
             // No crossing up to the end: the environment, cached at maxDepth.
             const Sample far = sampleAt(tMaxDepth);
-            if (!cube.isValid(far.texel)) return {CdctOutcome::Invalid};
+            if (!cube.isValid(far.texel)) return {CdctOutcome::Invalid, {}, samples};
             found = far.texel;
             foundV = far.v;
             break;
         }
-        if (step >= maxSteps) return {CdctOutcome::Exhausted};
+        if (step >= maxSteps) return {CdctOutcome::Exhausted, {}, samples};
         previous = t;
         float next = improvements.texelSteps ? tAfterTurn(t, stepTangent) : t + p.step;
         if (pyramid && improvements.skipEmptySpace) {
@@ -275,9 +279,11 @@ CdctResult searchCdctImproved(const CachingCube& cube, const CdctParameters& p, 
         s = sampleAt(t);
     }
 
-    if (improvements.errorControl && !onRay(cube, found, p.tolerance, origin, d)) return {CdctOutcome::Rejected};
-    if (improvements.filter) return {CdctOutcome::Found, filteredColor(cube, found, foundV, p.tolerance, origin, d)};
-    return {CdctOutcome::Found, *cube.read(found)};
+    if (improvements.errorControl && !onRay(cube, found, p.tolerance, origin, d))
+        return {CdctOutcome::Rejected, {}, samples};
+    if (improvements.filter)
+        return {CdctOutcome::Found, filteredColor(cube, found, foundV, p.tolerance, origin, d), samples};
+    return {CdctOutcome::Found, *cube.read(found), samples};
 }
 
 }  // namespace raycache

@@ -39,6 +39,7 @@ enum class CdctOutcome {
 struct CdctResult {
     CdctOutcome outcome = CdctOutcome::Exhausted;
     Rgb color{};
+    int steps = 0;  // texels of the cube the search sampled (march and bisection steps)
 };
 
 // At most this many texel-sized steps per face side of the cube (improved

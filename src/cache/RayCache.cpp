@@ -391,13 +391,16 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
         s.invalidPercentBefore = cubes_[c].invalidPercentBefore;
         s.prefilledTexels = cubes_[c].prefilledTexels;
         cubes_[c].prefilledTexels = 0;
-        for (const CacheWorker& w : workers) {
-            s.lookups += w.counters_[c].lookups;
-            s.hits += w.counters_[c].hits;
-            s.misses += w.counters_[c].misses;
-            s.rejected += w.counters_[c].rejected;
-            for (std::size_t k = 0; k < s.hitsByLevel.size(); ++k) s.hitsByLevel[k] += w.counters_[c].levelHits[k];
-        }
+        CacheWorker::Counters all;
+        for (const CacheWorker& w : workers) all += w.counters_[c];
+        s.lookups = all.lookups;
+        s.hits = all.hits;
+        s.misses = all.misses;
+        s.rejected = all.rejected;
+        s.hitsByLevel = all.levelHits;
+        s.cdctSearches = all.cdctSearches;
+        s.cdctSteps = all.cdctSteps;
+        s.cdctStepsHistogram = all.cdctStepsHistogram;
     }
     for (CacheWorker& w : workers) {
         w.pending_.clear();
@@ -505,12 +508,14 @@ std::optional<Rgb> RayCache::answer(const Entry& e, const Vec3& origin, const Ve
         if (fillsByPrefill(e) && !e.prefilled) return std::nullopt;
         const CdctResult r = searchCdctImproved(e.cube, e.cdct, improvements_, e.farthestSurface,
                                                 e.pyramid ? &*e.pyramid : nullptr, origin, direction);
+        counters.countCdctSearch(r.steps);
         if (r.outcome == CdctOutcome::Rejected) ++counters.rejected;
         if (r.outcome == CdctOutcome::Found) return r.color;
         return std::nullopt;
     }
     case CacheTechnique::CdctParity: {
         const CdctResult r = searchCdctParity(e.cube, e.cdct, origin, direction);
+        counters.countCdctSearch(r.steps);
         if (r.outcome == CdctOutcome::Found) return r.color;
         return std::nullopt;
     }

@@ -131,6 +131,47 @@ TEST(CdctImproved, SearchFindsAnAnalyticSphereWithEverySwitchSetting) {
     }
 }
 
+// The cache counts every search's steps (the texels it sampled) into the
+// frame's statistics: the same totals as calling the search directly, a
+// histogram that sums to the searches, and skipping empty space must take
+// fewer steps than marching texel by texel.
+TEST(CdctImproved, SearchStepsAreCountedAndEmptySpaceSkippingSavesThem) {
+    std::uint64_t stepsBySkipping[2] = {0, 0};
+    for (const bool skip : {false, true}) {
+        RayCacheSettings settings;
+        settings.cdctImprovements.skipEmptySpace = skip;
+        RayCache cache(oneMirror(64), settings);
+        prefill(cache, [](const Vec3&) { return 5.0f; });
+        const CachingCube& cube = cache.cube(0);
+        const DepthPyramid pyramid(cube);
+        const CdctParameters parameters = RayCache::cdctParametersFor(oneMirror(64).objects[0], settings);
+        auto workers = cache.makeWorkers(1);
+        cache.beginFrame(workers);
+        workers[0].beginBatch(0);
+        std::uint64_t direct = 0;
+        for (const Probe& p : awkwardRays()) {
+            const CdctResult r = searchCdctImproved(cube, parameters, settings.cdctImprovements, 5.0f,
+                                                    skip ? &pyramid : nullptr, p.origin, p.direction);
+            EXPECT_GE(r.steps, 1);
+            direct += static_cast<std::uint64_t>(r.steps);
+            cache.lookup(0, p.origin, p.direction, workers[0]);
+        }
+        const FrameCacheStats stats = cache.endFrame(workers);
+        const ObjectCacheStats& o = stats.objects[0];
+        EXPECT_EQ(o.cdctSearches, awkwardRays().size());
+        EXPECT_EQ(o.cdctSteps, direct);
+        std::uint64_t histogram = 0;
+        for (const std::uint64_t n : o.cdctStepsHistogram) histogram += n;
+        EXPECT_EQ(histogram, o.cdctSearches);
+        stepsBySkipping[skip] = o.cdctSteps;
+    }
+    EXPECT_LT(stepsBySkipping[1], stepsBySkipping[0]);
+    EXPECT_EQ(cdctStepBucket(3), 0);
+    EXPECT_EQ(cdctStepBucket(4), 1);
+    EXPECT_EQ(cdctStepBucket(1023), 4);
+    EXPECT_EQ(cdctStepBucket(1u << 20), kCdctStepBuckets - 1);
+}
+
 TEST(CdctImproved, EnvironmentBeyondTheFarthestSurfaceIsAnsweredFromMaxDepth) {
     // Upper half: a surface at distance 3; lower half: nothing (environment).
     for (bool earlyExit : {false, true}) {
@@ -225,6 +266,9 @@ TEST(CdctImproved, FirstFrameTracesThenPrefillsThenAnswers) {
     ASSERT_EQ(run.stats.size(), 3u);
     EXPECT_TRUE(sameImage(run.frames[0], plain.frames[0])) << "frame 1 traces every ray";
     EXPECT_EQ(run.stats[0].cache->hits(), 0u);
+    EXPECT_EQ(run.stats[0].cache->cdctSearches(), 0u) << "nothing searched before the pre-fill";
+    EXPECT_EQ(run.stats[1].cache->cdctSearches(), run.stats[1].cache->lookups()) << "every lookup searched after it";
+    EXPECT_GT(run.stats[1].cache->cdctSteps(), run.stats[1].cache->cdctSearches());
     EXPECT_EQ(run.stats[0].cache->prefilledTexels(), 2u * 6u * 32u * 32u) << "both mirrors, after frame 1";
     EXPECT_EQ(run.stats[0].rays.prefill, 2u * 6u * 32u * 32u);
     EXPECT_EQ(run.stats[1].cache->prefilledTexels(), 0u);

@@ -46,6 +46,7 @@ void expectSameAsOneProcess(const std::string& scene, CacheTechnique technique, 
             EXPECT_EQ(run.stats[f].cache->lookups(), one.stats[f].cache->lookups());
             EXPECT_EQ(run.stats[f].cache->hits(), one.stats[f].cache->hits());
             EXPECT_EQ(run.stats[f].cache->stores(), one.stats[f].cache->stores());
+            EXPECT_EQ(run.stats[f].cache->cdctSteps(), one.stats[f].cache->cdctSteps());
         }
         ASSERT_TRUE(root.stats[f].cluster.has_value());
         // Every tile rendered once, by some process.
