@@ -272,7 +272,14 @@ CdctResult searchCdctImproved(const CachingCube& cube, const CdctParameters& p, 
                 if (!(nearest > s.distance)) continue;
                 // The sine of the angle to the block's edge is below its tangent: a safe turn.
                 const float leaves = tAfterTurn(t, sineToBlockEdge(s.coord, cube.size(), pyramid->blockSide(level)));
-                next = std::max(next, std::min(leaves, rayParameterAtDistance(c, origin, d, nearest)));
+                // The finer blocks holding this point lie inside this one, so
+                // the ray leaves them no later: once leaving this block
+                // limits the step (or cannot lengthen it), none of them can
+                // take it farther.
+                if (leaves <= next) break;
+                const float reaches = rayParameterAtDistance(c, origin, d, nearest);
+                next = std::max(next, std::min(leaves, reaches));
+                if (leaves <= reaches) break;
             }
         }
         t = std::min(tEnd, std::max(next, t + 1e-6f * (1.0f + t)));
