@@ -186,6 +186,9 @@ int run(int argc, char** argv, const raycache::ClusterRuntime& cluster) {
     viewCmd->add_flag("--no-vsync", view.noVsync, "Interactive: do not wait for the display's refresh");
     viewCmd->add_flag("--difference", view.difference,
                       "Start showing the difference to the uncached image as a heat map (key X toggles)");
+    viewCmd->add_flag("--level-overlay", view.levelOverlay,
+                      "Start with the cube level per pixel overlay on: which cube level answered each pixel "
+                      "(key L toggles)");
     viewCmd->add_option("--inspect", view.inspectObject,
                         "Start with this caching object's cube unfolded in the cache inspector");
     viewCmd->add_option("--moving-scale", view.movingScale,

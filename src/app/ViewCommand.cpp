@@ -52,6 +52,7 @@ void runViewCommand(const ViewCommandOptions& options, std::ostream& out) {
     viewer.vsync = !options.noVsync;
     viewer.movingScale = options.movingScale;
     viewer.difference = options.difference;
+    viewer.cacheLevels = options.levelOverlay;
     if (!options.inspectObject.empty()) {
         const auto& objects = job.scene.objects;
         const auto found = std::find_if(objects.begin(), objects.end(),

@@ -16,6 +16,7 @@ struct ViewCommandOptions {
     bool noVsync = false;        // --no-vsync
     float movingScale = 0.5f;    // --moving-scale
     bool difference = false;     // --difference
+    bool levelOverlay = false;   // --level-overlay
     std::string inspectObject;   // --inspect: object name
 };
 

@@ -527,6 +527,13 @@ std::optional<Rgb> RayCache::answer(const Entry& e, const Vec3& origin, const Ve
 
 std::optional<Rgb> RayCache::lookup(int objectId, const Vec3& origin, const Vec3& direction,
                                     CacheWorker& worker) const {
+    if (auto color = lookupAnswer(objectId, origin, direction, worker)) return color;
+    if (ideal_) return Rgb{};
+    return std::nullopt;
+}
+
+std::optional<Rgb> RayCache::lookupAnswer(int objectId, const Vec3& origin, const Vec3& direction,
+                                          CacheWorker& worker) const {
     const auto c = static_cast<std::size_t>(cubeIndexOf(objectId));
     CacheWorker::Counters& counters = worker.counters_[c];
     ++counters.lookups;
@@ -540,7 +547,6 @@ std::optional<Rgb> RayCache::lookup(int objectId, const Vec3& origin, const Vec3
         return color;
     }
     ++counters.misses;
-    if (ideal_) return Rgb{};
     return std::nullopt;
 }
 
@@ -620,7 +626,18 @@ int RayCache::cctAnswerLevel(const Entry& e, int texel, const Query& q, CacheWor
 }
 
 void RayCache::lookupBatch(std::span<const Query> queries, std::span<Rgb> colors, std::span<unsigned char> found,
-                           std::span<int> storeTexels, CacheWorker& worker, std::span<int> answerTexels) const {
+                           std::span<int> storeTexels, CacheWorker& worker, std::span<int> answerTexels,
+                           std::span<std::int8_t> answerLevels) const {
+    if (answerLevels.empty())
+        lookupBatchAs<false>(queries, colors, found, storeTexels, worker, answerTexels, answerLevels);
+    else
+        lookupBatchAs<true>(queries, colors, found, storeTexels, worker, answerTexels, answerLevels);
+}
+
+template <bool kRecordLevels>
+void RayCache::lookupBatchAs(std::span<const Query> queries, std::span<Rgb> colors, std::span<unsigned char> found,
+                             std::span<int> storeTexels, CacheWorker& worker, std::span<int> answerTexels,
+                             std::span<std::int8_t> answerLevels) const {
     // Chunks small enough for the texel indices to stay on the stack and the
     // prefetched lines to stay in L1/L2 until they are read.
     constexpr std::size_t kChunk = 64;
@@ -646,9 +663,10 @@ void RayCache::lookupBatch(std::span<const Query> queries, std::span<Rgb> colors
             storeTexels[i] = -1;
             if (!answerTexels.empty()) answerTexels[i] = -1;
             if (texel[k] < 0) {
-                const auto color = lookup(q.objectId, q.origin, q.direction, worker);
-                found[i] = color ? 1 : 0;
-                if (color) colors[i] = *color;
+                const auto color = lookupAnswer(q.objectId, q.origin, q.direction, worker);
+                if constexpr (kRecordLevels) answerLevels[i] = color ? 0 : -1;
+                found[i] = color || ideal_ ? 1 : 0;
+                if (found[i]) colors[i] = color.value_or(Rgb{});
                 continue;
             }
             const auto c = static_cast<std::size_t>(cubeIndexOf(q.objectId));
@@ -656,6 +674,7 @@ void RayCache::lookupBatch(std::span<const Query> queries, std::span<Rgb> colors
             ++counters.lookups;
             const Entry& e = cubes_[c];
             const int level = oracle_ ? -1 : cctAnswerLevel(e, texel[k], q, counters);
+            if constexpr (kRecordLevels) answerLevels[i] = static_cast<std::int8_t>(level);
             if (level >= 0) {
                 ++counters.hits;
                 ++counters.levelHits[static_cast<std::size_t>(level)];

@@ -20,6 +20,7 @@
 // batch by batch in increasing key order, and the first store to an invalid
 // texel wins. Images and cache contents therefore do not depend on the
 // thread count or scheduling.
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <span>
@@ -211,8 +212,13 @@ public:
     // `answerTexels` (optional): for an answered query, the finest CCT texel
     // whose dependency block covers the texel that answered it, -1 otherwise
     // (also for a coarse texel wider than a block; see addAnswerDependencies).
+    // `answerLevels` (optional): the level that answered each query (0: the
+    // finest; CDCT answers are 0, as hitsByLevel counts them), -1 when none
+    // did (also in ideal mode, where found is 1 but nothing answered). Asking
+    // for them costs one branch per call, none per query.
     void lookupBatch(std::span<const Query> queries, std::span<Rgb> colors, std::span<unsigned char> found,
-                     std::span<int> storeTexels, CacheWorker& worker, std::span<int> answerTexels = {}) const;
+                     std::span<int> storeTexels, CacheWorker& worker, std::span<int> answerTexels = {},
+                     std::span<std::int8_t> answerLevels = {}) const;
     // Improved CDCT (technique Cdct with prefill on): the objects whose cubes
     // were asked for during this frame (by `workers`) and are not filled yet.
     // The renderer fills them after the frame's pixels, before endFrame
@@ -309,6 +315,14 @@ private:
     int cctAnswerLevel(const Entry& e, int texel, const Query& q, CacheWorker::Counters& counters) const;
     std::optional<Rgb> answer(const Entry& entry, const Vec3& origin, const Vec3& direction,
                               CacheWorker::Counters& counters) const;
+    // lookup() without ideal mode's black for a miss: the cube's answer, counted.
+    std::optional<Rgb> lookupAnswer(int objectId, const Vec3& origin, const Vec3& direction, CacheWorker& worker) const;
+    // lookupBatch, compiled with and without writing answerLevels so that the
+    // batch without pays nothing per query.
+    template <bool kRecordLevels>
+    void lookupBatchAs(std::span<const Query> queries, std::span<Rgb> colors, std::span<unsigned char> found,
+                       std::span<int> storeTexels, CacheWorker& worker, std::span<int> answerTexels,
+                       std::span<std::int8_t> answerLevels) const;
 
     int cubeIndexOf(int objectId) const {
         return objectId >= 0 && static_cast<std::size_t>(objectId) < cubeOfObject_.size()

@@ -24,9 +24,12 @@ DeferredShading::DeferredShading(const Scene& scene, const TraceScene& tracer, c
     : settings_(settings), parallel_(parallel), cache_(cache && !cache->empty() ? cache : nullptr),
       kernel_(scene, tracer, settings, cache_) {}
 
-void DeferredShading::shade(const Camera& camera, const GBufferView& gbuffer, Image& film, FrameStats& stats) {
+void DeferredShading::shade(const Camera& camera, const GBufferView& gbuffer, Image& film, FrameStats& stats,
+                            CacheLevelImage* levels) {
     const int width = settings_.width, height = settings_.height;
     if (film.width() != width || film.height() != height) film = Image(width, height);
+    if (!settings_.recordCacheLevels) levels = nullptr;
+    if (levels && (levels->width() != width || levels->height() != height)) *levels = CacheLevelImage(width, height);
     const CameraRays cameraRays(camera, width, height);
     PhaseTimes& phases = stats.phases.emplace(stats.phases.value_or(PhaseTimes{}));
 
@@ -37,7 +40,7 @@ void DeferredShading::shade(const Camera& camera, const GBufferView& gbuffer, Im
     CacheFrame cacheFrame(cache_, parallel_.threadCount());
     parallel_.forEachTile(width, height, settings_.tileSize, [&](const TileRange& tile, int worker) {
         kernel_.renderGBufferTile(cameraRays, gbuffer, tile, tileKey(tile, width, settings_.tileSize),
-                                  scratch[static_cast<std::size_t>(worker)], cacheFrame.worker(worker), film);
+                                  scratch[static_cast<std::size_t>(worker)], cacheFrame.worker(worker), film, levels);
     });
     Clock::duration firstBounce{}, laterBounces{}, compose{};
     StageTimes stages;

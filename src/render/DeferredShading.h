@@ -6,6 +6,7 @@
 // them, answered by the same caches as in the ray pipeline; then composition.
 #include "core/Image.h"
 #include "core/Parallel.h"
+#include "render/CacheLevelImage.h"
 #include "render/FrameStats.h"
 #include "render/GBuffer.h"
 #include "render/RenderSettings.h"
@@ -28,7 +29,10 @@ public:
     // parallel pass, whose wall time is split in proportion to the time the
     // workers spent in each; the cache's frame end counts as secondary).
     // Images and caches do not depend on the thread count.
-    void shade(const Camera& camera, const GBufferView& gbuffer, Image& film, FrameStats& stats);
+    // With settings.recordCacheLevels and `levels`, `levels` (resized to the
+    // film's size) gets the frame's cache-level record; otherwise it is not touched.
+    void shade(const Camera& camera, const GBufferView& gbuffer, Image& film, FrameStats& stats,
+               CacheLevelImage* levels = nullptr);
 
 private:
     RenderSettings settings_;

@@ -14,12 +14,17 @@ class RayPipeline final : public FramePipeline {
 public:
     RayPipeline(const Scene& scene, const TraceScene& tracer, const RenderSettings& settings,
                 const Parallel& parallel, RayCache* cache, const ProcessGroup* group)
-        : renderer_(scene, tracer, settings, parallel, cache, group) {}
-    FrameStats render(const Camera& camera, Image& film) override { return renderer_.render(camera, film); }
+        : renderer_(scene, tracer, settings, parallel, cache, group), recordsLevels_(settings.recordCacheLevels) {}
+    FrameStats render(const Camera& camera, Image& film) override {
+        return renderer_.render(camera, film, &cacheLevels_);
+    }
     std::string description() const override { return "pipeline: ray (primary rays as packets)"; }
+    const CacheLevelImage* cacheLevels() const override { return recordsLevels_ ? &cacheLevels_ : nullptr; }
 
 private:
     FrameRenderer renderer_;
+    bool recordsLevels_;
+    CacheLevelImage cacheLevels_;  // the last frame's, when RenderSettings::recordCacheLevels
 };
 
 }  // namespace

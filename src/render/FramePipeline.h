@@ -21,6 +21,7 @@
 
 namespace raycache {
 
+class CacheLevelImage;
 class RayCache;
 struct RenderCacheOverlays;
 
@@ -37,6 +38,10 @@ public:
     // The Render Cache pipeline's maps of its last frame, for the viewer's
     // overlays; null for the other pipelines.
     virtual const RenderCacheOverlays* renderCacheOverlays() const { return nullptr; }
+    // The last frame's cache-level record (render/CacheLevelImage.h) when
+    // RenderSettings::recordCacheLevels asked for it; null otherwise, and
+    // always for the Render Cache pipeline, which does not make one.
+    virtual const CacheLevelImage* cacheLevels() const { return nullptr; }
     // The scene this pipeline renders moved (RenderSession::setTime); the
     // tracer and the caches are already updated. Pipelines that keep their
     // own copy of geometry (the hybrid one's OpenGL buffers) update it.
@@ -47,8 +52,9 @@ public:
 // GBufferSource::Auto uses OpenGL when a 4.5 core context can be made and
 // primary-ray packets otherwise. Throws RuntimeError when GBufferSource::OpenGl
 // is forced and no context can be made. With `group` of several processes
-// only the ray pipeline shares its tiles among them; the others throw
-// InputError. All arguments must outlive the pipeline.
+// only the ray pipeline shares its tiles among them, without the cache-level
+// record; the others, and the record, throw InputError. All arguments must
+// outlive the pipeline.
 std::unique_ptr<FramePipeline> makeFramePipeline(const Scene& scene, const TraceScene& tracer,
                                                  const RenderSettings& settings, const Parallel& parallel,
                                                  RayCache* cache = nullptr, const ProcessGroup* group = nullptr);

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/Errors.h"
 #include "render/CacheFrame.h"
 #include "render/CameraRays.h"
 
@@ -44,20 +45,28 @@ std::vector<int> agreeTileOwners(const ProcessGroup& group, TileBalance balance,
 FrameRenderer::FrameRenderer(const Scene& scene, const TraceScene& tracer, const RenderSettings& settings,
                              const Parallel& parallel, RayCache* cache, const ProcessGroup* group)
     : settings_(settings), parallel_(parallel), cache_(cache && !cache->empty() ? cache : nullptr),
-      group_(group && group->size() > 1 ? group : nullptr), kernel_(scene, tracer, settings, cache_) {}
+      group_(group && group->size() > 1 ? group : nullptr), kernel_(scene, tracer, settings, cache_) {
+    // Process 0 gathers the other processes' pixels, not their records.
+    if (group_ && settings.recordCacheLevels)
+        throw InputError("the per-pixel cache-level record is made by a single process only");
+}
 
-FrameStats FrameRenderer::render(const Camera& camera, Image& film) const {
+FrameStats FrameRenderer::render(const Camera& camera, Image& film, CacheLevelImage* levels) const {
     if (film.width() != settings_.width || film.height() != settings_.height)
         film = Image(settings_.width, settings_.height);
     const CameraRays cameraRays(camera, settings_.width, settings_.height);
-    if (group_) return renderDistributed(cameraRays, film);
+    if (group_) return renderDistributed(cameraRays, film);  // never with the record (see the constructor)
+    if (!settings_.recordCacheLevels) levels = nullptr;
+    if (levels && (levels->width() != settings_.width || levels->height() != settings_.height))
+        *levels = CacheLevelImage(settings_.width, settings_.height);
     std::vector<TileScratch>& scratch = scratch_;
     scratch.resize(static_cast<std::size_t>(parallel_.threadCount()));
     for (TileScratch& s : scratch) s.beginFrame();
     CacheFrame cacheFrame(cache_, parallel_.threadCount());
     parallel_.forEachTile(settings_.width, settings_.height, settings_.tileSize, [&](const TileRange& tile, int worker) {
         kernel_.renderCameraTile(cameraRays, tile, tileKey(tile, settings_.width, settings_.tileSize),
-                                 scratch[static_cast<std::size_t>(worker)], cacheFrame.worker(worker), film);
+                                 scratch[static_cast<std::size_t>(worker)], cacheFrame.worker(worker), film,
+                                 levels);
     });
 
     FrameStats stats;

@@ -10,6 +10,7 @@
 #include "core/Parallel.h"
 #include "core/ProcessGroup.h"
 #include "render/CacheFrame.h"
+#include "render/CacheLevelImage.h"
 #include "render/FrameStats.h"
 #include "render/RenderSettings.h"
 #include "render/TileKernel.h"
@@ -21,7 +22,8 @@ class FrameRenderer {
 public:
     // With `cache` (may be null), caching objects' secondary rays go through
     // it, and its frame hooks run around every frame.
-    // `group` (may be null: one process) must outlive the renderer.
+    // `group` (may be null: one process) must outlive the renderer. Throws
+    // InputError for settings.recordCacheLevels with several processes.
     FrameRenderer(const Scene& scene, const TraceScene& tracer, const RenderSettings& settings,
                   const Parallel& parallel, RayCache* cache = nullptr, const ProcessGroup* group = nullptr);
 
@@ -31,7 +33,10 @@ public:
     // process 0's film is whole and only its statistics are the job's (the
     // cache statistics are the job's on every process); every process must
     // call render() for every frame.
-    FrameStats render(const Camera& camera, Image& film) const;
+    // With settings.recordCacheLevels and `levels`, `levels` (resized to the
+    // film's size) gets the frame's cache-level record; otherwise it is not
+    // touched. The film is the same either way.
+    FrameStats render(const Camera& camera, Image& film, CacheLevelImage* levels = nullptr) const;
 
 private:
     FrameStats renderDistributed(const CameraRays& cameraRays, Image& film) const;

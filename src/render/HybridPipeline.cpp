@@ -29,7 +29,7 @@ FrameStats HybridPipeline::render(const Camera& camera, Image& film) {
         gbuffer = storage_.view();
         phases.raster = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     }
-    deferred_.shade(camera, gbuffer, film, stats);
+    deferred_.shade(camera, gbuffer, film, stats, &cacheLevels_);
     return stats;
 }
 

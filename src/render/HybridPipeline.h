@@ -26,6 +26,9 @@ public:
     std::string description() const override;
     bool usesOpenGl() const { return rasterizer_ != nullptr; }
     void sceneChanged(const SceneChanges& changes) override;
+    const CacheLevelImage* cacheLevels() const override {
+        return settings_.recordCacheLevels ? &cacheLevels_ : nullptr;
+    }
 
 private:
     RenderSettings settings_;
@@ -34,6 +37,7 @@ private:
     PacketGBuffer packets_;
     GBufferStorage storage_;  // the packet G-buffer
     DeferredShading deferred_;
+    CacheLevelImage cacheLevels_;  // the last frame's, when RenderSettings::recordCacheLevels
 };
 
 }  // namespace raycache

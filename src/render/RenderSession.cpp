@@ -80,6 +80,17 @@ SceneUpdateStats RenderSession::setTime(float seconds) {
     return update;
 }
 
+void RenderSession::setRecordCacheLevels(bool on) {
+    if (on == settings_.recordCacheLevels) return;
+    settings_.recordCacheLevels = on;
+    try {
+        pipeline_ = makeFramePipeline(scene_, *tracer_, settings_, *parallel_, &cache_, group_);
+    } catch (...) {
+        settings_.recordCacheLevels = !on;  // the old pipeline stays, and the settings it was made with
+        throw;
+    }
+}
+
 void RenderSession::resize(int width, int height) {
     if (width == settings_.width && height == settings_.height) return;
     settings_.width = width;

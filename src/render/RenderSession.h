@@ -51,6 +51,11 @@ public:
     const Scene& scene() const { return scene_; }
     // Changes the image size of later frames; the caches stay as they are.
     void resize(int width, int height);
+    // Turns the cache-level record of later frames on or off
+    // (RenderSettings::recordCacheLevels); the caches stay as they are. Like
+    // resize(), a change makes the pipeline anew (the Render Cache's samples
+    // start again). InputError with several processes.
+    void setRecordCacheLevels(bool on);
 
     RayCache& cache() { return cache_; }
     const RayCache& cache() const { return cache_; }
@@ -61,6 +66,9 @@ public:
     std::string description() const { return pipeline_->description(); }
     // The Render Cache pipeline's maps of the last frame; null for the others.
     const RenderCacheOverlays* renderCacheOverlays() const { return pipeline_->renderCacheOverlays(); }
+    // The last frame's cache-level record (render/CacheLevelImage.h): null
+    // unless recorded, and for the Render Cache pipeline.
+    const CacheLevelImage* cacheLevels() const { return pipeline_->cacheLevels(); }
 
 private:
     const Scene& source_;

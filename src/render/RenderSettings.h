@@ -41,6 +41,11 @@ struct RenderSettings {
     // Time every stage of the tile kernel (FrameStats::stages): two clock
     // reads per stage and wave, so off unless a profile is wanted.
     bool stageTimes = false;
+    // Record per pixel what the cache did for the pixel's rays leaving
+    // caching objects (render/CacheLevelImage.h; the viewer's cube-level
+    // overlay). Off, the tile kernel writes nothing per pixel for it. Ray and
+    // hybrid pipelines of one process only.
+    bool recordCacheLevels = false;
     // How tiles are assigned to the processes of a cluster job (docs/cluster.md).
     TileBalance tileBalance = TileBalance::Dynamic;
 };

@@ -36,6 +36,7 @@ private:
 void TileScratch::beginTile(std::size_t roots) {
     nodes.assign(roots, Node{});
     trackTrees = false;  // runWaves decides, once it knows the cache
+    recordLevels = false;  // the callers that record say so after this
     vertices.clear();
     surfaces.clear();
     albedo.clear();
@@ -47,10 +48,11 @@ TileKernel::TileKernel(const Scene& scene, const TraceScene& tracer, const Rende
       shading_(scene) {}
 
 void TileKernel::renderCameraTile(const CameraRays& cameraRays, const TileRange& tile, std::uint64_t tileKey,
-                                  TileScratch& s, CacheWorker* cache, Image& film) const {
+                                  TileScratch& s, CacheWorker* cache, Image& film, CacheLevelImage* levels) const {
     const int tileWidth = tile.x1 - tile.x0;
     const auto n = static_cast<std::size_t>(tileWidth) * static_cast<std::size_t>(tile.y1 - tile.y0);
     s.beginTile(n);
+    if (levels) beginLevelRecord(s, n);
     {
         StageTimer timer(settings_.stageTimes, s.stages.firstHits);
         s.rays.resize(n);
@@ -74,14 +76,17 @@ void TileKernel::renderCameraTile(const CameraRays& cameraRays, const TileRange&
     for (std::size_t i = 0; i < n; ++i)
         film.at(tile.x0 + static_cast<int>(i) % tileWidth, tile.y0 + static_cast<int>(i) / tileWidth) =
             s.nodes[i].color();
+    if (levels) writeLevelRecord(s, tile, *levels);
 }
 
 void TileKernel::renderGBufferTile(const CameraRays& cameraRays, const GBufferView& gbuffer, const TileRange& tile,
-                                   std::uint64_t tileKey, TileScratch& s, CacheWorker* cache, Image& film) const {
+                                   std::uint64_t tileKey, TileScratch& s, CacheWorker* cache, Image& film,
+                                   CacheLevelImage* levels) const {
     const auto t0 = Clock::now();
     const int tileWidth = tile.x1 - tile.x0;
     const auto n = static_cast<std::size_t>(tileWidth) * static_cast<std::size_t>(tile.y1 - tile.y0);
     s.beginTile(n);
+    if (levels) beginLevelRecord(s, n);
     {
         StageTimer timer(settings_.stageTimes, s.stages.firstHits);
         const RayCone pixel{0.0f, cameraRays.pixelSpread()};
@@ -113,6 +118,7 @@ void TileKernel::renderGBufferTile(const CameraRays& cameraRays, const GBufferVi
         for (std::size_t k = 0; k < n; ++k)
             film.at(tile.x0 + static_cast<int>(k) % tileWidth, tile.y0 + static_cast<int>(k) / tileWidth) =
                 s.nodes[k].color();
+        if (levels) writeLevelRecord(s, tile, *levels);
     }
     s.compose += Clock::now() - t1;
     // The first bounce was timed as it ran; the rest is the secondary phase.
@@ -390,7 +396,16 @@ void TileKernel::lookupReuse(TileScratch& s, CacheWorker& cache) const {
     for (std::size_t i = 0; i < n; ++i)
         s.cacheQueries[i] = {s.leaving[i].objectId, s.leaving[i].ray.origin, s.leaving[i].ray.direction,
                              s.leaving[i].cone.spread};
-    cache_->lookupBatch(s.cacheQueries, s.cachedColors, s.cacheFound, s.storeTexels, cache, s.answerTexels);
+    // Without the cache-level record the batch is looked up exactly as before:
+    // an empty span, and one branch here and one after.
+    std::span<std::int8_t> answerLevels;
+    if (s.recordLevels) {
+        s.answerLevels.resize(n);
+        answerLevels = s.answerLevels;
+    }
+    cache_->lookupBatch(s.cacheQueries, s.cachedColors, s.cacheFound, s.storeTexels, cache, s.answerTexels,
+                        answerLevels);
+    if (s.recordLevels) recordLookupLevels(s);
     for (std::size_t i = 0; i < n; ++i) {
         const TileScratch::LeavingRay& l = s.leaving[i];
         TileScratch::Node& node = s.nodes[static_cast<std::size_t>(l.node)];
@@ -411,6 +426,35 @@ void TileKernel::lookupReuse(TileScratch& s, CacheWorker& cache) const {
         node.pathWeight = l.pathWeight;
         s.pending.push_back({l.ray, l.node, l.pathWeight, l.depth, l.kind, l.cone});
     }
+}
+
+void TileKernel::beginLevelRecord(TileScratch& s, std::size_t roots) {
+    s.recordLevels = true;
+    s.rootLevels.assign(roots, CacheLevelImage::kNoCachingRay);
+    s.rootLevelWeights.assign(roots, 0.0f);
+}
+
+void TileKernel::recordLookupLevels(TileScratch& s) {
+    for (std::size_t i = 0; i < s.leaving.size(); ++i) {
+        const TileScratch::LeavingRay& l = s.leaving[i];
+        // The pixel is the root of the ray's tree: a few parents up (at most maxDepth).
+        int root = l.node;
+        while (s.nodes[static_cast<std::size_t>(root)].parent >= 0)
+            root = s.nodes[static_cast<std::size_t>(root)].parent;
+        const auto r = static_cast<std::size_t>(root);
+        // The weightiest lookup stays; on equal weight the one asked first
+        // (an earlier wave, or earlier in this batch). See CacheLevelImage.
+        if (s.rootLevels[r] != CacheLevelImage::kNoCachingRay && !(l.pathWeight > s.rootLevelWeights[r])) continue;
+        s.rootLevels[r] = s.answerLevels[i] >= 0 ? s.answerLevels[i] : CacheLevelImage::kTraced;
+        s.rootLevelWeights[r] = l.pathWeight;
+    }
+}
+
+void TileKernel::writeLevelRecord(const TileScratch& s, const TileRange& tile, CacheLevelImage& levels) {
+    const int tileWidth = tile.x1 - tile.x0;
+    for (std::size_t i = 0; i < s.rootLevels.size(); ++i)
+        levels.at(tile.x0 + static_cast<int>(i) % tileWidth, tile.y0 + static_cast<int>(i) / tileWidth) =
+            s.rootLevels[i];
 }
 
 void TileKernel::traceSecondaryRays(TileScratch& s) const {

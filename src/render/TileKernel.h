@@ -27,6 +27,7 @@
 #include "core/Image.h"
 #include "core/Parallel.h"
 #include "core/RayCounts.h"
+#include "render/CacheLevelImage.h"
 #include "render/CameraRays.h"
 #include "render/FrameStats.h"
 #include "render/GBuffer.h"
@@ -153,6 +154,13 @@ private:
     std::vector<Rgb> rootViewIndependent;
     std::vector<std::uint64_t> rootLitMask;
     std::span<const ReshadeRequest> reshade;  // the roots of a reshade call
+    // When the caller asked for the cache-level record (CacheLevelImage): per
+    // root, the level of its weightiest lookup so far and that lookup's
+    // weight, and per lookup of the batch the level that answered it.
+    bool recordLevels = false;
+    std::vector<std::int8_t> rootLevels;
+    std::vector<float> rootLevelWeights;
+    std::vector<std::int8_t> answerLevels;
 };
 
 class TileKernel {
@@ -166,13 +174,17 @@ public:
     // Ray pipeline: the tile's camera rays as packets, then the waves; writes
     // the tile's pixels of `film`. `cache` is the worker's view of the cache
     // frame (null: no caching); `tileKey` orders its stores (unique per frame).
+    // With `levels` (the film's size; null unless RenderSettings::recordCacheLevels),
+    // also the tile's pixels of the cache-level record; the image is the same either way.
     void renderCameraTile(const CameraRays& cameraRays, const TileRange& tile, std::uint64_t tileKey,
-                          TileScratch& scratch, CacheWorker* cache, Image& film) const;
+                          TileScratch& scratch, CacheWorker* cache, Image& film,
+                          CacheLevelImage* levels = nullptr) const;
 
     // Hybrid pipeline: the first hits come from the G-buffer (surface,
-    // albedo); pixels without a surface show the background.
+    // albedo); pixels without a surface show the background. `levels` as above.
     void renderGBufferTile(const CameraRays& cameraRays, const GBufferView& gbuffer, const TileRange& tile,
-                           std::uint64_t tileKey, TileScratch& scratch, CacheWorker* cache, Image& film) const;
+                           std::uint64_t tileKey, TileScratch& scratch, CacheWorker* cache, Image& film,
+                           CacheLevelImage* levels = nullptr) const;
 
     // Improved CDCT's pre-fill: what each ray from inside object `objectId`
     // sees once past the object's own surfaces, shaded as rays at `depth`
@@ -212,6 +224,12 @@ private:
     void shadeDirect(TileScratch& s) const;
     void spawnSecondaryRays(TileScratch& s, bool useCache) const;
     void lookupReuse(TileScratch& s, CacheWorker& cache) const;
+    // The cache-level record: every root starts with no caching ray; each
+    // batch of lookups may replace a root's value (CacheLevelImage says which
+    // lookup a pixel keeps); the tile's pixels are written at the end.
+    static void beginLevelRecord(TileScratch& s, std::size_t roots);
+    static void recordLookupLevels(TileScratch& s);
+    static void writeLevelRecord(const TileScratch& s, const TileRange& tile, CacheLevelImage& levels);
     void traceSecondaryRays(TileScratch& s) const;
     // Adds every node's colour to its parent's, children first, queueing the
     // cache stores of the nodes that stand for traced leaving rays.

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "render/CacheLevelImage.h"
 #include "render/FrameStats.h"
 #include "scene/Camera.h"
 
@@ -39,6 +40,11 @@ struct DisplayFrame {
     std::vector<std::uint8_t> inspectorRgba;
     double inspectedInvalidPercent = 0.0;  // after this frame
     std::int64_t inspectedDroppedTexels = 0;  // dropped by the last scene change (animated scenes)
+
+    // Cube level per pixel: rgba has the record blended in
+    // (CacheLevelOverlayImage), and how many pixels hold each value.
+    bool showsCacheLevels = false;
+    CacheLevelImage::Counts cacheLevelPixels{};
 
     std::string configError;  // why the last requested settings were rejected; empty if they were used
 };

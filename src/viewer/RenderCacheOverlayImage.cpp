@@ -2,18 +2,9 @@
 
 #include <algorithm>
 
+#include "viewer/OverlayBlend.h"
+
 namespace raycache {
-
-namespace {
-
-void blend(std::uint8_t* pixel, int r, int g, int b, int alpha256) {
-    const int keep = 256 - alpha256;
-    pixel[0] = static_cast<std::uint8_t>((pixel[0] * keep + r * alpha256) >> 8);
-    pixel[1] = static_cast<std::uint8_t>((pixel[1] * keep + g * alpha256) >> 8);
-    pixel[2] = static_cast<std::uint8_t>((pixel[2] * keep + b * alpha256) >> 8);
-}
-
-}  // namespace
 
 void paintRenderCacheOverlay(const RenderCacheOverlays& o, RenderCacheOverlay which, std::vector<std::uint8_t>& rgba) {
     const auto pixels = static_cast<std::size_t>(o.width) * static_cast<std::size_t>(o.height);
@@ -22,12 +13,12 @@ void paintRenderCacheOverlay(const RenderCacheOverlays& o, RenderCacheOverlay wh
         for (std::size_t i = 0; i < pixels; ++i) {
             std::uint8_t* p = &rgba[i * 4];
             switch (o.state[i]) {
-                case PixelState::Fresh: blend(p, 0, 255, 0, 160); break;
-                case PixelState::Culled: blend(p, 255, 0, 255, 200); break;
-                case PixelState::Filled3x3: blend(p, 255, 255, 0, 200); break;
-                case PixelState::Filled7x7: blend(p, 255, 128, 0, 220); break;
+                case PixelState::Fresh: blendOverlay(p, 0, 255, 0, 160); break;
+                case PixelState::Culled: blendOverlay(p, 255, 0, 255, 200); break;
+                case PixelState::Filled3x3: blendOverlay(p, 255, 255, 0, 200); break;
+                case PixelState::Filled7x7: blendOverlay(p, 255, 128, 0, 220); break;
                 case PixelState::Unfilled:
-                case PixelState::Hole: blend(p, 255, 0, 0, 256); break;
+                case PixelState::Hole: blendOverlay(p, 255, 0, 0, 256); break;
                 case PixelState::Reprojected: break;
             }
         }
@@ -40,8 +31,9 @@ void paintRenderCacheOverlay(const RenderCacheOverlays& o, RenderCacheOverlay wh
             for (int x = 0; x < o.width; ++x) {
                 const auto t = static_cast<std::size_t>((y / m.tileSize) * m.tilesX + x / m.tileSize);
                 const int alpha = static_cast<int>(200.0f * m.tilePriority[t] / top);
-                blend(&rgba[(static_cast<std::size_t>(y) * static_cast<std::size_t>(o.width) + static_cast<std::size_t>(x)) * 4],
-                      0, 64, 255, alpha);
+                const std::size_t i =
+                    static_cast<std::size_t>(y) * static_cast<std::size_t>(o.width) + static_cast<std::size_t>(x);
+                blendOverlay(&rgba[i * 4], 0, 64, 255, alpha);
             }
     }
     for (const PixelCoord& p : m.pixels) {

@@ -6,6 +6,7 @@
 
 #include "core/Errors.h"
 #include "render/FramePipeline.h"
+#include "viewer/CacheLevelOverlayImage.h"
 #include "viewer/CubeInspectorImage.h"
 #include "viewer/DifferenceHeatMap.h"
 #include "viewer/RenderCacheOverlayImage.h"
@@ -138,6 +139,12 @@ void RenderWorker::renderOne(const RenderRequest& request, DisplayFrame& frame) 
 
     const float time = setup_.scriptedFrames ? setup_.timeline.timeOf(pathFrame_) : request.time;
     session_->setTime(time);
+    // Recorded only while the overlay is shown: otherwise the kernel does no
+    // per-pixel work for it. The difference view hides it; the Render Cache
+    // pipeline makes none (and turning it on would make that pipeline anew,
+    // throwing its samples away).
+    const bool showLevels = request.cacheLevels && !request.difference;
+    session_->setRecordCacheLevels(showLevels && session_->settings().pipeline != PipelineKind::RenderCache);
 
     // The one place a frame is rendered, by the pipeline the settings ask for.
     session_->resize(request.width, request.height);
@@ -165,6 +172,14 @@ void RenderWorker::renderOne(const RenderRequest& request, DisplayFrame& frame) 
     }
     if (const RenderCacheOverlays* overlays = session_->renderCacheOverlays())
         paintRenderCacheOverlay(*overlays, static_cast<RenderCacheOverlay>(request.renderCacheOverlay), frame.rgba);
+    frame.showsCacheLevels = false;
+    // (The difference view's heat map is made from the image without this overlay.)
+    if (showLevels)
+        if (const CacheLevelImage* levels = session_->cacheLevels()) {
+            paintCacheLevelOverlay(*levels, frame.rgba);
+            frame.cacheLevelPixels = levels->counts();
+            frame.showsCacheLevels = true;
+        }
     frame.encodeMs = millisecondsSince(start);
 
     frame.showsDifference = false;

@@ -134,6 +134,7 @@ void Viewer::run(std::ostream& out) {
     state.showUi = !options_.hideUi;
     state.playPath = scripted;
     state.difference = options_.difference;
+    state.cacheLevels = options_.cacheLevels;
     if (options_.inspectObject) {
         state.inspectObject = *options_.inspectObject;
         state.showInspector = true;
@@ -263,6 +264,7 @@ void Viewer::run(std::ostream& out) {
                 case GLFW_KEY_SPACE: state.playPath = !state.playPath; break;
                 case GLFW_KEY_C: actions.clearCaches = true; break;
                 case GLFW_KEY_X: state.difference = !state.difference; break;
+                case GLFW_KEY_L: state.cacheLevels = !state.cacheLevels; break;
                 case GLFW_KEY_TAB: state.showUi = !state.showUi; break;
                 case GLFW_KEY_ESCAPE: actions.quit = true; break;
                 default: break;
@@ -332,6 +334,7 @@ void Viewer::run(std::ostream& out) {
         request.difference = state.difference;
         request.differenceGain = state.differenceGain;
         request.renderCacheOverlay = state.renderCacheOverlay;
+        request.cacheLevels = state.cacheLevels;
         request.inspectObject = state.showInspector ? state.inspectObject : -1;
         request.inspectorFaceSize = state.inspectorFaceSize;
         int fbw = 0, fbh = 0;

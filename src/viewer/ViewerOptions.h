@@ -16,6 +16,7 @@ struct ViewerOptions {
     bool vsync = true;           // interactive only; scripted runs never wait for the display
     float movingScale = 0.5f;    // resolution factor while the camera moves
     bool difference = false;     // start showing the difference to the uncached image
+    bool cacheLevels = false;    // start with the cube level per pixel overlay on
     std::optional<int> inspectObject;  // start with this object's cube in the inspector
 };
 

@@ -7,6 +7,7 @@
 #include <imgui.h>
 #include <string>
 
+#include "viewer/CacheLevelOverlayImage.h"
 #include "viewer/PipelineChoice.h"
 #include "viewer/RenderCacheOverlayImage.h"
 #include "viewer/TechniqueChoice.h"
@@ -103,6 +104,67 @@ void drawRenderingSection(const ViewerPanelInput& in, ViewerUiState& state, View
         ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "not applied: %s", in.frame->configError.c_str());
 }
 
+constexpr double kMiB = 1024.0 * 1024.0;
+
+// Every cube of the frame: its object, finest face resolution, levels,
+// memory (all levels) and this frame's hits per level; the first row sums
+// them. Clipped to the visible rows, for scenes of very many cubes.
+void drawCubeTable(const FrameCacheStats& c) {
+    const int levels = c.levels();
+    const int columns = 4 + levels;
+    constexpr int kVisibleRows = 8;
+    const auto rows = static_cast<int>(c.objects.size()) + 1;
+    const float height = ImGui::GetFrameHeightWithSpacing() * static_cast<float>(std::min(rows, kVisibleRows) + 1);
+    if (!ImGui::BeginTable("cubes", columns,
+                           ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit |
+                               ImGuiTableFlags_ScrollX | ImGuiTableFlags_ScrollY,
+                           ImVec2(0.0f, height)))
+        return;
+    ImGui::TableSetupScrollFreeze(1, 1);  // the names and the header stay in view
+    ImGui::TableSetupColumn("object");
+    ImGui::TableSetupColumn("finest");
+    ImGui::TableSetupColumn("levels");
+    ImGui::TableSetupColumn("MiB");
+    for (int k = 0; k < levels; ++k) ImGui::TableSetupColumn(("L" + std::to_string(k)).c_str());
+    ImGui::TableHeadersRow();
+    ImGuiListClipper clipper;
+    clipper.Begin(rows);
+    while (clipper.Step())
+        for (int row = clipper.DisplayStart; row < clipper.DisplayEnd; ++row) {
+            ImGui::TableNextRow();
+            if (row == 0) {
+                ImGui::TableNextColumn();
+                ImGui::Text("all (%zu)", c.objects.size());
+                ImGui::TableNextColumn();
+                ImGui::TableNextColumn();
+                ImGui::TableNextColumn();
+                ImGui::Text("%.2f", static_cast<double>(c.bytes()) / kMiB);
+                for (int k = 0; k < levels; ++k) {
+                    ImGui::TableNextColumn();
+                    ImGui::Text("%llu", static_cast<unsigned long long>(c.hitsAtLevel(k)));
+                }
+                continue;
+            }
+            const ObjectCacheStats& o = c.objects[static_cast<std::size_t>(row - 1)];
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(o.name.c_str());
+            ImGui::TableNextColumn();
+            ImGui::Text("%d^2", o.resolution);
+            ImGui::TableNextColumn();
+            ImGui::Text("%d", o.levels);
+            ImGui::TableNextColumn();
+            ImGui::Text("%.2f", static_cast<double>(o.bytes) / kMiB);
+            for (int k = 0; k < levels; ++k) {
+                ImGui::TableNextColumn();
+                if (k < o.levels)
+                    ImGui::Text("%llu", static_cast<unsigned long long>(o.hitsByLevel[static_cast<std::size_t>(k)]));
+                else
+                    ImGui::TextDisabled("-");
+            }
+        }
+    ImGui::EndTable();
+}
+
 void drawStatisticsSection(const ViewerPanelInput& in) {
     if (!ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen)) return;
     const DisplayFrame& f = *in.frame;
@@ -119,7 +181,12 @@ void drawStatisticsSection(const ViewerPanelInput& in) {
         ImGui::Text("cache: %zu cubes, hits %.1f%% of %llu lookups, stores %llu", c.objects.size(), hitRate,
                     static_cast<unsigned long long>(c.lookups()), static_cast<unsigned long long>(c.stores()));
         ImGui::Text("       invalid texels %.1f%% (before the frame), memory %.1f MiB", c.invalidPercentBefore(),
-                    static_cast<double>(f.cacheBytes) / (1024.0 * 1024.0));
+                    static_cast<double>(f.cacheBytes) / kMiB);
+        if (ImGui::TreeNodeEx("every cube: memory, hits per level (L0 finest) this frame",
+                              ImGuiTreeNodeFlags_DefaultOpen)) {
+            drawCubeTable(c);
+            ImGui::TreePop();
+        }
     } else {
         ImGui::TextUnformatted("cache: none (no object caches under this technique)");
     }
@@ -157,12 +224,48 @@ void drawDifferenceSection(const ViewerPanelInput& in, ViewerUiState& state) {
         ImGui::Text("mean |difference| %.5f  (blue = same, red = totally different)", in.frame->meanDifference);
 }
 
+// The cube-level overlay's switch and legend: each record value's colour
+// and share of the frame's pixels.
+void drawCacheLevelOverlay(const ViewerPanelInput& in, ViewerUiState& state) {
+    ImGui::Checkbox("cube level per pixel (L)", &state.cacheLevels);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("what the cache did for each pixel's weightiest ray leaving a caching object "
+                          "(docs/viewer.md)");
+    if (!state.cacheLevels) return;
+    const DisplayFrame& f = *in.frame;
+    if (!f.showsCacheLevels) {
+        if (state.difference) ImGui::TextDisabled("hidden while the difference view is on");
+        else if (f.stats.renderCache) ImGui::TextDisabled("not recorded by the Render Cache pipeline");
+        else ImGui::TextDisabled("from the next frame");
+        return;
+    }
+    const int levels = f.stats.cache ? f.stats.cache->levels() : 1;
+    double pixels = 0.0;
+    for (const std::int64_t n : f.cacheLevelPixels) pixels += static_cast<double>(n);
+    pixels = std::max(pixels, 1.0);
+    for (int value = CacheLevelImage::kNoCachingRay; value < levels; ++value) {
+        const std::array<std::uint8_t, 3> c = cacheLevelColor(static_cast<std::int8_t>(value));
+        const ImVec4 color(static_cast<float>(c[0]) / 255.0f, static_cast<float>(c[1]) / 255.0f,
+                           static_cast<float>(c[2]) / 255.0f, 1.0f);
+        const std::string id = "##level" + std::to_string(value);
+        ImGui::ColorButton(id.c_str(), color, ImGuiColorEditFlags_NoTooltip, ImVec2(12.0f, 12.0f));
+        ImGui::SameLine();
+        const double share =
+            100.0 * static_cast<double>(f.cacheLevelPixels[static_cast<std::size_t>(value + 2)]) / pixels;
+        if (value == CacheLevelImage::kNoCachingRay) ImGui::Text("no caching object  %.1f%%", share);
+        else if (value == CacheLevelImage::kTraced) ImGui::Text("traced (miss or rejected)  %.1f%%", share);
+        else if (value == 0) ImGui::Text("level 0 (finest)  %.1f%%", share);
+        else ImGui::Text("level %d (1/%d per side)  %.1f%%", value, 1 << value, share);
+    }
+}
+
 void drawInspector(const ViewerPanelInput& in, ViewerUiState& state) {
     if (!ImGui::CollapsingHeader("Cache inspector", ImGuiTreeNodeFlags_DefaultOpen)) return;
     if (in.cachedObjects.empty()) {
         ImGui::TextUnformatted("no caching objects under this technique");
         return;
     }
+    drawCacheLevelOverlay(in, state);
     const auto nameOf = [&](int id) {
         return id >= 0 ? in.scene->objects[static_cast<std::size_t>(id)].name.c_str() : "(none)";
     };
@@ -179,7 +282,7 @@ void drawInspector(const ViewerPanelInput& in, ViewerUiState& state) {
                 ImGui::Text("%d^2 per face, hits %llu of %llu, stores %llu, %.1f MiB", o.resolution,
                             static_cast<unsigned long long>(o.hits), static_cast<unsigned long long>(o.lookups),
                             static_cast<unsigned long long>(o.stores),
-                            static_cast<double>(o.bytes) / (1024.0 * 1024.0));
+                            static_cast<double>(o.bytes) / kMiB);
 }
 
 void drawInspectorWindow(const ViewerPanelInput& in, ViewerUiState& state) {

@@ -13,6 +13,7 @@
 #include "CiRequirement.h"
 #include "ShellRun.h"
 #include "bench/ImageMetrics.h"
+#include "core/ColorSpace.h"
 #include "scene/ImageLoader.h"
 
 namespace fs = std::filesystem;
@@ -98,6 +99,44 @@ TEST_F(ViewCli, TheScreenshotIsTheWindowPanelIncluded) {
     EXPECT_LT(raycache::psnr(raycache::loadImageFile(withPanel), raycache::loadImageFile(withoutPanel)), 25.0);
 }
 
+TEST_F(ViewCli, LevelOverlayTintsEachPixelByWhatTheCacheDidForIt) {
+    if (!haveXvfbRun())
+        RAYCACHE_SKIP_OR_FAIL_IN_CI("xvfb-run is not installed (scripts/install-deps.sh installs xvfb)");
+    const fs::path plain = dir_ / "plain.png", tinted = dir_ / "levels.png";
+    ASSERT_EQ(run(underXvfb("view " + kJob + " --hide-ui --screenshot " + plain.string()), dir_).exitCode, 0);
+    const RunResult view =
+        run(underXvfb("view " + kJob + " --hide-ui --level-overlay --screenshot " + tinted.string()), dir_);
+    ASSERT_EQ(view.exitCode, 0) << view.err << view.out;
+    const raycache::Image a = raycache::loadImageFile(plain), b = raycache::loadImageFile(tinted);
+    ASSERT_EQ(a.width(), b.width());
+    ASSERT_EQ(a.height(), b.height());
+    // The record never changes the frame, so each shown pixel is the plain
+    // one blended (160 of 256) with grey (no caching object), red (traced)
+    // or green (level 0): room's one mirror, single-level cubes.
+    const std::array<std::array<int, 3>, 3> targets = {{{128, 128, 128}, {255, 0, 0}, {0, 255, 0}}};
+    std::array<int, 4> pixels{};  // grey, red, green, anything else
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x) {
+            const raycache::Rgb p = a.at(x, y), q = b.at(x, y);
+            const std::array<int, 3> under = {raycache::linearToSrgb8(p.r), raycache::linearToSrgb8(p.g),
+                                              raycache::linearToSrgb8(p.b)};
+            const std::array<int, 3> shown = {raycache::linearToSrgb8(q.r), raycache::linearToSrgb8(q.g),
+                                              raycache::linearToSrgb8(q.b)};
+            std::size_t kind = 0;
+            for (; kind < targets.size(); ++kind) {
+                bool same = true;
+                for (std::size_t c = 0; c < 3; ++c)
+                    same = same && shown[c] == ((under[c] * 96 + targets[kind][c] * 160) >> 8);
+                if (same) break;
+            }
+            ++pixels[kind];
+        }
+    std::printf("level overlay: %d grey, %d red, %d green, %d other\n", pixels[0], pixels[1], pixels[2], pixels[3]);
+    EXPECT_EQ(pixels[3], 0);
+    EXPECT_GT(pixels[0], pixels[1] + pixels[2]);  // most of room is floor and diffuse objects
+    EXPECT_GT(pixels[1] + pixels[2], 0);          // the mirror ball asked its cube
+}
+
 TEST_F(ViewCli, BadInputIsOneLineAndExitTwoWithoutAWindow) {
     // No X server here: input is checked before a window is opened.
     for (const std::string& args :
@@ -126,6 +165,7 @@ TEST_F(ViewCli, NoDisplayIsOneLineAndExitOne) {
 TEST_F(ViewCli, HelpListsTheViewerOptions) {
     const RunResult r = run(std::string(RAYCACHE_BINARY) + " view --help", dir_);
     EXPECT_EQ(r.exitCode, 0);
-    for (const char* option : {"--screenshot", "--frames", "--hide-ui", "--technique", "--moving-scale"})
+    for (const char* option :
+         {"--screenshot", "--frames", "--hide-ui", "--technique", "--moving-scale", "--level-overlay"})
         EXPECT_NE(r.out.find(option), std::string::npos) << option;
 }

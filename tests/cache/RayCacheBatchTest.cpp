@@ -40,10 +40,14 @@ struct Answers {
     std::vector<Rgb> colors;
     FrameCacheStats stats;
     std::vector<std::uint32_t> texels;  // both cubes after the frame
+    std::vector<std::int8_t> levels;    // Lookups::BatchedWithLevels: the answering level of each query
 };
 
+enum class Lookups { Single, Batched, BatchedWithLevels };
+
 // Three frames; in each, every unanswered query stores a colour of its own.
-std::vector<Answers> run(CacheTechnique technique, bool batched) {
+std::vector<Answers> run(CacheTechnique technique, Lookups lookups) {
+    const bool batched = lookups != Lookups::Single;
     RayCache cache(mirrors(technique), {});
     auto workers = cache.makeWorkers(1);
     std::vector<Answers> frames;
@@ -55,7 +59,10 @@ std::vector<Answers> run(CacheTechnique technique, bool batched) {
         std::vector<int> storeTexels(q.size(), -1);
         cache.beginFrame(workers);
         workers[0].beginBatch(0);
-        if (batched) {
+        if (lookups == Lookups::BatchedWithLevels) {
+            a.levels.assign(q.size(), 99);
+            cache.lookupBatch(q, a.colors, a.found, storeTexels, workers[0], {}, a.levels);
+        } else if (batched) {
             cache.lookupBatch(q, a.colors, a.found, storeTexels, workers[0]);
         } else {
             for (std::size_t i = 0; i < q.size(); ++i)
@@ -81,16 +88,22 @@ std::vector<Answers> run(CacheTechnique technique, bool batched) {
 
 TEST(RayCacheBatch, AnswersCountersAndStoresEqualOneLookupPerQuery) {
     for (CacheTechnique technique : {CacheTechnique::Cct, CacheTechnique::CdctParity}) {
-        const auto single = run(technique, false);
-        const auto batched = run(technique, true);
-        for (std::size_t f = 0; f < single.size(); ++f) {
-            EXPECT_EQ(batched[f].found, single[f].found) << "frame " << f;
-            EXPECT_EQ(batched[f].colors == single[f].colors, true) << "frame " << f;
-            EXPECT_EQ(batched[f].stats.lookups(), single[f].stats.lookups());
-            EXPECT_EQ(batched[f].stats.hits(), single[f].stats.hits());
-            EXPECT_EQ(batched[f].stats.stores(), single[f].stats.stores());
-            EXPECT_EQ(batched[f].texels, single[f].texels) << "frame " << f;
+        const auto single = run(technique, Lookups::Single);
+        for (const Lookups lookups : {Lookups::Batched, Lookups::BatchedWithLevels}) {
+            const auto batched = run(technique, lookups);
+            for (std::size_t f = 0; f < single.size(); ++f) {
+                EXPECT_EQ(batched[f].found, single[f].found) << "frame " << f;
+                EXPECT_EQ(batched[f].colors == single[f].colors, true) << "frame " << f;
+                EXPECT_EQ(batched[f].stats.lookups(), single[f].stats.lookups());
+                EXPECT_EQ(batched[f].stats.hits(), single[f].stats.hits());
+                EXPECT_EQ(batched[f].stats.stores(), single[f].stats.stores());
+                EXPECT_EQ(batched[f].texels, single[f].texels) << "frame " << f;
+            }
         }
+        // The levels asked for: the finest (single-level cubes) for every
+        // answered query, -1 for the others.
+        for (const Answers& a : run(technique, Lookups::BatchedWithLevels))
+            for (std::size_t i = 0; i < a.found.size(); ++i) EXPECT_EQ(a.levels[i], a.found[i] ? 0 : -1) << i;
         if (technique == CacheTechnique::Cct) {
             // The queries repeat directions across frames, so later frames answer some.
             EXPECT_GT(single[2].stats.hits(), 0u);
@@ -100,21 +113,29 @@ TEST(RayCacheBatch, AnswersCountersAndStoresEqualOneLookupPerQuery) {
 }
 
 TEST(RayCacheBatch, IdealModeAnswersEveryMissWithBlackAndStoresNothing) {
-    RayCacheSettings settings;
-    settings.ideal = true;
-    RayCache cache(mirrors(CacheTechnique::Cct), settings);
-    auto workers = cache.makeWorkers(1);
-    const auto q = queries(50, 0);
-    std::vector<Rgb> colors(q.size(), Rgb{1.0f});
-    std::vector<unsigned char> found(q.size(), 0);
-    std::vector<int> storeTexels(q.size(), 7);
-    cache.beginFrame(workers);
-    cache.lookupBatch(q, colors, found, storeTexels, workers[0]);
-    const FrameCacheStats stats = cache.endFrame(workers);
-    for (std::size_t i = 0; i < q.size(); ++i) {
-        EXPECT_EQ(found[i], 1);
-        EXPECT_EQ(colors[i], Rgb{});
-        EXPECT_EQ(storeTexels[i], -1);
-    }
-    EXPECT_EQ(stats.misses(), q.size());
+    for (CacheTechnique technique : {CacheTechnique::Cct, CacheTechnique::CdctParity})
+        for (const bool withLevels : {false, true}) {
+            RayCacheSettings settings;
+            settings.ideal = true;
+            RayCache cache(mirrors(technique), settings);
+            auto workers = cache.makeWorkers(1);
+            const auto q = queries(50, 0);
+            std::vector<Rgb> colors(q.size(), Rgb{1.0f});
+            std::vector<unsigned char> found(q.size(), 0);
+            std::vector<int> storeTexels(q.size(), 7);
+            std::vector<std::int8_t> levels(withLevels ? q.size() : 0, 99);
+            cache.beginFrame(workers);
+            cache.lookupBatch(q, colors, found, storeTexels, workers[0], {}, levels);
+            const FrameCacheStats stats = cache.endFrame(workers);
+            for (std::size_t i = 0; i < q.size(); ++i) {
+                EXPECT_EQ(found[i], 1);
+                EXPECT_EQ(colors[i], Rgb{});
+                EXPECT_EQ(storeTexels[i], -1);
+                // Black stands in for the trace: no level answered.
+                if (withLevels) {
+                    EXPECT_EQ(levels[i], -1);
+                }
+            }
+            EXPECT_EQ(stats.misses(), q.size());
+        }
 }

@@ -11,6 +11,7 @@
 #include "core/ColorSpace.h"
 #include "render/FrameLoop.h"
 #include "scene/BuiltinScenes.h"
+#include "viewer/CacheLevelOverlayImage.h"
 #include "viewer/PipelineChoice.h"
 #include "viewer/RenderCacheOverlayImage.h"
 #include "viewer/TechniqueChoice.h"
@@ -212,6 +213,52 @@ TEST(RenderWorker, RenderCacheFramesAreTheOfflineRenderCachesFrames) {
         EXPECT_EQ(f.rgba, offline[static_cast<std::size_t>(next)]) << "frame " << next;
         EXPECT_TRUE(f.stats.renderCache.has_value());
         if (f.stats.renderCache) EXPECT_EQ(f.stats.renderCache->refreshedAll, next == 0);
+        ++next;
+        return next == kFrames;
+    });
+    EXPECT_EQ(next, kFrames);
+    for (int i = 0; i < 1000 && !worker.finished(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    EXPECT_FALSE(worker.error());
+}
+
+TEST(RenderWorker, CubeLevelOverlayIsTheOfflineRecordPaintedOverTheOfflineFrame) {
+    const Scene scene = *makeBuiltinScene("room");
+    const TraceScene tracer(scene);
+    RenderSettings settings = smallSettings();
+    settings.cache.techniqueOverride = CacheTechnique::Cct;
+    settings.recordCacheLevels = true;
+    constexpr int kFrames = 3;
+
+    // The offline frames with their records, painted as the viewer paints them.
+    std::vector<std::vector<std::uint8_t>> painted;
+    std::vector<CacheLevelImage::Counts> counts;
+    RenderSession session(scene, settings);
+    Image film;
+    for (int f = 0; f < kFrames; ++f) {
+        session.render(scene.cameraPath.cameraAt(scene.camera, f), film);
+        ASSERT_NE(session.cacheLevels(), nullptr);
+        painted.push_back(srgb8(film));
+        paintCacheLevelOverlay(*session.cacheLevels(), painted.back());
+        counts.push_back(session.cacheLevels()->counts());
+    }
+    EXPECT_GT(counts.back()[2], 0);  // the mirror ball answers from its cube by the last frame
+    EXPECT_NE(painted.back(), srgb8(film));
+
+    FrameHandoff handoff;
+    RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, {}, smallSettings(), kFrames, {}};
+    RenderWorker worker(setup, handoff);
+    RenderRequest request;
+    request.width = settings.width;
+    request.height = settings.height;
+    request.config.technique = techniqueChoiceIndex("cct");
+    request.cacheLevels = true;
+    worker.submit(request);
+    int next = 0;
+    takeFrames(handoff, worker, [&](const DisplayFrame& f) {
+        EXPECT_EQ(f.pathFrame, next);
+        EXPECT_TRUE(f.showsCacheLevels);
+        EXPECT_EQ(f.rgba, painted[static_cast<std::size_t>(next)]) << "frame " << next;
+        EXPECT_EQ(f.cacheLevelPixels, counts[static_cast<std::size_t>(next)]) << "frame " << next;
         ++next;
         return next == kFrames;
     });
