@@ -412,7 +412,8 @@ void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std
         tFar[l] = wr.tFar;
         directionZ[l] = spec_.frame.directionToFrame(ray.direction).z;
     }
-    const auto visit = [&](std::uint32_t primitive) {
+    // Inlined at both call sites: called out of line, GCC no longer vectorises the lane loop.
+    const auto visit = [&](std::uint32_t primitive) __attribute__((always_inline)) {
         if (primitives_->sphere(primitive)) {
             for (std::size_t l = 0; l < n; ++l) {
                 const Ray& ray = rays[lanes[l]];
