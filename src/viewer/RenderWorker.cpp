@@ -170,10 +170,10 @@ void RenderWorker::renderOne(const RenderRequest& request, DisplayFrame& frame) 
         frame.inspectedInvalidPercent =
             100.0 * static_cast<double>(cube.texelCount() - cube.validCount()) / static_cast<double>(cube.texelCount());
     }
-    if (const RenderCacheOverlays* overlays = session_->renderCacheOverlays())
+    // The difference view's heat map is made from the image without the overlays.
+    if (const RenderCacheOverlays* overlays = session_->renderCacheOverlays(); overlays && !request.difference)
         paintRenderCacheOverlay(*overlays, static_cast<RenderCacheOverlay>(request.renderCacheOverlay), frame.rgba);
     frame.showsCacheLevels = false;
-    // (The difference view's heat map is made from the image without this overlay.)
     if (showLevels)
         if (const CacheLevelImage* levels = session_->cacheLevels()) {
             paintCacheLevelOverlay(*levels, frame.rgba);

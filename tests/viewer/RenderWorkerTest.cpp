@@ -221,6 +221,39 @@ TEST(RenderWorker, RenderCacheFramesAreTheOfflineRenderCachesFrames) {
     EXPECT_FALSE(worker.error());
 }
 
+// The heat map compares the rendered image with the uncached one, never an
+// overlay's tints: with the difference view on, the Render Cache's overlay
+// changes nothing.
+TEST(RenderWorker, DifferenceViewIgnoresTheRenderCacheOverlay) {
+    const Scene scene = *makeBuiltinScene("room");
+    const TraceScene tracer(scene);
+    const auto firstFrame = [&](RenderCacheOverlay overlay) {
+        FrameHandoff handoff;
+        RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, {}, smallSettings(), std::nullopt, {}};
+        RenderWorker worker(setup, handoff);
+        RenderRequest request;
+        request.camera = scene.camera;
+        request.width = 48;
+        request.height = 32;
+        request.config.technique = techniqueChoiceIndex("cct");
+        request.config.pipeline = kRenderCacheChoice;
+        request.renderCacheOverlay = static_cast<int>(overlay);
+        request.difference = true;
+        worker.submit(request);
+        std::vector<std::uint8_t> rgba;
+        takeFrames(handoff, worker, [&](const DisplayFrame& f) {
+            EXPECT_TRUE(f.showsDifference);
+            rgba = f.rgba;
+            return true;
+        });
+        return rgba;
+    };
+    const std::vector<std::uint8_t> plain = firstFrame(RenderCacheOverlay::None);
+    ASSERT_FALSE(plain.empty());
+    EXPECT_EQ(firstFrame(RenderCacheOverlay::Sources), plain);
+    EXPECT_EQ(firstFrame(RenderCacheOverlay::Requests), plain);
+}
+
 TEST(RenderWorker, CubeLevelOverlayIsTheOfflineRecordPaintedOverTheOfflineFrame) {
     const Scene scene = *makeBuiltinScene("room");
     const TraceScene tracer(scene);
