@@ -60,6 +60,9 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
                        "Multi-resolution cubes: a coarser texel may span this many times the angle between "
                        "neighbouring pixels' reflected rays, (0, 1000]")
         ->capture_default_str();
+    command.add_flag("--cache-res-from-view", job.cacheResFromView,
+                     "CCT cubes take the coarsest face resolution their lookups' pixel footprints allow within "
+                     "--cache-level-error, re-chosen after every frame, up to --cache-res (docs/caching.md)");
     command.add_option("--cache-budget", job.cacheBudgetMiB,
                        "Most memory the caching cubes may take, MiB: over it, cube resolutions are lowered "
                        "(smallest objects' first) and a note says so; a scene that cannot fit even at 16² faces "

@@ -1,5 +1,6 @@
 #include "app/FrameReport.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
@@ -39,6 +40,16 @@ std::string formatFrameLine(const FrameResult& r, int frameCount) {
             line << ", CDCT steps/search "
                  << formatFixed(static_cast<double>(c->cdctSteps()) / static_cast<double>(c->cdctSearches()), 1);
         if (c->prefilledTexels()) line << ", pre-filled " << c->prefilledTexels();
+        int resized = 0, smallest = 0, largest = 0;
+        for (const ObjectCacheStats& o : c->objects) {
+            if (o.resizedTo == 0) continue;
+            smallest = resized++ ? std::min(smallest, o.resizedTo) : o.resizedTo;
+            largest = std::max(largest, o.resizedTo);
+        }
+        if (resized) {
+            line << ", resized " << resized << (resized == 1 ? " cube" : " cubes") << " to " << smallest << "²";
+            if (largest != smallest) line << "–" << largest << "²";
+        }
         line << ", invalid before "
              << formatFixed(c->invalidPercentBefore(), 1) << "%, "
              << formatFixed(static_cast<double>(c->bytes()) / (1024.0 * 1024.0), 1) << " MiB";

@@ -25,7 +25,8 @@ namespace {
 nlohmann::json cacheJson(const FrameCacheStats& c) {
     nlohmann::json objects = nlohmann::json::array();
     for (const ObjectCacheStats& o : c.objects)
-        objects.push_back({{"object", o.name}, {"resolution", o.resolution}, {"lookups", o.lookups},
+        objects.push_back({{"object", o.name}, {"resolution", o.resolution}, {"resized_to", o.resizedTo},
+                           {"lookups", o.lookups},
                            {"hits", o.hits}, {"misses", o.misses}, {"rejected", o.rejected}, {"stores", o.stores},
                            {"prefilled_texels", o.prefilledTexels},
                            {"levels", o.levels},

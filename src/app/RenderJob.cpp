@@ -124,6 +124,7 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     settings.cache.resolutionOverride = options.cacheResolution;
     settings.cache.cubeLevels = options.cacheLevels;
     settings.cache.levelErrorBound = options.cacheLevelError;
+    settings.cache.resolutionFromView = options.cacheResFromView;
     settings.cache.ideal = options.cacheIdeal;
     settings.stageTimes = options.stageTimes;
     settings.tileBalance = *parseTileBalance(options.tileBalance);

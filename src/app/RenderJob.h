@@ -35,6 +35,7 @@ struct RenderJobOptions {
     std::optional<int> cacheResolution;    // default: each material's own setting
     int cacheLevels = 1;                   // CCT cubes' resolution levels (RayCacheSettings::cubeLevels)
     float cacheLevelError = 0.25f;         // RayCacheSettings::levelErrorBound
+    bool cacheResFromView = false;         // RayCacheSettings::resolutionFromView
     std::optional<double> cacheBudgetMiB;  // cubes' memory budget; default: the scene file's, else half the machine's memory
     bool cacheIdeal = false;               // benchmark switch, see RayCacheSettings::ideal
     bool stageTimes = false;               // time the tile kernel's stages (RenderSettings::stageTimes)

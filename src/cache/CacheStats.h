@@ -24,7 +24,10 @@ inline int cdctStepBucket(std::uint64_t steps) {
 struct ObjectCacheStats {
     int objectId = -1;
     std::string name;
-    int resolution = 0;                 // texels per face side
+    int resolution = 0;                 // texels per face side during the frame
+    // Resolution from the view: the resolution the cube took after the
+    // frame, 0 when it kept its own.
+    int resizedTo = 0;
     std::uint64_t lookups = 0;          // secondary rays that asked the cache
     std::uint64_t hits = 0;             // answered from a valid texel
     // Of the hits, how many each level answered (0: the finest; CCT cubes

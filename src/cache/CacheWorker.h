@@ -10,6 +10,7 @@
 #include "cache/CacheStats.h"
 #include "cache/CoarseLevels.h"
 #include "cache/RayTreeRecord.h"
+#include "cache/ViewSizedResolution.h"
 #include "core/ProcessGroup.h"
 
 namespace raycache {
@@ -30,7 +31,7 @@ public:
     // What `workers` queued this frame (their non-empty batches with their
     // stores, in worker then queue order, and their lookup counters summed
     // per cube) as bytes for the other processes of a cluster job
-    // (src/cluster/): 16 bytes per store, 16 per batch, 160 per cube; in an
+    // (src/cluster/): 16 bytes per store, 16 per batch, 224 per cube; in an
     // animated scene also each store's RayTreeRecord (156 bytes); with
     // multi-resolution cubes each store's SeenPoint (16 bytes). Written into
     // `out` (replacing what it held; its capacity is reused).
@@ -59,6 +60,9 @@ private:
         std::array<std::uint64_t, kMaxCubeLevels> levelHits{};  // of the hits, per level (0: the finest)
         std::uint64_t cdctSearches = 0, cdctSteps = 0;
         std::array<std::uint64_t, kCdctStepBuckets> cdctStepsHistogram{};
+        // View-sized cubes: lookups by the coarsest level their footprint
+        // allows (ViewSizedResolution::levelAllowed).
+        ViewSizedResolution::LookupsByLevel lookupsByAllowedLevel{};
 
         void countCdctSearch(int steps) {
             const auto n = static_cast<std::uint64_t>(steps);
@@ -75,6 +79,8 @@ private:
             cdctSearches += o.cdctSearches;
             cdctSteps += o.cdctSteps;
             for (std::size_t k = 0; k < cdctStepsHistogram.size(); ++k) cdctStepsHistogram[k] += o.cdctStepsHistogram[k];
+            for (std::size_t k = 0; k < lookupsByAllowedLevel.size(); ++k)
+                lookupsByAllowedLevel[k] += o.lookupsByAllowedLevel[k];
             return *this;
         }
     };

@@ -5,6 +5,10 @@
 // A CDCT cube (SPEC §3) also keeps, per texel, the distance from the centre to
 // what the texel shows (a 32-bit float, -1 while invalid), and has a box: the
 // axis-aligned bounds of the object around the centre, where its search starts.
+// A CCT cube may be resampled to another resolution (resampled()); a texel
+// that got its colour from a coarser texel is valid but inherited: it answers
+// only lookups whose footprint allows a texel that much wider, and the next
+// store to it replaces it (docs/caching.md, "Resolution from the view").
 #include <bit>
 #include <cstddef>
 #include <cstdint>
@@ -35,7 +39,9 @@ public:
     const Vec3& halfSize() const { return halfSize_; }
     std::size_t texelCount() const { return texels_.size(); }
     std::size_t validCount() const { return validCount_; }
-    std::size_t bytes() const { return texels_.size() * sizeof(std::uint32_t) * (depths_ ? 2u : 1u); }
+    std::size_t bytes() const {
+        return texels_.size() * sizeof(std::uint32_t) * (depths_ ? 2u : 1u) + inherited_.size();
+    }
 
     // Texel index addressed by a direction from the centre.
     int texelIndexFor(const Vec3& direction) const {
@@ -60,13 +66,27 @@ public:
     Rgb readValid(int index) const { return decodeTexel(texels_[static_cast<std::size_t>(index)]); }
     // The stored distance from the centre at `index` (CDCT cubes), kInvalidDepth if invalid.
     float depth(int index) const { return std::bit_cast<float>((*depths_)[static_cast<std::size_t>(index)]); }
+    // How many levels coarser the texel that gave valid texel `index` its
+    // colour was (0: a store into this texel itself).
+    int inheritedLevels(int index) const {
+        return inherited_.empty() ? 0 : inherited_[static_cast<std::size_t>(index)];
+    }
     // Writes `packed` (and, in a CDCT cube, `depth`) if the texel is still
-    // invalid; returns whether it wrote.
+    // invalid or only inherited; returns whether it wrote.
     bool writeIfInvalid(int index, std::uint32_t packed, float depth = kInvalidDepth);
     // Marks texel `index` invalid again; returns whether it was valid.
     bool invalidate(int index);
     // Marks every texel invalid again.
     void clear();
+    // This CCT cube at `size` texels per face side, `size` = size() * 2^k or
+    // size() / 2^k (k >= 0). Going finer, each texel inherits the colour of
+    // the texel it lies in (k levels more inherited). Going coarser, each
+    // texel takes the least inherited valid texel under it (the first in
+    // row order among equals), k levels less inherited, never below 0: a
+    // stored ray's direction lies within every coarser texel over its own.
+    // `sourceOf` (optional): per new texel, the texel it came from, -1 if none.
+    // Throws std::logic_error for a CDCT cube or another ratio.
+    CachingCube resampled(int size, std::vector<int>* sourceOf = nullptr) const;
     // Moves the cube with its object (the box keeps its size); texels keep
     // what they hold.
     void moveTo(const Vec3& center) { center_ = center; }
@@ -90,6 +110,8 @@ private:
     std::optional<TexelBuffer> depths_;
     std::vector<std::uint64_t> validBits_;  // bit i: texel i valid
     std::size_t validCount_ = 0;
+    // Per texel, inheritedLevels(); empty while no texel is inherited.
+    std::vector<std::uint8_t> inherited_;
 };
 
 }  // namespace raycache

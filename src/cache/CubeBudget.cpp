@@ -26,9 +26,10 @@ std::string mebibytes(std::size_t bytes) {
 
 }  // namespace
 
-std::size_t cubeBytes(bool depth, int resolution, int levels, bool tracksDependencies) {
+std::size_t cubeBytes(bool depth, int resolution, int levels, bool tracksDependencies, bool viewSized) {
     const auto texels = 6u * static_cast<std::size_t>(resolution) * static_cast<std::size_t>(resolution);
     std::size_t bytes = texels * sizeof(std::uint32_t) * (depth ? 2u : 1u) + bitWords(texels);
+    if (viewSized && !depth) bytes += texels;  // CachingCube's inherited levels
     if (!depth && levels > 1) {
         // Levels as CoarseLevels makes them: halving down to kMinSize.
         for (int k = 1; k < std::min(levels, CoarseLevels::kMaxLevels); ++k) {
@@ -55,9 +56,10 @@ CubeBudgetPlan planCubeBudget(std::span<const CubeRequest> cubes, std::optional<
     std::size_t smallest = 0;
     for (std::size_t i = 0; i < cubes.size(); ++i) {
         plan.resolutions.push_back(cubes[i].resolution);
-        bytes[i] = cubeBytes(cubes[i].depth, cubes[i].resolution, levels, tracksDependencies);
+        bytes[i] = cubeBytes(cubes[i].depth, cubes[i].resolution, levels, tracksDependencies, cubes[i].viewSized);
         plan.askedBytes += bytes[i];
-        smallest += cubeBytes(cubes[i].depth, std::min(cubes[i].resolution, minResolution), levels, tracksDependencies);
+        smallest += cubeBytes(cubes[i].depth, std::min(cubes[i].resolution, minResolution), levels, tracksDependencies,
+                              cubes[i].viewSized);
     }
     plan.bytes = plan.askedBytes;
     if (!budget || plan.bytes <= *budget) return plan;
@@ -77,7 +79,7 @@ CubeBudgetPlan planCubeBudget(std::span<const CubeRequest> cubes, std::optional<
         const auto i = static_cast<std::size_t>(-std::get<2>(queue.top()));
         queue.pop();
         plan.resolutions[i] = std::max(minResolution, plan.resolutions[i] / 2);
-        const std::size_t now = cubeBytes(cubes[i].depth, plan.resolutions[i], levels, tracksDependencies);
+        const std::size_t now = cubeBytes(cubes[i].depth, plan.resolutions[i], levels, tracksDependencies, cubes[i].viewSized);
         plan.bytes -= bytes[i] - now;
         bytes[i] = now;
         if (plan.resolutions[i] > minResolution) queue.push(keyOf(i));

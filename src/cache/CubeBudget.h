@@ -19,6 +19,10 @@ struct CubeRequest {
     bool depth = false;   // CDCT: a depth word per texel
     int resolution = 0;   // asked for
     float size = 1.0f;    // the object's extent (bounding half-diagonal), > 0
+    // A CCT cube whose resolution follows the view (cache/ViewSizedResolution.h):
+    // `resolution` is the finest it may grow to, and it keeps a byte per
+    // texel for inherited colours.
+    bool viewSized = false;
 };
 
 struct CubeBudgetPlan {
@@ -33,8 +37,9 @@ struct CubeBudgetPlan {
 // The memory of one cube of `resolution` texels per face side, as RayCache
 // allocates it: colour words (and depth words), validity bits, the coarser
 // levels of a multi-resolution CCT cube (`levels` > 1) and, in animated
-// scenes, its dependency blocks and dropped-texel bits.
-std::size_t cubeBytes(bool depth, int resolution, int levels, bool tracksDependencies);
+// scenes, its dependency blocks and dropped-texel bits; sized from the view,
+// its inherited-level bytes.
+std::size_t cubeBytes(bool depth, int resolution, int levels, bool tracksDependencies, bool viewSized = false);
 
 // Throws InputError when even `minResolution` for every cube exceeds `budget`.
 CubeBudgetPlan planCubeBudget(std::span<const CubeRequest> cubes, std::optional<std::size_t> budget, int levels,

@@ -110,7 +110,8 @@ CubeBudgetPlan RayCache::planBudget(const Scene& scene, const RayCacheSettings& 
         if (technique == CacheTechnique::None) continue;
         requests.push_back({object.name, technique != CacheTechnique::Cct,
                             settings.resolutionOverride.value_or(object.material.cache.faceResolution),
-                            std::max(length(boundingHalfSize(object)), 1e-6f)});
+                            std::max(length(boundingHalfSize(object)), 1e-6f),
+                            settings.resolutionFromView && technique == CacheTechnique::Cct});
     }
     const bool tracks = !scene.animation.empty() || settings.invalidationOracle;
     return planCubeBudget(requests, settings.memoryBudget, settings.cubeLevels, tracks, kMinBudgetResolution);
@@ -118,6 +119,7 @@ CubeBudgetPlan RayCache::planBudget(const Scene& scene, const RayCacheSettings& 
 
 RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings)
     : ideal_(settings.ideal), oracle_(settings.invalidationOracle), levelErrorBound_(settings.levelErrorBound),
+      cubeLevels_(settings.cubeLevels), viewSized_(settings.resolutionFromView),
       tracksDependencies_(!scene.animation.empty() || settings.invalidationOracle),
       improvements_(settings.cdctImprovements), prefillTexelsPerFrame_(settings.prefillTexelsPerFrame) {
     const CubeBudgetPlan plan = validate(scene, settings);
@@ -136,6 +138,7 @@ RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings)
                                    CachingCube(object.origin, resolution, boundingHalfSize(object)),
                                    cdctParametersFor(object, settings)});
         Entry& e = cubes_.back();
+        if (technique == CacheTechnique::Cct && viewSized_) e.view = ViewSizedResolution(resolution);
         if (technique == CacheTechnique::Cct && settings.cubeLevels > 1) {
             e.coarse = CoarseLevels(object.origin, resolution, settings.cubeLevels);
             multiLevel_ = multiLevel_ || e.coarse.levelCount() > 1;
@@ -398,10 +401,29 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
         s.misses = all.misses;
         s.rejected = all.rejected;
         s.hitsByLevel = all.levelHits;
+        // Colours inherited from a coarser resolution answer at their level too.
+        for (int k = s.levels; k < kMaxCubeLevels; ++k)
+            if (all.levelHits[static_cast<std::size_t>(k)] > 0) s.levels = k + 1;
         s.cdctSearches = all.cdctSearches;
         s.cdctSteps = all.cdctSteps;
         s.cdctStepsHistogram = all.cdctStepsHistogram;
+        Entry& e = cubes_[c];
+        if (e.view.fullSize() > 0) {
+            const int size = e.view.fullSize() >> e.view.afterFrame(all.lookupsByAllowedLevel);
+            if (size != e.cube.size()) s.resizedTo = size;
+        }
     }
+    // Cubes are resampled independently of each other, so in parallel.
+    std::vector<std::size_t> resized;
+    for (std::size_t c = 0; c < cubes_.size(); ++c)
+        if (stats.objects[c].resizedTo > 0) resized.push_back(c);
+    const auto resize = [&](int i) {
+        const std::size_t c = resized[static_cast<std::size_t>(i)];
+        resizeEntry(cubes_[c], stats.objects[c].resizedTo);
+    };
+    if (runPartitions && resized.size() > 1) runPartitions(static_cast<int>(resized.size()), resize);
+    else
+        for (std::size_t i = 0; i < resized.size(); ++i) resize(static_cast<int>(i));
     for (CacheWorker& w : workers) {
         w.pending_.clear();
         w.pendingTrees_.clear();
@@ -409,6 +431,43 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
         w.batches_.clear();
     }
     return stats;
+}
+
+void RayCache::resizeEntry(Entry& e, int size) {
+    const int from = e.cube.size();
+    std::vector<int> sourceOf;
+    CachingCube resized = e.cube.resampled(size, oracle_ ? &sourceOf : nullptr);
+    if (oracle_) {
+        std::vector<RayTreeRecord> trees(resized.texelCount());
+        for (std::size_t t = 0; t < trees.size(); ++t)
+            if (sourceOf[t] >= 0) trees[t] = e.storedTrees[static_cast<std::size_t>(sourceOf[t])];
+        e.storedTrees = std::move(trees);
+    }
+    if (!e.blocks.empty()) {
+        // Each new block takes the union of the old blocks its texels lie in
+        // (finer) or cover (coarser): what its texels' colours came from.
+        const int perSide = (size + kBlockSize - 1) / kBlockSize;
+        std::vector<RayTreeBounds> blocks(6u * static_cast<std::size_t>(perSide) * static_cast<std::size_t>(perSide));
+        const auto oldRange = [&](int first, int last) {  // new texels [first, last] -> old blocks
+            if (size > from) return std::pair{first / (size / from) / kBlockSize, last / (size / from) / kBlockSize};
+            return std::pair{first * (from / size) / kBlockSize, ((last + 1) * (from / size) - 1) / kBlockSize};
+        };
+        for (int face = 0; face < 6; ++face)
+            for (int by = 0; by < perSide; ++by)
+                for (int bx = 0; bx < perSide; ++bx) {
+                    const auto [ox0, ox1] = oldRange(bx * kBlockSize, std::min(bx * kBlockSize + kBlockSize, size) - 1);
+                    const auto [oy0, oy1] = oldRange(by * kBlockSize, std::min(by * kBlockSize + kBlockSize, size) - 1);
+                    RayTreeBounds& into = blocks[static_cast<std::size_t>((face * perSide + by) * perSide + bx)];
+                    for (int oy = oy0; oy <= oy1; ++oy)
+                        for (int ox = ox0; ox <= ox1; ++ox)
+                            into.add(e.blocks[static_cast<std::size_t>((face * e.blocksPerSide + oy) * e.blocksPerSide + ox)]);
+                }
+        e.blocks = std::move(blocks);
+        e.blocksPerSide = perSide;
+    }
+    if (!e.droppedBits.empty()) e.droppedBits.assign((resized.texelCount() + 63) / 64, 0);
+    if (e.coarse.levelCount() > 1) e.coarse = CoarseLevels(resized.center(), size, cubeLevels_);
+    e.cube = std::move(resized);
 }
 
 std::vector<int> RayCache::objectsAwaitingPrefill(std::span<const CacheWorker> workers) const {
@@ -607,22 +666,32 @@ void RayCache::store(int objectId, const Vec3& origin, const Vec3& direction, co
     queueTree();
 }
 
-int RayCache::cctAnswerLevel(const Entry& e, int texel, const Query& q, CacheWorker::Counters& counters) const {
-    if (e.cube.isValid(texel)) return 0;
+RayCache::CctAnswer RayCache::cctAnswer(const Entry& e, int texel, const Query& q,
+                                       CacheWorker::Counters& counters) const {
     const int n = e.cube.size();
+    if (e.cube.isValid(texel)) {
+        const int inherited = e.cube.inheritedLevels(texel);
+        if (inherited == 0) return {0, false};
+        // A colour from a texel `inherited` levels coarser answers only a
+        // footprint that wide; otherwise the ray is traced and its store
+        // replaces the inherited colour.
+        if (CoarseLevels::coarsestAllowed(q.spread, levelErrorBound_, n, inherited + 1) == inherited)
+            return {inherited, true};
+    }
+    if (e.coarse.levelCount() <= 1) return {};
     const int coarsest = CoarseLevels::coarsestAllowed(q.spread, levelErrorBound_, n, e.coarse.levelCount());
-    if (coarsest == 0) return -1;
+    if (coarsest == 0) return {};
     const int face = texel / (n * n), y = (texel / n) % n, x = texel % n;
     const float tangent = std::tan(std::clamp(levelErrorBound_ * q.spread, 0.0f, 1.5f));
     bool rejected = false;
     for (int level = 1; level <= coarsest; ++level) {
         const int t = e.coarse.texelOver(face, x, y, level);
         if (!e.coarse.level(level).isValid(t)) continue;
-        if (CoarseLevels::seesWithinTangent(e.coarse.seen(level, t), q.origin, q.direction, tangent)) return level;
+        if (CoarseLevels::seesWithinTangent(e.coarse.seen(level, t), q.origin, q.direction, tangent)) return {level, false};
         rejected = true;
     }
     if (rejected) ++counters.rejected;
-    return -1;
+    return {};
 }
 
 void RayCache::lookupBatch(std::span<const Query> queries, std::span<Rgb> colors, std::span<unsigned char> found,
@@ -673,16 +742,22 @@ void RayCache::lookupBatchAs(std::span<const Query> queries, std::span<Rgb> colo
             CacheWorker::Counters& counters = worker.counters_[c];
             ++counters.lookups;
             const Entry& e = cubes_[c];
-            const int level = oracle_ ? -1 : cctAnswerLevel(e, texel[k], q, counters);
+            if (e.view.fullSize() > 0) ++counters.lookupsByAllowedLevel[static_cast<std::size_t>(
+                e.view.levelAllowed(q.spread, levelErrorBound_))];
+            const CctAnswer a = oracle_ ? CctAnswer{} : cctAnswer(e, texel[k], q, counters);
+            const int level = a.level;
             if constexpr (kRecordLevels) answerLevels[i] = static_cast<std::int8_t>(level);
             if (level >= 0) {
                 ++counters.hits;
                 ++counters.levelHits[static_cast<std::size_t>(level)];
-                colors[i] = level == 0 ? e.cube.readValid(texel[k])
-                                       : e.coarse.level(level).readValid(e.coarse.texelOver(texel[k], level));
+                colors[i] = level == 0 || a.inherited
+                                ? e.cube.readValid(texel[k])
+                                : e.coarse.level(level).readValid(e.coarse.texelOver(texel[k], level));
                 found[i] = 1;
-                // A coarser texel up to a block wide lies within the finest texel's block.
-                if (!answerTexels.empty()) answerTexels[i] = (1 << level) <= kBlockSize ? texel[k] : -1;
+                // A coarser texel up to a block wide lies within the finest
+                // texel's block; an inherited colour's block took the bounds
+                // of the block it came from (resizeEntry).
+                if (!answerTexels.empty()) answerTexels[i] = a.inherited || (1 << level) <= kBlockSize ? texel[k] : -1;
             } else {
                 ++counters.misses;
                 found[i] = ideal_ ? 1 : 0;

@@ -34,6 +34,7 @@
 #include "cache/CoarseLevels.h"
 #include "cache/CubeBudget.h"
 #include "cache/RayTreeRecord.h"
+#include "cache/ViewSizedResolution.h"
 #include "core/Box3.h"
 #include "scene/ObjectBounds.h"
 #include "scene/Scene.h"
@@ -64,6 +65,12 @@ struct RayCacheSettings {
     // (Query::spread), and the point its stored ray saw lies within that
     // angle of the looked-up ray. Larger: more answers, further off. In (0, 1000].
     float levelErrorBound = 0.25f;
+    // Every CCT cube's face resolution follows the footprints of the rays
+    // that look it up (cache/ViewSizedResolution.h, docs/caching.md
+    // "Resolution from the view"): the coarsest that keeps them within
+    // levelErrorBound, up to its asked resolution (after memoryBudget).
+    // CDCT cubes keep their resolution.
+    bool resolutionFromView = false;
     // Improved CDCT's pre-fill spread over frames: at most this many texels
     // (rays from a cube's centre) are traced per frame, whole face rows, at
     // least one row; a cube answers lookups once all its rows are in. 0: every
@@ -274,6 +281,8 @@ private:
         CachingCube cube;
         CdctParameters cdct;  // used by CDCT cubes (cube.hasDepth())
         CoarseLevels coarse;  // CCT cubes with cubeLevels > 1
+        // CCT cubes under RayCacheSettings::resolutionFromView; fullSize() 0 otherwise.
+        ViewSizedResolution view;
         double invalidPercentBefore = 100.0;
         std::uint64_t prefilledTexels = 0;  // written by completePrefill since the last endFrame
         bool prefilled = false;
@@ -307,12 +316,24 @@ private:
     bool fillsByPrefill(const Entry& e) const {
         return e.technique == CacheTechnique::Cdct && improvements_.prefill;
     }
-    // The finest level of CCT cube `e` whose texel over finest texel `texel`
-    // may answer `q`: valid, and at a coarser level no wider than q's
-    // footprint allows and seeing its point within that footprint
-    // (CoarseLevels); -1 if none (counted as rejected when a valid coarse
-    // texel failed the point test).
-    int cctAnswerLevel(const Entry& e, int texel, const Query& q, CacheWorker::Counters& counters) const;
+    // What answers `q` from CCT cube `e`, whose texel `texel` it addresses.
+    struct CctAnswer {
+        // -1: nothing. 0: the texel itself. k > 0: a texel k levels coarser,
+        // in the cube itself (the texel's colour inherited from a coarser
+        // resolution) or in its coarser levels.
+        int level = -1;
+        bool inherited = false;
+    };
+    // The finest answer whose texel is no wider than q's footprint allows:
+    // the texel itself when valid and not inherited, or inherited from a
+    // resolution that much coarser; else the finest valid coarser level
+    // within the footprint and seeing its point within it (CoarseLevels;
+    // counted as rejected when a valid coarse texel failed the point test).
+    CctAnswer cctAnswer(const Entry& e, int texel, const Query& q, CacheWorker::Counters& counters) const;
+    // Resamples view-sized cube `e` to `size` texels per face side, with its
+    // dependency blocks (each new block the union of the old blocks it
+    // overlaps) and oracle records; coarser levels start again empty.
+    void resizeEntry(Entry& e, int size);
     std::optional<Rgb> answer(const Entry& entry, const Vec3& origin, const Vec3& direction,
                               CacheWorker::Counters& counters) const;
     // lookup() without ideal mode's black for a miss: the cube's answer, counted.
@@ -331,7 +352,7 @@ private:
     }
 
     std::vector<Entry> cubes_;
-    std::vector<int> cubeOfObject_;
+    std::vector<int> cubeOfObject_;  // object id -> index into cubes_, -1 if uncached
     std::vector<int> prefillQueue_;  // cube indices awaiting a pre-fill spread over frames, oldest first
     // endFrame's batches in merge order; kept to reuse its memory.
     struct BatchRef {
@@ -340,12 +361,14 @@ private:
         std::size_t begin, end;
     };
     std::vector<BatchRef> mergeOrder_;
-    std::vector<CacheWorker> workerPool_;  // object id -> index into cubes_, -1 if uncached
+    std::vector<CacheWorker> workerPool_;  // reusableWorkers()
     bool ideal_ = false;
     bool oracle_ = false;
     float levelErrorBound_ = 0.25f;
-    bool multiLevel_ = false;
-    std::string budgetNote_;  // some cube has coarser levels: stores carry what their ray saw
+    bool multiLevel_ = false;  // some cube has coarser levels: stores carry what their ray saw
+    int cubeLevels_ = 1;       // RayCacheSettings::cubeLevels
+    bool viewSized_ = false;   // RayCacheSettings::resolutionFromView
+    std::string budgetNote_;
     bool tracksDependencies_ = false;
     CdctImprovements improvements_;
     std::int64_t prefillTexelsPerFrame_ = 0;

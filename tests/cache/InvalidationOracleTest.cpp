@@ -30,9 +30,11 @@ RenderSettings oracleSettings() {
     return s;
 }
 
-InvalidationCounts runOracle(const std::string& name, int changes) {
+// `resized`: how many cubes took another resolution over the run.
+InvalidationCounts runOracle(const std::string& name, int changes, const RenderSettings& settings = oracleSettings(),
+                             int* resized = nullptr) {
     const Scene scene = *makeBuiltinScene(name);
-    RenderSession session(scene, oracleSettings());
+    RenderSession session(scene, settings);
     Image film;
     InvalidationCounts counts;
     // From a third into the animation, where things move at speed (eased
@@ -40,7 +42,9 @@ InvalidationCounts runOracle(const std::string& name, int changes) {
     const float start = scene.animation.duration() / 3.0f;
     for (int frame = 0; frame < changes; ++frame) {
         session.setTime(start + static_cast<float>(frame) / scene.fps);
-        session.render(scene.camera, film);
+        const FrameStats stats = session.render(scene.camera, film);
+        if (resized && stats.cache)
+            for (const ObjectCacheStats& o : stats.cache->objects) *resized += o.resizedTo > 0 ? 1 : 0;
         InvalidationOracle oracle;
         oracle.take(session);
         session.setTime(start + static_cast<float>(frame + 1) / scene.fps);
@@ -79,6 +83,22 @@ TEST(InvalidationOracle, DeformingMeshLeavesNoStaleTexel) {
 TEST(InvalidationOracle, MovingLightLeavesNoStaleTexel) {
     const InvalidationCounts c = runOracle("light-sweep", 2);
     EXPECT_EQ(c.stale, 0);
+    EXPECT_GT(c.changed(), 0);
+}
+
+// Cubes resampled to the view's resolution (RayCacheSettings::
+// resolutionFromView) keep exact invalidation: a resampled texel keeps the
+// record of the ray whose colour it took, and its block the union of the
+// blocks that colour came from.
+TEST(InvalidationOracle, ResizedCubesLeaveNoStaleTexel) {
+    RenderSettings settings = oracleSettings();
+    settings.cache.resolutionOverride = 256;  // finer than room's ball needs at 160×120: shrinks to 128²
+    settings.cache.resolutionFromView = true;
+    int resized = 0;
+    const InvalidationCounts c = runOracle("room-moving", 3, settings, &resized);
+    EXPECT_GT(resized, 0);  // the test could fail
+    EXPECT_EQ(c.stale, 0);
+    EXPECT_GT(c.kept, 0);
     EXPECT_GT(c.changed(), 0);
 }
 

@@ -25,10 +25,11 @@ struct PathRender {
 // `still`; `technique` and `cacheResolution` override every material.
 // With `group` (one of several processes), each frame's tiles are shared
 // among them and only process 0's frames are whole. `prefillPerFrame`:
-// RayCacheSettings::prefillTexelsPerFrame.
+// RayCacheSettings::prefillTexelsPerFrame. `resolutionFromView`:
+// RayCacheSettings::resolutionFromView.
 PathRender renderPath(const std::string& sceneName, CacheTechnique technique, int frames, bool still, int size,
                       int threads = 2, int cacheResolution = 512, const ProcessGroup* group = nullptr,
                       TileBalance balance = TileBalance::Dynamic, int cubeLevels = 1,
-                      std::int64_t prefillPerFrame = 0);
+                      std::int64_t prefillPerFrame = 0, bool resolutionFromView = false);
 
 }  // namespace raycache

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # MPI cluster mode end to end (docs/cluster.md), on localhost:
-#   mpi_render_test.sh <raycache> <mpiexec> identical <processes> <technique|cct-levels> [<tile-balance> [<threads>]]
+#   mpi_render_test.sh <raycache> <mpiexec> identical <processes> <technique|cct-levels|cct-view> [<tile-balance> [<threads>]]
 #       the image of `mpiexec -np N raycache render` equals the single-process
 #       one bit for bit (orbit path, 3 frames, so later frames read the caches
 #       the earlier ones filled on every process)
@@ -31,7 +31,8 @@ export OMPI_MCA_orte_tmpdir_base=$sessions
 mpi=("$mpiexec" --oversubscribe)
 fail() { echo "FAIL: $*"; exit 1; }
 # Small and quick; 2 threads per process would only oversubscribe the machine more.
-common=(--width 80 --height 48 --cache-res 32)
+size=(--width 80 --height 48)
+common=("${size[@]}" --cache-res 32)
 
 case "$case_name" in
 identical)
@@ -43,8 +44,13 @@ identical)
   # the exchanged stores' seen points too.
   technique_args=(--technique "$technique")
   [ "$technique" = cct-levels ] && technique_args=(--technique cct --cache-levels 4 --cache-level-error 1)
+  # cct-view: CCT cubes resized after every frame from the lookups of all
+  # processes (from 128², finer than these images need).
+  [ "$technique" = cct-view ] && technique_args=(--technique cct --cache-res-from-view)
+  resolution=(--cache-res 32)
+  [ "$technique" = cct-view ] && resolution=(--cache-res 128)
   for scene in room glass; do
-    args=(render --scene "$scene" "${common[@]}" --frames 3 --path orbit "${technique_args[@]}")
+    args=(render --scene "$scene" "${size[@]}" "${resolution[@]}" --frames 3 --path orbit "${technique_args[@]}")
     "$raycache" "${args[@]}" --threads 2 --out "$scratch/one-$scene.exr" >"$scratch/one.log" 2>&1 ||
       { cat "$scratch/one.log"; fail "single-process render of $scene"; }
     "${mpi[@]}" -np "$processes" "$raycache" "${args[@]}" --threads "$threads" --tile-balance "$balance" \
@@ -57,6 +63,9 @@ identical)
     [ "$(grep -c '^frame ' "$scratch/many.log")" = 3 ] || fail "expected 3 frame lines from process 0 only"
     if [ "$technique" != none ]; then
       grep -q '"store_bytes": [1-9]' "$scratch/many-$scene.json" || fail "no cache stores exchanged"
+    fi
+    if [ "$technique" = cct-view ]; then
+      grep -q '"resized_to": [1-9]' "$scratch/many-$scene.json" || fail "no cube was resized"
     fi
   done
   ;;
