@@ -63,6 +63,11 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
     command.add_flag("--cache-res-from-view", job.cacheResFromView,
                      "CCT cubes take the coarsest face resolution their lookups' pixel footprints allow within "
                      "--cache-level-error, re-chosen after every frame, up to --cache-res (docs/caching.md)");
+    command.add_option("--cache-fill", job.cacheFill,
+                       "Fill CCT cubes from the surfaces the camera sees, one visibility ray per texel: off, exact "
+                       "(surfaces without highlights, mirrors or glass), approximate (also with highlights) "
+                       "(docs/caching.md)")
+        ->capture_default_str();
     command.add_option("--cache-budget", job.cacheBudgetMiB,
                        "Most memory the caching cubes may take, MiB: over it, cube resolutions are lowered "
                        "(smallest objects' first) and a note says so; a scene that cannot fit even at 16² faces "

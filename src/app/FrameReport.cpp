@@ -20,6 +20,7 @@ std::string formatFrameLine(const FrameResult& r, int frameCount) {
          << " ms  rays: primary " << rays.primary << ", shadow " << rays.shadow << ", reflection " << rays.reflection
          << ", refraction " << rays.refraction;
     if (rays.prefill) line << ", pre-fill " << rays.prefill;
+    if (rays.fill) line << ", visible fill " << rays.fill;
     line << "  " << formatFixed(mrays, 2) << " Mrays/s";
     if (const auto& c = r.stats.cache) {
         const double hitRate =
@@ -93,6 +94,7 @@ std::string formatFrameLine(const FrameResult& r, int frameCount) {
              << formatFixed(s->directShading, 1) << ", secondary rays " << formatFixed(s->secondaryRays, 1)
              << ", lookups " << formatFixed(s->reuseLookups, 1) << ", trace " << formatFixed(s->traceSecondary, 1)
              << ", resolve " << formatFixed(s->resolve, 1) << ", compose " << formatFixed(s->compose, 1)
+             << (s->visibleFill > 0.0 ? ", visible fill " + formatFixed(s->visibleFill, 1) : std::string())
              << ", cache frame end (wall) " << formatFixed(s->cacheFrameEnd, 1);
     return line.str();
 }

@@ -66,7 +66,8 @@ nlohmann::json stagesJson(const StageTimes& s) {
             {"shadow_rays_cpu_ms", s.shadowRays},   {"direct_shading_cpu_ms", s.directShading},
             {"secondary_rays_cpu_ms", s.secondaryRays}, {"reuse_lookups_cpu_ms", s.reuseLookups},
             {"trace_secondary_cpu_ms", s.traceSecondary}, {"resolve_cpu_ms", s.resolve},
-            {"compose_cpu_ms", s.compose},          {"cache_frame_end_ms", s.cacheFrameEnd}};
+            {"compose_cpu_ms", s.compose},          {"visible_fill_cpu_ms", s.visibleFill},
+            {"cache_frame_end_ms", s.cacheFrameEnd}};
 }
 
 nlohmann::json clusterJson(const ClusterStats& c) {
@@ -79,7 +80,7 @@ nlohmann::json clusterJson(const ClusterStats& c) {
 
 nlohmann::json raysJson(const RayCounts& r) {
     return {{"primary", r.primary}, {"shadow", r.shadow}, {"reflection", r.reflection},
-            {"refraction", r.refraction}, {"prefill", r.prefill}, {"total", r.total()}};
+            {"refraction", r.refraction}, {"prefill", r.prefill}, {"fill", r.fill}, {"total", r.total()}};
 }
 
 }  // namespace

@@ -42,6 +42,13 @@ void applyRenderCacheOverrides(const RenderCacheOverrides& o, RenderCacheSetting
     if (o.reflections) parseReprojectedReflections(*o.reflections, rc.reflections);
 }
 
+std::optional<VisibleFill> parseVisibleFill(const std::string& name) {
+    if (name == "off") return VisibleFill::Off;
+    if (name == "exact") return VisibleFill::Exact;
+    if (name == "approximate") return VisibleFill::Approximate;
+    return std::nullopt;
+}
+
 std::optional<CacheTechnique> parseTechnique(const std::string& name) { return parseCacheTechnique(name); }
 
 void validateRenderJobOptions(const RenderJobOptions& o) {
@@ -78,6 +85,8 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
     if (o.cacheLevels < 1 || o.cacheLevels > kMaxCubeLevels)
         throw InputError("--cache-levels must be between 1 and " + std::to_string(kMaxCubeLevels) + " (got " +
                          std::to_string(o.cacheLevels) + ")");
+    if (!parseVisibleFill(o.cacheFill))
+        throw InputError("--cache-fill must be off, exact or approximate (got '" + o.cacheFill + "')");
     if (!(std::isfinite(o.cacheLevelError) && o.cacheLevelError > 0.0f && o.cacheLevelError <= 1000.0f))
         throw InputError("--cache-level-error must be a finite number in (0, 1000]");
     if (o.cacheBudgetMiB && !(std::isfinite(*o.cacheBudgetMiB) && *o.cacheBudgetMiB > 0.0 && *o.cacheBudgetMiB <= 1e9))
@@ -125,6 +134,7 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     settings.cache.cubeLevels = options.cacheLevels;
     settings.cache.levelErrorBound = options.cacheLevelError;
     settings.cache.resolutionFromView = options.cacheResFromView;
+    settings.cache.visibleFill = *parseVisibleFill(options.cacheFill);
     settings.cache.ideal = options.cacheIdeal;
     settings.stageTimes = options.stageTimes;
     settings.tileBalance = *parseTileBalance(options.tileBalance);

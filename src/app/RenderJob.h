@@ -36,6 +36,7 @@ struct RenderJobOptions {
     int cacheLevels = 1;                   // CCT cubes' resolution levels (RayCacheSettings::cubeLevels)
     float cacheLevelError = 0.25f;         // RayCacheSettings::levelErrorBound
     bool cacheResFromView = false;         // RayCacheSettings::resolutionFromView
+    std::string cacheFill = "off";         // RayCacheSettings::visibleFill: off | exact | approximate
     std::optional<double> cacheBudgetMiB;  // cubes' memory budget; default: the scene file's, else half the machine's memory
     bool cacheIdeal = false;               // benchmark switch, see RayCacheSettings::ideal
     bool stageTimes = false;               // time the tile kernel's stages (RenderSettings::stageTimes)
@@ -59,6 +60,9 @@ struct RenderJob {
 // The technique a --technique name stands for (none, cct, cdct,
 // cdct-parity), or nothing for an unknown name.
 std::optional<CacheTechnique> parseTechnique(const std::string& name);
+// The visible-surface fill a --cache-fill name stands for (off, exact,
+// approximate), or nothing for an unknown name.
+std::optional<VisibleFill> parseVisibleFill(const std::string& name);
 
 // Puts the values that are set into `settings`.
 void applyRenderCacheOverrides(const RenderCacheOverrides& overrides, RenderCacheSettings& settings);

@@ -70,6 +70,16 @@ Vec3 RayCache::boundingHalfSize(const SceneObject& object) {
     return half + Vec3{margin, margin, margin};
 }
 
+float RayCache::boundingRadius(const SceneObject& object) {
+    float radius = 0.0f;
+    if (const auto* sphere = std::get_if<Sphere>(&object.shape)) {
+        radius = length(sphere->center - object.origin) + sphere->radius;
+    } else if (const auto* mesh = std::get_if<MeshShape>(&object.shape); mesh && mesh->mesh) {
+        for (const Vec3& p : mesh->mesh->positions) radius = std::max(radius, length(p - object.origin));
+    }
+    return radius;
+}
+
 CacheTechnique RayCache::techniqueFor(const SceneObject& object, const RayCacheSettings& settings) {
     const Material& m = object.material;
     if (!m.reflects() && !m.refracts()) return CacheTechnique::None;
@@ -150,6 +160,8 @@ RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings)
         if (oracle_) e.storedTrees.resize(e.cube.texelCount());
         if (tracksDependencies_) e.droppedBits.assign((e.cube.texelCount() + 63) / 64, 0);
     }
+    const bool anyCct = std::any_of(cubes_.begin(), cubes_.end(), [](const Entry& e) { return e.technique == CacheTechnique::Cct; });
+    if (anyCct) visibleFill_ = settings.visibleFill;
     if (tracksDependencies_) {
         // Only animated objects ever change.
         objectBounds_.resize(scene.objects.size());

@@ -42,6 +42,13 @@
 
 namespace raycache {
 
+// Filling CCT cubes from the surfaces the camera sees (render/VisibleSurfaceFill.h).
+enum class VisibleFill : unsigned char {
+    Off,
+    Exact,        // from surfaces whose colour does not depend on the view (no highlight, mirror or glass)
+    Approximate,  // also from surfaces with highlights (the camera's highlight is stored)
+};
+
 struct RayCacheSettings {
     // Replaces every reflective/refractive object's material setting.
     std::optional<CacheTechnique> techniqueOverride;
@@ -71,6 +78,11 @@ struct RayCacheSettings {
     // levelErrorBound, up to its asked resolution (after memoryBudget).
     // CDCT cubes keep their resolution.
     bool resolutionFromView = false;
+    // Texels of CCT cubes filled from the surface points the camera's rays
+    // shaded, after a visibility ray (render/VisibleSurfaceFill.h). Under
+    // invalidationOracle their records are the visibility rays, whose
+    // uncached colours they match within rounding (exact fill), not bit for bit.
+    VisibleFill visibleFill = VisibleFill::Off;
     // Improved CDCT's pre-fill spread over frames: at most this many texels
     // (rays from a cube's centre) are traced per frame, whole face rows, at
     // least one row; a cube answers lookups once all its rows are in. 0: every
@@ -121,6 +133,8 @@ public:
     // Half-extent per axis of the axis-aligned box centred on the object's
     // origin that bounds its geometry (every component > 0).
     static Vec3 boundingHalfSize(const SceneObject& object);
+    // Radius of the sphere centred on the object's origin that holds its geometry.
+    static float boundingRadius(const SceneObject& object);
 
     // Throws the InputError the constructor would throw, without allocating
     // any cube: lets callers reject bad settings before doing any work.
@@ -128,6 +142,8 @@ public:
     // under settings.memoryBudget, in the order of the cached objects (the
     // cubes not fitting even at kMinBudgetResolution is one of the errors).
     static CubeBudgetPlan validate(const Scene& scene, const RayCacheSettings& settings);
+    // RayCacheSettings::visibleFill, Off when no cube is a CCT cube.
+    VisibleFill visibleFill() const { return visibleFill_; }
     // What the budget lowered, one line; empty when nothing was.
     const std::string& budgetNote() const { return budgetNote_; }
 
@@ -368,6 +384,7 @@ private:
     bool multiLevel_ = false;  // some cube has coarser levels: stores carry what their ray saw
     int cubeLevels_ = 1;       // RayCacheSettings::cubeLevels
     bool viewSized_ = false;   // RayCacheSettings::resolutionFromView
+    VisibleFill visibleFill_ = VisibleFill::Off;
     std::string budgetNote_;
     bool tracksDependencies_ = false;
     CdctImprovements improvements_;

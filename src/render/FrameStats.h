@@ -33,11 +33,12 @@ struct StageTimes {
     double traceSecondary = 0.0;  // the rays no cache answered, traced together
     double resolve = 0.0;         // colours gathered up the ray trees, cache stores queued
     double compose = 0.0;         // colours written to the film
+    double visibleFill = 0.0;     // cubes filled from the surfaces the camera saw (visibility rays, stores)
     double cacheFrameEnd = 0.0;   // wall time: pre-fill and the merge of queued stores
 
     double total() const {
         return firstHits + surfaces + shadowRays + directShading + secondaryRays + reuseLookups + traceSecondary +
-               resolve + compose + cacheFrameEnd;
+               resolve + compose + visibleFill + cacheFrameEnd;
     }
     StageTimes& operator+=(const StageTimes& o) {
         firstHits += o.firstHits;
@@ -49,6 +50,7 @@ struct StageTimes {
         traceSecondary += o.traceSecondary;
         resolve += o.resolve;
         compose += o.compose;
+        visibleFill += o.visibleFill;
         cacheFrameEnd += o.cacheFrameEnd;
         return *this;
     }

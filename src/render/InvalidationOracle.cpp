@@ -7,6 +7,15 @@
 
 namespace raycache {
 
+namespace {
+
+bool withinTolerance(std::uint32_t word, std::uint32_t other) {
+    const Rgb a = CachingCube::decodeTexel(word), b = CachingCube::decodeTexel(other);
+    return std::max({std::fabs(a.r - b.r), std::fabs(a.g - b.g), std::fabs(a.b - b.b)}) <= InvalidationCounts::kTolerance;
+}
+
+}  // namespace
+
 InvalidationCounts& InvalidationCounts::operator+=(const InvalidationCounts& o) {
     checked += o.checked;
     kept += o.kept;
@@ -14,6 +23,7 @@ InvalidationCounts& InvalidationCounts::operator+=(const InvalidationCounts& o) 
     dropped += o.dropped;
     needless += o.needless;
     differing += o.differing;
+    differingBeyondTolerance += o.differingBeyondTolerance;
     movedCube += o.movedCube;
     movedCubeWithinTolerance += o.movedCubeWithinTolerance;
     return *this;
@@ -32,13 +42,18 @@ void InvalidationOracle::take(const RenderSession& session) {
                 texels_.push_back({object, t, cube.texels()[static_cast<std::size_t>(t)], cache.storedTree(object, t)});
     }
     const std::vector<std::uint32_t> same = retrace(session);
-    differing_ = 0;
-    for (std::size_t i = 0; i < texels_.size(); ++i) differing_ += same[i] != texels_[i].word ? 1 : 0;
+    differing_ = differingBeyondTolerance_ = 0;
+    for (std::size_t i = 0; i < texels_.size(); ++i) {
+        if (same[i] == texels_[i].word) continue;
+        ++differing_;
+        if (!withinTolerance(same[i], texels_[i].word)) ++differingBeyondTolerance_;
+    }
 }
 
 InvalidationCounts InvalidationOracle::check(const RenderSession& session) const {
     InvalidationCounts counts;
     counts.differing = differing_;
+    counts.differingBeyondTolerance = differingBeyondTolerance_;
     const std::vector<std::uint32_t> now = retrace(session);
     for (std::size_t i = 0; i < texels_.size(); ++i) {
         const CachingCube& cube = session.cache().cube(texels_[i].objectId);
@@ -47,9 +62,7 @@ InvalidationCounts InvalidationOracle::check(const RenderSession& session) const
         ++counts.checked;
         if (!(cube.center() == cubeCenters_[static_cast<std::size_t>(texels_[i].objectId)])) {
             ++counts.movedCube;
-            const Rgb a = CachingCube::decodeTexel(now[i]), b = CachingCube::decodeTexel(texels_[i].word);
-            const float error = std::max({std::fabs(a.r - b.r), std::fabs(a.g - b.g), std::fabs(a.b - b.b)});
-            if (error <= InvalidationCounts::kTolerance) ++counts.movedCubeWithinTolerance;
+            if (withinTolerance(now[i], texels_[i].word)) ++counts.movedCubeWithinTolerance;
         }
         if (kept) {
             ++counts.kept;

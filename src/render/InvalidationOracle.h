@@ -21,6 +21,10 @@ struct InvalidationCounts {
     // Texels whose colour the change really altered.
     std::int64_t changed() const { return stale + (dropped - needless); }
     std::int64_t differing = 0;  // texels whose re-trace differed in their own pose (the oracle failing itself)
+    // Of those, the ones off by more than kTolerance in some channel (texels
+    // filled from visible surfaces, render/VisibleSurfaceFill.h, differ within
+    // rounding where the fill is exact).
+    std::int64_t differingBeyondTolerance = 0;
     // Texels of caching objects that moved (their cube follows them; these
     // are re-traced from their origin moved along): how many there were, and
     // how many would still be within kTolerance of the truth if kept.
@@ -35,6 +39,11 @@ public:
     // Records the session's valid texels and re-traces them in the current
     // pose (counted in `differing` if that does not give the stored colour).
     void take(const RenderSession& session);
+    // The texels take() found differing, in all and beyond kTolerance.
+    std::int64_t differing() const { return differing_; }
+    std::int64_t differingBeyondTolerance() const { return differingBeyondTolerance_; }
+    // Valid texels take() recorded.
+    std::size_t texelCount() const { return texels_.size(); }
     // After session.setTime(): what happened to the recorded texels.
     InvalidationCounts check(const RenderSession& session) const;
 
@@ -50,6 +59,7 @@ private:
     std::vector<StoredTexel> texels_;
     std::vector<Vec3> cubeCenters_;  // per object id (caching objects only), when taken
     std::int64_t differing_ = 0;
+    std::int64_t differingBeyondTolerance_ = 0;
 };
 
 }  // namespace raycache

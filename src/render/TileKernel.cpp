@@ -40,12 +40,14 @@ void TileScratch::beginTile(std::size_t roots) {
     vertices.clear();
     surfaces.clear();
     albedo.clear();
+    fillRoots.clear();
+    fillPositions.clear();
 }
 
 TileKernel::TileKernel(const Scene& scene, const TraceScene& tracer, const RenderSettings& settings,
                        const RayCache* cache)
     : scene_(scene), tracer_(tracer), settings_(settings), cache_(cache && !cache->empty() ? cache : nullptr),
-      shading_(scene) {}
+      shading_(scene), fill_(scene, tracer, cache_) {}
 
 void TileKernel::renderCameraTile(const CameraRays& cameraRays, const TileRange& tile, std::uint64_t tileKey,
                                   TileScratch& s, CacheWorker* cache, Image& film, CacheLevelImage* levels) const {
@@ -64,14 +66,19 @@ void TileKernel::renderCameraTile(const CameraRays& cameraRays, const TileRange&
         s.counts.primary += n;
         const RayCone pixel{0.0f, cameraRays.pixelSpread()};
         for (i = 0; i < n; ++i) {
-            if (s.hits[i].hit())
+            if (s.hits[i].hit()) {
                 s.vertices.push_back({s.rays[i], s.hits[i], static_cast<int>(i), 1.0f, 1, pixel});
-            else
+                if (cache && fill_.active())
+                    noteVisiblePoint(s, static_cast<int>(i), s.hits[i].objectId,
+                                     s.rays[i].origin + s.rays[i].direction * s.hits[i].t);
+            } else {
                 s.nodes[i].direct = shading_.background(s.rays[i]);
+            }
         }
     }
     runWaves(s, cache, FirstWave::Hits, true);
     resolveNodes(s, cache, tileKey);
+    fillFromVisiblePoints(s, cache, cameraRays.ray(tile.x0, tile.y0).origin);
     StageTimer timer(settings_.stageTimes, s.stages.compose);
     for (std::size_t i = 0; i < n; ++i)
         film.at(tile.x0 + static_cast<int>(i) % tileWidth, tile.y0 + static_cast<int>(i) / tileWidth) =
@@ -106,12 +113,15 @@ void TileKernel::renderGBufferTile(const CameraRays& cameraRays, const GBufferVi
                 hit.t = length(s.surfaces.back().position - ray.origin);
                 s.vertices.push_back({ray, hit, static_cast<int>(k), 1.0f, 1, pixel});
                 s.albedo.push_back(gbuffer.albedoAt(i));
+                if (cache && fill_.active())
+                    noteVisiblePoint(s, static_cast<int>(k), hit.objectId, s.surfaces.back().position);
             }
     }
     const auto firstBounceBefore = s.firstBounce;
     s.firstBounce += Clock::now() - t0;  // reading the G-buffer belongs to the first bounce
     runWaves(s, cache, FirstWave::Surfaces, true);
     resolveNodes(s, cache, tileKey);
+    fillFromVisiblePoints(s, cache, cameraRays.ray(tile.x0, tile.y0).origin);
     const auto t1 = Clock::now();
     {
         StageTimer timer(settings_.stageTimes, s.stages.compose);
@@ -510,6 +520,21 @@ void TileKernel::resolveNodes(TileScratch& s, CacheWorker* cache, std::uint64_t 
             s.nodeBounds[static_cast<std::size_t>(node.parent)].add(s.nodeBounds[i]);
         s.nodes[static_cast<std::size_t>(node.parent)].secondary += color * node.weightInParent;
     }
+}
+
+void TileKernel::noteVisiblePoint(TileScratch& s, int root, int objectId, const Vec3& position) const {
+    if (!fill_.fills(scene_.objects[static_cast<std::size_t>(objectId)].material)) return;
+    s.fillRoots.push_back(root);
+    s.fillPositions.push_back(position);
+}
+
+void TileKernel::fillFromVisiblePoints(TileScratch& s, CacheWorker* cache, const Vec3& eye) const {
+    if (!cache || s.fillRoots.empty()) return;
+    StageTimer timer(settings_.stageTimes, s.stages.visibleFill);
+    s.visiblePoints.resize(s.fillRoots.size());
+    for (std::size_t k = 0; k < s.fillRoots.size(); ++k)
+        s.visiblePoints[k] = {s.fillPositions[k], s.nodes[static_cast<std::size_t>(s.fillRoots[k])].color()};
+    s.counts.fill += fill_.fillTile(s.visiblePoints, eye, s.fill, *cache);
 }
 
 }  // namespace raycache

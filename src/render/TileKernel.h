@@ -35,6 +35,7 @@
 #include "render/RayCone.h"
 #include "render/RenderSettings.h"
 #include "render/SurfacePoint.h"
+#include "render/VisibleSurfaceFill.h"
 #include "trace/TraceScene.h"
 
 namespace raycache {
@@ -161,6 +162,13 @@ private:
     std::vector<std::int8_t> rootLevels;
     std::vector<float> rootLevelWeights;
     std::vector<std::int8_t> answerLevels;
+    // The visible-surface fill (render/VisibleSurfaceFill.h): per root whose
+    // first hit may fill, the root and the hit point; then the points with
+    // their pixels' colours.
+    std::vector<int> fillRoots;
+    std::vector<Vec3> fillPositions;
+    std::vector<VisiblePoint> visiblePoints;
+    VisibleFillScratch fill;
 };
 
 class TileKernel {
@@ -234,12 +242,18 @@ private:
     // Adds every node's colour to its parent's, children first, queueing the
     // cache stores of the nodes that stand for traced leaving rays.
     void resolveNodes(TileScratch& s, CacheWorker* cache, std::uint64_t tileKey) const;
+    // The visible-surface fill: notes root `root`'s first hit at `position`
+    // on `objectId` if it may fill; once the tile is resolved, fills the
+    // cubes from the noted points (in the tile's store batch), as seen from `eye`.
+    void noteVisiblePoint(TileScratch& s, int root, int objectId, const Vec3& position) const;
+    void fillFromVisiblePoints(TileScratch& s, CacheWorker* cache, const Vec3& eye) const;
 
     const Scene& scene_;
     const TraceScene& tracer_;
     RenderSettings settings_;
     const RayCache* cache_;
     LocalShading shading_;
+    VisibleSurfaceFill fill_;
 };
 
 }  // namespace raycache

@@ -11,7 +11,7 @@ namespace raycache {
 
 PathRender renderPath(const std::string& sceneName, CacheTechnique technique, int frames, bool still, int size,
                       int threads, int cacheResolution, const ProcessGroup* group, TileBalance balance, int cubeLevels,
-                      std::int64_t prefillPerFrame, bool resolutionFromView) {
+                      std::int64_t prefillPerFrame, bool resolutionFromView, VisibleFill fill) {
     const auto scene = makeBuiltinScene(sceneName);
     EXPECT_TRUE(scene.has_value()) << sceneName;
     if (!scene) return {};
@@ -24,6 +24,7 @@ PathRender renderPath(const std::string& sceneName, CacheTechnique technique, in
     settings.cache.cubeLevels = cubeLevels;
     settings.cache.prefillTexelsPerFrame = prefillPerFrame;
     settings.cache.resolutionFromView = resolutionFromView;
+    settings.cache.visibleFill = fill;
     const TraceScene tracer(*scene);
     const Parallel parallel(threads);
     RayCache cache(*scene, settings.cache);

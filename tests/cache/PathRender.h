@@ -7,6 +7,7 @@
 
 #include "core/Image.h"
 #include "core/ProcessGroup.h"
+#include "cache/RayCache.h"
 #include "render/FrameStats.h"
 #include "render/TileAssignment.h"
 #include "scene/Material.h"
@@ -25,11 +26,12 @@ struct PathRender {
 // `still`; `technique` and `cacheResolution` override every material.
 // With `group` (one of several processes), each frame's tiles are shared
 // among them and only process 0's frames are whole. `prefillPerFrame`:
-// RayCacheSettings::prefillTexelsPerFrame. `resolutionFromView`:
-// RayCacheSettings::resolutionFromView.
+// RayCacheSettings::prefillTexelsPerFrame. `resolutionFromView`, `fill`:
+// RayCacheSettings::resolutionFromView, visibleFill.
 PathRender renderPath(const std::string& sceneName, CacheTechnique technique, int frames, bool still, int size,
                       int threads = 2, int cacheResolution = 512, const ProcessGroup* group = nullptr,
                       TileBalance balance = TileBalance::Dynamic, int cubeLevels = 1,
-                      std::int64_t prefillPerFrame = 0, bool resolutionFromView = false);
+                      std::int64_t prefillPerFrame = 0, bool resolutionFromView = false,
+                      VisibleFill fill = VisibleFill::Off);
 
 }  // namespace raycache

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # MPI cluster mode end to end (docs/cluster.md), on localhost:
-#   mpi_render_test.sh <raycache> <mpiexec> identical <processes> <technique|cct-levels|cct-view> [<tile-balance> [<threads>]]
+#   mpi_render_test.sh <raycache> <mpiexec> identical <processes> <technique|cct-levels|cct-view|cct-fill> [<tile-balance> [<threads>]]
 #       the image of `mpiexec -np N raycache render` equals the single-process
 #       one bit for bit (orbit path, 3 frames, so later frames read the caches
 #       the earlier ones filled on every process)
@@ -47,6 +47,8 @@ identical)
   # cct-view: CCT cubes resized after every frame from the lookups of all
   # processes (from 128², finer than these images need).
   [ "$technique" = cct-view ] && technique_args=(--technique cct --cache-res-from-view)
+  # cct-fill: CCT cubes also filled from the surfaces each tile sees.
+  [ "$technique" = cct-fill ] && technique_args=(--technique cct --cache-fill exact)
   resolution=(--cache-res 32)
   [ "$technique" = cct-view ] && resolution=(--cache-res 128)
   for scene in room glass; do
