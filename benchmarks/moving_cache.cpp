@@ -1,11 +1,14 @@
 // Caching while the camera moves, from empty caches: uncached against CCT
-// with single-resolution cubes and CCT with multi-resolution cubes
-// (RayCacheSettings::cubeLevels), side by side along each scene's own path.
+// with single-resolution cubes, CCT with multi-resolution cubes
+// (RayCacheSettings::cubeLevels) and, on request, cubes sized from the view
+// (resolutionFromView) and filled from visible surfaces (visibleFill), side by
+// side along each scene's own path.
 //  - quality (untimed pass): per frame, the hit rate and the PSNR of each
 //    cached image against the uncached image of the same camera;
 //  - speed: the whole path per run, the variants interleaved, caches emptied
 //    before every run; median (min-max) ms per frame.
 // Usage: moving_cache [--size 1024] [--frames 10] [--rounds 3] [--levels 6] [--scenes grid-32,behind-32]
+//                     [--no-multi-res] [--view] [--fill] [--view-fill]
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
@@ -28,6 +31,7 @@ struct Options {
     int size = 1024, frames = 10, rounds = 3, threads = 0, maxDepth = 5, levels = 6;
     float levelError = 0.25f;
     std::vector<std::string> scenes{"grid-32", "behind-32"};
+    bool multiRes = true, view = false, fill = false, viewFill = false;
 };
 
 RenderSettings settingsFor(const Options& o, CacheTechnique technique, int levels) {
@@ -42,9 +46,25 @@ RenderSettings settingsFor(const Options& o, CacheTechnique technique, int level
 }
 
 struct Setup {
-    const char* name;
+    std::string name;
     RenderSettings settings;
 };
+
+std::vector<Setup> variantsFor(const Options& o) {
+    std::vector<Setup> variants{{"uncached", settingsFor(o, CacheTechnique::None, 1)},
+                                {"CCT", settingsFor(o, CacheTechnique::Cct, 1)}};
+    if (o.multiRes) variants.push_back({"CCT multi-res", settingsFor(o, CacheTechnique::Cct, o.levels)});
+    const auto cct = [&](bool view, bool fill) {
+        RenderSettings s = settingsFor(o, CacheTechnique::Cct, 1);
+        s.cache.resolutionFromView = view;
+        s.cache.visibleFill = fill ? VisibleFill::Exact : VisibleFill::Off;
+        return s;
+    };
+    if (o.view) variants.push_back({"CCT from view", cct(true, false)});
+    if (o.fill) variants.push_back({"CCT + fill", cct(false, true)});
+    if (o.viewFill) variants.push_back({"CCT from view + fill", cct(true, true)});
+    return variants;
+}
 
 }  // namespace
 
@@ -59,6 +79,10 @@ int main(int argc, char** argv) {
     app.add_option("--levels", o.levels, "Resolution levels of the multi-resolution cubes")->capture_default_str();
     app.add_option("--level-error", o.levelError, "RayCacheSettings::levelErrorBound")->capture_default_str();
     app.add_option("--scenes", o.scenes, "Built-in scenes")->delimiter(',');
+    app.add_flag("!--no-multi-res", o.multiRes, "Leave out the multi-resolution cubes");
+    app.add_flag("--view", o.view, "Add CCT with cubes sized from the view (--cache-res-from-view)");
+    app.add_flag("--fill", o.fill, "Add CCT filled from visible surfaces (--cache-fill exact)");
+    app.add_flag("--view-fill", o.viewFill, "Add CCT sized from the view and filled from visible surfaces");
     CLI11_PARSE(app, argc, argv);
     const Parallel parallel(o.threads);
 
@@ -69,9 +93,7 @@ int main(int argc, char** argv) {
             return 2;
         }
         const TraceScene tracer(*scene);
-        const std::vector<Setup> variants{{"uncached", settingsFor(o, CacheTechnique::None, 1)},
-                                            {"CCT", settingsFor(o, CacheTechnique::Cct, 1)},
-                                            {"CCT multi-res", settingsFor(o, CacheTechnique::Cct, o.levels)}};
+        const std::vector<Setup> variants = variantsFor(o);
         std::vector<std::unique_ptr<RayCache>> caches;
         std::vector<std::unique_ptr<FrameRenderer>> renderers;
         for (const Setup& v : variants) {
@@ -84,36 +106,37 @@ int main(int argc, char** argv) {
         // Quality, untimed: every variant renders the path from empty caches.
         std::printf("## %s, %d², %d frames of its path from empty caches (multi-res: %d levels, error bound %g)\n\n",
                     name.c_str(), o.size, o.frames, o.levels, static_cast<double>(o.levelError));
-        std::printf("| frame | CCT hits | CCT PSNR dB | multi-res hits | multi-res PSNR dB | multi-res hits by level |\n");
-        std::printf("| --- | --- | --- | --- | --- | --- |\n");
+        std::printf("| frame");
+        for (std::size_t v = 1; v < variants.size(); ++v)
+            std::printf(" | %s: hits, PSNR dB, MiB", variants[v].name.c_str());
+        std::printf(" |\n| ---");
+        for (std::size_t v = 1; v < variants.size(); ++v) std::printf(" | ---");
+        std::printf(" |\n");
         for (auto& cache : caches) cache->clear();
-        double psnrSum[2] = {0, 0};
+        std::vector<double> psnrSum(variants.size(), 0.0);
         for (int f = 0; f < o.frames; ++f) {
             Image truth;
             renderers[0]->render(camera(f), truth);
             std::printf("| %d", f + 1);
-            std::string levels;
-            for (int v = 1; v <= 2; ++v) {
+            for (std::size_t v = 1; v < variants.size(); ++v) {
                 Image image;
-                const FrameStats stats = renderers[static_cast<std::size_t>(v)]->render(camera(f), image);
+                const FrameStats stats = renderers[v]->render(camera(f), image);
                 const FrameCacheStats& c = *stats.cache;
                 const double db = psnr(image, truth);
-                if (f > 0) psnrSum[v - 1] += db;  // frame 1 traces everything: identical, infinite PSNR
-                std::printf(" | %.1f %% | %.2f", c.lookups() ? 100.0 * static_cast<double>(c.hits()) /
-                                                                   static_cast<double>(c.lookups())
-                                                             : 0.0,
-                            db);
-                if (v == 2)
-                    for (int k = 0; k < c.levels(); ++k)
-                        levels += (k ? " " : "") + std::to_string(c.hitsAtLevel(k));
+                if (f > 0) psnrSum[v] += db;  // frame 1 traces everything: identical, infinite PSNR
+                std::printf(" | %.1f %%, %.2f, %.0f",
+                            c.lookups() ? 100.0 * static_cast<double>(c.hits()) / static_cast<double>(c.lookups())
+                                        : 0.0,
+                            db, static_cast<double>(caches[v]->bytes()) / (1024.0 * 1024.0));
             }
-            std::printf(" | %s |\n", levels.c_str());
+            std::printf(" |\n");
             std::fflush(stdout);
         }
         const double reused = std::max(1, o.frames - 1);
-        std::printf("\nMean PSNR against uncached over frames 2-%d (frame 1 is the uncached image): CCT %.2f dB, "
-                    "multi-res %.2f dB\n\n",
-                    o.frames, psnrSum[0] / reused, psnrSum[1] / reused);
+        std::printf("\nMean PSNR against uncached over frames 2-%d (frame 1 is the uncached image):", o.frames);
+        for (std::size_t v = 1; v < variants.size(); ++v)
+            std::printf("%s %s %.2f dB", v > 1 ? "," : "", variants[v].name.c_str(), psnrSum[v] / reused);
+        std::printf("\n\n");
 
         // Speed: the whole path per run, interleaved (--rounds 0: quality only).
         if (o.rounds <= 0) continue;

@@ -198,7 +198,14 @@ void RayCache::clearEntry(Entry& e) {
 }
 
 void RayCache::clear() {
-    for (Entry& e : cubes_) clearEntry(e);
+    for (Entry& e : cubes_) {
+        clearEntry(e);
+        // A view-sized cube starts again as it was made: at its full resolution, undecided.
+        if (e.view.fullSize() > 0) {
+            e.view = ViewSizedResolution(e.view.fullSize());
+            if (e.cube.size() != e.view.fullSize()) resizeEntry(e, e.view.fullSize());
+        }
+    }
 }
 
 bool RayCache::dropTexel(Entry& e, int texel) {

@@ -157,7 +157,8 @@ public:
         return cubes_[static_cast<std::size_t>(cubeIndexOf(objectId))].coarse;
     }
     std::size_t bytes() const;
-    // Invalidates every texel of every cube.
+    // Invalidates every texel of every cube; cubes sized from the view go
+    // back to their full resolution.
     void clear();
     // After the scene moved to `posed` (changes from scene/ScenePose.h):
     // every cube of a changed object follows its origin, and the texels

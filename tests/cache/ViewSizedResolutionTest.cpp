@@ -256,3 +256,26 @@ TEST(ViewSizedCube, ImagesAndCubesBitIdenticalAcrossThreadCounts) {
         EXPECT_EQ(one.texels, many.texels) << threads << " threads";
     }
 }
+
+TEST(ViewSizedCube, ClearingStartsAgainAtTheFullResolution) {
+    RayCacheSettings settings;
+    settings.resolutionFromView = true;
+    settings.levelErrorBound = 1.0f;
+    RayCache cache(oneMirror(64), settings);
+    auto workers = cache.makeWorkers(1);
+    cache.beginFrame(workers);
+    workers[0].beginBatch(0);
+    const Vec3 d = normalize(Vec3{1, 2, 3});
+    const RayCache::Query q{0, d * 1.001f, d, spreadAllowing(2, 64)};
+    Rgb color;
+    unsigned char found = 0;
+    int storeTexel = -1;
+    cache.lookupBatch(std::span(&q, 1), std::span(&color, 1), std::span(&found, 1), std::span(&storeTexel, 1), workers[0]);
+    cache.store(0, q.origin, d, Rgb{1, 0, 0}, 3.0f, workers[0], storeTexel);
+    cache.endFrame(workers);
+    ASSERT_EQ(cache.cube(0).size(), 16);
+    ASSERT_EQ(cache.cube(0).validCount(), 1u);
+    cache.clear();
+    EXPECT_EQ(cache.cube(0).size(), 64);
+    EXPECT_EQ(cache.cube(0).validCount(), 0u);
+}
