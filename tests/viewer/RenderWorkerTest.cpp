@@ -229,10 +229,12 @@ TEST(RenderWorker, DifferenceViewIgnoresTheRenderCacheOverlay) {
     const TraceScene tracer(scene);
     const auto firstFrame = [&](RenderCacheOverlay overlay) {
         FrameHandoff handoff;
-        RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, {}, smallSettings(), std::nullopt, {}};
+        // Scripted, one frame: every frame is handed over, so the frame taken
+        // is always the first (an interactive worker keeps rendering, and a
+        // later Render Cache frame may replace the first before it is taken).
+        RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, {}, smallSettings(), 1, {}};
         RenderWorker worker(setup, handoff);
         RenderRequest request;
-        request.camera = scene.camera;
         request.width = 48;
         request.height = 32;
         request.config.technique = techniqueChoiceIndex("cct");
