@@ -43,6 +43,8 @@ struct Protocol {
     int fillFrames;          // frames rendered before the measured one
     int cubeLevels = 1;      // RayCacheSettings::cubeLevels
     float errorBound = kDefaultErrorBound;  // RayCacheSettings::levelErrorBound
+    bool viewSized = false;  // RayCacheSettings::resolutionFromView
+    VisibleFill fill = VisibleFill::Off;  // RayCacheSettings::visibleFill
 };
 std::vector<Protocol> fillProtocols() {
     return {{"same", "from the same view", "same-view fill", false, 1},
@@ -50,7 +52,11 @@ std::vector<Protocol> fillProtocols() {
             {"orbit-levels", "along the orbit, 4 resolution levels, error bound 0.25", "orbit fill, 4 levels",
              true, kOrbitFillFrames, kMultiResolutionLevels, kDefaultErrorBound},
             {"orbit-levels-wide", "along the orbit, 4 resolution levels, error bound 1", "orbit fill, 4 levels, bound 1",
-             true, kOrbitFillFrames, kMultiResolutionLevels, kWideErrorBound}};
+             true, kOrbitFillFrames, kMultiResolutionLevels, kWideErrorBound},
+            {"orbit-view", "along the orbit, resolution from the view (at most the column's)", "orbit fill, from view",
+             true, kOrbitFillFrames, 1, kDefaultErrorBound, true},
+            {"orbit-visible-fill", "along the orbit, also filled from visible surfaces (exact)",
+             "orbit fill, visible fill", true, kOrbitFillFrames, 1, kDefaultErrorBound, false, VisibleFill::Exact}};
 }
 
 int imageSide(BenchSize size) {
@@ -71,7 +77,10 @@ public:
     }
     double estimatedWork(const BenchSettings& settings) const override {
         const double mp = std::pow(imageSide(settings.size), 2) / 1e6;
-        return 2.0 * (1.0 + 3.0 * (2.0 + 3.0 * (kOrbitFillFrames + 1.0))) * mp * 1.5;
+        // Per view: the reference, then per resolution the same-view fill (2
+        // frames) and every orbit protocol (fill frames + the measured one).
+        const double orbitProtocols = static_cast<double>(fillProtocols().size()) - 1.0;
+        return 2.0 * (1.0 + 3.0 * (2.0 + orbitProtocols * (kOrbitFillFrames + 1.0))) * mp * 1.5;
     }
 
     ExperimentOutput run(ExperimentContext& context) const override {
@@ -130,6 +139,8 @@ public:
                     settings.cache.resolutionOverride = resolution;
                     settings.cache.cubeLevels = protocol.cubeLevels;
                     settings.cache.levelErrorBound = protocol.errorBound;
+                    settings.cache.resolutionFromView = protocol.viewSized;
+                    settings.cache.visibleFill = protocol.fill;
                     RenderSession cached(scene, settings, tracer, context.parallel);
                     Image image;
                     for (int f = -protocol.fillFrames; f < 0; ++f) {
@@ -161,6 +172,8 @@ public:
                          {"fill_frames", protocol.fillFrames},
                          {"cube_levels", protocol.cubeLevels},
                          {"level_error_bound", protocol.errorBound},
+                         {"resolution_from_view", protocol.viewSized},
+                         {"visible_fill", protocol.fill != VisibleFill::Off},
                          {"camera",
                           {{"position", {view.camera.position.x, view.camera.position.y, view.camera.position.z}},
                            {"look_at", {view.camera.lookAt.x, view.camera.lookAt.y, view.camera.lookAt.z}}}},
@@ -191,7 +204,8 @@ public:
             "an orbit* (the camera orbits toward the view, 8 frames of 1.5°: texels were stored from other "
             "viewpoints, adding CCT's missing parallax); the orbit fill is measured again with multi-resolution "
             "cubes (4 levels, error bound 0.25 and 1: a coarser texel answers where the finest is empty and the "
-            "pixel's footprint allows, docs/caching.md). "
+            "pixel's footprint allows, docs/caching.md), with the cube's resolution chosen from the view (at most "
+            "the column's) and with texels also filled from the surfaces the camera sees (exact fill). "
             "Metrics on the displayed (sRGB) images: MAE in [0,1] (the documents' single number), PSNR, SSIM "
             "(11×11 Gaussian window). Heat maps: per-pixel absolute difference, blue = same, red = totally "
             "different (the documents' scale), and the same stretched 4× (red = 0.25).\n\n" +
