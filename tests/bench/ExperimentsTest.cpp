@@ -225,16 +225,33 @@ TEST_F(Experiments, FillRateStartsEmptyAndNeverLosesTexels) {
             EXPECT_LE(t.get<double>(), 100.0);
         }
     }
+    // The cube sized from the view never exceeds the faces asked for; the
+    // visible-surface fill's shares are percentages, from 100 in frame 1.
+    const auto& fromView = j.at("from_view");
+    for (const auto& size : fromView.at("faces_after_frame")) {
+        EXPECT_GE(size.get<int>(), 16);
+        EXPECT_LE(size.get<int>(), fromView.at("asked_faces").get<int>());
+    }
+    const auto& filled = j.at("visible_fill").at("traced_percent");
+    ASSERT_EQ(filled.size(), 10u);
+    EXPECT_DOUBLE_EQ(filled.at(0).get<double>(), 100.0);
+    for (const auto& t : filled) {
+        EXPECT_GE(t.get<double>(), 0.0);
+        EXPECT_LE(t.get<double>(), 100.0);
+    }
 }
 
 TEST_F(Experiments, QualityAndParallaxMetricsAreInRange) {
     const nlohmann::json q = results("quality");
-    ASSERT_EQ(q.at("rows").size(), 2u * 4u * 3u);  // views x fill protocols x resolutions
+    ASSERT_EQ(q.at("rows").size(), 2u * 6u * 3u);  // views x fill protocols x resolutions
     int multiResolutionRows = 0;
     for (const auto& row : q.at("rows")) {
-        // The third and fourth fill protocols measure multi-resolution cubes.
+        // The third and fourth fill protocols measure multi-resolution cubes,
+        // the fifth a cube sized from the view, the sixth the visible-surface fill.
         const bool multiResolution = row.at("fill") == "orbit-levels" || row.at("fill") == "orbit-levels-wide";
         EXPECT_EQ(row.at("cube_levels").get<int>(), multiResolution ? 4 : 1) << row.at("fill");
+        EXPECT_EQ(row.at("resolution_from_view").get<bool>(), row.at("fill") == "orbit-view") << row.at("fill");
+        EXPECT_EQ(row.at("visible_fill").get<bool>(), row.at("fill") == "orbit-visible-fill") << row.at("fill");
         multiResolutionRows += multiResolution ? 1 : 0;
         const auto& m = row.at("metrics");
         EXPECT_GE(m.at("mae").get<double>(), 0.0);
