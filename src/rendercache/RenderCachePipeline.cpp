@@ -247,7 +247,7 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
             float depth = std::numeric_limits<float>::infinity();  // a camera ray's hit is never behind the eye
             projectSample(pool_, slot, origins, projection, px, py, depth);
             // Placed where it was traced, whatever rounding says about the reprojection.
-            image_.place(p.x, p.y, depth, static_cast<std::uint32_t>(slot));
+            image_.place(p.x, p.y, depth);
             state[static_cast<std::size_t>(p.y * width + p.x)] = PixelState::Fresh;
             if (predictedBudget > 0) nextPixel_[slot] = imagePixelThrough(pool_, slot, origins, nextProjection, width, height);
         }
