@@ -120,12 +120,12 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
 
     // First round: project every live sample once and offer it to its
     // pixel; the depth test picks each pixel's winner.
-    const int* objectId = from.objectId.data();
-    const std::uint16_t* age = from.age.data();
+    const SamplePoint* fromPoint = from.point.data();
+    const SampleLook* fromLook = from.look.data();
     forEachBand([&](std::size_t slot, int band, Counts& counts) {
-        if (objectId[slot] == SamplePool::kEmpty) return;
+        if (fromPoint[slot].objectId == SamplePool::kEmpty) return;
         ++counts.live;
-        if (age[slot] >= maxAge) {
+        if (fromLook[slot].age >= maxAge) {
             ++counts.evicted;
             return;
         }
@@ -175,29 +175,19 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
         });
     for (const Landed& loser : losers.back()) secondChance(loser);
 
-    // Each pixel's winner to its own slot of `to`; the image now names those slots.
+    // Each pixel's winner to its own slot of `to` (two 16-byte records and,
+    // for a sample that depends on the eye, its reshading inputs); the
+    // image's keys lose their second-chance marks.
     std::vector<std::int64_t> placedPerRow(static_cast<std::size_t>(rows), 0);
     std::vector<std::int64_t> movedPerRow(static_cast<std::size_t>(rows), 0);
     parallel.forEachIndex(rows, [&](int row, int) {
-        // The arrays' addresses in locals: a store through an unsigned char
-        // may alias anything, and made the compiler reload every vector's
-        // address for every sample.
-        const Vec3* fromPosition = from.position.data();
-        const Rgb* fromColor = from.color.data();
-        const unsigned char* fromViewDependent = from.viewDependent.data();
-        const int* fromPrimitive = from.primitiveId.data();
-        const float *fromU = from.baryU.data(), *fromV = from.baryV.data();
-        const Rgb* fromViewIndependent = from.viewIndependent.data();
-        const std::uint64_t* fromLitMask = from.litMask.data();
-        int* toObject = to.objectId.data();
-        Vec3* toPosition = to.position.data();
-        Rgb* toColor = to.color.data();
-        std::uint16_t* toAge = to.age.data();
-        unsigned char* toViewDependent = to.viewDependent.data();
-        int* toPrimitive = to.primitiveId.data();
-        float *toU = to.baryU.data(), *toV = to.baryV.data();
-        Rgb* toViewIndependent = to.viewIndependent.data();
-        std::uint64_t* toLitMask = to.litMask.data();
+        // The arrays' addresses in locals: the compiler cannot tell that the
+        // stores do not change the vectors, and reloaded their addresses for
+        // every sample.
+        const ReshadeInputs* fromReshade = from.reshade.data();
+        SamplePoint* toPoint = to.point.data();
+        SampleLook* toLook = to.look.data();
+        ReshadeInputs* toReshade = to.reshade.data();
         std::int32_t* nextOfPixel = next ? nextPixel->data() : nullptr;
         const int y = row - margin;
         std::int64_t placed = 0, moved = 0;
@@ -205,7 +195,7 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
             const std::size_t pixel = image.pixelIndex(x, y);
             const std::uint32_t key = image.keyAt(x, y);
             if (key == PointImage::emptyKey()) {
-                toObject[pixel] = SamplePool::kEmpty;
+                toPoint[pixel].objectId = SamplePool::kEmpty;
                 if (nextOfPixel) nextOfPixel[pixel] = -1;
                 continue;
             }
@@ -215,19 +205,12 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
                 ++moved;
             }
             if (nextOfPixel) nextOfPixel[pixel] = nextOfSource[source];
-            toObject[pixel] = objectId[source];
-            toPosition[pixel] = fromPosition[source];
-            toColor[pixel] = fromColor[source];
-            toAge[pixel] = static_cast<std::uint16_t>(age[source] + 1);
-            toViewDependent[pixel] = fromViewDependent[source];
+            toPoint[pixel] = fromPoint[source];
+            SampleLook look = fromLook[source];
+            look.age = static_cast<std::uint16_t>(look.age + 1);
+            toLook[pixel] = look;
             // What reshading needs, only where it means something.
-            if (fromViewDependent[source]) {
-                toPrimitive[pixel] = fromPrimitive[source];
-                toU[pixel] = fromU[source];
-                toV[pixel] = fromV[source];
-                toViewIndependent[pixel] = fromViewIndependent[source];
-                toLitMask[pixel] = fromLitMask[source];
-            }
+            if (look.viewDependent) toReshade[pixel] = fromReshade[source];
             ++placed;
         }
         placedPerRow[static_cast<std::size_t>(row)] = placed;

@@ -64,11 +64,11 @@ std::vector<Vec3> objectOrigins(const Scene& scene);
 // `px`, `py`: the continuous position, whose floor is the pixel.
 inline bool projectSample(const SamplePool& pool, std::size_t slot, const std::vector<Vec3>& origins,
                           const ScreenProjection& projection, float& px, float& py, float& depth) {
-    const int object = pool.objectId[slot];
-    const bool background = object == SamplePool::kBackground;
+    const SamplePoint& sample = pool.point[slot];
+    const bool background = sample.objectId == SamplePool::kBackground;
     const ScreenProjection::Projected p =
-        background ? projection.direction(pool.position[slot])
-                   : projection.point(origins[static_cast<std::size_t>(object)] + pool.position[slot]);
+        background ? projection.direction(sample.position)
+                   : projection.point(origins[static_cast<std::size_t>(sample.objectId)] + sample.position);
     // Outside this range the conversion to int would overflow.
     constexpr float kFar = 1.0e8f;
     if (!(p.depth > 0.0f && p.x > -kFar && p.x < kFar && p.y > -kFar && p.y < kFar)) return false;
