@@ -183,9 +183,10 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     const bool cull = moved && rc.depthCullThreshold > 0.0f;
     std::vector<std::int64_t> holesPerRow(static_cast<std::size_t>(height), 0);
     std::vector<std::int64_t> culledPerRow(static_cast<std::size_t>(height), 0);
+    std::vector<std::int64_t> reprojectedPerRow(static_cast<std::size_t>(height), 0);
     const float agePriority = 0.5f / static_cast<float>(rc.maxAge);
     parallel_.forEachIndex(height, [&](int y, int) {
-        std::int64_t rowHoles = 0, rowCulled = 0;
+        std::int64_t rowHoles = 0, rowCulled = 0, rowReprojected = 0;
         for (int x = 0; x < width; ++x) {
             const auto i = static_cast<std::size_t>(y * width + x);
             if (!image_.hasSample(x, y)) {
@@ -199,12 +200,15 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
             } else {
                 state[i] = PixelState::Reprojected;
                 priority[i] = agePriority * static_cast<float>(pool_.look[image_.pixelIndex(x, y)].age);
+                ++rowReprojected;
             }
         }
+        reprojectedPerRow[static_cast<std::size_t>(y)] = rowReprojected;
         holesPerRow[static_cast<std::size_t>(y)] = rowHoles + rowCulled;
         culledPerRow[static_cast<std::size_t>(y)] = rowCulled;
     });
     for (std::int64_t c : culledPerRow) stats.culled += c;
+    for (std::int64_t r : reprojectedPerRow) stats.reprojected += r;
     std::int64_t holes = 0;
     for (std::int64_t h : holesPerRow) holes += h;
     stats.holes = holes;
@@ -243,7 +247,9 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
             projectSample(pool_, slot, origins, projection, px, py, depth);
             // Placed where it was traced, whatever rounding says about the reprojection.
             image_.place(p.x, p.y, depth);
-            state[static_cast<std::size_t>(p.y * width + p.x)] = PixelState::Fresh;
+            PixelState& s = state[static_cast<std::size_t>(p.y * width + p.x)];
+            stats.reprojected -= s == PixelState::Reprojected ? 1 : 0;
+            s = PixelState::Fresh;
             if (predictedBudget > 0) nextPixel_[slot] = imagePixelThrough(pool_, slot, origins, nextProjection, width, height);
         }
     }
@@ -338,28 +344,17 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     frameStats.cache = cacheFrame.finish(kernel_, parallel_, frameStats.rays);
     stats.traceMs += millisecondsSince(start);
 
-    // The image: samples where there are, the filters elsewhere.
+    // The image: samples where there are, the filters elsewhere, in one
+    // pass that reads the samples' colours from the pool. (A pass of its
+    // own that copied them into the film first cost a write and a read of
+    // the whole film.)
     start = Clock::now();
     const CameraRays rays(camera, width, height);
-    std::vector<std::int64_t> reprojectedPerRow(static_cast<std::size_t>(height), 0);
-    // Counters are kept per row in a local and written once: rows next to
-    // each other share a cache line, and two threads incrementing it in turn
-    // made this loop several times slower.
-    parallel_.forEachIndex(height, [&](int y, int) {
-        std::int64_t rowReprojected = 0;
-        for (int x = 0; x < width; ++x) {
-            const PixelState s = state[static_cast<std::size_t>(y * width + x)];
-            if (!showsSample(s)) continue;
-            rowReprojected += s == PixelState::Reprojected ? 1 : 0;
-            const std::size_t slot = image_.pixelIndex(x, y);
-            // A background sample shows what it saw, like any other: looking
-            // up an image environment along every pixel's ray again cost
-            // 12 ms per frame at 1024x1024 on `room`.
-            film.at(x, y) = pool_.look[slot].color;
-        }
-        reprojectedPerRow[static_cast<std::size_t>(y)] = rowReprojected;
-    });
-    const FillCounts filled = fillHoles(state, film, parallel_, &bytes_);
+    // A background sample shows what it saw, like any other: looking up an
+    // image environment along every pixel's ray again cost 12 ms per frame
+    // at 1024x1024 on `room`.
+    const SampleColors colors{pool_.look.data(), image_.pixelIndex(0, 0), static_cast<std::size_t>(image_.stride())};
+    const FillCounts filled = fillHoles(state, film, parallel_, &bytes_, &colors);
     stats.filled3x3 = filled.filled3x3;
     stats.filled7x7 = filled.filled7x7;
     stats.unfilled = filled.unfilled;
@@ -370,7 +365,6 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
                     film.at(x, y) = kernel_.shading().background(rays.ray(x, y));
     stats.filterMs = millisecondsSince(start);
 
-    for (std::int64_t r : reprojectedPerRow) stats.reprojected += r;
     stats.liveSamples = reprojected.placed + newSamples;
 
     // The budget that would have held the target time, for the next frame.
