@@ -19,11 +19,11 @@ namespace raycache {
 // margin must be at least 1) is hidden by the rule above.
 inline bool hiddenByNearerNeighbours(const PointImage& image, int x, int y, float threshold) {
     // Compared as packed keys: no float decoding, empty pixels never nearer.
-    const std::uint64_t nearerKey = PointImage::nearerThan(image.depthAt(x, y) * (1.0f - threshold));
+    const std::uint32_t nearerKey = PointImage::nearerThan(image.depthAt(x, y) * (1.0f - threshold));
     int nearer = 0, occupied = 0;
     for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
-            const std::uint64_t key = image.keyAt(x + dx, y + dy);  // the margin is at least 1 pixel
+            const std::uint32_t key = image.keyAt(x + dx, y + dy);  // the margin is at least 1 pixel
             nearer += key <= nearerKey ? 1 : 0;
             occupied += key != PointImage::emptyKey() ? 1 : 0;
         }

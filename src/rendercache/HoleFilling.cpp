@@ -11,14 +11,16 @@ constexpr int kPrefilterRadius = 3;  // 7x7
 }  // namespace
 
 FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel& parallel,
-                     std::vector<unsigned char>* scratch) {
+                     std::vector<unsigned char>* scratch, const SampleColors* samples) {
     const int width = film.width(), height = film.height();
     const auto at = [width](int x, int y) {
         return static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
     };
     // Both filters read `state` and the colours of pixels showing a sample,
     // and write only the colours of holes and `outcome`: rows run in any
-    // order, without a data race. The states change at the end.
+    // order, without a data race. (The first pass, when it also writes the
+    // samples' colours to the film, reads them from `samples`, never from
+    // the film.) The states change at the end.
     enum Outcome : unsigned char { kNone, k3x3, k7x7, kUnfilled, kWants7x7 };
     std::vector<unsigned char> ownScratch;
     std::vector<unsigned char>& outcome = scratch ? *scratch : ownScratch;
@@ -34,7 +36,9 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
         int wanting = 0;
         bool holes = false;
         for (int x = 0; x < width; ++x) {
-            if (!isHole(state[at(x, y)])) continue;
+            const PixelState s = state[at(x, y)];
+            if (samples && showsSample(s)) film.at(x, y) = samples->at(x, y);
+            if (!isHole(s)) continue;
             holes = true;
             Rgb sum;
             float weight = 0.0f;
@@ -45,7 +49,7 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
                     const int nx = x + dx;
                     if (nx < 0 || nx >= width || !showsSample(state[at(nx, ny)])) continue;
                     const float w = (dx == 0 || dy == 0) ? 2.0f : 1.0f;
-                    sum += film.at(nx, ny) * w;
+                    sum += (samples ? samples->at(nx, ny) : film.at(nx, ny)) * w;
                     weight += w;
                 }
             }

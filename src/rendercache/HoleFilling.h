@@ -11,6 +11,7 @@
 #include "core/Image.h"
 #include "core/Parallel.h"
 #include "rendercache/PixelState.h"
+#include "rendercache/SamplePool.h"
 
 namespace raycache {
 
@@ -20,11 +21,24 @@ struct FillCounts {
     std::int64_t unfilled = 0;  // left for the caller: state Unfilled, pixel untouched
 };
 
-// `film` holds the samples' colours where showsSample(state); the holes
-// (isHole) are filled from those pixels only, and their state set to
-// Filled3x3, Filled7x7 or Unfilled.
+// Where the samples' colours are when they are not in the film yet: pixel
+// (x, y)'s in looks[origin + y * stride + x] (the sample pool, whose slots
+// are the pixels of the image and its margin).
+struct SampleColors {
+    const SampleLook* looks = nullptr;
+    std::size_t origin = 0, stride = 0;
+    const Rgb& at(int x, int y) const {
+        return looks[origin + static_cast<std::size_t>(y) * stride + static_cast<std::size_t>(x)].color;
+    }
+};
+
+// The pixels where showsSample(state) show their samples' colours: taken
+// from `samples` and written to `film` in the same pass as the 3x3 filter
+// when `samples` is given, else already in `film`. The holes (isHole) are
+// filled from those pixels only, and their state set to Filled3x3,
+// Filled7x7 or Unfilled.
 // `scratch`, when given, is reused from frame to frame (no allocation).
 FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel& parallel,
-                     std::vector<unsigned char>* scratch = nullptr);
+                     std::vector<unsigned char>* scratch = nullptr, const SampleColors* samples = nullptr);
 
 }  // namespace raycache

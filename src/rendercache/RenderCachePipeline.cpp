@@ -75,8 +75,8 @@ void RenderCachePipeline::sceneChanged(const SceneChanges& changes) {
         if (movesNonRigidly_[static_cast<std::size_t>(object)]) drop[static_cast<std::size_t>(object)] = any = true;
     if (!any) return;
     for (std::size_t slot = 0; slot < pool_.used(); ++slot) {
-        const int object = pool_.objectId[slot];
-        if (object >= 0 && drop[static_cast<std::size_t>(object)]) pool_.objectId[slot] = SamplePool::kEmpty;
+        int& object = pool_.point[slot].objectId;
+        if (object >= 0 && drop[static_cast<std::size_t>(object)]) object = SamplePool::kEmpty;
     }
 }
 
@@ -95,23 +95,18 @@ int RenderCachePipeline::chooseBudget(int pixels) const {
 void RenderCachePipeline::keep(std::size_t slot, const PrimarySample& traced, const CameraRays& rays,
                                const PixelCoord& pixel) {
     const Ray ray = rays.ray(pixel.x, pixel.y);
-    pool_.color[slot] = traced.color;
-    pool_.age[slot] = 0;
+    SampleLook& look = pool_.look[slot];
+    look.color = traced.color;
+    look.age = 0;
     if (!traced.hit.hit()) {
-        pool_.objectId[slot] = SamplePool::kBackground;
-        pool_.position[slot] = ray.direction;
-        pool_.viewDependent[slot] = 0;
+        pool_.point[slot] = {ray.direction, SamplePool::kBackground};
+        look.viewDependent = 0;
         return;
     }
     const SceneObject& object = scene_.objects[static_cast<std::size_t>(traced.hit.objectId)];
-    pool_.objectId[slot] = traced.hit.objectId;
-    pool_.position[slot] = ray.origin + ray.direction * traced.hit.t - object.origin;
-    pool_.viewDependent[slot] = dependsOnView(object.material) ? 1 : 0;
-    pool_.primitiveId[slot] = traced.hit.primitiveId;
-    pool_.baryU[slot] = traced.hit.u;
-    pool_.baryV[slot] = traced.hit.v;
-    pool_.viewIndependent[slot] = traced.viewIndependent;
-    pool_.litMask[slot] = traced.litMask;
+    pool_.point[slot] = {ray.origin + ray.direction * traced.hit.t - object.origin, traced.hit.objectId};
+    look.viewDependent = dependsOnView(object.material) ? 1 : 0;
+    pool_.reshade[slot] = {traced.hit.primitiveId, traced.hit.u, traced.hit.v, traced.viewIndependent, traced.litMask};
 }
 
 std::uint64_t RenderCachePipeline::trace(const Camera& camera, const std::vector<PixelCoord>& pixels,
@@ -188,9 +183,10 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     const bool cull = moved && rc.depthCullThreshold > 0.0f;
     std::vector<std::int64_t> holesPerRow(static_cast<std::size_t>(height), 0);
     std::vector<std::int64_t> culledPerRow(static_cast<std::size_t>(height), 0);
+    std::vector<std::int64_t> reprojectedPerRow(static_cast<std::size_t>(height), 0);
     const float agePriority = 0.5f / static_cast<float>(rc.maxAge);
     parallel_.forEachIndex(height, [&](int y, int) {
-        std::int64_t rowHoles = 0, rowCulled = 0;
+        std::int64_t rowHoles = 0, rowCulled = 0, rowReprojected = 0;
         for (int x = 0; x < width; ++x) {
             const auto i = static_cast<std::size_t>(y * width + x);
             if (!image_.hasSample(x, y)) {
@@ -203,13 +199,16 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
                 ++rowCulled;
             } else {
                 state[i] = PixelState::Reprojected;
-                priority[i] = agePriority * static_cast<float>(pool_.age[image_.pixelIndex(x, y)]);
+                priority[i] = agePriority * static_cast<float>(pool_.look[image_.pixelIndex(x, y)].age);
+                ++rowReprojected;
             }
         }
+        reprojectedPerRow[static_cast<std::size_t>(y)] = rowReprojected;
         holesPerRow[static_cast<std::size_t>(y)] = rowHoles + rowCulled;
         culledPerRow[static_cast<std::size_t>(y)] = rowCulled;
     });
     for (std::int64_t c : culledPerRow) stats.culled += c;
+    for (std::int64_t r : reprojectedPerRow) stats.reprojected += r;
     std::int64_t holes = 0;
     for (std::int64_t h : holesPerRow) holes += h;
     stats.holes = holes;
@@ -247,8 +246,10 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
             float depth = std::numeric_limits<float>::infinity();  // a camera ray's hit is never behind the eye
             projectSample(pool_, slot, origins, projection, px, py, depth);
             // Placed where it was traced, whatever rounding says about the reprojection.
-            image_.place(p.x, p.y, depth, static_cast<std::uint32_t>(slot));
-            state[static_cast<std::size_t>(p.y * width + p.x)] = PixelState::Fresh;
+            image_.place(p.x, p.y, depth);
+            PixelState& s = state[static_cast<std::size_t>(p.y * width + p.x)];
+            stats.reprojected -= s == PixelState::Reprojected ? 1 : 0;
+            s = PixelState::Fresh;
             if (predictedBudget > 0) nextPixel_[slot] = imagePixelThrough(pool_, slot, origins, nextProjection, width, height);
         }
     }
@@ -304,20 +305,21 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
             for (int x = 0; x < width; ++x) {
                 if (state[static_cast<std::size_t>(y * width + x)] != PixelState::Reprojected) continue;
                 const auto slot = static_cast<std::uint32_t>(image_.pixelIndex(x, y));
-                if (!pool_.viewDependent[slot]) continue;
-                const int object = pool_.objectId[slot];
-                const Vec3 point = scene_.objects[static_cast<std::size_t>(object)].origin + pool_.position[slot];
+                if (!pool_.look[slot].viewDependent) continue;
+                const int object = pool_.point[slot].objectId;
+                const Vec3 point = scene_.objects[static_cast<std::size_t>(object)].origin + pool_.point[slot].position;
+                const ReshadeInputs& inputs = pool_.reshade[slot];
                 const Vec3 toPoint = point - camera.position;
                 const float distance = length(toPoint);
                 ReshadeRequest r;
                 r.ray = Ray{camera.position, toPoint * (1.0f / distance)};
                 r.hit.t = distance;
                 r.hit.objectId = object;
-                r.hit.primitiveId = pool_.primitiveId[slot];
-                r.hit.u = pool_.baryU[slot];
-                r.hit.v = pool_.baryV[slot];
-                r.viewIndependent = pool_.viewIndependent[slot];
-                r.litMask = pool_.litMask[slot];
+                r.hit.primitiveId = inputs.primitiveId;
+                r.hit.u = inputs.baryU;
+                r.hit.v = inputs.baryV;
+                r.viewIndependent = inputs.viewIndependent;
+                r.litMask = inputs.litMask;
                 reshade.push_back(r);
                 slots.push_back(slot);
             }
@@ -331,7 +333,7 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
                                     scratch_[static_cast<std::size_t>(worker)], cacheFrame.worker(worker),
                                     std::span(colors.data() + begin, count));
         });
-        for (std::size_t i = 0; i < slots.size(); ++i) pool_.color[slots[i]] = colors[i];
+        for (std::size_t i = 0; i < slots.size(); ++i) pool_.look[slots[i]].color = colors[i];
         stats.reshaded = static_cast<std::int64_t>(slots.size());
     }
     stats.reshadeMs = millisecondsSince(start);
@@ -342,28 +344,17 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     frameStats.cache = cacheFrame.finish(kernel_, parallel_, frameStats.rays);
     stats.traceMs += millisecondsSince(start);
 
-    // The image: samples where there are, the filters elsewhere.
+    // The image: samples where there are, the filters elsewhere, in one
+    // pass that reads the samples' colours from the pool. (A pass of its
+    // own that copied them into the film first cost a write and a read of
+    // the whole film.)
     start = Clock::now();
     const CameraRays rays(camera, width, height);
-    std::vector<std::int64_t> reprojectedPerRow(static_cast<std::size_t>(height), 0);
-    // Counters are kept per row in a local and written once: rows next to
-    // each other share a cache line, and two threads incrementing it in turn
-    // made this loop several times slower.
-    parallel_.forEachIndex(height, [&](int y, int) {
-        std::int64_t rowReprojected = 0;
-        for (int x = 0; x < width; ++x) {
-            const PixelState s = state[static_cast<std::size_t>(y * width + x)];
-            if (!showsSample(s)) continue;
-            rowReprojected += s == PixelState::Reprojected ? 1 : 0;
-            const std::size_t slot = image_.pixelIndex(x, y);
-            // A background sample shows what it saw, like any other: looking
-            // up an image environment along every pixel's ray again cost
-            // 12 ms per frame at 1024x1024 on `room`.
-            film.at(x, y) = pool_.color[slot];
-        }
-        reprojectedPerRow[static_cast<std::size_t>(y)] = rowReprojected;
-    });
-    const FillCounts filled = fillHoles(state, film, parallel_, &bytes_);
+    // A background sample shows what it saw, like any other: looking up an
+    // image environment along every pixel's ray again cost 12 ms per frame
+    // at 1024x1024 on `room`.
+    const SampleColors colors{pool_.look.data(), image_.pixelIndex(0, 0), static_cast<std::size_t>(image_.stride())};
+    const FillCounts filled = fillHoles(state, film, parallel_, &bytes_, &colors);
     stats.filled3x3 = filled.filled3x3;
     stats.filled7x7 = filled.filled7x7;
     stats.unfilled = filled.unfilled;
@@ -374,7 +365,6 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
                     film.at(x, y) = kernel_.shading().background(rays.ray(x, y));
     stats.filterMs = millisecondsSince(start);
 
-    for (std::int64_t r : reprojectedPerRow) stats.reprojected += r;
     stats.liveSamples = reprojected.placed + newSamples;
 
     // The budget that would have held the target time, for the next frame.

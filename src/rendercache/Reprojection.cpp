@@ -17,18 +17,19 @@ namespace {
 // every other band at a time; a band touches only the rows within half a
 // band of its own, which the bands running beside it never do. Samples
 // that land farther (fast motion, the overflow's predicted samples) are
-// tested afterwards on one thread. A minimum does not depend on the order
-// in which it is taken, so neither does the outcome.
+// tested afterwards on one thread. The nearest offer wins, equal depths
+// going to the lower slot (looked up only on a tie: the image holds depths
+// alone); a minimum does not depend on the order in which it is taken, so
+// neither does the outcome.
 constexpr int kBandRows = 32;
-// Marks a second-chance offer in the slot half of its key: such offers go
-// only to pixels no sample landed in, so among themselves they still order
-// by (depth, slot), and a tagged key tells the other losers that the pixel
-// was empty after the first round. Slots stay below 2^31.
+// Marks a second-chance offer in its key (the sign bit, which no depth
+// sets): such offers go only to pixels no sample landed in, so among
+// themselves they still order by depth, a tagged key is farther than any
+// first-round key and nearer than none, and it tells the other losers that
+// the pixel was empty after the first round.
 constexpr std::uint32_t kSecondChanceTag = 1u << 31;
 
-bool emptyAfterFirstRound(std::uint64_t key) {
-    return key == PointImage::emptyKey() || (PointImage::slotOf(key) & kSecondChanceTag) != 0;
-}
+bool emptyAfterFirstRound(std::uint32_t key) { return (key & kSecondChanceTag) != 0; }  // emptyKey() too
 
 }  // namespace
 
@@ -44,7 +45,7 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
                              const Parallel& parallel, ReprojectionScratch& scratch, const ScreenProjection* next,
                              std::vector<std::int32_t>* nextPixel) {
     if (to.capacity() != from.capacity() || to.pixelSlots != image.pixelCount() ||
-        from.pixelSlots != image.pixelCount() || from.capacity() >= kSecondChanceTag || (next && !nextPixel))
+        from.pixelSlots != image.pixelCount() || (next && !nextPixel))
         throw RuntimeError("reproject: the pools do not fit the image");
     const std::vector<Vec3> origins = objectOrigins(scene);
     const int rows = image.rows();
@@ -57,6 +58,10 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
         nextPixel->resize(to.pixelSlots);           // every pixel slot written below
     }
     std::int32_t* nextOfSource = scratch.nextPixel.data();
+    // Per pixel, the slot of `from` whose sample holds it: written when an
+    // offer wins, read on a tie and where the image holds a key.
+    scratch.winner.resize(image.pixelCount());
+    std::uint32_t* winner = scratch.winner.data();
     std::vector<std::vector<Landed>>& far = scratch.far;
     far.resize(static_cast<std::size_t>(bands));
     // The last list: losers of the offers made on one thread.
@@ -68,14 +73,17 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
     // of `band` (which reached the pixel, so also reaches its neighbours),
     // a sample it pushed out projected again.
     const auto offer = [&](int x, int y, const Landed& sample, int band) {
-        const std::uint64_t lost = image.offerUnshared(x, y, PointImage::key(sample.depth, sample.slot));
-        if (lost == PointImage::emptyKey()) return;
+        const std::uint32_t key = PointImage::key(sample.depth);
+        std::uint32_t held;
+        const std::size_t pixel = image.pixelIndex(x, y);
         std::vector<Landed>& list = losers[band < 0 ? losers.size() - 1 : static_cast<std::size_t>(band)];
-        const std::uint32_t loser = PointImage::slotOf(lost);
-        if (loser == sample.slot) {
+        if (!image.offerUnshared(x, y, key, held) && !(held == key && sample.slot < winner[pixel])) {
             list.push_back(sample);
             return;
         }
+        const std::uint32_t loser = winner[pixel];
+        winner[pixel] = sample.slot;
+        if (held == PointImage::emptyKey()) return;
         Landed pushedOut{loser, 0.0f, 0.0f, 0.0f};
         projectSample(from, loser, origins, projection, pushedOut.x, pushedOut.y, pushedOut.depth);
         list.push_back(pushedOut);
@@ -112,12 +120,12 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
 
     // First round: project every live sample once and offer it to its
     // pixel; the depth test picks each pixel's winner.
-    const int* objectId = from.objectId.data();
-    const std::uint16_t* age = from.age.data();
+    const SamplePoint* fromPoint = from.point.data();
+    const SampleLook* fromLook = from.look.data();
     forEachBand([&](std::size_t slot, int band, Counts& counts) {
-        if (objectId[slot] == SamplePool::kEmpty) return;
+        if (fromPoint[slot].objectId == SamplePool::kEmpty) return;
         ++counts.live;
-        if (age[slot] >= maxAge) {
+        if (fromLook[slot].age >= maxAge) {
             ++counts.evicted;
             return;
         }
@@ -155,9 +163,11 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
                     bestY = ny;
                 }
             }
-        if (nearest < std::numeric_limits<float>::infinity())
-            image.offerUnshared(bestX, bestY,
-                                PointImage::key(l.depth, l.slot | kSecondChanceTag));
+        if (nearest == std::numeric_limits<float>::infinity()) return;
+        const std::uint32_t key = PointImage::key(l.depth) | kSecondChanceTag;
+        std::uint32_t held;
+        std::uint32_t& holder = winner[image.pixelIndex(bestX, bestY)];
+        if (image.offerUnshared(bestX, bestY, key, held) || (held == key && l.slot < holder)) holder = l.slot;
     };
     for (int phase = 0; phase < 2; ++phase)
         parallel.forEachIndex((bands - phase + 1) / 2, [&](int i, int) {
@@ -165,59 +175,43 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
         });
     for (const Landed& loser : losers.back()) secondChance(loser);
 
-    // Each pixel's winner to its own slot of `to`; the image now names those slots.
+    // Each pixel's winner to its own slot of `to` (two 16-byte records and,
+    // for a sample that depends on the eye, its reshading inputs); the
+    // image's keys lose their second-chance marks.
     std::vector<std::int64_t> placedPerRow(static_cast<std::size_t>(rows), 0);
     std::vector<std::int64_t> movedPerRow(static_cast<std::size_t>(rows), 0);
     parallel.forEachIndex(rows, [&](int row, int) {
-        // The arrays' addresses in locals: a store through an unsigned char
-        // may alias anything, and made the compiler reload every vector's
-        // address for every sample.
-        const Vec3* fromPosition = from.position.data();
-        const Rgb* fromColor = from.color.data();
-        const unsigned char* fromViewDependent = from.viewDependent.data();
-        const int* fromPrimitive = from.primitiveId.data();
-        const float *fromU = from.baryU.data(), *fromV = from.baryV.data();
-        const Rgb* fromViewIndependent = from.viewIndependent.data();
-        const std::uint64_t* fromLitMask = from.litMask.data();
-        int* toObject = to.objectId.data();
-        Vec3* toPosition = to.position.data();
-        Rgb* toColor = to.color.data();
-        std::uint16_t* toAge = to.age.data();
-        unsigned char* toViewDependent = to.viewDependent.data();
-        int* toPrimitive = to.primitiveId.data();
-        float *toU = to.baryU.data(), *toV = to.baryV.data();
-        Rgb* toViewIndependent = to.viewIndependent.data();
-        std::uint64_t* toLitMask = to.litMask.data();
+        // The arrays' addresses in locals: the compiler cannot tell that the
+        // stores do not change the vectors, and reloaded their addresses for
+        // every sample.
+        const ReshadeInputs* fromReshade = from.reshade.data();
+        SamplePoint* toPoint = to.point.data();
+        SampleLook* toLook = to.look.data();
+        ReshadeInputs* toReshade = to.reshade.data();
         std::int32_t* nextOfPixel = next ? nextPixel->data() : nullptr;
         const int y = row - margin;
         std::int64_t placed = 0, moved = 0;
         for (int x = -margin; x < image.width() + margin; ++x) {
             const std::size_t pixel = image.pixelIndex(x, y);
-            const std::uint64_t key = image.keyAt(x, y);
+            const std::uint32_t key = image.keyAt(x, y);
             if (key == PointImage::emptyKey()) {
-                toObject[pixel] = SamplePool::kEmpty;
+                toPoint[pixel].objectId = SamplePool::kEmpty;
                 if (nextOfPixel) nextOfPixel[pixel] = -1;
                 continue;
             }
-            const std::uint32_t tagged = PointImage::slotOf(key);
-            const std::size_t source = tagged & ~kSecondChanceTag;
-            if (nextOfPixel) nextOfPixel[pixel] = nextOfSource[source];
-            toObject[pixel] = objectId[source];
-            toPosition[pixel] = fromPosition[source];
-            toColor[pixel] = fromColor[source];
-            toAge[pixel] = static_cast<std::uint16_t>(age[source] + 1);
-            toViewDependent[pixel] = fromViewDependent[source];
-            // What reshading needs, only where it means something.
-            if (fromViewDependent[source]) {
-                toPrimitive[pixel] = fromPrimitive[source];
-                toU[pixel] = fromU[source];
-                toV[pixel] = fromV[source];
-                toViewIndependent[pixel] = fromViewIndependent[source];
-                toLitMask[pixel] = fromLitMask[source];
+            const std::size_t source = winner[pixel];
+            if (key & kSecondChanceTag) {
+                image.setKey(x, y, key & ~kSecondChanceTag);
+                ++moved;
             }
-            image.place(x, y, PointImage::depthOf(key), static_cast<std::uint32_t>(pixel));
+            if (nextOfPixel) nextOfPixel[pixel] = nextOfSource[source];
+            toPoint[pixel] = fromPoint[source];
+            SampleLook look = fromLook[source];
+            look.age = static_cast<std::uint16_t>(look.age + 1);
+            toLook[pixel] = look;
+            // What reshading needs, only where it means something.
+            if (look.viewDependent) toReshade[pixel] = fromReshade[source];
             ++placed;
-            moved += (tagged & kSecondChanceTag) ? 1 : 0;
         }
         placedPerRow[static_cast<std::size_t>(row)] = placed;
         movedPerRow[static_cast<std::size_t>(row)] = moved;

@@ -50,6 +50,7 @@ struct ReprojectionScratch {
     std::vector<std::vector<Landed>> far;     // per band
     std::vector<std::vector<Landed>> losers;  // per band, then those of the offers made on one thread
     std::vector<std::int32_t> nextPixel;      // per slot of the source pool, see reproject()
+    std::vector<std::uint32_t> winner;        // per pixel: the source slot holding it in the depth test
 };
 
 // Every object's origin, indexed like Scene::objects: a sample's position
@@ -63,11 +64,11 @@ std::vector<Vec3> objectOrigins(const Scene& scene);
 // `px`, `py`: the continuous position, whose floor is the pixel.
 inline bool projectSample(const SamplePool& pool, std::size_t slot, const std::vector<Vec3>& origins,
                           const ScreenProjection& projection, float& px, float& py, float& depth) {
-    const int object = pool.objectId[slot];
-    const bool background = object == SamplePool::kBackground;
+    const SamplePoint& sample = pool.point[slot];
+    const bool background = sample.objectId == SamplePool::kBackground;
     const ScreenProjection::Projected p =
-        background ? projection.direction(pool.position[slot])
-                   : projection.point(origins[static_cast<std::size_t>(object)] + pool.position[slot]);
+        background ? projection.direction(sample.position)
+                   : projection.point(origins[static_cast<std::size_t>(sample.objectId)] + sample.position);
     // Outside this range the conversion to int would overflow.
     constexpr float kFar = 1.0e8f;
     if (!(p.depth > 0.0f && p.x > -kFar && p.x < kFar && p.y > -kFar && p.y < kFar)) return false;
@@ -104,7 +105,7 @@ inline std::int32_t imagePixelThrough(const SamplePool& pool, std::size_t slot, 
 // the pixel's slot (image.pixelIndex). `to` must have `from`'s capacity and
 // image.pixelCount() pixel slots, as `from` must; its pixel slots are all
 // written (empty where no sample won), its overflow left unused. `image`
-// ends holding each winner's depth and its slot in `to`. `from` is not
+// ends holding each winner's depth (the winner sits at the pixel's slot). `from` is not
 // changed. Ties in depth go to the lower slot of `from`: the outcome does
 // not depend on the thread count.
 // When `next` is given (the predicted camera of the next frame), `nextPixel`

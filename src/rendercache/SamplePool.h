@@ -3,16 +3,13 @@
 // what one camera ray found: where it hit, in its object's frame so the
 // sample follows the object; the colour it brought back; how many frames the
 // sample has been reprojected; and what shading it again from a new eye
-// needs (render/TileKernel.h, ReshadeRequest). Stored as parallel arrays:
-// reprojection reads only positions, objects and ages.
+// needs (render/TileKernel.h, ReshadeRequest). Stored as a few arrays of
+// small records, each read whole by the passes that read it: reprojection
+// reads every sample's point and look and copies them, 32 bytes a sample
+// in two records (five arrays of 31 bytes before: every array is a stream
+// of its own for the copy, to read and to write); the reshading fields are
+// read only where the look says the sample depends on the eye.
 //
-// The slots are in pixel order, as on the GPU: slot i < pixelSlots belongs
-// to pixel i of the image and its margin (PointImage::pixelIndex), so every
-// pass over the image reads the pool in order and a new sample goes to its
-// pixel's slot without a search. Samples that have no pixel yet (traced
-// through the predicted camera) go to the overflow slots after them, used
-// from the front and emptied each frame when reprojection moves the
-// samples into the other buffer (reproject()).
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -22,6 +19,32 @@
 
 namespace raycache {
 
+// Where a sample is.
+struct SamplePoint {
+    Vec3 position;     // hit point minus the object's origin, or the direction of a miss
+    int objectId = -1; // SamplePool::kEmpty, kBackground or an index into Scene::objects
+    bool operator==(const SamplePoint&) const = default;
+};
+static_assert(sizeof(SamplePoint) == 16);
+
+// What a sample shows, and for how long it has.
+struct SampleLook {
+    Rgb color;                       // what the pixel showed when last traced or reshaded
+    std::uint16_t age = 0;           // reprojections since it was traced
+    unsigned char viewDependent = 0; // mirror, glass or highlight: its colour depends on the eye
+    bool operator==(const SampleLook&) const = default;
+};
+static_assert(sizeof(SampleLook) == 16);
+
+// For reshading (only meaningful where SampleLook::viewDependent is set).
+struct ReshadeInputs {
+    int primitiveId = 0;
+    float baryU = 0.0f, baryV = 0.0f;
+    Rgb viewIndependent;
+    std::uint64_t litMask = 0;
+    bool operator==(const ReshadeInputs&) const = default;
+};
+
 struct SamplePool {
     static constexpr int kEmpty = -1;
     static constexpr int kBackground = -2;  // the ray hit nothing: `position` holds its direction
@@ -29,26 +52,19 @@ struct SamplePool {
     // `pixelSlots` empty pixel slots and room for `overflowCapacity`
     // samples after them, none used.
     void reset(std::size_t pixelSlots, std::size_t overflowCapacity);
-    std::size_t capacity() const { return objectId.size(); }
+    std::size_t capacity() const { return point.size(); }
     // The slots that may hold a sample: the pixel slots and the used overflow slots.
     std::size_t used() const { return pixelSlots + overflowUsed; }
-    bool empty(std::size_t slot) const { return objectId[slot] == kEmpty; }
+    bool empty(std::size_t slot) const { return point[slot].objectId == kEmpty; }
     // The next free overflow slot, to be filled by the caller; throws
     // RuntimeError when none is left.
     std::size_t takeOverflowSlot();
     std::size_t pixelSlots = 0;    // slots addressed by pixel
     std::size_t overflowUsed = 0;  // overflow slots [pixelSlots, pixelSlots + overflowUsed) in use
 
-    std::vector<int> objectId;      // kEmpty, kBackground or an index into Scene::objects
-    std::vector<Vec3> position;     // hit point minus the object's origin, or the direction of a miss
-    std::vector<Rgb> color;         // what the pixel showed when last traced or reshaded
-    std::vector<std::uint16_t> age; // reprojections since it was traced
-    // For reshading (only meaningful where viewDependent is set).
-    std::vector<unsigned char> viewDependent;  // mirror, glass or highlight: its colour depends on the eye
-    std::vector<int> primitiveId;
-    std::vector<float> baryU, baryV;
-    std::vector<Rgb> viewIndependent;
-    std::vector<std::uint64_t> litMask;
+    std::vector<SamplePoint> point;
+    std::vector<SampleLook> look;
+    std::vector<ReshadeInputs> reshade;
 };
 
 }  // namespace raycache

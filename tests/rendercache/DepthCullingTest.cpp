@@ -20,18 +20,17 @@ bool centreCulled(const std::string& pattern, PixelState centre = PixelState::Re
     PointImage image;
     image.reset(3, 3, 1);
     std::vector<PixelState> state(9, PixelState::Hole);
-    std::uint32_t slot = 0;
     std::size_t k = 0;
     for (int y = 0; y < 3; ++y)
         for (int x = 0; x < 3; ++x) {
             if (x == 1 && y == 1) {
-                image.offer(1, 1, 10.0f, slot++);
+                image.place(1, 1, 10.0f);
                 state[4] = centre;
                 continue;
             }
             const char c = pattern[k++];
             if (c == '.') continue;
-            image.offer(x, y, c == 'n' ? 5.0f : c == 'b' ? 9.5f : 10.0f, slot++);
+            image.place(x, y, c == 'n' ? 5.0f : c == 'b' ? 9.5f : 10.0f);
             state[static_cast<std::size_t>(y * 3 + x)] = PixelState::Reprojected;
         }
     std::vector<PixelState> before = state;
@@ -118,14 +117,13 @@ TEST(DepthCulling, NeighboursInTheMarginCountAndDecisionsReadDepthsNotEarlierDec
     image.reset(4, 1, 1);
     std::vector<PixelState> state(4, PixelState::Reprojected);
     state[3] = PixelState::Hole;
-    std::uint32_t slot = 0;
     for (int x = -1; x <= 4; ++x) {
-        image.offer(x, -1, 1.0f, slot++);
-        image.offer(x, 1, 1.0f, slot++);
+        image.place(x, -1, 1.0f);
+        image.place(x, 1, 1.0f);
     }
-    image.offer(0, 0, 10.0f, slot++);
-    image.offer(1, 0, 20.0f, slot++);
-    image.offer(2, 0, 40.0f, slot++);
+    image.place(0, 0, 10.0f);
+    image.place(1, 0, 20.0f);
+    image.place(2, 0, 40.0f);
     const std::int64_t culled = cullOccludedSamples(image, 0.1f, state, Parallel(2));
     // Each has 6 nearer margin neighbours: all three culled, whichever is decided first.
     EXPECT_EQ(culled, 3);

@@ -213,3 +213,40 @@ TEST(HoleFilling, WideAndScatteredHolesBothTakeThe7x7MeanOnAnyThreadCount) {
         else EXPECT_EQ(img.film.pixels(), reference.pixels());
     }
 }
+
+// With the samples' colours given from a pool laid out like the Render
+// Cache's (a margin around the image), the film is written in the same
+// passes and ends as it does when the colours were copied into it first.
+TEST(HoleFilling, ColoursReadFromThePoolGiveTheSameFilmAsColoursInTheFilm) {
+    constexpr int kW = 40, kH = 18, kMargin = 2, kStride = kW + 2 * kMargin;
+    const auto isHole = [](int x, int y) { return (x * 7 + y * 13) % 5 < 2 || (x > 10 && x < 25 && y > 5 && y < 12); };
+    for (int threads : {1, 2}) {
+        Synthetic copied(kW, kH), fromPool(kW, kH);
+        std::vector<SampleLook> looks(static_cast<std::size_t>(kStride * (kH + 2 * kMargin)));
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                looks[static_cast<std::size_t>((y + kMargin) * kStride + x + kMargin)].color = colourOf(x, y);
+                fromPool.film.at(x, y) = Rgb{-2.0f};  // nothing in the film yet
+                if (isHole(x, y)) {
+                    copied.hole(x, y);
+                    fromPool.hole(x, y);
+                }
+            }
+        const SampleColors colours{looks.data(), static_cast<std::size_t>(kMargin * kStride + kMargin),
+                                   static_cast<std::size_t>(kStride)};
+        const FillCounts a = fillHoles(copied.state, copied.film, Parallel(threads));
+        const FillCounts b = fillHoles(fromPool.state, fromPool.film, Parallel(threads), nullptr, &colours);
+        EXPECT_GT(a.filled3x3, 0);
+        EXPECT_GT(a.filled7x7, 0);
+        EXPECT_EQ(a.filled3x3, b.filled3x3);
+        EXPECT_EQ(a.filled7x7, b.filled7x7);
+        EXPECT_EQ(a.unfilled, b.unfilled);
+        EXPECT_EQ(copied.state, fromPool.state);
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                const PixelState s = copied.s(x, y);
+                if (s == PixelState::Unfilled) continue;  // left to the caller
+                ASSERT_EQ(copied.film.at(x, y), fromPool.film.at(x, y)) << x << "," << y << ", " << threads << " threads";
+            }
+    }
+}

@@ -46,9 +46,9 @@ struct Fixture {
     void put(std::size_t i, int object, const Vec3& position, std::uint16_t age = 0) {
         const std::size_t slot = kPixelSlots + i;
         pool.overflowUsed = std::max(pool.overflowUsed, i + 1);
-        pool.objectId[slot] = object;
-        pool.position[slot] = position;
-        pool.age[slot] = age;
+        pool.point[slot].objectId = object;
+        pool.point[slot].position = position;
+        pool.look[slot].age = age;
     }
 };
 
@@ -88,7 +88,7 @@ TEST(Reprojection, AgesEvictsTestsDepthGivesLosersASecondChanceAndCountsExactly)
         SamplePool to;
         to.reset(kPixelSlots, kOverflow);
         // Left over from an earlier frame: every pixel slot is written.
-        for (std::size_t slot = 0; slot < kPixelSlots; ++slot) to.objectId[slot] = 0;
+        for (std::size_t slot = 0; slot < kPixelSlots; ++slot) to.point[slot].objectId = 0;
         to.overflowUsed = 3;
         const SamplePool before = f.pool;
         ReprojectionScratch scratch;
@@ -110,26 +110,25 @@ TEST(Reprojection, AgesEvictsTestsDepthGivesLosersASecondChanceAndCountsExactly)
                 const std::size_t pixel = image.pixelIndex(x, y);
                 const auto e = expected.find({x, y});
                 if (e == expected.end()) {
-                    EXPECT_FALSE(image.hasSample(x, y)) << x << "," << y << " holds slot " << image.slotAt(x, y);
+                    EXPECT_FALSE(image.hasSample(x, y)) << x << "," << y << " holds a sample";
                     EXPECT_TRUE(to.empty(pixel)) << x << "," << y;
                     continue;
                 }
                 ASSERT_TRUE(image.hasSample(x, y)) << x << "," << y;
-                EXPECT_EQ(image.slotAt(x, y), pixel) << x << "," << y << ": the winner sits in its pixel's slot";
                 const std::size_t source = kPixelSlots + e->second;
-                EXPECT_EQ(to.objectId[pixel], before.objectId[source]) << x << "," << y;
-                EXPECT_EQ(to.position[pixel], before.position[source]) << x << "," << y;
-                EXPECT_EQ(to.age[pixel], before.age[source] + 1) << x << "," << y << ": aged by one frame";
+                EXPECT_EQ(to.point[pixel].objectId, before.point[source].objectId) << x << "," << y;
+                EXPECT_EQ(to.point[pixel].position, before.point[source].position) << x << "," << y;
+                EXPECT_EQ(to.look[pixel].age, before.look[source].age + 1) << x << "," << y << ": aged by one frame";
             }
         EXPECT_NEAR(image.depthAt(3, 5), 4.0f, 1e-5f);
         EXPECT_NEAR(image.depthAt(4, 5), 6.0f, 1e-5f) << "a moved sample keeps its own depth";
         EXPECT_EQ(image.depthAt(-1, 9), std::numeric_limits<float>::infinity());
-        EXPECT_EQ(to.age[image.pixelIndex(1, 7)], kMaxAge);
+        EXPECT_EQ(to.look[image.pixelIndex(1, 7)].age, kMaxAge);
         EXPECT_EQ(to.overflowUsed, 0u) << "no sample is left without a pixel";
         EXPECT_EQ(to.used(), kPixelSlots);
         // The source is only read.
-        EXPECT_EQ(f.pool.objectId, before.objectId);
-        EXPECT_EQ(f.pool.age, before.age);
+        EXPECT_EQ(f.pool.point, before.point);
+        EXPECT_EQ(f.pool.look, before.look);
         EXPECT_EQ(f.pool.overflowUsed, before.overflowUsed);
     }
 }
@@ -152,8 +151,8 @@ TEST(Reprojection, ASampleIsShownForMaxAgeReprojectionsAndEvictedOnTheNext) {
             std::swap(pool, spare);
             ASSERT_EQ(c.placed, 1) << "max age " << maxAge << ", reprojection " << frame;
             ASSERT_EQ(c.evicted, 0);
-            ASSERT_EQ(image.slotAt(4, 4), image.pixelIndex(4, 4));
-            ASSERT_EQ(pool.age[image.pixelIndex(4, 4)], frame);
+            ASSERT_TRUE(image.hasSample(4, 4));
+            ASSERT_EQ(pool.look[image.pixelIndex(4, 4)].age, frame);
         }
         image.reset(kSize, kSize, kMargin);
         const ReprojectionCounts c = reproject(pool, spare, scene, projection, maxAge, image, parallel, scratch);
@@ -180,18 +179,18 @@ TEST(Reprojection, EveryWinnerMovesToItsPixelsSlotWithAllItsFieldsOnAnyThreadCou
     for (std::size_t slot = 0; slot < from.used(); ++slot) {
         const std::uint32_t h = static_cast<std::uint32_t>(slot) * 2654435761u;
         if (h % 5 == 0) continue;  // some slots empty
-        from.objectId[slot] = 0;
-        from.position[slot] = at(-1.0f + static_cast<float>(h % 1200) / 100.0f,
+        from.point[slot].objectId = 0;
+        from.point[slot].position = at(-1.0f + static_cast<float>(h % 1200) / 100.0f,
                                  -1.0f + static_cast<float>((h >> 11) % 1200) / 100.0f,
                                  1.0f + static_cast<float>((h >> 22) % 5));  // few depths: ties
-        from.color[slot] = Rgb{static_cast<float>(slot), 1.0f, 2.0f};
-        from.age[slot] = static_cast<std::uint16_t>(h % 3);
-        from.viewDependent[slot] = slot % 2;
-        from.primitiveId[slot] = static_cast<int>(slot) + 7;
-        from.baryU[slot] = 0.25f;
-        from.baryV[slot] = static_cast<float>(slot);
-        from.viewIndependent[slot] = Rgb{0.5f, static_cast<float>(slot), 0.0f};
-        from.litMask[slot] = slot * 3;
+        from.look[slot].color = Rgb{static_cast<float>(slot), 1.0f, 2.0f};
+        from.look[slot].age = static_cast<std::uint16_t>(h % 3);
+        from.look[slot].viewDependent = slot % 2;
+        from.reshade[slot].primitiveId = static_cast<int>(slot) + 7;
+        from.reshade[slot].baryU = 0.25f;
+        from.reshade[slot].baryV = static_cast<float>(slot);
+        from.reshade[slot].viewIndependent = Rgb{0.5f, static_cast<float>(slot), 0.0f};
+        from.reshade[slot].litMask = slot * 3;
     }
     SamplePool reference;
     for (int threads : {1, 2}) {
@@ -211,15 +210,15 @@ TEST(Reprojection, EveryWinnerMovesToItsPixelsSlotWithAllItsFieldsOnAnyThreadCou
                 if (to.empty(pixel)) continue;
                 ++placed;
                 // The sample it came from: its colour names it.
-                const auto source = static_cast<std::size_t>(to.color[pixel].r);
-                ASSERT_EQ(to.position[pixel], from.position[source]);
-                ASSERT_EQ(to.age[pixel], from.age[source] + 1);
-                ASSERT_EQ(to.viewDependent[pixel], from.viewDependent[source]);
-                if (to.viewDependent[pixel]) {
-                    ASSERT_EQ(to.primitiveId[pixel], from.primitiveId[source]);
-                    ASSERT_EQ(to.baryV[pixel], from.baryV[source]);
-                    ASSERT_EQ(to.viewIndependent[pixel], from.viewIndependent[source]);
-                    ASSERT_EQ(to.litMask[pixel], from.litMask[source]);
+                const auto source = static_cast<std::size_t>(to.look[pixel].color.r);
+                ASSERT_EQ(to.point[pixel].position, from.point[source].position);
+                ASSERT_EQ(to.look[pixel].age, from.look[source].age + 1);
+                ASSERT_EQ(to.look[pixel].viewDependent, from.look[source].viewDependent);
+                if (to.look[pixel].viewDependent) {
+                    ASSERT_EQ(to.reshade[pixel].primitiveId, from.reshade[source].primitiveId);
+                    ASSERT_EQ(to.reshade[pixel].baryV, from.reshade[source].baryV);
+                    ASSERT_EQ(to.reshade[pixel].viewIndependent, from.reshade[source].viewIndependent);
+                    ASSERT_EQ(to.reshade[pixel].litMask, from.reshade[source].litMask);
                 }
             }
         EXPECT_EQ(placed, c.placed);
@@ -227,9 +226,8 @@ TEST(Reprojection, EveryWinnerMovesToItsPixelsSlotWithAllItsFieldsOnAnyThreadCou
             reference = to;
             continue;
         }
-        EXPECT_EQ(to.objectId, reference.objectId);
-        EXPECT_EQ(to.color, reference.color);
-        EXPECT_EQ(to.age, reference.age);
+        EXPECT_EQ(to.point, reference.point);
+        EXPECT_EQ(to.look, reference.look);
     }
 }
 
@@ -292,7 +290,7 @@ std::map<std::pair<int, int>, OracleWinner> oracle(const SamplePool& pool, const
     };
     std::vector<Landing> landed;
     for (std::size_t slot = 0; slot < pool.used(); ++slot) {
-        if (pool.empty(slot) || pool.age[slot] >= maxAge) continue;
+        if (pool.empty(slot) || pool.look[slot].age >= maxAge) continue;
         float px, py, depth;
         if (!projectSample(pool, slot, origins, projection, px, py, depth)) continue;
         if (!shape.covers(static_cast<int>(std::floor(px)), static_cast<int>(std::floor(py)))) continue;
@@ -363,9 +361,9 @@ TEST(Reprojection, BandsFarSamplesAndOverflowGiveThePlainRulesOutcome) {
         const float py = far ? -1.5f + static_cast<float>((h >> 8) % 16300) / 100.0f
                              : row + static_cast<float>((h >> 8) % 700) / 100.0f - 3.0f;
         const float px = -1.5f + static_cast<float>((h >> 20) % 850) / 100.0f;
-        from.objectId[slot] = 0;
-        from.position[slot] = point(px, py, 1.0f + static_cast<float>((h >> 3) % 4));  // few depths: ties
-        from.age[slot] = static_cast<std::uint16_t>(h % 4);
+        from.point[slot].objectId = 0;
+        from.point[slot].position = point(px, py, 1.0f + static_cast<float>((h >> 3) % 4));  // few depths: ties
+        from.look[slot].age = static_cast<std::uint16_t>(h % 4);
     }
     const auto expected = oracle(from, scene, projection, 3, image);
     std::size_t moved = 0;
@@ -392,7 +390,7 @@ TEST(Reprojection, BandsFarSamplesAndOverflowGiveThePlainRulesOutcome) {
                     continue;
                 }
                 ASSERT_FALSE(to.empty(pixel)) << x << "," << y << ", " << threads << " threads";
-                ASSERT_EQ(to.position[pixel], from.position[e->second.slot]) << x << "," << y;
+                ASSERT_EQ(to.point[pixel].position, from.point[e->second.slot].position) << x << "," << y;
                 ASSERT_EQ(image.depthAt(x, y), e->second.depth) << x << "," << y;
             }
     }
