@@ -67,35 +67,41 @@ CachingCube CachingCube::resampled(int size, std::vector<int>* sourceOf) const {
     CachingCube out(center_, size);
     out.inherited_.assign(out.texels_.size(), 0);
     if (sourceOf) sourceOf->assign(out.texels_.size(), -1);
-    const auto oldIndex = [&](int face, int x, int y) { return (face * from + y) * from + x; };
-    for (int face = 0; face < 6; ++face)
-        for (int y = 0; y < size; ++y)
-            for (int x = 0; x < size; ++x) {
-                int source = -1, inherited = 0;
-                if (finer) {
-                    source = oldIndex(face, x / ratio, y / ratio);
-                    if (!isValid(source)) continue;
-                    inherited = std::min(inheritedLevels(source) + levels, 255);
-                } else {
-                    int best = 256;
-                    for (int j = 0; j < ratio; ++j)
-                        for (int i = 0; i < ratio; ++i) {
-                            const int t = oldIndex(face, x * ratio + i, y * ratio + j);
-                            if (isValid(t) && inheritedLevels(t) < best) {
-                                best = inheritedLevels(t);
-                                source = t;
-                            }
-                        }
-                    if (source < 0) continue;
-                    inherited = std::max(best - levels, 0);
-                }
-                const auto n = static_cast<std::size_t>((face * size + y) * size + x);
-                out.validBits_[n >> 6] |= std::uint64_t{1} << (n & 63);
-                out.texels_[n] = texels_[static_cast<std::size_t>(source)];
-                out.inherited_[n] = static_cast<std::uint8_t>(inherited);
-                ++out.validCount_;
-                if (sourceOf) (*sourceOf)[n] = source;
+    const auto put = [&](std::size_t n, int source, int inherited) {
+        if (!out.isValid(static_cast<int>(n))) {
+            out.validBits_[n >> 6] |= std::uint64_t{1} << (n & 63);
+            ++out.validCount_;
+        }
+        out.texels_[n] = texels_[static_cast<std::size_t>(source)];
+        out.inherited_[n] = static_cast<std::uint8_t>(inherited);
+        if (sourceOf) (*sourceOf)[n] = source;
+    };
+    // Going coarser: per new texel, the inherited level of the old texel it took.
+    std::vector<std::int16_t> taken(finer ? 0 : out.texels_.size(), 256);
+    // Only valid texels matter, and most cubes are resized while still
+    // sparse: walk the validity words, skipping 64 empty texels at a time,
+    // in increasing index order (face, row, column).
+    for (std::size_t word = 0; word < validBits_.size(); ++word)
+        for (std::uint64_t bits = validBits_[word]; bits != 0; bits &= bits - 1) {
+            const int t = static_cast<int>(word * 64 + static_cast<std::size_t>(std::countr_zero(bits)));
+            const int face = t / (from * from), y = (t / from) % from, x = t % from;
+            if (finer) {
+                // Every texel under it inherits it.
+                const int inherited = std::min(inheritedLevels(t) + levels, 255);
+                for (int j = 0; j < ratio; ++j)
+                    for (int i = 0; i < ratio; ++i)
+                        put(static_cast<std::size_t>((face * size + y * ratio + j) * size + x * ratio + i), t, inherited);
+            } else {
+                // The texel over it keeps the least inherited of its valid
+                // texels; among equals the first in row order, which is the
+                // first met in index order.
+                const auto n = static_cast<std::size_t>((face * size + y / ratio) * size + x / ratio);
+                const int own = inheritedLevels(t);
+                if (own >= taken[n]) continue;
+                taken[n] = static_cast<std::int16_t>(own);
+                put(n, t, std::max(own - levels, 0));
             }
+        }
     if (std::none_of(out.inherited_.begin(), out.inherited_.end(), [](std::uint8_t v) { return v != 0; }))
         out.inherited_.clear();
     return out;
