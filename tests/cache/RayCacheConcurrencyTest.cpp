@@ -38,15 +38,20 @@ Vec3 directionFor(int pixel, int frame) {
 
 // Renders `frames` fake frames of `pixels` pixels split over `threads`
 // threads; returns the cubes' texels and every answer the cache gave.
+// `viewSized`: cubes sized from the view (RayCacheSettings::resolutionFromView),
+// the batch lookups wide enough to halve them after the first frame, so the
+// resampling runs on endFrame's partition threads.
 std::vector<std::vector<std::uint32_t>> run(int threads, int frames, int pixels,
-                                            CacheTechnique technique = CacheTechnique::Cct) {
+                                            CacheTechnique technique = CacheTechnique::Cct, bool viewSized = false) {
     // endFrame's cube partitions, each on a thread of its own when threads > 1.
     const RayCache::PartitionRunner partitionsOnThreads = [&](int count, const std::function<void(int)>& body) {
         std::vector<std::thread> pool;
         for (int part = 0; part < count; ++part) pool.emplace_back([&body, part] { body(part); });
         for (std::thread& th : pool) th.join();
     };
-    RayCache cache(threeMirrors(technique), {});
+    RayCacheSettings settings;
+    settings.resolutionFromView = viewSized;
+    RayCache cache(threeMirrors(technique), settings);
     auto workers = cache.makeWorkers(threads);
     std::vector<std::uint32_t> answers(static_cast<std::size_t>(frames * pixels * 2), 0u);
     for (int frame = 0; frame < frames; ++frame) {
@@ -66,7 +71,7 @@ std::vector<std::vector<std::uint32_t>> run(int threads, int frames, int pixels,
                         std::optional<Rgb> answer;
                         int storeTexel = -1;
                         if (p % 2 == 1) {
-                            const RayCache::Query query{object, origin, d};
+                            const RayCache::Query query{object, origin, d, viewSized ? 0.5f : 0.0f};
                             Rgb color;
                             unsigned char found = 0;
                             cache.lookupBatch({&query, 1}, {&color, 1}, {&found, 1}, {&storeTexel, 1}, worker);
@@ -113,6 +118,12 @@ std::vector<std::vector<std::uint32_t>> run(int threads, int frames, int pixels,
 TEST(RayCacheConcurrency, ManyThreadsGiveTheSingleThreadedCaches) {
     const auto reference = run(1, 3, 4000);
     for (int threads : {2, 4, 7}) EXPECT_EQ(run(threads, 3, 4000), reference) << threads << " threads";
+}
+
+TEST(RayCacheConcurrency, CubesSizedFromTheViewResizeAlikeOnManyThreads) {
+    const auto reference = run(1, 3, 4000, CacheTechnique::Cct, true);
+    ASSERT_EQ(reference[0].size(), 6u * 16u * 16u);  // the cube was halved: the test could fail
+    for (int threads : {2, 4}) EXPECT_EQ(run(threads, 3, 4000, CacheTechnique::Cct, true), reference) << threads << " threads";
 }
 
 TEST(RayCacheConcurrency, CdctParityAndImprovedSearchesFromManyThreads) {
