@@ -202,6 +202,9 @@ TEST_F(Cli, RenderRejectsBadCachingOptionsWithOneLine) {
                                     "render --scene behind-1 --cdct-prefill-per-frame 1e3 --out " + png,
                                     "render --scene behind-1 --cache-budget -1 --out " + png,
                                     "render --scene behind-1 --cache-budget inf --out " + png,
+                                    "render --scene behind-1 --cache-fill bogus --out " + png,
+                                    "render --scene behind-1 --cache-fill --out " + png,
+                                    "render --scene behind-1 --cache-res-from-view 3 --out " + png,
                                     // grid-32's 32 cubes need 12.5 KiB even at 4² faces.
                                     "render --scene grid-32 --cache-budget 0.001 --out " + png}) {
         const RunResult r = runRaycache(args, dir_);
