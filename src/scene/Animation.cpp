@@ -63,13 +63,13 @@ Light LightTrack::at(const Light& base, float time) const {
     const LightKey& a = keys[span.from];
     const LightKey& b = keys[span.to];
     const float s = span.fraction;
-    Light light = base;
-    light.position = mix(a.position, b.position, s);
+    Light posed = base;
+    posed.position = mix(a.position, b.position, s);
     const Vec3 direction = mix(a.direction, b.direction, s);
     // Opposite directions blend through zero at the midpoint: keep the nearer key's.
-    light.direction = length(direction) > 1e-6f ? normalize(direction) : (s < 0.5f ? a.direction : b.direction);
-    light.intensity = mix(a.intensity, b.intensity, s);
-    return light;
+    posed.direction = length(direction) > 1e-6f ? normalize(direction) : (s < 0.5f ? a.direction : b.direction);
+    posed.intensity = mix(a.intensity, b.intensity, s);
+    return posed;
 }
 
 MeshSequence::MeshSequence(std::vector<std::vector<Vec3>> frames, float fps, Wrap wrap)

@@ -61,7 +61,7 @@ TEST(SharedExponentColor, EncodesExactlyAsTheSpecificationsFormula) {
     for (int i = 0; i < 200000; ++i) {
         const float a = std::bit_cast<float>(next() & 0x7fffffffu);
         const float b = std::bit_cast<float>((next() % 0x48000000u));
-        const float c = (next() % 1000u) * 1e-3f;
+        const float c = static_cast<float>(next() % 1000u) * 1e-3f;
         const Rgb color = i % 3 == 0 ? Rgb{a, b, c} : i % 3 == 1 ? Rgb{b, c, a} : Rgb{c, a * 1e-30f, b};
         ASSERT_EQ(SharedExponentColor::encode(color), referenceEncode(color)) << color.r << " " << color.g << " " << color.b;
     }

@@ -42,10 +42,11 @@ TEST(PrefillSpread, FillsTheSameCubeOverSeveralFramesWithinTheBudget) {
         // The cube is complete after the pre-fill of frame kFillFrames - 1
         // (counting from 0); up to and including that frame, every lookup
         // misses and the image is the uncached one.
-        if (f < kFillFrames)
+        if (f < kFillFrames) {
             EXPECT_EQ(spread.frames[static_cast<std::size_t>(f)].pixels(),
                       uncached.frames[static_cast<std::size_t>(f)].pixels())
                 << "frame " << f;
+        }
     }
     EXPECT_EQ(prefilled, static_cast<std::uint64_t>(kCubeTexels));
     // Once filled, the images are the filled cube's, as with the pre-fill at once.

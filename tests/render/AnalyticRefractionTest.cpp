@@ -72,7 +72,9 @@ TEST(AnalyticRefraction, GlassBallBendsTheEnvironmentBySnellsLaw) {
             if (std::fabs(in.disc) < 1e-2) continue;  // grazing: float and double may disagree
             if (in.disc < 0) {
                 const auto face = cubeFace(d);
-                if (face) EXPECT_EQ(image.at(x, y), faceColors[*face]) << x << "," << y << " (background)";
+                if (face) {
+                    EXPECT_EQ(image.at(x, y), faceColors[*face]) << x << "," << y << " (background)";
+                }
                 continue;
             }
             const DVec entry = kEye + d * in.tNear;  // unit sphere: the point is the outward normal

@@ -92,9 +92,10 @@ const std::string& glUnavailableReason() {
     return reason;
 }
 
-#define SKIP_WITHOUT_GL()                                                                                       \
-    if (!glUnavailableReason().empty())                                                                         \
-    RAYCACHE_SKIP_OR_FAIL_IN_CI("no OpenGL 4.5 core context, GL G-buffer not tested: " << glUnavailableReason())
+#define SKIP_WITHOUT_GL()                                                                                           \
+    if (!glUnavailableReason().empty()) {                                                                           \
+        RAYCACHE_SKIP_OR_FAIL_IN_CI("no OpenGL 4.5 core context, GL G-buffer not tested: " << glUnavailableReason()); \
+    }
 
 std::vector<std::string> allSceneNames() {
     std::vector<std::string> names;
@@ -177,8 +178,9 @@ TEST(HybridPipeline, CachesWorkUnchanged) {
         EXPECT_EQ(ray.stats[f].cache->stores(), packets.stats[f].cache->stores()) << "frame " << f;
     }
     EXPECT_GT(ray.stats[kFrames - 1].cache->hits(), 0u) << "the path should reuse cached texels";
-    if (!glUnavailableReason().empty())
+    if (!glUnavailableReason().empty()) {
         RAYCACHE_SKIP_OR_FAIL_IN_CI("no OpenGL context: " << glUnavailableReason());
+    }
     const Frames gl =
         renderPath(scene, settingsFor(PipelineKind::Hybrid, GBufferSource::OpenGl, 0, CacheTechnique::Cct), kFrames);
     for (int f = 0; f < kFrames; ++f) {

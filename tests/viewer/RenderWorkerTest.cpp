@@ -212,7 +212,9 @@ TEST(RenderWorker, RenderCacheFramesAreTheOfflineRenderCachesFrames) {
         EXPECT_EQ(f.pathFrame, next);
         EXPECT_EQ(f.rgba, offline[static_cast<std::size_t>(next)]) << "frame " << next;
         EXPECT_TRUE(f.stats.renderCache.has_value());
-        if (f.stats.renderCache) EXPECT_EQ(f.stats.renderCache->refreshedAll, next == 0);
+        if (f.stats.renderCache) {
+            EXPECT_EQ(f.stats.renderCache->refreshedAll, next == 0);
+        }
         ++next;
         return next == kFrames;
     });
