@@ -34,7 +34,7 @@ struct CacheVariant {
 
 // The improved CDCT's changes, switched on one after another (each row adds one).
 std::vector<CacheVariant> improvementLadder() {
-    CdctImprovements i{false, false, false, false, false, false};
+    CdctImprovements i{false, false, false, false, false, false, false, false};
     std::vector<CacheVariant> rows;
     i.prefill = true;
     rows.push_back({"+ pre-fill (fixed 0.4/0.05 steps)", CacheTechnique::Cdct, i});
@@ -47,7 +47,11 @@ std::vector<CacheVariant> improvementLadder() {
     i.errorControl = true;
     rows.push_back({"+ error control", CacheTechnique::Cdct, i});
     i.filter = true;
-    rows.push_back({"+ filtering (= cdct)", CacheTechnique::Cdct, i});
+    rows.push_back({"+ filtering", CacheTechnique::Cdct, i});
+    i.traceViewDependent = true;
+    rows.push_back({"+ mirrors and glass seen from the centre traced", CacheTechnique::Cdct, i});
+    i.traceOwnSurface = true;
+    rows.push_back({"+ rays meeting their own object traced (= cdct)", CacheTechnique::Cdct, i});
     return rows;
 }
 
@@ -64,8 +68,10 @@ RenderSettings settingsFor(int width, int height, int threads, const CacheVarian
     return s;
 }
 
-void quality(int size, int frames, int threads, std::optional<int> resolution, const Parallel& parallel) {
-    const auto scene = makeBuiltinScene("parallax");
+void quality(const std::string& sceneName, int size, int frames, int threads, std::optional<int> resolution,
+             const Parallel& parallel) {
+    const auto scene = makeBuiltinScene(sceneName);
+    if (!scene) throw std::invalid_argument("no built-in scene named '" + sceneName + "'");
     const TraceScene tracer(*scene);
     std::vector<CacheVariant> variants{{"CCT", CacheTechnique::Cct}, {"CDCT parity 0.4/0.05", CacheTechnique::CdctParity}};
     for (const CacheVariant& v : improvementLadder()) variants.push_back(v);
@@ -76,8 +82,8 @@ void quality(int size, int frames, int threads, std::optional<int> resolution, c
     std::vector<Image> truth(static_cast<std::size_t>(frames));
     for (int f = 0; f < frames; ++f) plain.render(scene->cameraPath.cameraAt(scene->camera, f), truth[static_cast<std::size_t>(f)]);
 
-    std::printf("## quality: parallax %dx%d, %d frames of its camera path from empty caches, faces %s\n\n", size, size,
-                frames, resolution ? std::to_string(*resolution).c_str() : "512 (scene)");
+    std::printf("## quality: %s %dx%d, %d frames of its camera path from empty caches, faces %s\n\n",
+                sceneName.c_str(), size, size, frames, resolution ? std::to_string(*resolution).c_str() : "512 (scene)");
     std::printf("| variant | mean PSNR frames 2-%d (dB) | min | last frame | hit rate | rejected |\n", frames);
     std::printf("| --- | --- | --- | --- | --- | --- |\n");
     for (const CacheVariant& v : variants) {
@@ -186,14 +192,24 @@ int main(int argc, char** argv) {
     app.add_option("--warmup", warmup, "Speed: untimed frames per variant first (they fill the caches)")
         ->capture_default_str();
     app.add_option("--quality-size", qualitySize, "Quality: image width and height")->capture_default_str();
-    app.add_option("--quality-frames", qualityFrames, "Quality: frames of the parallax path")->capture_default_str();
+    app.add_option("--quality-frames", qualityFrames, "Quality: frames of each scene's camera path")->capture_default_str();
+    std::vector<std::string> qualityScenes{"parallax"};
+    app.add_option("--quality-scenes", qualityScenes, "Quality: built-in scenes, each its own table")->capture_default_str();
     app.add_option("--cache-res", resolution, "Face resolution for every cube (default: the scenes' own, 512)");
     app.add_option("--threads", threads, "Worker threads, 0 = all")->capture_default_str();
     app.add_flag("--quality-only", qualityOnly, "Only the quality table");
     app.add_flag("--speed-only", speedOnly, "Only the speed tables");
     CLI11_PARSE(app, argc, argv);
     const Parallel parallel(threads);
-    if (!speedOnly) quality(qualitySize, qualityFrames, threads, resolution, parallel);
+    if (!speedOnly)
+        for (const std::string& name : qualityScenes) {
+            if (!makeBuiltinScene(name)) {
+                std::fprintf(stderr, "cdct_speed: --quality-scenes: no built-in scene named '%s'\n", name.c_str());
+                return 2;
+            }
+            quality(name, qualitySize, qualityFrames, threads, resolution, parallel);
+            std::printf("\n");
+        }
     if (!qualityOnly) speed(width, height, threads, warmup, rounds, resolution, parallel);
     return 0;
 }

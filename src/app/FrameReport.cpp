@@ -37,6 +37,8 @@ std::string formatFrameLine(const FrameResult& r, int frameCount) {
             line << ")";
         }
         if (c->rejected()) line << ", rejected " << c->rejected();
+        if (c->ownSurface()) line << ", own surface " << c->ownSurface();
+        if (c->viewDependent()) line << ", view-dependent " << c->viewDependent();
         if (c->cdctSearches())
             line << ", CDCT steps/search "
                  << formatFixed(static_cast<double>(c->cdctSteps()) / static_cast<double>(c->cdctSearches()), 1);

@@ -27,7 +27,9 @@ nlohmann::json cacheJson(const FrameCacheStats& c) {
     for (const ObjectCacheStats& o : c.objects)
         objects.push_back({{"object", o.name}, {"resolution", o.resolution}, {"resized_to", o.resizedTo},
                            {"lookups", o.lookups},
-                           {"hits", o.hits}, {"misses", o.misses}, {"rejected", o.rejected}, {"stores", o.stores},
+                           {"hits", o.hits}, {"misses", o.misses}, {"rejected", o.rejected},
+                           {"own_surface", o.ownSurface}, {"view_dependent", o.viewDependent},
+                           {"stores", o.stores},
                            {"prefilled_texels", o.prefilledTexels},
                            {"levels", o.levels},
                            {"hits_by_level", std::vector<std::uint64_t>(o.hitsByLevel.begin(), o.hitsByLevel.begin() + o.levels)},
@@ -35,7 +37,7 @@ nlohmann::json cacheJson(const FrameCacheStats& c) {
                            {"cdct_steps_histogram", o.cdctStepsHistogram},
                            {"invalid_percent_before", o.invalidPercentBefore}, {"bytes", o.bytes}});
     return {{"lookups", c.lookups()}, {"hits", c.hits()}, {"misses", c.misses()}, {"rejected", c.rejected()},
-            {"stores", c.stores()}, {"prefilled_texels", c.prefilledTexels()},
+            {"own_surface", c.ownSurface()}, {"view_dependent", c.viewDependent()}, {"stores", c.stores()}, {"prefilled_texels", c.prefilledTexels()},
             {"invalid_percent_before", c.invalidPercentBefore()}, {"bytes", c.bytes()}, {"objects", objects}};
 }
 

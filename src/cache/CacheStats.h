@@ -36,6 +36,12 @@ struct ObjectCacheStats {
     int levels = 1;                     // resolution levels of the cube, the finest included
     std::uint64_t misses = 0;           // not answered (invalid texel, CDCT search gave up or rejected): traced
     std::uint64_t rejected = 0;         // of the misses: improved-CDCT error control found the texel off the ray
+    // Of the misses: improved CDCT, rays that meet their own object (a
+    // concave mirror seeing itself), which its cube does not hold: traced.
+    std::uint64_t ownSurface = 0;
+    // Of the misses: improved CDCT, rays whose search met a texel that saw a
+    // mirror or glass from the centre (view-dependent colour): traced.
+    std::uint64_t viewDependent = 0;
     // CDCT: searches of the cube's depths, the texels they sampled in all
     // (march and bisection steps), and the searches by steps (cdctStepBucket).
     std::uint64_t cdctSearches = 0;
@@ -55,6 +61,8 @@ struct FrameCacheStats {
     std::uint64_t misses() const { return sum(&ObjectCacheStats::misses); }
     std::uint64_t stores() const { return sum(&ObjectCacheStats::stores); }
     std::uint64_t rejected() const { return sum(&ObjectCacheStats::rejected); }
+    std::uint64_t ownSurface() const { return sum(&ObjectCacheStats::ownSurface); }
+    std::uint64_t viewDependent() const { return sum(&ObjectCacheStats::viewDependent); }
     std::uint64_t cdctSearches() const { return sum(&ObjectCacheStats::cdctSearches); }
     std::uint64_t cdctSteps() const { return sum(&ObjectCacheStats::cdctSteps); }
     std::uint64_t prefilledTexels() const { return sum(&ObjectCacheStats::prefilledTexels); }

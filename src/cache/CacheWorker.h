@@ -57,6 +57,8 @@ private:
     };
     struct Counters {
         std::uint64_t lookups = 0, hits = 0, misses = 0, rejected = 0;
+        std::uint64_t ownSurface = 0;  // of the misses: rays meeting their own object (Query::meetsOwnSurface)
+        std::uint64_t viewDependent = 0;  // of the misses: CDCT rays meeting a texel that saw a mirror or glass
         std::array<std::uint64_t, kMaxCubeLevels> levelHits{};  // of the hits, per level (0: the finest)
         std::uint64_t cdctSearches = 0, cdctSteps = 0;
         std::array<std::uint64_t, kCdctStepBuckets> cdctStepsHistogram{};
@@ -75,6 +77,8 @@ private:
             hits += o.hits;
             misses += o.misses;
             rejected += o.rejected;
+            ownSurface += o.ownSurface;
+            viewDependent += o.viewDependent;
             for (std::size_t k = 0; k < levelHits.size(); ++k) levelHits[k] += o.levelHits[k];
             cdctSearches += o.cdctSearches;
             cdctSteps += o.cdctSteps;

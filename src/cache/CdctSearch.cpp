@@ -152,10 +152,10 @@ CdctResult searchCdctParity(const CachingCube& cube, const CdctParameters& p, co
                     lo = mid;
                 }
             }
-            return {CdctOutcome::Found, *cube.read(found), samples};
+            return {CdctOutcome::Found, *cube.read(found), samples, found};
         }
         // Reached maxDepth without crossing (rounding only): what lies there is the environment.
-        if (i == steps) return {CdctOutcome::Found, *cube.read(texel), samples};
+        if (i == steps) return {CdctOutcome::Found, *cube.read(texel), samples, texel};
         previous = t;
     }
     return {};  // not reached: the last step returns
@@ -287,10 +287,10 @@ CdctResult searchCdctImproved(const CachingCube& cube, const CdctParameters& p, 
     }
 
     if (improvements.errorControl && !onRay(cube, found, p.tolerance, origin, d))
-        return {CdctOutcome::Rejected, {}, samples};
+        return {CdctOutcome::Rejected, {}, samples, found};
     if (improvements.filter)
-        return {CdctOutcome::Found, filteredColor(cube, found, foundV, p.tolerance, origin, d), samples};
-    return {CdctOutcome::Found, *cube.read(found), samples};
+        return {CdctOutcome::Found, filteredColor(cube, found, foundV, p.tolerance, origin, d), samples, found};
+    return {CdctOutcome::Found, *cube.read(found), samples, found};
 }
 
 }  // namespace raycache

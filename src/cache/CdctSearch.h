@@ -27,6 +27,12 @@ struct CdctImprovements {
     bool skipEmptySpace = true;  // cross blocks nearer than all their depths in one step (DepthPyramid)
     bool errorControl = true;  // reject a found texel whose point lies off the ray (parameters.tolerance)
     bool filter = true;        // depth-aware bilinear blend of the found texel's neighbours
+    // Trace a ray whose found texel saw a mirror or glass from the centre:
+    // its colour depends on where it is seen from (RayCache::PrefillTexel).
+    bool traceViewDependent = true;
+    // Trace a ray that meets the cube's own object (a concave mirror seeing
+    // itself): the pre-fill sees past that surface (RayCache::seesPastOwnSurface).
+    bool traceOwnSurface = true;
 };
 
 enum class CdctOutcome {
@@ -40,6 +46,7 @@ struct CdctResult {
     CdctOutcome outcome = CdctOutcome::Exhausted;
     Rgb color{};
     int steps = 0;  // texels of the cube the search sampled (march and bisection steps)
+    int texel = -1;  // Found or Rejected: the texel the ray met (before filtering)
 };
 
 // At most this many texel-sized steps per face side of the cube (improved

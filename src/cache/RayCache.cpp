@@ -194,6 +194,7 @@ void RayCache::clearEntry(Entry& e) {
     e.prefillRows = {};
     e.farthestSurface = 0.0f;
     e.pyramid.reset();
+    e.viewDependentBits.clear();
     std::fill(e.blocks.begin(), e.blocks.end(), RayTreeBounds{});
 }
 
@@ -419,6 +420,8 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
         s.hits = all.hits;
         s.misses = all.misses;
         s.rejected = all.rejected;
+        s.ownSurface = all.ownSurface;
+        s.viewDependent = all.viewDependent;
         s.hitsByLevel = all.levelHits;
         // Colours inherited from a coarser resolution answer at their level too.
         for (int k = s.levels; k < kMaxCubeLevels; ++k)
@@ -511,7 +514,9 @@ void RayCache::completePrefill(int objectId, std::span<const PrefillTexel> texel
     if (texels.size() != e.cube.texelCount())
         throw RuntimeError("cache pre-fill of '" + e.name + "': " + std::to_string(texels.size()) + " texels for a cube of " +
                            std::to_string(e.cube.texelCount()));
+    e.viewDependentBits.assign((texels.size() + 63) / 64, 0);
     for (std::size_t i = 0; i < texels.size(); ++i) {
+        if (texels[i].viewDependent) e.viewDependentBits[i / 64] |= std::uint64_t{1} << (i % 64);
         // As store(): misses and hits beyond maxDepth are cached at maxDepth.
         const float distance = texels[i].hitDistance;
         const float depth = std::isfinite(distance) && distance <= e.cdct.maxDepth ? distance : e.cdct.maxDepth;
@@ -588,8 +593,13 @@ std::optional<Rgb> RayCache::answer(const Entry& e, const Vec3& origin, const Ve
                                                 e.pyramid ? &*e.pyramid : nullptr, origin, direction);
         counters.countCdctSearch(r.steps);
         if (r.outcome == CdctOutcome::Rejected) ++counters.rejected;
-        if (r.outcome == CdctOutcome::Found) return r.color;
-        return std::nullopt;
+        if (r.outcome != CdctOutcome::Found) return std::nullopt;
+        if (improvements_.traceViewDependent && !e.viewDependentBits.empty() &&
+            (e.viewDependentBits[static_cast<std::size_t>(r.texel) / 64] >> (r.texel % 64) & 1u)) {
+            ++counters.viewDependent;
+            return std::nullopt;
+        }
+        return r.color;
     }
     case CacheTechnique::CdctParity: {
         const CdctResult r = searchCdctParity(e.cube, e.cdct, origin, direction);
@@ -603,6 +613,14 @@ std::optional<Rgb> RayCache::answer(const Entry& e, const Vec3& origin, const Ve
     }
 }
 
+std::vector<int> RayCache::objectsSeenPastThemselves() const {
+    std::vector<int> objects;
+    for (const Entry& e : cubes_)
+        if (improvements_.traceOwnSurface && fillsByPrefill(e)) objects.push_back(e.objectId);
+    std::sort(objects.begin(), objects.end());
+    return objects;
+}
+
 std::optional<Rgb> RayCache::lookup(int objectId, const Vec3& origin, const Vec3& direction,
                                     CacheWorker& worker) const {
     if (auto color = lookupAnswer(objectId, origin, direction, worker)) return color;
@@ -611,11 +629,12 @@ std::optional<Rgb> RayCache::lookup(int objectId, const Vec3& origin, const Vec3
 }
 
 std::optional<Rgb> RayCache::lookupAnswer(int objectId, const Vec3& origin, const Vec3& direction,
-                                          CacheWorker& worker) const {
+                                          CacheWorker& worker, bool meetsOwnSurface) const {
     const auto c = static_cast<std::size_t>(cubeIndexOf(objectId));
     CacheWorker::Counters& counters = worker.counters_[c];
     ++counters.lookups;
-    if (oracle_) {
+    if (meetsOwnSurface) ++counters.ownSurface;
+    if (oracle_ || meetsOwnSurface) {
         ++counters.misses;
         return std::nullopt;
     }
@@ -751,7 +770,7 @@ void RayCache::lookupBatchAs(std::span<const Query> queries, std::span<Rgb> colo
             storeTexels[i] = -1;
             if (!answerTexels.empty()) answerTexels[i] = -1;
             if (texel[k] < 0) {
-                const auto color = lookupAnswer(q.objectId, q.origin, q.direction, worker);
+                const auto color = lookupAnswer(q.objectId, q.origin, q.direction, worker, q.meetsOwnSurface);
                 if constexpr (kRecordLevels) answerLevels[i] = color ? 0 : -1;
                 found[i] = color || ideal_ ? 1 : 0;
                 if (found[i]) colors[i] = color.value_or(Rgb{});

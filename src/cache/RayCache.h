@@ -150,6 +150,17 @@ public:
     bool empty() const { return cubes_.empty(); }
     std::size_t cubeCount() const { return cubes_.size(); }
     bool cachesObject(int objectId) const { return cubeIndexOf(objectId) >= 0; }
+    // Whether the object's cube holds what lies past the object's own
+    // surface (improved CDCT's pre-fill sees through it) instead of the
+    // surface itself: a ray that meets its own object (a concave mirror
+    // seeing itself) would be answered with what lies behind, so lookups
+    // must mark such rays (Query::meetsOwnSurface).
+    bool seesPastOwnSurface(int objectId) const {
+        const int c = cubeIndexOf(objectId);
+        return c >= 0 && improvements_.traceOwnSurface && fillsByPrefill(cubes_[static_cast<std::size_t>(c)]);
+    }
+    // The objects for which seesPastOwnSurface holds, ascending.
+    std::vector<int> objectsSeenPastThemselves() const;
     // The object's cube; the object must be cached.
     const CachingCube& cube(int objectId) const { return cubes_[static_cast<std::size_t>(cubeIndexOf(objectId))].cube; }
     // The coarser levels of the object's cube (none unless a CCT cube with cubeLevels > 1).
@@ -222,6 +233,10 @@ public:
         // The spread of the ray's cone (radians): the angle between it and
         // the rays of neighbouring pixels. 0: only the finest level answers.
         float spread = 0.0f;
+        // The ray meets its own object (the caller tested it, for the objects
+        // of objectsSeenPastThemselves): the cube cannot answer it, so it is
+        // a miss, counted as ownSurface.
+        bool meetsOwnSurface = false;
     };
     // lookup() for a batch: found[i] = 1 and colors[i] set when queries[i]
     // is answered, found[i] = 0 otherwise. The same answers and counters as
@@ -258,6 +273,12 @@ public:
     struct PrefillTexel {
         Rgb color;
         float hitDistance;
+        // 1: the ray from the centre met a mirror or glass, whose colour
+        // changes with where it is seen from, so a search that meets this
+        // texel from elsewhere traces its ray (CdctImprovements::
+        // traceViewDependent). A word, not a bool: texels are exchanged as
+        // bytes between processes, and a word leaves no padding.
+        std::uint32_t viewDependent = 0;
     };
     // Writes every texel of `objectId`'s cube (texels.size() must equal the
     // cube's texel count): color, and depth clamped to maxDepth.
@@ -308,6 +329,8 @@ private:
         std::vector<PrefillTexel> prefillRows;  // those rows, until the last is in
         float farthestSurface = 0.0f;       // largest stored depth below cdct.maxDepth
         std::optional<DepthPyramid> pyramid;  // built when the cube is pre-filled
+        // Improved CDCT, one bit per texel: PrefillTexel::viewDependent.
+        std::vector<std::uint64_t> viewDependentBits;
         // tracksDependencies_, CCT cubes: per block, the union of its valid
         // texels' tree bounds (face-major, blocksPerSide² per face).
         std::vector<RayTreeBounds> blocks;
@@ -354,7 +377,9 @@ private:
     std::optional<Rgb> answer(const Entry& entry, const Vec3& origin, const Vec3& direction,
                               CacheWorker::Counters& counters) const;
     // lookup() without ideal mode's black for a miss: the cube's answer, counted.
-    std::optional<Rgb> lookupAnswer(int objectId, const Vec3& origin, const Vec3& direction, CacheWorker& worker) const;
+    // A query marked meetsOwnSurface is a miss without a search.
+    std::optional<Rgb> lookupAnswer(int objectId, const Vec3& origin, const Vec3& direction, CacheWorker& worker,
+                                    bool meetsOwnSurface = false) const;
     // lookupBatch, compiled with and without writing answerLevels so that the
     // batch without pays nothing per query.
     template <bool kRecordLevels>

@@ -47,7 +47,12 @@ void TileScratch::beginTile(std::size_t roots) {
 TileKernel::TileKernel(const Scene& scene, const TraceScene& tracer, const RenderSettings& settings,
                        const RayCache* cache)
     : scene_(scene), tracer_(tracer), settings_(settings), cache_(cache && !cache->empty() ? cache : nullptr),
-      shading_(scene), fill_(scene, tracer, cache_) {}
+      shading_(scene), fill_(scene, tracer, cache_) {
+    // The cubes' techniques are fixed for the cache's life, so the objects
+    // whose lookups test their own surface are known now (kernels are made
+    // between frames, when no ray is in flight).
+    if (cache_) tracer_.prepareOwnSurfaceTests(cache_->objectsSeenPastThemselves());
+}
 
 void TileKernel::renderCameraTile(const CameraRays& cameraRays, const TileRange& tile, std::uint64_t tileKey,
                                   TileScratch& s, CacheWorker* cache, Image& film, CacheLevelImage* levels) const {
@@ -148,12 +153,15 @@ void TileKernel::renderFromInside(int objectId, std::span<const Ray> rays, int d
         for (std::size_t i = 0; i < n; ++i) {
             ++s.counts.prefill;
             Ray r = rays[i];
+            out[i].viewDependent = 0;
             bool shaded = false;
             for (int k = 0; k < kMaxOwnSurfaces; ++k) {
                 const TraceHit hit = tracer_.intersect(r);
                 if (!hit.hit()) break;
                 if (hit.objectId != objectId) {
                     s.rootHitDistance[i] = hit.t;
+                    const Material& seen = scene_.objects[static_cast<std::size_t>(hit.objectId)].material;
+                    out[i].viewDependent = seen.reflects() || seen.refracts() ? 1 : 0;
                     s.vertices.push_back({r, hit, static_cast<int>(i), 1.0f, depth});
                     shaded = true;
                     break;
@@ -165,7 +173,10 @@ void TileKernel::renderFromInside(int objectId, std::span<const Ray> rays, int d
     }
     runWaves(s, nullptr, FirstWave::Hits, false);
     resolveNodes(s, nullptr, 0);
-    for (std::size_t i = 0; i < n; ++i) out[i] = {s.nodes[i].color(), s.rootHitDistance[i]};
+    for (std::size_t i = 0; i < n; ++i) {
+        out[i].color = s.nodes[i].color();
+        out[i].hitDistance = s.rootHitDistance[i];
+    }
 }
 
 void TileKernel::renderCameraPixels(const CameraRays& cameraRays, std::span<const PixelCoord> pixels,
@@ -403,9 +414,14 @@ void TileKernel::lookupReuse(TileScratch& s, CacheWorker& cache) const {
     s.cacheFound.resize(n);
     s.storeTexels.resize(n);
     s.answerTexels.resize(s.trackTrees ? n : 0);
-    for (std::size_t i = 0; i < n; ++i)
-        s.cacheQueries[i] = {s.leaving[i].objectId, s.leaving[i].ray.origin, s.leaving[i].ray.direction,
-                             s.leaving[i].cone.spread};
+    for (std::size_t i = 0; i < n; ++i) {
+        const TileScratch::LeavingRay& l = s.leaving[i];
+        // A cube that sees past its object's surface would answer a ray that
+        // meets that surface (a concave mirror seeing itself) with what lies
+        // behind it: such a ray is traced.
+        const bool meetsOwnSurface = cache_->seesPastOwnSurface(l.objectId) && tracer_.meetsObject(l.objectId, l.ray);
+        s.cacheQueries[i] = {l.objectId, l.ray.origin, l.ray.direction, l.cone.spread, meetsOwnSurface};
+    }
     // Without the cache-level record the batch is looked up exactly as before:
     // an empty span, and one branch here and one after.
     std::span<std::int8_t> answerLevels;

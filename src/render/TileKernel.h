@@ -175,7 +175,9 @@ class TileKernel {
 public:
     // With `cache` (may be null or empty), rays leaving caching objects ask
     // it first and queue what they traced. Throws InputError if the scene
-    // has more than kMaxLights lights.
+    // has more than kMaxLights lights. Builds the tracer's own-surface tests
+    // for the cache's objects (TraceScene::prepareOwnSurfaceTests): make
+    // kernels while no ray is in flight.
     TileKernel(const Scene& scene, const TraceScene& tracer, const RenderSettings& settings,
                const RayCache* cache);
 

@@ -278,6 +278,30 @@ Scene shapesScene() {
     return s;
 }
 
+// Concave mirrors that see themselves: a mirror bowl tipped toward the
+// camera with a ball inside, and a mirror torus whose inner ring faces
+// itself. What a mirror shows of its own surface is what a cache built from
+// its centre cannot hold (docs/caching.md, "The object's own surface").
+Scene bowlScene() {
+    Scene s;
+    s.name = "bowl";
+    s.objects.push_back(floorObject(100.0f));
+    const Transform tipped = Transform::translate({-1.2f, 1.55f, 0}) * Transform::rotate({1, 0, 0}, 40.0f) *
+                             Transform::scale({3.2f, 3.2f, 3.2f});
+    s.objects.push_back(SceneObject{"bowl", MeshShape{std::make_shared<const TriangleMesh>(transformed(makeBowl(), tipped))},
+                                    mirror(Rgb{0.1f}, 0.85f), Vec3{-1.2f, 1.55f, 0}});
+    s.objects.push_back(sphere("ball-in-bowl", {-1.2f, 0.86f, -0.58f}, 0.45f, matte(paletteColor(0))));
+    s.objects.push_back(meshObject("torus", makeTorus(0.35f, 0.15f, 96, 48), {2.4f, 0.45f, 0.6f}, {3, 3, 3}, 0.0f, mirror()));
+    s.objects.push_back(sphere("yellow-ball", {2.4f, 0.5f, 0.6f}, 0.5f, matte(paletteColor(4))));
+    s.objects.push_back(meshObject("box", makeBox(), {0.6f, 0.5f, -2.2f}, {1, 1, 1}, 20.0f, matte(paletteColor(2))));
+    s.lights.push_back(pointLight({4, 10, 8}));
+    s.environment = Environment::constant(kSky);
+    s.camera = camera({0, 4.5f, 8.5f}, {0.4f, 1.0f, 0}, 45.0f);
+    s.cameraPath = orbit({0.4f, 1.0f, 0}, 1.5f);
+    s.defaultFrames = 30;
+    return s;
+}
+
 // ---- animated scenes (scene/Animation.h) ----------------------------------
 
 // Makes the last object added animated, its shape as built the rest shape.
@@ -409,6 +433,8 @@ std::vector<Entry> registry() {
                        parallaxScene});
     entries.push_back({{"glass", "refractive sphere and box before a checkered wall"}, glassScene});
     entries.push_back({{"shapes", "mirror cone, cylinder and torus (concave) (Fig 5.10/5.11)"}, shapesScene});
+    entries.push_back({{"bowl", "concave mirrors that see themselves: a tipped mirror bowl with a ball inside, a mirror torus"},
+                       bowlScene});
     entries.push_back({{"room-moving", "animated: `room` with a ball bouncing past the mirror ball"}, roomMovingScene});
     entries.push_back({{"orbit", "animated: spheres circling a glass sphere"}, orbitScene});
     entries.push_back({{"cloth", "animated: a 90k-triangle sheet folding over a sphere beside a mirror ball"},

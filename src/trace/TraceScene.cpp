@@ -187,6 +187,10 @@ struct TraceScene::Impl {
     std::vector<Sphere> spheres;
     std::vector<Representation> representation;  // per object
     std::vector<RTCScene> instanced;             // per object: its own scene for RigidInstance
+    std::vector<unsigned char> isSphere;         // per object
+    // Per object: a scene holding only the object's geometry (the top-level
+    // scene's own, shared), for meetsObject; null until prepareOwnSurfaceTests.
+    std::vector<RTCScene> alone;
     // Embree 3.13.5's coherent-packet occlusion never returned from a
     // scene holding both instances and user geometry (spheres); packets of
     // scenes with instances are traced without the coherence hint.
@@ -200,6 +204,8 @@ struct TraceScene::Impl {
     ~Impl() {
         if (scene) rtcReleaseScene(scene);
         for (RTCScene s : instanced)
+            if (s) rtcReleaseScene(s);
+        for (RTCScene s : alone)
             if (s) rtcReleaseScene(s);
         if (device) rtcReleaseDevice(device);
     }
@@ -244,6 +250,8 @@ TraceScene::TraceScene(const Scene& scene, const TraceOptions& options) : impl_(
     rtcSetSceneBuildQuality(impl_->scene, animated ? RTC_BUILD_QUALITY_LOW : stillQuality);
     impl_->spheres.resize(scene.objects.size());
     impl_->instanced.assign(scene.objects.size(), nullptr);
+    impl_->alone.assign(scene.objects.size(), nullptr);
+    impl_->isSphere.assign(scene.objects.size(), 0);
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
         const SceneObject& object = scene.objects[i];
         const Representation representation = representationOf(scene, i);
@@ -251,6 +259,7 @@ TraceScene::TraceScene(const Scene& scene, const TraceOptions& options) : impl_(
         RTCGeometry geom = nullptr;
         if (const auto* sphere = std::get_if<Sphere>(&object.shape)) {
             impl_->spheres[i] = *sphere;
+            impl_->isSphere[i] = 1;
             geom = makeSphereGeometry(impl_->device, impl_->spheres[i]);
         } else if (representation == Representation::RigidInstance) {
             // The instanced scene holds the rest mesh; the instance places it.
@@ -310,12 +319,47 @@ void TraceScene::update(const Scene& posed, std::span<const int> changed) {
         }
         }
         rtcCommitGeometry(geom);
+        // The object's own scene shares the geometry: its hierarchy follows.
+        if (impl_->alone[i]) rtcCommitScene(impl_->alone[i]);
     }
     rtcCommitScene(impl_->scene);
     throwOnDeviceError(impl_->device, "updating the scene");
 }
 
 void* TraceScene::embreeScene() const { return impl_->scene; }
+
+void TraceScene::prepareOwnSurfaceTests(std::span<const int> objects) const {
+    for (const int id : objects) {
+        const auto i = static_cast<std::size_t>(id);
+        if (i >= impl_->alone.size()) throw RuntimeError("no object " + std::to_string(id) + " in the tracer's scene");
+        if (impl_->isSphere[i] || impl_->alone[i]) continue;
+        RTCScene own = rtcNewScene(impl_->device);
+        // A refitted deforming mesh keeps its own quality only in Embree's
+        // two-level mode (scene quality LOW); one geometry needs no better.
+        rtcSetSceneBuildQuality(own, impl_->representation[i] == Representation::DeformingMesh ? RTC_BUILD_QUALITY_LOW
+                                                                                               : RTC_BUILD_QUALITY_MEDIUM);
+        rtcAttachGeometry(own, rtcGetGeometry(impl_->scene, static_cast<unsigned>(id)));
+        rtcCommitScene(own);
+        impl_->alone[i] = own;
+    }
+    throwOnDeviceError(impl_->device, "building an object's own hierarchy");
+}
+
+bool TraceScene::meetsObject(int objectId, const Ray& ray) const {
+    const auto i = static_cast<std::size_t>(objectId);
+    if (impl_->isSphere[i])
+        return sphereRoot(impl_->spheres[i], ray.origin.x, ray.origin.y, ray.origin.z, ray.direction.x,
+                          ray.direction.y, ray.direction.z, ray.tNear, ray.tFar) >= 0.0f;
+    if (!impl_->alone[i])
+        throw RuntimeError("object " + std::to_string(objectId) + " was tested for its own surface before "
+                           "prepareOwnSurfaceTests built its hierarchy");
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay r;
+    toEmbree(ray, r);
+    rtcOccluded1(impl_->alone[i], &context, &r);
+    return r.tfar < 0.0f;
+}
 
 TraceHit TraceScene::intersect(const Ray& ray) const {
     RTCIntersectContext context;

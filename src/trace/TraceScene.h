@@ -96,6 +96,18 @@ public:
     FrameTraceStats frameStats() const;
     Accelerator accelerator() const;
 
+    // Whether `ray` meets object `objectId`'s own surface anywhere in
+    // [tNear, tFar], every other object ignored: a concave mirror that sees
+    // itself. Spheres are solved analytically; any other object is traced
+    // against a hierarchy of its own, which prepareOwnSurfaceTests must have
+    // built (RuntimeError otherwise). Thread-safe.
+    bool meetsObject(int objectId, const Ray& ray) const;
+    // Builds the hierarchies meetsObject needs for `objects` (object
+    // indices), those not built yet; each shares its object's geometry, so it
+    // follows update(). Not thread-safe: no ray may be in flight. Const for
+    // the reason prepareFrame is.
+    void prepareOwnSurfaceTests(std::span<const int> objects) const;
+
     // Escape hatch for code in src/trace/ that needs the raw RTCScene.
     void* embreeScene() const;
 

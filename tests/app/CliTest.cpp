@@ -46,8 +46,8 @@ protected:
 TEST_F(Cli, ScenesListsOneLinePerBuiltinScene) {
     const RunResult r = runRaycache("scenes", dir_);
     EXPECT_EQ(r.exitCode, 0);
-    // behind-N, grid-N, the two 32-sphere walls, 4 others, 4 animated
-    EXPECT_EQ(lineCount(r.out), 7 + 6 + 2 + 4 + 4);
+    // behind-N, grid-N, the two 32-sphere walls, 5 others, 4 animated
+    EXPECT_EQ(lineCount(r.out), 7 + 6 + 2 + 5 + 4);
     EXPECT_NE(r.out.find("behind-32"), std::string::npos);
     EXPECT_NE(r.out.find("light-sweep"), std::string::npos);
     EXPECT_NE(r.out.find("parallax"), std::string::npos);

@@ -33,7 +33,10 @@ Scene oneMirror(int resolution) { return cdct_test::oneMirror(CacheTechnique::Cd
 // Goes through the pre-fill protocol as a renderer does: a frame asks for the
 // cube, then every texel gets colorOf(texel) at the distance `depthOf` gives
 // for its direction (infinity: a miss).
-void prefill(RayCache& cache, const std::function<float(const Vec3&)>& depthOf) {
+// `sawMirror` (optional): whether the texel of a direction saw a mirror or
+// glass (PrefillTexel::viewDependent).
+void prefill(RayCache& cache, const std::function<float(const Vec3&)>& depthOf,
+             const std::function<bool(const Vec3&)>& sawMirror = {}) {
     auto workers = cache.makeWorkers(1);
     cache.beginFrame(workers);
     workers[0].beginBatch(0);
@@ -45,7 +48,7 @@ void prefill(RayCache& cache, const std::function<float(const Vec3&)>& depthOf) 
         const Vec3 direction = cache.prefillDirection(0, static_cast<int>(i));
         EXPECT_NEAR(length(direction), 1.0f, 1e-5f);
         EXPECT_EQ(cache.cube(0).texelIndexFor(direction), static_cast<int>(i)) << "through the texel's centre";
-        texels[i] = {colorOf(static_cast<int>(i)), depthOf(direction)};
+        texels[i] = {colorOf(static_cast<int>(i)), depthOf(direction), sawMirror && sawMirror(direction) ? 1u : 0u};
     }
     cache.completePrefill(0, texels);
     const FrameCacheStats stats = cache.endFrame(workers);
@@ -319,4 +322,57 @@ TEST(CdctImproved, ParallaxCloserToUncachedThanCctAlongTheCameraPath) {
     RecordProperty("cct_psnr_db", std::to_string(cctDb));
     RecordProperty("cdct_psnr_db", std::to_string(cdctDb));
     EXPECT_GE(cdctDb - cctDb, 5.0);
+}
+
+TEST(CdctImproved, TexelsThatSawAMirrorFromTheCentreAreTracedNotAnswered) {
+    // Every direction met a surface 3 from the centre; those above the
+    // equator met a mirror, whose colour as seen from the centre is not
+    // what a ray from elsewhere on the object sees.
+    for (const bool trace : {false, true}) {
+        RayCacheSettings settings;
+        settings.cdctImprovements.traceViewDependent = trace;
+        RayCache cache(oneMirror(32), settings);
+        prefill(cache, [](const Vec3&) { return 3.0f; }, [](const Vec3& v) { return v.y > 0.0f; });
+        auto workers = cache.makeWorkers(1);
+        cache.beginFrame(workers);
+        workers[0].beginBatch(0);
+        const auto up = cache.lookup(0, {0, 1.0001f, 0}, normalize(Vec3{0.2f, 1.0f, 0.1f}), workers[0]);
+        const auto down = cache.lookup(0, {0, -1.0001f, 0}, normalize(Vec3{0.2f, -1.0f, 0.1f}), workers[0]);
+        EXPECT_TRUE(down.has_value()) << trace;
+        EXPECT_EQ(up.has_value(), !trace);
+        const FrameCacheStats stats = cache.endFrame(workers);
+        EXPECT_EQ(stats.objects[0].viewDependent, trace ? 1u : 0u);
+        EXPECT_EQ(stats.objects[0].misses, trace ? 1u : 0u);
+        EXPECT_EQ(stats.objects[0].cdctSearches, 2u) << "the texel is known only once the search found it";
+    }
+}
+
+TEST(CdctImproved, QueriesMeetingTheirOwnObjectAreMissesWithoutASearch) {
+    RayCache cache(oneMirror(32), {});
+    EXPECT_TRUE(cache.seesPastOwnSurface(0)) << "the pre-fill passes through the object's own surface";
+    EXPECT_EQ(cache.objectsSeenPastThemselves(), std::vector<int>{0});
+    prefill(cache, [](const Vec3&) { return 3.0f; });
+    auto workers = cache.makeWorkers(1);
+    cache.beginFrame(workers);
+    workers[0].beginBatch(0);
+    const Vec3 origin{0, 0, 1.0001f}, direction = normalize(Vec3{0.1f, 0.2f, 1.0f});
+    const std::vector<RayCache::Query> queries{{0, origin, direction, 0.0f, false}, {0, origin, direction, 0.0f, true}};
+    std::vector<Rgb> colors(2);
+    std::vector<unsigned char> found(2);
+    std::vector<int> storeTexels(2);
+    cache.lookupBatch(queries, colors, found, storeTexels, workers[0]);
+    EXPECT_EQ(found[0], 1);
+    EXPECT_EQ(found[1], 0) << "the cube holds what lies behind the object's surface, not the surface";
+    const FrameCacheStats stats = cache.endFrame(workers);
+    EXPECT_EQ(stats.objects[0].ownSurface, 1u);
+    EXPECT_EQ(stats.objects[0].misses, 1u);
+    EXPECT_EQ(stats.objects[0].cdctSearches, 1u);
+
+    // Cubes that hold the object's own surface, or that are told not to test it.
+    RayCacheSettings off;
+    off.cdctImprovements.traceOwnSurface = false;
+    EXPECT_FALSE(RayCache(oneMirror(32), off).seesPastOwnSurface(0));
+    EXPECT_TRUE(RayCache(oneMirror(32), off).objectsSeenPastThemselves().empty());
+    EXPECT_FALSE(RayCache(cdct_test::oneMirror(CacheTechnique::CdctParity, 32), {}).seesPastOwnSurface(0));
+    EXPECT_FALSE(RayCache(cdct_test::oneMirror(CacheTechnique::Cct, 32), {}).seesPastOwnSurface(0));
 }

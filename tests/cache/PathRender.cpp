@@ -11,7 +11,8 @@ namespace raycache {
 
 PathRender renderPath(const std::string& sceneName, CacheTechnique technique, int frames, bool still, int size,
                       int threads, int cacheResolution, const ProcessGroup* group, TileBalance balance, int cubeLevels,
-                      std::int64_t prefillPerFrame, bool resolutionFromView, VisibleFill fill) {
+                      std::int64_t prefillPerFrame, bool resolutionFromView, VisibleFill fill,
+                      const CdctImprovements& improvements) {
     const auto scene = makeBuiltinScene(sceneName);
     EXPECT_TRUE(scene.has_value()) << sceneName;
     if (!scene) return {};
@@ -25,6 +26,7 @@ PathRender renderPath(const std::string& sceneName, CacheTechnique technique, in
     settings.cache.prefillTexelsPerFrame = prefillPerFrame;
     settings.cache.resolutionFromView = resolutionFromView;
     settings.cache.visibleFill = fill;
+    settings.cache.cdctImprovements = improvements;
     const TraceScene tracer(*scene);
     const Parallel parallel(threads);
     RayCache cache(*scene, settings.cache);

@@ -7,6 +7,7 @@
 
 #include "core/Image.h"
 #include "core/ProcessGroup.h"
+#include "cache/CdctSearch.h"
 #include "cache/RayCache.h"
 #include "render/FrameStats.h"
 #include "render/TileAssignment.h"
@@ -27,11 +28,12 @@ struct PathRender {
 // With `group` (one of several processes), each frame's tiles are shared
 // among them and only process 0's frames are whole. `prefillPerFrame`:
 // RayCacheSettings::prefillTexelsPerFrame. `resolutionFromView`, `fill`:
-// RayCacheSettings::resolutionFromView, visibleFill.
+// RayCacheSettings::resolutionFromView, visibleFill. `improvements`:
+// RayCacheSettings::cdctImprovements.
 PathRender renderPath(const std::string& sceneName, CacheTechnique technique, int frames, bool still, int size,
                       int threads = 2, int cacheResolution = 512, const ProcessGroup* group = nullptr,
                       TileBalance balance = TileBalance::Dynamic, int cubeLevels = 1,
                       std::int64_t prefillPerFrame = 0, bool resolutionFromView = false,
-                      VisibleFill fill = VisibleFill::Off);
+                      VisibleFill fill = VisibleFill::Off, const CdctImprovements& improvements = {});
 
 }  // namespace raycache

@@ -36,10 +36,12 @@ constexpr int kSize = 96;
 // scenes (114.2 to 146.7 dB: float rounding only); one silhouette pixel does
 // on grid-16, grid-32 and shapes (63.2 dB on shapes). The bounds sit just
 // outside that, so one more differing pixel per scene is tolerated, not a
-// broken G-buffer.
+// broken G-buffer. A silhouette pixel may show the other side of the edge
+// entirely: on `bowl` (added later) one pixel on the mirror's thin rim does,
+// 44.7 dB; a whole wrong pixel of 9216 is about 40 dB, hence the bound.
 constexpr long kMaxDifferingPixels = 2;
 constexpr double kMinPsnrRoundingOnly = 110.0;  // when no pixel differs by > 1e-3
-constexpr double kMinPsnr = 60.0;
+constexpr double kMinPsnr = 38.0;
 // With CCT along a path: 132.7 to 139.5 dB, except 45.3 dB in frame 1, where
 // a texel stored from a G-buffer position a rounding away differs.
 constexpr double kMinPsnrCachedPath = 42.0;

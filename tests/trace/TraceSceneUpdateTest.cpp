@@ -90,3 +90,55 @@ TEST(TraceSceneUpdate, MovingAnObjectTheSceneDoesNotAnimateIsAnError) {
 
 }  // namespace
 }  // namespace raycache
+
+namespace raycache {
+namespace {
+
+// The `bowl` scene's objects: floor, bowl, ball in the bowl, torus, ball in
+// the torus, box.
+constexpr int kBowl = 1, kBallInBowl = 2, kTorus = 3, kBallInTorus = 4;
+const Vec3 kBowlCentre{-1.2f, 1.55f, 0.0f};
+// From the bowl's centre down its axis (tipped 40 degrees toward +z): through
+// the ball that lies in it, to the bowl's inside wall.
+const Vec3 kIntoBowl = normalize(Vec3{0.0f, -0.766f, -0.643f});
+
+}  // namespace
+
+TEST(TraceSceneOwnSurface, MeetsOnlyTheObjectItselfWhateverLiesInFront) {
+    const Scene scene = *makeBuiltinScene("bowl");
+    const TraceScene tracer(scene);
+    tracer.prepareOwnSurfaceTests(std::vector<int>{kBowl});
+    const Ray down{kBowlCentre, kIntoBowl};
+    EXPECT_EQ(tracer.intersect(down).objectId, kBallInBowl) << "the ball lies in front of the wall";
+    EXPECT_TRUE(tracer.meetsObject(kBowl, down));
+    EXPECT_FALSE(tracer.meetsObject(kBowl, Ray{kBowlCentre, -kIntoBowl})) << "out through the bowl's opening";
+    EXPECT_FALSE(tracer.meetsObject(kBowl, Ray{kBowlCentre, kIntoBowl, 0.0f, 0.5f})) << "stops short of the wall";
+    // Spheres need no hierarchy of their own.
+    const Vec3 ballTop{2.4f, 1.0001f, 0.6f};
+    EXPECT_FALSE(tracer.meetsObject(kBallInTorus, Ray{ballTop, {0, 1, 0}}));
+    EXPECT_TRUE(tracer.meetsObject(kBallInTorus, Ray{ballTop + Vec3{0, 2, 0}, {0, -1, 0}}));
+    // A mesh whose hierarchy was not built is a caller's mistake, not a miss.
+    EXPECT_THROW((void)tracer.meetsObject(kTorus, down), RuntimeError);
+}
+
+TEST(TraceSceneOwnSurface, FollowsARigidlyMovingMesh) {
+    Scene scene = *makeBuiltinScene("bowl");
+    TransformTrack track;
+    track.keys = {TransformKey{0.0f, {}, {}, {1, 1, 1}}, TransformKey{1.0f, {20, 0, 0}, {}, {1, 1, 1}}};
+    scene.animation.objects.push_back(
+        ObjectAnimation{kBowl, track, nullptr, scene.objects[kBowl].shape, scene.objects[kBowl].origin});
+    Scene posed = scene;
+    TraceScene tracer(posed);
+    tracer.prepareOwnSurfaceTests(std::vector<int>{kBowl});
+    const Ray down{kBowlCentre, kIntoBowl};
+    const Ray movedDown{kBowlCentre + Vec3{10, 0, 0}, kIntoBowl};
+    EXPECT_TRUE(tracer.meetsObject(kBowl, down));
+    EXPECT_FALSE(tracer.meetsObject(kBowl, movedDown));
+    const SceneChanges changes = poseScene(scene, 0.5f, posed);  // halfway: 10 along x
+    ASSERT_EQ(changes.objects, std::vector<int>{kBowl});
+    tracer.update(posed, changes.objects);
+    EXPECT_FALSE(tracer.meetsObject(kBowl, down));
+    EXPECT_TRUE(tracer.meetsObject(kBowl, movedDown));
+}
+
+}  // namespace raycache

@@ -1,0 +1,76 @@
+// Improved CDCT on concave mirrors and on mirrors that see other mirrors,
+// with the uncached render as ground truth: the `bowl` scene's mirrors see
+// themselves (rays that meet their own object are traced), and `shapes`'
+// mirrors see each other (texels that saw a mirror from the centre are
+// traced). Each switch is measured on and off, against CCT.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "PathRender.h"
+#include "bench/ImageMetrics.h"
+
+using namespace raycache;
+
+namespace {
+
+constexpr int kFrames = 8;
+constexpr int kSize = 160;
+constexpr int kFaces = 64;  // small faces: CCT answers most of its lookups too
+
+// Mean PSNR against `truth` over frames 2..kFrames (frame 1 traces everything).
+double meanPsnr(const PathRender& run, const PathRender& truth) {
+    double sum = 0.0;
+    for (int f = 1; f < kFrames; ++f)
+        sum += psnr(run.frames[static_cast<std::size_t>(f)], truth.frames[static_cast<std::size_t>(f)]);
+    return sum / (kFrames - 1);
+}
+
+std::uint64_t total(const PathRender& run, std::uint64_t (FrameCacheStats::*count)() const) {
+    std::uint64_t sum = 0;
+    for (const FrameStats& s : run.stats) sum += ((*s.cache).*count)();
+    return sum;
+}
+
+PathRender cdct(const char* scene, const CdctImprovements& improvements) {
+    return renderPath(scene, CacheTechnique::Cdct, kFrames, false, kSize, 2, kFaces, nullptr, TileBalance::Dynamic, 1,
+                      0, false, VisibleFill::Off, improvements);
+}
+
+}  // namespace
+
+TEST(CdctOwnSurface, ConcaveMirrorsCloserToUncachedThanCctAndThanWithoutTheTest) {
+    const PathRender plain = renderPath("bowl", CacheTechnique::None, kFrames, false, kSize, 2, kFaces);
+    const PathRender cct = renderPath("bowl", CacheTechnique::Cct, kFrames, false, kSize, 2, kFaces);
+    CdctImprovements without;
+    without.traceOwnSurface = false;
+    const PathRender blind = cdct("bowl", without);
+    const PathRender tested = cdct("bowl", {});
+    const double cctDb = meanPsnr(cct, plain), blindDb = meanPsnr(blind, plain), testedDb = meanPsnr(tested, plain);
+    std::printf("bowl %dx%d, %d^2 faces, frames 2-%d: CCT %.2f dB, CDCT without the own-surface test %.2f dB, "
+                "with it %.2f dB\n", kSize, kSize, kFaces, kFrames, cctDb, blindDb, testedDb);
+    RecordProperty("cct_psnr_db", std::to_string(cctDb));
+    RecordProperty("cdct_blind_psnr_db", std::to_string(blindDb));
+    RecordProperty("cdct_psnr_db", std::to_string(testedDb));
+    EXPECT_EQ(total(blind, &FrameCacheStats::ownSurface), 0u);
+    EXPECT_GT(total(tested, &FrameCacheStats::ownSurface), 1000u);
+    // Without the test the bowl shows what lies behind its own wall.
+    EXPECT_GE(testedDb - blindDb, 3.0);
+    EXPECT_GE(testedDb, cctDb);
+}
+
+TEST(CdctOwnSurface, MirrorsSeenFromTheCentreAreTracedAndTheImageComesCloser) {
+    const PathRender plain = renderPath("shapes", CacheTechnique::None, kFrames, false, kSize, 2, kFaces);
+    const PathRender cct = renderPath("shapes", CacheTechnique::Cct, kFrames, false, kSize, 2, kFaces);
+    CdctImprovements without;
+    without.traceViewDependent = false;
+    const PathRender cached = cdct("shapes", without);
+    const PathRender traced = cdct("shapes", {});
+    const double cctDb = meanPsnr(cct, plain), cachedDb = meanPsnr(cached, plain), tracedDb = meanPsnr(traced, plain);
+    std::printf("shapes %dx%d, %d^2 faces, frames 2-%d: CCT %.2f dB, CDCT with mirrors cached as seen from the "
+                "centre %.2f dB, traced %.2f dB\n", kSize, kSize, kFaces, kFrames, cctDb, cachedDb, tracedDb);
+    EXPECT_EQ(total(cached, &FrameCacheStats::viewDependent), 0u);
+    EXPECT_GT(total(traced, &FrameCacheStats::viewDependent), 100u);
+    EXPECT_GT(tracedDb, cachedDb);
+    EXPECT_GE(tracedDb, cctDb);
+}
