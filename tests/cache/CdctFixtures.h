@@ -4,6 +4,7 @@
 // bit-exact image comparison.
 #include <cmath>
 #include <cstring>
+#include <random>
 #include <vector>
 
 #include "core/Image.h"
@@ -20,6 +21,15 @@ inline Scene oneMirror(CacheTechnique technique, int resolution) {
     mirror.cache.faceResolution = resolution;
     s.objects.push_back(SceneObject{"m", Sphere{{0, 0, 0}, 1}, mirror, {0, 0, 0}});
     return s;
+}
+
+// A uniformly random unit direction.
+inline Vec3 randomDirection(std::mt19937& rng) {
+    std::normal_distribution<float> g;
+    for (;;) {
+        const Vec3 d{g(rng), g(rng), g(rng)};
+        if (dot(d, d) > 1e-6f) return normalize(d);
+    }
 }
 
 // A color telling texels apart.

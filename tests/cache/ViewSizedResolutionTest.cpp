@@ -6,6 +6,7 @@
 // uncached render (the ground truth) and across thread counts.
 #include <gtest/gtest.h>
 
+#include "CdctFixtures.h"
 #include "PathRender.h"
 
 #include <random>
@@ -20,22 +21,8 @@ using namespace raycache;
 
 namespace {
 
-Vec3 randomDirection(std::mt19937& rng) {
-    std::normal_distribution<float> g;
-    for (;;) {
-        const Vec3 d{g(rng), g(rng), g(rng)};
-        if (dot(d, d) > 1e-6f) return normalize(d);
-    }
-}
-
-Scene oneMirror(int resolution) {
-    Scene s;
-    Material mirror;
-    mirror.reflectivity = 0.8f;
-    mirror.cache = {CacheTechnique::Cct, resolution};
-    s.objects.push_back(SceneObject{"mirror", Sphere{Vec3{}, 1}, mirror, Vec3{}});
-    return s;
-}
+Scene oneMirror(int resolution) { return cdct_test::oneMirror(CacheTechnique::Cct, resolution); }
+using cdct_test::randomDirection;
 
 ViewSizedResolution::LookupsByLevel lookupsAt(int level, std::uint64_t count) {
     ViewSizedResolution::LookupsByLevel lookups{};
