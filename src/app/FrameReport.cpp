@@ -27,6 +27,7 @@ std::string formatFrameLine(const FrameResult& r, int frameCount) {
             c->lookups() ? 100.0 * static_cast<double>(c->hits()) / static_cast<double>(c->lookups()) : 0.0;
         line << "  cache: " << c->objects.size() << (c->objects.size() == 1 ? " cube" : " cubes") << ", hits " << formatFixed(hitRate, 1) << "% of "
              << c->lookups() << ", stores " << c->stores();
+        if (c->skippedStores()) line << " (" << c->skippedStores() << " skipped: reached what moved)";
         if (c->levels() > 1) {
             // Where the hits came from, finest level first.
             line << " (by level";

@@ -29,7 +29,7 @@ nlohmann::json cacheJson(const FrameCacheStats& c) {
                            {"lookups", o.lookups},
                            {"hits", o.hits}, {"misses", o.misses}, {"rejected", o.rejected},
                            {"own_surface", o.ownSurface}, {"view_dependent", o.viewDependent},
-                           {"stores", o.stores},
+                           {"stores", o.stores}, {"stores_skipped", o.skippedStores},
                            {"prefilled_texels", o.prefilledTexels},
                            {"levels", o.levels},
                            {"hits_by_level", std::vector<std::uint64_t>(o.hitsByLevel.begin(), o.hitsByLevel.begin() + o.levels)},
@@ -37,7 +37,7 @@ nlohmann::json cacheJson(const FrameCacheStats& c) {
                            {"cdct_steps_histogram", o.cdctStepsHistogram},
                            {"invalid_percent_before", o.invalidPercentBefore}, {"bytes", o.bytes}});
     return {{"lookups", c.lookups()}, {"hits", c.hits()}, {"misses", c.misses()}, {"rejected", c.rejected()},
-            {"own_surface", c.ownSurface()}, {"view_dependent", c.viewDependent()}, {"stores", c.stores()}, {"prefilled_texels", c.prefilledTexels()},
+            {"own_surface", c.ownSurface()}, {"view_dependent", c.viewDependent()}, {"stores", c.stores()}, {"stores_skipped", c.skippedStores()}, {"prefilled_texels", c.prefilledTexels()},
             {"invalid_percent_before", c.invalidPercentBefore()}, {"bytes", c.bytes()}, {"objects", objects}};
 }
 

@@ -136,6 +136,7 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     settings.cache.resolutionFromView = options.cacheResFromView;
     settings.cache.visibleFill = *parseVisibleFill(options.cacheFill);
     settings.cache.ideal = options.cacheIdeal;
+    settings.cache.skipStoresReachingChanges = !options.cacheStoreChanging;
     settings.stageTimes = options.stageTimes;
     settings.tileBalance = *parseTileBalance(options.tileBalance);
     // Command-line options win over the scene file's, which win over the defaults.

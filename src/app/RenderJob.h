@@ -39,6 +39,7 @@ struct RenderJobOptions {
     std::string cacheFill = "off";         // RayCacheSettings::visibleFill: off | exact | approximate
     std::optional<double> cacheBudgetMiB;  // cubes' memory budget; default: the scene file's, else half the machine's memory
     bool cacheIdeal = false;               // benchmark switch, see RayCacheSettings::ideal
+    bool cacheStoreChanging = false;       // RayCacheSettings::skipStoresReachingChanges off
     bool stageTimes = false;               // time the tile kernel's stages (RenderSettings::stageTimes)
     std::optional<std::string> pipeline;   // ray | hybrid | render-cache; default: the scene file's, else ray
     std::optional<std::string> accel;      // embree | grids; default: the scene file's, else embree

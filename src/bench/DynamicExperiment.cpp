@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <functional>
 
 #include "bench/ImageMetrics.h"
 #include "bench/MarkdownTable.h"
@@ -38,6 +39,8 @@ double millisecondsSince(Clock::time_point start) {
 struct SceneRun {
     std::string scene;
     std::vector<double> uncachedMs, cctMs, updateMs, psnrDb, hitPercent;
+    // CCT with every store made (RayCacheSettings::skipStoresReachingChanges off).
+    std::vector<double> everyStoreMs, everyStoreUpdateMs;
     std::vector<std::int64_t> texelsDropped;
     InvalidationCounts oracle;
 };
@@ -50,7 +53,7 @@ public:
     }
     double estimatedWork(const BenchSettings& settings) const override {
         const double mp = std::pow(imageSide(settings.size), 2) / 1e6;
-        return std::size(kScenes) * frameCount(settings.size) * 2.0 * mp;
+        return std::size(kScenes) * frameCount(settings.size) * 3.0 * mp;
     }
 
     ExperimentOutput run(ExperimentContext& context) const override {
@@ -76,11 +79,14 @@ private:
     static SceneRun runScene(const std::string& name, int side, int frames, ExperimentContext& context) {
         const std::optional<Scene> scene = makeBuiltinScene(name);
         if (!scene) throw RuntimeError("built-in scene " + name + " is missing");
-        SceneRun run{name, {}, {}, {}, {}, {}, {}, {}};
+        SceneRun run{name, {}, {}, {}, {}, {}, {}, {}, {}, {}};
         const int threads = context.settings.threads;
         RenderSession uncached(*scene, settingsFor(side, threads, CacheTechnique::None));
         RenderSession cct(*scene, settingsFor(side, threads, CacheTechnique::Cct));
-        Image truth, film;
+        RenderSettings everyStoreSettings = settingsFor(side, threads, CacheTechnique::Cct);
+        everyStoreSettings.cache.skipStoresReachingChanges = false;
+        RenderSession everyStore(*scene, everyStoreSettings);
+        Image truth, film, everyStoreFilm;
         const double frameWork = static_cast<double>(side) * side / 1e6;
         for (int f = 0; f < frames; ++f) {
             const float time = static_cast<float>(f) / scene->fps;
@@ -98,20 +104,23 @@ private:
                 stats = cct.render(scene->camera, film);
                 run.cctMs.push_back(millisecondsSince(start));
             };
-            if (f % 2 == 0) {
-                timeUncached();
-                timeCct();
-            } else {
-                timeCct();
-                timeUncached();
-            }
+            const auto timeEveryStore = [&] {
+                const auto start = Clock::now();
+                everyStore.setTime(time);
+                const FrameStats everyStats = everyStore.render(scene->camera, everyStoreFilm);
+                run.everyStoreMs.push_back(millisecondsSince(start));
+                run.everyStoreUpdateMs.push_back(everyStats.sceneUpdate ? everyStats.sceneUpdate->milliseconds : 0.0);
+            };
+            // Rotate the order, so drifts of the machine hit all three alike.
+            const std::function<void()> order[] = {timeUncached, timeCct, timeEveryStore};
+            for (int k = 0; k < 3; ++k) order[(f + k) % 3]();
             run.updateMs.push_back(stats.sceneUpdate ? stats.sceneUpdate->milliseconds : 0.0);
             run.texelsDropped.push_back(stats.sceneUpdate ? stats.sceneUpdate->texelsInvalidated : 0);
             const FrameCacheStats& c = *stats.cache;
             run.hitPercent.push_back(c.lookups() ? 100.0 * static_cast<double>(c.hits()) / static_cast<double>(c.lookups())
                                                  : 0.0);
             run.psnrDb.push_back(psnr(film, truth));
-            context.progress.advance(2.0 * frameWork);
+            context.progress.advance(3.0 * frameWork);
         }
         // The oracle, in its own session (every lookup misses there).
         RenderSettings oracleSettings = settingsFor(oracleSide(context.settings.size), threads, CacheTechnique::Cct);
@@ -138,13 +147,15 @@ private:
         out.title = title();
         std::string md = "Each built-in animated scene at " + std::to_string(side) + "x" + std::to_string(side) +
                          ", " + std::to_string(frames) +
-                         " frames from t = 0 at the scene's fps, the camera still. Uncached and CCT sessions render "
-                         "each frame in turn (the order alternating), each timed from its scene update to its "
+                         " frames from t = 0 at the scene's fps, the camera still. Uncached, CCT and CCT making "
+                         "every store (without skipping those that reached what the last change moved) render "
+                         "each frame in turn (the order rotating), each timed from its scene update to its "
                          "finished image. Medians with min–max over frames 1 to " +
                          std::to_string(frames - 1) + " (frame 0 fills the caches). PSNR: the CCT frame against "
                          "the uncached frame of the same pose.\n\n";
         MarkdownTable speed({"scene", "uncached ms", "CCT ms", "CCT speed-up (ratio of medians)", "per-frame ratio",
-                             "update share of the CCT frame", "CCT hits", "texels dropped per frame", "PSNR min / median"});
+                             "update share of the CCT frame", "CCT hits", "texels dropped per frame", "PSNR min / median",
+                             "CCT, every store: ms", "its speed-up", "its update share"});
         nlohmann::json series = nlohmann::json::array();
         SvgPlot plot;
         plot.title = "dynamic: uncached / CCT frame time, per frame";
@@ -156,7 +167,10 @@ private:
                 return v.size() > 1 ? std::vector<double>(v.begin() + 1, v.end()) : v;
             };
             const SampleSummary u = summarize(tail(r.uncachedMs)), c = summarize(tail(r.cctMs));
-            std::vector<double> ratio, share, dropped;
+            const SampleSummary every = summarize(tail(r.everyStoreMs));
+            std::vector<double> ratio, share, dropped, everyShare;
+            for (std::size_t f = 0; f < r.everyStoreMs.size(); ++f)
+                everyShare.push_back(100.0 * r.everyStoreUpdateMs[f] / r.everyStoreMs[f]);
             PlotSeries s{r.scene, {}};
             for (std::size_t f = 0; f < r.cctMs.size(); ++f) {
                 ratio.push_back(r.uncachedMs[f] / r.cctMs[f]);
@@ -173,13 +187,17 @@ private:
             speed.addRow({r.scene, cellRange(u, 1), cellRange(c, 1), cellNumber(u.median / c.median, 2) + "×",
                           cellRange(ratioSummary, 2) + "×", cellRange(shareSummary, 1) + " %",
                           cellRange(hits, 1) + " %", cellRange(drops, 0),
-                          cellNumber(quality.min, 1) + " / " + cellNumber(quality.median, 1) + " dB"});
+                          cellNumber(quality.min, 1) + " / " + cellNumber(quality.median, 1) + " dB",
+                          cellRange(every, 1), cellNumber(u.median / every.median, 2) + "×",
+                          cellRange(summarize(tail(everyShare)), 1) + " %"});
             out.headlines.push_back("dynamic " + r.scene + ": CCT " + cellNumber(u.median / c.median, 2) +
                                     "× uncached, PSNR ≥ " + cellNumber(quality.min, 1) + " dB, " +
                                     std::to_string(r.oracle.stale) + " stale texels");
             series.push_back({{"scene", r.scene},
                               {"uncached_ms", r.uncachedMs},
                               {"cct_ms", r.cctMs},
+                              {"cct_every_store_ms", r.everyStoreMs},
+                              {"cct_every_store_update_ms", r.everyStoreUpdateMs},
                               {"update_ms", r.updateMs},
                               {"hit_percent", r.hitPercent},
                               {"texels_dropped", r.texelsDropped},

@@ -48,6 +48,9 @@ struct ObjectCacheStats {
     std::uint64_t cdctSteps = 0;
     std::array<std::uint64_t, kCdctStepBuckets> cdctStepsHistogram{};
     std::uint64_t stores = 0;           // texels written at the end of the frame
+    // Stores not made: their ray tree reached what the last scene change
+    // moved (RayCacheSettings::skipStoresReachingChanges).
+    std::uint64_t skippedStores = 0;
     std::uint64_t prefilledTexels = 0;  // improved CDCT: texels filled from the centre after this frame
     double invalidPercentBefore = 0.0;  // invalid texels when the frame started
     std::size_t bytes = 0;              // memory of the cube's texels (all levels)
@@ -60,6 +63,7 @@ struct FrameCacheStats {
     std::uint64_t hits() const { return sum(&ObjectCacheStats::hits); }
     std::uint64_t misses() const { return sum(&ObjectCacheStats::misses); }
     std::uint64_t stores() const { return sum(&ObjectCacheStats::stores); }
+    std::uint64_t skippedStores() const { return sum(&ObjectCacheStats::skippedStores); }
     std::uint64_t rejected() const { return sum(&ObjectCacheStats::rejected); }
     std::uint64_t ownSurface() const { return sum(&ObjectCacheStats::ownSurface); }
     std::uint64_t viewDependent() const { return sum(&ObjectCacheStats::viewDependent); }

@@ -131,7 +131,8 @@ RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings)
     : ideal_(settings.ideal), oracle_(settings.invalidationOracle), levelErrorBound_(settings.levelErrorBound),
       cubeLevels_(settings.cubeLevels), viewSized_(settings.resolutionFromView),
       tracksDependencies_(!scene.animation.empty() || settings.invalidationOracle),
-      improvements_(settings.cdctImprovements), prefillTexelsPerFrame_(settings.prefillTexelsPerFrame) {
+      improvements_(settings.cdctImprovements), prefillTexelsPerFrame_(settings.prefillTexelsPerFrame),
+      skipStoresReachingChanges_(settings.skipStoresReachingChanges && !settings.invalidationOracle) {
     const CubeBudgetPlan plan = validate(scene, settings);
     budgetNote_ = plan.note;
     cubeOfObject_.assign(scene.objects.size(), -1);
@@ -232,8 +233,18 @@ std::int64_t RayCache::dropBlock(Entry& e, int block) {
     return dropped;
 }
 
+bool RayCache::reaches(const RayTreeBounds& bounds, std::span<const PartedBounds> regions, bool lightChanged,
+                       std::span<const Light> lights) {
+    if (bounds.dependsOnEverything || (lightChanged && bounds.shaded)) return true;
+    for (const PartedBounds& region : regions)
+        if (region.any([&](const Box3& box) { return bounds.mayMeet(box, lights); })) return true;
+    return false;
+}
+
 std::int64_t RayCache::sceneChanged(const Scene& posed, const SceneChanges& changes,
                                    const PartitionRunner& runPartitions) {
+    lastChangeRegions_.clear();
+    lastChangeLit_ = false;
     if (changes.empty()) return 0;
     for (Entry& e : cubes_)
         if (std::binary_search(changes.objects.begin(), changes.objects.end(), e.objectId)) {
@@ -250,11 +261,20 @@ std::int64_t RayCache::sceneChanged(const Scene& posed, const SceneChanges& chan
     // little: hit points are computed in float, and ray origins sit a surface
     // offset (render/LocalShading.h, 1e-4 of the coordinates) off their surfaces.
     std::vector<PartedBounds> changedRegions;
+    // Where the changed objects will be if they go on as they went: now,
+    // moved once more by what this change moved them (the stores skipped
+    // until the next change are those reaching it; a guess, never a drop).
+    std::vector<PartedBounds> nextRegions;
     for (const int object : changes.objects) {
         const auto i = static_cast<std::size_t>(object);
         PartedBounds now = partedBounds(posed.objects[i], kTrianglesPerPart);
         for (const PartedBounds* region : {&objectBounds_[i], &now})
             if (!region->whole.empty()) changedRegions.push_back(region->grownRelative(1e-3f));
+        if (skipStoresReachingChanges_ && !now.whole.empty() && !objectBounds_[i].whole.empty()) {
+            const Box3& before = objectBounds_[i].whole;
+            const Vec3 moved = (now.whole.lo + now.whole.hi - before.lo - before.hi) * 0.5f;
+            nextRegions.push_back(PartedBounds{now.whole, {}, {}}.shifted(moved).grownRelative(1e-3f));
+        }
         objectBounds_[i] = std::move(now);
     }
     lights_ = posed.lights;
@@ -274,10 +294,7 @@ std::int64_t RayCache::sceneChanged(const Scene& posed, const SceneChanges& chan
             for (std::size_t b = begin; b < end; ++b) {
                 const RayTreeBounds& bounds = e.blocks[b];
                 if (bounds.empty()) continue;  // no valid texel
-                bool hit = bounds.dependsOnEverything || (lightChanged && bounds.shaded);
-                for (std::size_t k = 0; k < changedRegions.size() && !hit; ++k)
-                    hit = changedRegions[k].any([&](const Box3& box) { return bounds.mayMeet(box, lights_); });
-                reached[b] = hit ? 1 : 0;
+                reached[b] = reaches(bounds, changedRegions, lightChanged, lights_) ? 1 : 0;
             }
         };
         constexpr int kChunks = 16;
@@ -291,6 +308,14 @@ std::int64_t RayCache::sceneChanged(const Scene& posed, const SceneChanges& chan
             decide(0, e.blocks.size());
         for (std::size_t b = 0; b < e.blocks.size(); ++b)
             if (reached[b]) dropped += dropBlock(e, static_cast<int>(b));
+    }
+    if (skipStoresReachingChanges_) {
+        // Whole boxes only: a store is tested where a block is, and skipping
+        // one too many only costs a trace.
+        lastChangeRegions_.clear();
+        for (const PartedBounds& region : changedRegions) lastChangeRegions_.push_back({region.whole, {}, {}});
+        for (PartedBounds& region : nextRegions) lastChangeRegions_.push_back(std::move(region));
+        lastChangeLit_ = lightChanged;
     }
     return dropped;
 }
@@ -354,6 +379,7 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
 
     FrameCacheStats stats;
     stats.objects.resize(cubes_.size());
+    const bool skipping = skipStoresReachingChanges_ && (!lastChangeRegions_.empty() || lastChangeLit_);
     // Partition `part` of `parts` applies the stores of cubes c with
     // c % parts == part: cubes are independent, so partitions may run in
     // parallel, and each cube still sees its stores in merge order. Stores
@@ -376,6 +402,11 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
                 const auto& p = pending[i];
                 if (p.cube % parts != part) continue;
                 Entry& e = cubes_[p.cube];
+                if (skipping && reaches(workers[b.worker].pendingTrees_[i].bounds, lastChangeRegions_, lastChangeLit_,
+                                        lights_)) {
+                    ++stats.objects[p.cube].skippedStores;
+                    continue;
+                }
                 const bool finest = e.cube.writeIfInvalid(p.texel, p.packed, p.depth);
                 const bool coarser =
                     e.coarse.levelCount() > 1 && e.coarse.writeOver(p.texel, p.packed, workers[b.worker].pendingSeen_[i]) > 0;
@@ -402,6 +433,9 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
         });
     else
         applyPartition(0, 1);
+    // The change is this frame's: a frame rendered without one stores everything.
+    lastChangeRegions_.clear();
+    lastChangeLit_ = false;
 
     for (std::size_t c = 0; c < cubes_.size(); ++c) {
         ObjectCacheStats& s = stats.objects[c];

@@ -100,6 +100,15 @@ struct RayCacheSettings {
     // and every valid texel keeps the record of the ray it was traced for
     // (storedTree), so a test can trace it again after the scene changed.
     bool invalidationOracle = false;
+    // Animated scenes: a store whose ray tree reached what the last scene
+    // change moved (an object's old or new bounds; a changed light, when the
+    // tree was shaded) is not made. An animation that moved something this
+    // frame most likely moves it again the next, which would drop the texel
+    // before any frame reads it: the store, and the drop, would be work for
+    // nothing (docs/dynamic-scenes.md, "Stores the next change would drop").
+    // Counted in ObjectCacheStats::skippedStores. Off under invalidationOracle,
+    // whose records must cover every texel.
+    bool skipStoresReachingChanges = true;
 };
 
 class RayCache {
@@ -188,6 +197,11 @@ public:
     // keep their blocks' bounds: on for animated scenes, where a change must
     // find what it reaches.
     bool tracksDependencies() const { return tracksDependencies_; }
+    // Whether a tree with `bounds` may see a change that reached `regions`
+    // (object bounds before and after it) and, if `lightChanged`, the lights:
+    // the test that drops a block, and that skips a store.
+    static bool reaches(const RayTreeBounds& bounds, std::span<const PartedBounds> regions, bool lightChanged,
+                        std::span<const Light> lights);
     // Texels per side of the square blocks whose dependencies are kept together.
     static constexpr int kBlockSize = 8;
     // Bytes of the dependency records (included in bytes()).
@@ -422,6 +436,12 @@ private:
     // tested part by part once its whole box is reached.
     static constexpr int kTrianglesPerPart = 256;
     std::vector<Light> lights_;
+    // RayCacheSettings::skipStoresReachingChanges (never under the oracle),
+    // and what the sceneChanged before this frame reached (emptied by
+    // endFrame: a frame that follows no change skips nothing).
+    bool skipStoresReachingChanges_ = false;
+    std::vector<PartedBounds> lastChangeRegions_;
+    bool lastChangeLit_ = false;
 };
 
 }  // namespace raycache

@@ -437,8 +437,10 @@ void TileKernel::lookupReuse(TileScratch& s, CacheWorker& cache) const {
         TileScratch::Node& node = s.nodes[static_cast<std::size_t>(l.node)];
         if (s.cacheFound[i]) {
             node.direct = s.cachedColors[i];
-            // The answer stands for another tree: whatever it depended on, this one does.
-            if (s.trackTrees)
+            // The answer stands for another tree: whatever it depended on, this
+            // one does. Only a tree that is stored asks (the answered node's
+            // bounds go nowhere unless its parent's do).
+            if (s.trackTrees && s.nodes[static_cast<std::size_t>(node.parent)].tracked)
                 cache_->addAnswerDependencies(l.objectId, s.answerTexels[i], s.nodeBounds[static_cast<std::size_t>(l.node)]);
             continue;
         }

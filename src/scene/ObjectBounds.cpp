@@ -33,6 +33,14 @@ PartedBounds PartedBounds::grownRelative(float fraction) const {
     return out;
 }
 
+PartedBounds PartedBounds::shifted(const Vec3& offset) const {
+    PartedBounds out = *this;
+    for (Box3* box : {&out.whole}) *box = {box->lo + offset, box->hi + offset};
+    for (Box3& part : out.parts) part = {part.lo + offset, part.hi + offset};
+    for (Box3& group : out.groups) group = {group.lo + offset, group.hi + offset};
+    return out;
+}
+
 PartedBounds partedBounds(const SceneObject& object, int trianglesPerPart) {
     PartedBounds out{worldBounds(object), {}};
     const auto* mesh = std::get_if<MeshShape>(&object.shape);

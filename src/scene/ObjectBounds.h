@@ -27,6 +27,8 @@ struct PartedBounds {
     // Every box grown by `fraction` of its largest absolute coordinate (at
     // least of 1): room for float rounding around the shape.
     PartedBounds grownRelative(float fraction) const;
+    // Every box moved by `offset`.
+    PartedBounds shifted(const Vec3& offset) const;
 
     // Whether `meets` holds for one of the boxes bounding the shape most
     // tightly (the parts, or the whole box for a shape without parts),

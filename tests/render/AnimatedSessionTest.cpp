@@ -144,6 +144,8 @@ TEST(AnimatedSession, CoarseLevelsOverDroppedTexelsAreDroppedToo) {
         settings.cache.cubeLevels = 4;
         settings.cache.levelErrorBound = 1.0f;
         settings.cache.resolutionOverride = 64;
+        // Every store made, so that every change has texels to drop.
+        settings.cache.skipStoresReachingChanges = false;
         RenderSession session(scene, settings);
         CameraPath orbit;
         orbit.kind = CameraPathKind::Orbit;
@@ -177,6 +179,60 @@ TEST(AnimatedSession, CoarseLevelsOverDroppedTexelsAreDroppedToo) {
         EXPECT_GT(checked, 0) << name;
         EXPECT_GT(coarseHits, 0u) << name;
     }
+}
+
+// RayCacheSettings::skipStoresReachingChanges: a light that moves every
+// frame. Without the skip, every change drops what the frame before stored
+// under that light; with it, nothing shaded is stored while the light moves,
+// so later changes find nothing to drop, and the frames stay as close to
+// the uncached render of their pose.
+TEST(AnimatedSession, StoresReachingAMovingLightAreSkippedWhileItMoves) {
+    const Scene scene = *makeBuiltinScene("light-sweep");
+    for (const bool skip : {false, true}) {
+        RenderSettings settings = smallSettings(CacheTechnique::Cct);
+        settings.cache.skipStoresReachingChanges = skip;
+        RenderSession session(scene, settings);
+        Image film, truth;
+        std::int64_t droppedAfterFirstChange = 0;
+        for (int frame = 0; frame < 4; ++frame) {
+            const float time = static_cast<float>(frame) / scene.fps;
+            const SceneUpdateStats update = session.setTime(time);
+            if (frame >= 2) droppedAfterFirstChange += update.texelsInvalidated;
+            const FrameStats stats = session.render(scene.camera, film);
+            // Frame 0 follows no change: every store is made.
+            if (frame == 0 || !skip) {
+                EXPECT_EQ(stats.cache->skippedStores(), 0u) << "frame " << frame;
+                EXPECT_GT(stats.cache->stores(), 0u) << "frame " << frame;
+            } else {
+                EXPECT_GT(stats.cache->skippedStores(), 0u) << "frame " << frame;
+            }
+            const Scene still = stillPoseAt(scene, time);
+            RenderSession fresh(still, smallSettings(CacheTechnique::None));
+            fresh.render(still.camera, truth);
+            EXPECT_GE(psnr(film, truth), 40.0) << "skip " << skip << " frame " << frame;
+        }
+        if (skip)
+            EXPECT_EQ(droppedAfterFirstChange, 0);
+        else
+            EXPECT_GT(droppedAfterFirstChange, 0);
+    }
+}
+
+// Once the scene stops changing, stores are made again; a store whose tree
+// meets nothing that moved is made even while things move.
+TEST(AnimatedSession, StoresResumeWhenTheSceneStopsChanging) {
+    const Scene scene = *makeBuiltinScene("orbit");
+    RenderSession session(scene, smallSettings(CacheTechnique::Cct));
+    Image film;
+    session.setTime(0.0f);
+    session.render(scene.camera, film);
+    session.setTime(1.0f / scene.fps);
+    const FrameStats moving = session.render(scene.camera, film);
+    EXPECT_GT(moving.cache->skippedStores(), 0u);
+    session.setTime(1.0f / scene.fps);  // the same pose: no change
+    const FrameStats still = session.render(scene.camera, film);
+    EXPECT_EQ(still.cache->skippedStores(), 0u);
+    EXPECT_GT(still.cache->stores(), 0u);
 }
 
 TEST(AnimatedSession, StillSceneIgnoresTime) {
