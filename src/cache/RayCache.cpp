@@ -169,6 +169,11 @@ RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings)
         for (const ObjectAnimation& a : scene.animation.objects)
             objectBounds_[static_cast<std::size_t>(a.object)] =
                 partedBounds(scene.objects[static_cast<std::size_t>(a.object)], kTrianglesPerPart);
+        if (scene.objects.size() <= kMostObjectsForMovedEscapes)
+            for (const SceneObject& object : scene.objects) {
+                const Box3 box = worldBounds(object);
+                wholeBounds_.push_back(box.empty() ? box : PartedBounds{box, {}, {}}.grownRelative(1e-3f).whole);
+            }
         lights_ = scene.lights;
     }
 }
@@ -241,16 +246,88 @@ bool RayCache::reaches(const RayTreeBounds& bounds, std::span<const PartedBounds
     return false;
 }
 
+namespace {
+
+Box3 shiftedBox(const Box3& box, const Vec3& offset) { return box.empty() ? box : Box3{box.lo + offset, box.hi + offset}; }
+
+}  // namespace
+
+bool RayCache::escapesOnly(const RayTreeBounds& bounds) {
+    return !bounds.escapeOrigins.empty() && bounds.segmentStarts.empty() && bounds.shadowOrigins.empty() &&
+           !bounds.shaded && !bounds.dependsOnEverything;
+}
+
+bool RayCache::onlyTranslated(const SceneObject& now, const Box3& before, const Box3& after, const Vec3& originStep) {
+    // A sphere whose box kept its size and moved with its origin: every point
+    // of its surface moved by the same step, so a ray leaving it moved along.
+    if (!std::holds_alternative<Sphere>(now.shape) || before.empty() || after.empty()) return false;
+    const Vec3 sizeBefore = before.hi - before.lo, sizeAfter = after.hi - after.lo;
+    const Vec3 centreStep = (after.lo + after.hi - before.lo - before.hi) * 0.5f;
+    const float scale = std::max({maxComponent(max(-after.lo, after.hi)), maxComponent(max(-before.lo, before.hi)), 1.0f});
+    const float slack = 1e-5f * scale;
+    for (int a = 0; a < 3; ++a)
+        if (std::fabs(sizeBefore[a] - sizeAfter[a]) > slack || std::fabs(centreStep[a] - originStep[a]) > slack)
+            return false;
+    return true;
+}
+
+void RayCache::shiftBlockRecords(Entry& e, int block, const Vec3& movedBy) {
+    const int n = e.cube.size();
+    const int perFace = e.blocksPerSide * e.blocksPerSide;
+    const int face = block / perFace;
+    const int y0 = (block % perFace) / e.blocksPerSide * kBlockSize;
+    const int x0 = block % e.blocksPerSide * kBlockSize;
+    for (int y = y0; y < std::min(y0 + kBlockSize, n); ++y)
+        for (int x = x0; x < std::min(x0 + kBlockSize, n); ++x) {
+            RayTreeRecord& record = e.storedTrees[static_cast<std::size_t>((face * n + y) * n + x)];
+            record.origin += movedBy;
+            record.bounds.escapeOrigins = shiftedBox(record.bounds.escapeOrigins, movedBy);
+        }
+}
+
+bool RayCache::reachesLastChange(const RayTreeBounds& bounds, int cachingObject) const {
+    if (bounds.dependsOnEverything || (lastChangeLit_ && bounds.shaded)) return true;
+    // A caching sphere that only moved keeps the texels whose rays escape
+    // (sceneChanged): its own move does not reach them.
+    const bool ownMoveKept = static_cast<std::size_t>(cachingObject) < lastChangeTranslated_.size() &&
+                             lastChangeTranslated_[static_cast<std::size_t>(cachingObject)] && escapesOnly(bounds);
+    for (std::size_t r = 0; r < lastChangeRegions_.size(); ++r) {
+        if (ownMoveKept && lastChangeRegionObjects_[r] == cachingObject) continue;
+        if (lastChangeRegions_[r].any([&](const Box3& box) { return bounds.mayMeet(box, lights_); })) return true;
+    }
+    return false;
+}
+
+bool RayCache::stillEscapes(const RayTreeBounds& bounds, const Vec3& movedBy, int objectId) const {
+    if (wholeBounds_.empty()) return false;  // more objects than kMostObjectsForMovedEscapes
+    const Box3 origins = shiftedBox(bounds.escapeOrigins, movedBy);
+    // The rays leave their sphere outward and never meet it again; any other
+    // object's box they may meet could now stand in their way.
+    for (std::size_t k = 0; k < wholeBounds_.size(); ++k)
+        if (static_cast<int>(k) != objectId && boxMeetsRays(wholeBounds_[k], origins, bounds.escapeDirections))
+            return false;
+    return true;
+}
+
 std::int64_t RayCache::sceneChanged(const Scene& posed, const SceneChanges& changes,
                                    const PartitionRunner& runPartitions) {
     lastChangeRegions_.clear();
+    lastChangeRegionObjects_.clear();
     lastChangeLit_ = false;
     if (changes.empty()) return 0;
-    for (Entry& e : cubes_)
-        if (std::binary_search(changes.objects.begin(), changes.objects.end(), e.objectId)) {
-            e.cube.moveTo(posed.objects[static_cast<std::size_t>(e.objectId)].origin);
-            e.coarse.moveTo(posed.objects[static_cast<std::size_t>(e.objectId)].origin);
-        }
+    const auto changed = [&](int object) {
+        return std::binary_search(changes.objects.begin(), changes.objects.end(), object);
+    };
+    // Per cube, how far its object moved (its cube follows the origin).
+    std::vector<Vec3> cubeMovedBy(cubes_.size());
+    for (std::size_t c = 0; c < cubes_.size(); ++c) {
+        Entry& e = cubes_[c];
+        if (!changed(e.objectId)) continue;
+        const Vec3 origin = posed.objects[static_cast<std::size_t>(e.objectId)].origin;
+        cubeMovedBy[c] = origin - e.cube.center();
+        e.cube.moveTo(origin);
+        e.coarse.moveTo(origin);
+    }
     std::int64_t dropped = 0;
     if (!tracksDependencies_) {
         for (const Entry& e : cubes_) dropped += static_cast<std::int64_t>(e.cube.validCount() + e.coarse.validCount());
@@ -265,15 +342,27 @@ std::int64_t RayCache::sceneChanged(const Scene& posed, const SceneChanges& chan
     // moved once more by what this change moved them (the stores skipped
     // until the next change are those reaching it; a guess, never a drop).
     std::vector<PartedBounds> nextRegions;
+    std::vector<int> changedRegionObjects, nextRegionObjects;  // whose regions they are
+    // Caching spheres that only moved, by their cube's step (see translatedSphere).
+    std::vector<unsigned char> translated(posed.objects.size(), 0);
     for (const int object : changes.objects) {
         const auto i = static_cast<std::size_t>(object);
         PartedBounds now = partedBounds(posed.objects[i], kTrianglesPerPart);
+        const int c = cubeIndexOf(object);
+        if (c >= 0)
+            translated[i] = onlyTranslated(posed.objects[i], objectBounds_[i].whole, now.whole,
+                                           cubeMovedBy[static_cast<std::size_t>(c)]);
+        if (!wholeBounds_.empty()) wholeBounds_[i] = now.whole.empty() ? Box3{} : now.grownRelative(1e-3f).whole;
         for (const PartedBounds* region : {&objectBounds_[i], &now})
-            if (!region->whole.empty()) changedRegions.push_back(region->grownRelative(1e-3f));
+            if (!region->whole.empty()) {
+                changedRegions.push_back(region->grownRelative(1e-3f));
+                changedRegionObjects.push_back(object);
+            }
         if (skipStoresReachingChanges_ && !now.whole.empty() && !objectBounds_[i].whole.empty()) {
             const Box3& before = objectBounds_[i].whole;
             const Vec3 moved = (now.whole.lo + now.whole.hi - before.lo - before.hi) * 0.5f;
             nextRegions.push_back(PartedBounds{now.whole, {}, {}}.shifted(moved).grownRelative(1e-3f));
+            nextRegionObjects.push_back(object);
         }
         objectBounds_[i] = std::move(now);
     }
@@ -290,10 +379,17 @@ std::int64_t RayCache::sceneChanged(const Scene& posed, const SceneChanges& chan
         // Deciding reads only; dropping writes validity words that blocks
         // share, so it runs after, on one thread.
         reached.assign(e.blocks.size(), 0);
+        const bool cubeTranslated = translated[static_cast<std::size_t>(e.objectId)] != 0;
+        const Vec3 movedBy = cubeMovedBy[static_cast<std::size_t>(&e - cubes_.data())];
+        // Values of `reached`: 0 kept, 1 dropped, 2 kept with its rays moved along.
         const auto decide = [&](std::size_t begin, std::size_t end) {
             for (std::size_t b = begin; b < end; ++b) {
                 const RayTreeBounds& bounds = e.blocks[b];
                 if (bounds.empty()) continue;  // no valid texel
+                if (cubeTranslated && escapesOnly(bounds)) {
+                    reached[b] = stillEscapes(bounds, movedBy, e.objectId) ? 2 : 1;
+                    continue;
+                }
                 reached[b] = reaches(bounds, changedRegions, lightChanged, lights_) ? 1 : 0;
             }
         };
@@ -306,8 +402,13 @@ std::int64_t RayCache::sceneChanged(const Scene& posed, const SceneChanges& chan
             });
         else
             decide(0, e.blocks.size());
-        for (std::size_t b = 0; b < e.blocks.size(); ++b)
-            if (reached[b]) dropped += dropBlock(e, static_cast<int>(b));
+        for (std::size_t b = 0; b < e.blocks.size(); ++b) {
+            if (reached[b] == 1) dropped += dropBlock(e, static_cast<int>(b));
+            if (reached[b] == 2) {
+                e.blocks[b].escapeOrigins = shiftedBox(e.blocks[b].escapeOrigins, movedBy);
+                if (oracle_) shiftBlockRecords(e, static_cast<int>(b), movedBy);
+            }
+        }
     }
     if (skipStoresReachingChanges_) {
         // Whole boxes only: a store is tested where a block is, and skipping
@@ -315,6 +416,10 @@ std::int64_t RayCache::sceneChanged(const Scene& posed, const SceneChanges& chan
         lastChangeRegions_.clear();
         for (const PartedBounds& region : changedRegions) lastChangeRegions_.push_back({region.whole, {}, {}});
         for (PartedBounds& region : nextRegions) lastChangeRegions_.push_back(std::move(region));
+        lastChangeRegionObjects_ = std::move(changedRegionObjects);
+        lastChangeRegionObjects_.insert(lastChangeRegionObjects_.end(), nextRegionObjects.begin(),
+                                        nextRegionObjects.end());
+        lastChangeTranslated_ = std::move(translated);
         lastChangeLit_ = lightChanged;
     }
     return dropped;
@@ -402,8 +507,7 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
                 const auto& p = pending[i];
                 if (p.cube % parts != part) continue;
                 Entry& e = cubes_[p.cube];
-                if (skipping && reaches(workers[b.worker].pendingTrees_[i].bounds, lastChangeRegions_, lastChangeLit_,
-                                        lights_)) {
+                if (skipping && reachesLastChange(workers[b.worker].pendingTrees_[i].bounds, e.objectId)) {
                     ++stats.objects[p.cube].skippedStores;
                     continue;
                 }
@@ -435,6 +539,8 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
         applyPartition(0, 1);
     // The change is this frame's: a frame rendered without one stores everything.
     lastChangeRegions_.clear();
+    lastChangeRegionObjects_.clear();
+    lastChangeTranslated_.clear();
     lastChangeLit_ = false;
 
     for (std::size_t c = 0; c < cubes_.size(); ++c) {

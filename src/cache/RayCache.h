@@ -441,7 +441,32 @@ private:
     // endFrame: a frame that follows no change skips nothing).
     bool skipStoresReachingChanges_ = false;
     std::vector<PartedBounds> lastChangeRegions_;
+    std::vector<int> lastChangeRegionObjects_;          // the object each region is of
+    std::vector<unsigned char> lastChangeTranslated_;   // per object: onlyTranslated in that change
     bool lastChangeLit_ = false;
+    // Whether a store into `cachingObject`'s cube with `bounds` reaches the
+    // last change (the skip's test).
+    bool reachesLastChange(const RayTreeBounds& bounds, int cachingObject) const;
+
+    // A caching sphere that moves keeps the texels whose trees are single
+    // rays escaping to the environment, as long as those rays, moved along
+    // with it, still meet no other object's box: their colour is the
+    // environment's in their direction, the same from anywhere
+    // (docs/dynamic-scenes.md, "A caching sphere that moves").
+    static bool escapesOnly(const RayTreeBounds& bounds);
+    // `now` is a sphere whose box (`before` to `after`) kept its size and
+    // moved by its origin's step `originStep`.
+    static bool onlyTranslated(const SceneObject& now, const Box3& before, const Box3& after, const Vec3& originStep);
+    // Whether `bounds`' escaped rays, moved by `movedBy`, meet no box of
+    // wholeBounds_ but their own object's.
+    bool stillEscapes(const RayTreeBounds& bounds, const Vec3& movedBy, int objectId) const;
+    // Every object's box as it stands, grown like the changed regions
+    // (tracksDependencies_; empty for scenes of more objects than this, whose
+    // moving spheres drop all their texels: a test per block and object).
+    std::vector<Box3> wholeBounds_;
+    // invalidationOracle: the records of a kept block's texels follow their cube.
+    static void shiftBlockRecords(Entry& e, int block, const Vec3& movedBy);
+    static constexpr std::size_t kMostObjectsForMovedEscapes = 256;
 };
 
 }  // namespace raycache

@@ -26,6 +26,7 @@ InvalidationCounts& InvalidationCounts::operator+=(const InvalidationCounts& o) 
     differingBeyondTolerance += o.differingBeyondTolerance;
     movedCube += o.movedCube;
     movedCubeWithinTolerance += o.movedCubeWithinTolerance;
+    movedCubeKept += o.movedCubeKept;
     return *this;
 }
 
@@ -63,6 +64,7 @@ InvalidationCounts InvalidationOracle::check(const RenderSession& session) const
         if (!(cube.center() == cubeCenters_[static_cast<std::size_t>(texels_[i].objectId)])) {
             ++counts.movedCube;
             if (withinTolerance(now[i], texels_[i].word)) ++counts.movedCubeWithinTolerance;
+            if (kept) ++counts.movedCubeKept;
         }
         if (kept) {
             ++counts.kept;

@@ -28,7 +28,9 @@ struct InvalidationCounts {
     // Texels of caching objects that moved (their cube follows them; these
     // are re-traced from their origin moved along): how many there were, and
     // how many would still be within kTolerance of the truth if kept.
-    std::int64_t movedCube = 0, movedCubeWithinTolerance = 0;
+    // Of those, how many the cache kept (rays escaping to the environment
+    // that still do, moved along with their sphere).
+    std::int64_t movedCube = 0, movedCubeWithinTolerance = 0, movedCubeKept = 0;
     static constexpr float kTolerance = 1.0f / 255.0f;  // per channel, linear
 
     InvalidationCounts& operator+=(const InvalidationCounts& o);

@@ -72,6 +72,16 @@ TEST(InvalidationOracle, MovingObjectsLeaveNoStaleTexelAndKeepTheRest) {
     }
 }
 
+// orbit's mirror spheres move: of their texels, those whose rays escaped to
+// the sky and still do are kept (and, above, none of them is stale).
+TEST(InvalidationOracle, MovingSpheresKeepTheirEscapedRays) {
+    const InvalidationCounts c = runOracle("orbit", 3);
+    EXPECT_GT(c.movedCube, 0);
+    EXPECT_GT(c.movedCubeKept, 0);
+    EXPECT_LT(c.movedCubeKept, c.movedCube);  // those that hit something go
+    EXPECT_EQ(c.stale, 0);
+}
+
 TEST(InvalidationOracle, DeformingMeshLeavesNoStaleTexel) {
     const InvalidationCounts c = runOracle("cloth", 2);
     EXPECT_EQ(c.stale, 0);
