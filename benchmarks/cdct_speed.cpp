@@ -34,7 +34,7 @@ struct CacheVariant {
 
 // The improved CDCT's changes, switched on one after another (each row adds one).
 std::vector<CacheVariant> improvementLadder() {
-    CdctImprovements i{false, false, false, false, false, false, false, false};
+    CdctImprovements i{false, false, false, false, false, false, false, false, false};
     std::vector<CacheVariant> rows;
     i.prefill = true;
     rows.push_back({"+ pre-fill (fixed 0.4/0.05 steps)", CacheTechnique::Cdct, i});
@@ -51,7 +51,9 @@ std::vector<CacheVariant> improvementLadder() {
     i.traceViewDependent = true;
     rows.push_back({"+ mirrors and glass seen from the centre traced", CacheTechnique::Cdct, i});
     i.traceOwnSurface = true;
-    rows.push_back({"+ rays meeting their own object traced (= cdct)", CacheTechnique::Cdct, i});
+    rows.push_back({"+ rays meeting their own object traced", CacheTechnique::Cdct, i});
+    i.faceWalk = true;
+    rows.push_back({"+ texels walked face by face (= cdct)", CacheTechnique::Cdct, i});
     return rows;
 }
 

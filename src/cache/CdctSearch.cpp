@@ -96,6 +96,38 @@ float sineToBlockEdge(const CubeCoord& coord, int n, int blockSide) {
     return std::max(0.0f, nearest / std::sqrt(1.0f + u * u + v * v) - 1e-5f);
 }
 
+
+// The frame of a cube face: a point p (relative to the centre) lies in the
+// face's cone when p·n > 0 and |p·a|, |p·b| <= p·n, and then addresses face
+// coordinates sc = p·a / p·n, tc = p·b / p·n in [-1, 1] (core/CubeMapping.h:
+// s = (sc + 1) / 2, t = (tc + 1) / 2; texel column x holds s in [x/n, (x+1)/n)).
+struct FaceFrame {
+    Vec3 n, a, b;
+};
+constexpr FaceFrame kFaceFrames[6] = {
+    {{1, 0, 0}, {0, 0, -1}, {0, -1, 0}},   // +x
+    {{-1, 0, 0}, {0, 0, 1}, {0, -1, 0}},   // -x
+    {{0, 1, 0}, {1, 0, 0}, {0, 0, 1}},     // +y
+    {{0, -1, 0}, {1, 0, 0}, {0, 0, -1}},   // -y
+    {{0, 0, 1}, {1, 0, 0}, {0, -1, 0}},    // +z
+    {{0, 0, -1}, {-1, 0, 0}, {0, -1, 0}},  // -z
+};
+
+// One face coordinate of the ray p0 + t·d along a face: c(t) = (c0 + cd·t) /
+// (w0 + wd·t). It moves one way only while the ray stays in the face's cone
+// (its derivative has the sign of cd·w0 - c0·wd), so the texel columns (or
+// rows) it crosses come in order, and the ray parameter at which it reaches
+// the edge e (a plane through the centre) is (e·w0 - c0) / (cd - e·wd).
+struct FaceAxis {
+    double c0, cd;
+    int step;  // +1, -1, or 0 (does not move)
+    double tAt(double edge, double w0, double wd) const {
+        const double denominator = cd - edge * wd;
+        const double t = (edge * w0 - c0) / denominator;
+        return denominator != 0.0 && std::isfinite(t) ? t : kInfinity;
+    }
+};
+
 }  // namespace
 
 float rayParameterAtDistance(const Vec3& center, const Vec3& origin, const Vec3& direction, float radius) {
@@ -104,6 +136,12 @@ float rayParameterAtDistance(const Vec3& center, const Vec3& origin, const Vec3&
     const double c = static_cast<double>(dot(w, w)) - static_cast<double>(radius) * radius;
     const double t = -b + std::sqrt(std::max(0.0, b * b - c));
     return static_cast<float>(std::max(0.0, t));
+}
+
+int cdctStartTexel(const CachingCube& cube, const Vec3& origin, const Vec3& direction) {
+    if (!usable(origin, direction)) return -1;
+    const Vec3 d = normalize(direction);
+    return cube.texelIndexFor(origin + d * tLeavingBox(cube.center(), cube.halfSize(), origin, d) - cube.center());
 }
 
 CdctResult searchCdctParity(const CachingCube& cube, const CdctParameters& p, const Vec3& origin,
@@ -161,6 +199,155 @@ CdctResult searchCdctParity(const CachingCube& cube, const CdctParameters& p, co
     return {};  // not reached: the last step returns
 }
 
+
+namespace {
+
+// Improved CDCT's search as a walk over the texels the ray crosses
+// (CdctImprovements::faceWalk): on each face the ray's image is a line, so
+// its texels follow one another as in a 2D DDA, each entered and left at ray
+// parameters given by one division. The ray's distance from the centre is
+// convex in t, so over a texel it is largest at an end: the ray reaches the
+// texel's surface within it exactly when the stored depth is at most the
+// larger end distance. A block of the depth pyramid whose smallest depth
+// exceeds the ray's distance at both ends of its stretch is crossed in one
+// step. Every texel the ray crosses is tested, none is stepped over.
+CdctResult faceWalk(const CachingCube& cube, const CdctParameters& p, const CdctImprovements& improvements,
+                    const DepthPyramid* pyramid, const Vec3& origin, const Vec3& d, float tStart, float tEnd,
+                    float tMaxDepth, long maxSteps) {
+    const int n = cube.size();
+    const double size = static_cast<double>(n);
+    const Vec3 p0 = origin - cube.center();
+    const auto distance2 = [&](double t) {
+        const double x = p0.x + d.x * t, y = p0.y + d.y * t, z = p0.z + d.z * t;
+        return x * x + y * y + z * z;
+    };
+    // Face coordinate of texel edge k (0..n).
+    const auto edgeAt = [&](int k) { return 2.0 * static_cast<double>(k) / size - 1.0; };
+    const auto texelOf = [&](double c) {
+        return std::clamp(static_cast<int>(std::floor((c + 1.0) * 0.5 * size)), 0, n - 1);
+    };
+
+    int samples = 0;
+    double t = tStart;
+    // Where the walk stands: a face, its frame along the ray, a texel.
+    int face = 0, x = 0, y = 0;
+    double w0 = 0.0, wd = 0.0;
+    FaceAxis ax{}, ay{};
+    const auto enter = [&](double at) {
+        // The face and texel holding the ray at `at`, as lookups address them.
+        const Vec3 v = p0 + d * static_cast<float>(at);
+        const CubeCoord coord = cubeCoordFromDirection(v);
+        face = static_cast<int>(coord.face);
+        x = std::clamp(static_cast<int>(coord.s * static_cast<float>(n)), 0, n - 1);
+        y = std::clamp(static_cast<int>(coord.t * static_cast<float>(n)), 0, n - 1);
+        const FaceFrame& f = kFaceFrames[face];
+        w0 = dot(p0, f.n);
+        wd = dot(d, f.n);
+        ax = {dot(p0, f.a), dot(d, f.a), 0};
+        ay = {dot(p0, f.b), dot(d, f.b), 0};
+        const auto direction = [&](const FaceAxis& axis) {
+            const double rate = axis.cd * w0 - axis.c0 * wd;
+            return rate > 0.0 ? 1 : rate < 0.0 ? -1 : 0;
+        };
+        ax.step = direction(ax);
+        ay.step = direction(ay);
+    };
+    // Ray parameter at which the ray leaves texels [lo, lo + span) along an
+    // axis; infinity when it never does (the coordinate tends to a limit
+    // inside, or the edge's plane is met only behind the centre, w <= 0).
+    const auto leaves = [&](const FaceAxis& axis, int lo, int span) {
+        if (axis.step == 0) return kInfinity + 0.0;
+        const double at = axis.tAt(edgeAt(axis.step > 0 ? std::min(lo + span, n) : lo), w0, wd);
+        return at >= t - 1e-9 * (1.0 + std::fabs(t)) && w0 + wd * at > 0.0 ? std::max(at, t) : kInfinity + 0.0;
+    };
+    const auto found = [&](int texel, double tIn, double tOut) {
+        // Where along [tIn, tOut] the ray reaches the stored depth.
+        const float depth = cube.depth(texel);
+        double tHit = tIn;
+        if (distance2(tIn) < static_cast<double>(depth) * depth)
+            tHit = std::clamp(static_cast<double>(rayParameterAtDistance(cube.center(), origin, d, depth)), tIn, tOut);
+        const Vec3 v = p0 + d * static_cast<float>(tHit);
+        if (improvements.errorControl && !onRay(cube, texel, p.tolerance, origin, d))
+            return CdctResult{CdctOutcome::Rejected, {}, samples, texel};
+        if (improvements.filter)
+            return CdctResult{CdctOutcome::Found, filteredColor(cube, texel, v, p.tolerance, origin, d), samples, texel};
+        return CdctResult{CdctOutcome::Found, *cube.read(texel), samples, texel};
+    };
+
+    enter(t);
+    const double tLast = tEnd;
+    for (long step = 0; step <= maxSteps; ++step) {
+        if (t >= tLast) break;
+        ++samples;
+        // The largest pyramid block around the texel that the ray crosses
+        // nearer than all its depths.
+        bool skipped = false;
+        if (pyramid) {
+            const double near2 = distance2(t);
+            for (int level = pyramid->levelCount() - 1; level >= 0 && !skipped; --level) {
+                const float nearest = pyramid->minDepth(level, face, x, y);
+                if (!(nearest > 0.0f) || static_cast<double>(nearest) * nearest <= near2) continue;
+                const int side = pyramid->blockSide(level);
+                const int bx = x / side * side, by = y / side * side;
+                const double tx = leaves(ax, bx, side), ty = leaves(ay, by, side);
+                const double tOut = std::min({tx, ty, tLast});
+                if (static_cast<double>(nearest) * nearest <= distance2(tOut)) continue;  // may meet it: look finer
+                skipped = true;
+                if (tOut >= tLast) {
+                    t = tLast;
+                    break;
+                }
+                // Into the block's neighbour across the edge it left by.
+                t = tOut;
+                if (tx <= ty) {
+                    x = ax.step > 0 ? bx + side : bx - 1;
+                    y = std::clamp(texelOf((ay.c0 + ay.cd * t) / (w0 + wd * t)), by, std::min(by + side, n) - 1);
+                } else {
+                    y = ay.step > 0 ? by + side : by - 1;
+                    x = std::clamp(texelOf((ax.c0 + ax.cd * t) / (w0 + wd * t)), bx, std::min(bx + side, n) - 1);
+                }
+            }
+        }
+        if (!skipped) {
+            const int texel = (face * n + y) * n + x;
+            if (!cube.isValid(texel)) return {CdctOutcome::Invalid, {}, samples};
+            const double tx = leaves(ax, x, 1), ty = leaves(ay, y, 1);
+            const double tOut = std::min({tx, ty, tLast});
+            const double depth = cube.depth(texel);
+            if (depth * depth <= std::max(distance2(t), distance2(tOut))) return found(texel, t, tOut);
+            t = tOut;
+            if (t >= tLast) break;
+            if (tx <= ty)
+                x += ax.step;
+            else
+                y += ay.step;
+        }
+        if (x < 0 || x >= n || y < 0 || y >= n || !(w0 + wd * t > 0.0)) {
+            // Off the face: on to the face the ray enters, a hair past its edge.
+            const int previous = face;
+            enter(t + 1e-6 * (1.0 + std::fabs(t)));
+            if (face == previous) {
+                // Rounding kept it on this face: step past the edge by more.
+                t += 1e-4 * (1.0 + std::fabs(t));
+                enter(t);
+            }
+        }
+    }
+    if (samples > maxSteps) return {CdctOutcome::Exhausted, {}, samples};
+    // No crossing before the end: the environment, cached at maxDepth.
+    ++samples;
+    const Vec3 far = origin + d * tMaxDepth - cube.center();
+    const int texel = cube.texelIndexFor(far);
+    if (!cube.isValid(texel)) return {CdctOutcome::Invalid, {}, samples};
+    if (improvements.errorControl && !onRay(cube, texel, p.tolerance, origin, d))
+        return {CdctOutcome::Rejected, {}, samples, texel};
+    if (improvements.filter)
+        return {CdctOutcome::Found, filteredColor(cube, texel, far, p.tolerance, origin, d), samples, texel};
+    return {CdctOutcome::Found, *cube.read(texel), samples, texel};
+}
+
+}  // namespace
+
 CdctResult searchCdctImproved(const CachingCube& cube, const CdctParameters& p, const CdctImprovements& improvements,
                               float farthestSurface, const DepthPyramid* pyramid, const Vec3& origin,
                               const Vec3& direction) {
@@ -200,6 +387,10 @@ CdctResult searchCdctImproved(const CachingCube& cube, const CdctParameters& p, 
     const long maxSteps = improvements.texelSteps
                               ? static_cast<long>(kCdctTexelStepsPerSide) * cube.size() + 64
                               : static_cast<long>(std::ceil(2.0 * p.maxDepth / p.step)) + 1;
+    // A ray through the centre has no line on the faces to walk along.
+    if (improvements.texelSteps && improvements.faceWalk && impact > 1e-6f * (1.0f + length(origin - c)))
+        return faceWalk(cube, p, improvements, improvements.skipEmptySpace ? pyramid : nullptr, origin, d, tStart, tEnd,
+                        tMaxDepth, 2 * maxSteps);
 
     struct Sample {
         int texel;

@@ -33,6 +33,10 @@ struct CdctImprovements {
     // Trace a ray that meets the cube's own object (a concave mirror seeing
     // itself): the pre-fill sees past that surface (RayCache::seesPastOwnSurface).
     bool traceOwnSurface = true;
+    // With texelSteps: walk exactly the texels the ray crosses, face by face
+    // (a 2D DDA; one division per texel, no cube addressing), instead of
+    // marching along the ray in turns of about a texel.
+    bool faceWalk = true;
 };
 
 enum class CdctOutcome {
@@ -65,6 +69,10 @@ CdctResult searchCdctParity(const CachingCube& cube, const CdctParameters& param
 CdctResult searchCdctImproved(const CachingCube& cube, const CdctParameters& parameters,
                               const CdctImprovements& improvements, float farthestSurface, const DepthPyramid* pyramid,
                               const Vec3& origin, const Vec3& direction);
+
+// The texel at which the improved search starts (where the ray leaves the
+// cube's box), -1 for a degenerate ray: a batch of lookups prefetches it.
+int cdctStartTexel(const CachingCube& cube, const Vec3& origin, const Vec3& direction);
 
 // The ray parameter t >= 0 at which origin + t * direction (unit) is `radius`
 // from `center` on the way out; 0 when the ray never gets that far inside.

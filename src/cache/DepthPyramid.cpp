@@ -8,8 +8,8 @@ namespace raycache {
 DepthPyramid::DepthPyramid(const CachingCube& cube) {
     const int n = cube.size();
     // Level 0 from the texels, each further level from the one below (4x4 blocks of blocks).
-    for (int side = 4; side <= n; side *= 4) {
-        Level level{side, (n + side - 1) / side, {}};
+    for (int side = 4, shift = 2; side <= n; side *= 4, shift += 2) {
+        Level level{side, shift, (n + side - 1) / side, {}};
         const auto perSide = static_cast<std::size_t>(level.blocksPerSide);
         level.depths.assign(6 * perSide * perSide, std::numeric_limits<float>::infinity());
         const Level* below = levels_.empty() ? nullptr : &levels_.back();

@@ -134,6 +134,54 @@ TEST(CdctImproved, SearchFindsAnAnalyticSphereWithEverySwitchSetting) {
     }
 }
 
+// The face walk (CdctImprovements::faceWalk) against a dense march (an
+// oracle that knows nothing of faces, texel edges or the pyramid): along
+// random rays through a blocky depth field, whose depth jumps from texel to
+// texel, the first texel whose stored depth the ray reaches is the same.
+// The march samples every 1e-4 of the way, so it may step over a corner a
+// ray clips for less than that; such rays are counted and must stay rare.
+TEST(CdctImproved, FaceWalkMeetsTheTexelADenseMarchMeetsFirst) {
+    RayCacheSettings settings;
+    settings.cdctImprovements.errorControl = false;
+    settings.cdctImprovements.filter = false;
+    RayCache cache(oneMirror(32), settings);
+    // Per texel a depth in [2, 5), from a hash of its index.
+    const auto depthOfTexel = [](int texel) { return 2.0f + 3.0f * static_cast<float>((texel * 2654435761u) >> 22) / 1024.0f; };
+    prefill(cache, [&](const Vec3& v) { return depthOfTexel(cache.cube(0).texelIndexFor(v)); });
+    const CachingCube& cube = cache.cube(0);
+    const DepthPyramid pyramid(cube);
+    const CdctParameters parameters = RayCache::cdctParametersFor(oneMirror(32).objects[0], settings);
+    std::mt19937 random(11);
+    std::uniform_real_distribution<float> inside(-0.9f, 0.9f);
+    int compared = 0, differing = 0;
+    double walkSteps = 0.0;
+    for (int i = 0; i < 400; ++i) {
+        const Vec3 origin{inside(random), inside(random), inside(random)};
+        const Vec3 d = randomDirection(random);
+        for (const bool skip : {false, true}) {
+            CdctImprovements improvements = settings.cdctImprovements;
+            improvements.skipEmptySpace = skip;
+            const CdctResult walked =
+                searchCdctImproved(cube, parameters, improvements, 5.0f, skip ? &pyramid : nullptr, origin, d);
+            ASSERT_EQ(walked.outcome, CdctOutcome::Found) << i;
+            walkSteps += walked.steps;
+            int marched = -1;
+            for (double t = 0.0; t < 10.0 && marched < 0; t += 1e-4) {
+                const Vec3 p = origin + d * static_cast<float>(t);
+                if (std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}) < 1.0f) continue;  // inside the box
+                const int texel = cube.texelIndexFor(p);
+                if (cube.depth(texel) <= length(p)) marched = texel;
+            }
+            ASSERT_GE(marched, 0) << i;
+            ++compared;
+            if (walked.texel != marched) ++differing;
+        }
+    }
+    std::printf("[face walk] %d of %d searches met another texel than the dense march; %.1f steps per search\n",
+                differing, compared, walkSteps / compared);
+    EXPECT_LE(differing, compared / 100);
+}
+
 // The cache counts every search's steps (the texels it sampled) into the
 // frame's statistics: the same totals as calling the search directly, a
 // histogram that sums to the searches, and skipping empty space must take
