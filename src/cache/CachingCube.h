@@ -62,7 +62,6 @@ public:
     // that prefetch a batch of lookups before reading them.
     const std::uint64_t* validWordOf(int index) const { return &validBits_[static_cast<std::size_t>(index) >> 6]; }
     const std::uint32_t* texelWordOf(int index) const { return &texels_[static_cast<std::size_t>(index)]; }
-    const std::uint32_t* depthWordOf(int index) const { return &(*depths_)[static_cast<std::size_t>(index)]; }
     // The decoded color of a texel known to be valid.
     Rgb readValid(int index) const { return decodeTexel(texels_[static_cast<std::size_t>(index)]); }
     // The stored distance from the centre at `index` (CDCT cubes), kInvalidDepth if invalid.

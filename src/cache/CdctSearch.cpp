@@ -138,12 +138,6 @@ float rayParameterAtDistance(const Vec3& center, const Vec3& origin, const Vec3&
     return static_cast<float>(std::max(0.0, t));
 }
 
-int cdctStartTexel(const CachingCube& cube, const Vec3& origin, const Vec3& direction) {
-    if (!usable(origin, direction)) return -1;
-    const Vec3 d = normalize(direction);
-    return cube.texelIndexFor(origin + d * tLeavingBox(cube.center(), cube.halfSize(), origin, d) - cube.center());
-}
-
 CdctResult searchCdctParity(const CachingCube& cube, const CdctParameters& p, const Vec3& origin,
                             const Vec3& direction) {
     // Algorithm 4 (thesis §4.5): a linear search along the ray from where its

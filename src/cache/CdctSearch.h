@@ -70,10 +70,6 @@ CdctResult searchCdctImproved(const CachingCube& cube, const CdctParameters& par
                               const CdctImprovements& improvements, float farthestSurface, const DepthPyramid* pyramid,
                               const Vec3& origin, const Vec3& direction);
 
-// The texel at which the improved search starts (where the ray leaves the
-// cube's box), -1 for a degenerate ray: a batch of lookups prefetches it.
-int cdctStartTexel(const CachingCube& cube, const Vec3& origin, const Vec3& direction);
-
 // The ray parameter t >= 0 at which origin + t * direction (unit) is `radius`
 // from `center` on the way out; 0 when the ray never gets that far inside.
 float rayParameterAtDistance(const Vec3& center, const Vec3& origin, const Vec3& direction, float radius);

@@ -20,12 +20,10 @@ public:
     // Side of level `level`'s blocks in texels: 4^(level + 1).
     int blockSide(int level) const { return levels_[static_cast<std::size_t>(level)].blockSide; }
     // Minimum depth of the block at level `level` holding texel (x, y) of `face`.
-    float minDepth(int level, int face, int x, int y) const { return *minDepthAddress(level, face, x, y); }
-    // Where that minimum lives (for callers that prefetch).
-    const float* minDepthAddress(int level, int face, int x, int y) const {
+    float minDepth(int level, int face, int x, int y) const {
         const Level& l = levels_[static_cast<std::size_t>(level)];
         const int bx = x >> l.shift, by = y >> l.shift;  // blockSide = 1 << shift
-        return &l.depths[(static_cast<std::size_t>(face) * static_cast<std::size_t>(l.blocksPerSide) +
+        return l.depths[(static_cast<std::size_t>(face) * static_cast<std::size_t>(l.blocksPerSide) +
                           static_cast<std::size_t>(by)) *
                              static_cast<std::size_t>(l.blocksPerSide) +
                          static_cast<std::size_t>(bx)];

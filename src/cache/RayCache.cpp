@@ -895,21 +895,7 @@ void RayCache::lookupBatchAs(std::span<const Query> queries, std::span<Rgb> colo
             const Query& q = queries[base + k];
             const Entry& e = cubes_[static_cast<std::size_t>(cubeIndexOf(q.objectId))];
             texel[k] = -1;
-            if (e.technique != CacheTechnique::Cct) {
-                // An improved-CDCT search starts with memory misses (its
-                // first depths and pyramid blocks, in a cube of megabytes):
-                // started early for the whole chunk, they overlap.
-                if (e.pyramid && !q.meetsOwnSurface) {
-                    const int start = cdctStartTexel(e.cube, q.origin, q.direction);
-                    if (start < 0) continue;
-                    __builtin_prefetch(e.cube.depthWordOf(start));
-                    __builtin_prefetch(e.cube.validWordOf(start));
-                    const int n = e.cube.size(), face = start / (n * n), x = start % n, y = start / n % n;
-                    for (int level = 0; level < std::min(2, e.pyramid->levelCount()); ++level)
-                        __builtin_prefetch(e.pyramid->minDepthAddress(level, face, x, y));
-                }
-                continue;
-            }
+            if (e.technique != CacheTechnique::Cct) continue;
             texel[k] = e.cube.texelIndexFor(q.direction);
             __builtin_prefetch(e.cube.validWordOf(texel[k]));
         }
