@@ -16,6 +16,15 @@ PathRender renderPath(const std::string& sceneName, CacheTechnique technique, in
     const auto scene = makeBuiltinScene(sceneName);
     EXPECT_TRUE(scene.has_value()) << sceneName;
     if (!scene) return {};
+    return renderPath(*scene, technique, frames, still, size, threads, cacheResolution, group, balance, cubeLevels,
+                      prefillPerFrame, resolutionFromView, fill, improvements);
+}
+
+PathRender renderPath(const Scene& sceneRef, CacheTechnique technique, int frames, bool still, int size, int threads,
+                      int cacheResolution, const ProcessGroup* group, TileBalance balance, int cubeLevels,
+                      std::int64_t prefillPerFrame, bool resolutionFromView, VisibleFill fill,
+                      const CdctImprovements& improvements) {
+    const Scene* scene = &sceneRef;
     RenderSettings settings;
     settings.width = settings.height = size;
     settings.threads = threads;

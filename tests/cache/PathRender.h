@@ -12,6 +12,7 @@
 #include "render/FrameStats.h"
 #include "render/TileAssignment.h"
 #include "scene/Material.h"
+#include "scene/Scene.h"
 
 namespace raycache {
 
@@ -31,6 +32,12 @@ struct PathRender {
 // RayCacheSettings::resolutionFromView, visibleFill. `improvements`:
 // RayCacheSettings::cdctImprovements.
 PathRender renderPath(const std::string& sceneName, CacheTechnique technique, int frames, bool still, int size,
+                      int threads = 2, int cacheResolution = 512, const ProcessGroup* group = nullptr,
+                      TileBalance balance = TileBalance::Dynamic, int cubeLevels = 1,
+                      std::int64_t prefillPerFrame = 0, bool resolutionFromView = false,
+                      VisibleFill fill = VisibleFill::Off, const CdctImprovements& improvements = {});
+// The same for a scene of the caller's.
+PathRender renderPath(const Scene& scene, CacheTechnique technique, int frames, bool still, int size,
                       int threads = 2, int cacheResolution = 512, const ProcessGroup* group = nullptr,
                       TileBalance balance = TileBalance::Dynamic, int cubeLevels = 1,
                       std::int64_t prefillPerFrame = 0, bool resolutionFromView = false,
