@@ -241,8 +241,11 @@ std::int64_t RayCache::dropBlock(Entry& e, int block) {
 bool RayCache::reaches(const RayTreeBounds& bounds, std::span<const PartedBounds> regions, bool lightChanged,
                        std::span<const Light> lights) {
     if (bounds.dependsOnEverything || (lightChanged && bounds.shaded)) return true;
-    for (const PartedBounds& region : regions)
-        if (region.any([&](const Box3& box) { return bounds.mayMeet(box, lights); })) return true;
+    for (const PartedBounds& region : regions) {
+        const bool meets = region.isBall() ? bounds.mayMeetBall(region.ballCentre, region.ballRadius, region.whole, lights)
+                                           : region.any([&](const Box3& box) { return bounds.mayMeet(box, lights); });
+        if (meets) return true;
+    }
     return false;
 }
 

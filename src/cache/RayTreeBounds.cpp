@@ -1,5 +1,6 @@
 #include "cache/RayTreeBounds.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -98,6 +99,93 @@ bool boxMeetsRays(const Box3& box, const Box3& origins, const Box3& directions) 
         if (t.empty()) return false;
     }
     return true;
+}
+
+namespace {
+
+// Smallest distance from `c` to the box with corners lo + s*dlo, hi + s*dhi
+// over s in [0, sMax] (convex in s: golden-section search), compared with
+// `radius` plus a slack for the search's tolerance and float rounding.
+bool ballMeetsMovingBox(const Vec3& c, double radius, const Vec3& lo, const Vec3& dlo, const Vec3& hi,
+                        const Vec3& dhi, double sMax) {
+    const auto distance2 = [&](double s) {
+        double sum = 0.0;
+        for (int a = 0; a < 3; ++a) {
+            const double l = lo[a] + s * dlo[a], h = hi[a] + s * dhi[a];
+            const double gap = c[a] < l ? l - c[a] : c[a] > h ? c[a] - h : 0.0;
+            sum += gap * gap;
+        }
+        return sum;
+    };
+    constexpr double kInverseGolden = 0.6180339887498949;
+    double a = 0.0, b = sMax;
+    double x1 = b - kInverseGolden * (b - a), x2 = a + kInverseGolden * (b - a);
+    double f1 = distance2(x1), f2 = distance2(x2);
+    for (int i = 0; i < 60 && b - a > 1e-12 * (1.0 + sMax); ++i) {
+        if (f1 <= f2) {
+            b = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = b - kInverseGolden * (b - a);
+            f1 = distance2(x1);
+        } else {
+            a = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = a + kInverseGolden * (b - a);
+            f2 = distance2(x2);
+        }
+    }
+    const double nearest = std::min({f1, f2, distance2(0.0), distance2(sMax)});
+    // The distance changes by at most |(dlo, dhi)| per unit of s: the interval
+    // left, plus float rounding of the inputs, bounds what the search missed.
+    double speed = 0.0;
+    for (int k = 0; k < 3; ++k)
+        speed = std::max({speed, static_cast<double>(std::fabs(dlo[k])), static_cast<double>(std::fabs(dhi[k]))});
+    const double slack = 1e-6 * (1.0 + radius + std::sqrt(3.0) * speed * sMax) + std::sqrt(3.0) * speed * (b - a);
+    return nearest <= (radius + slack) * (radius + slack);
+}
+
+}  // namespace
+
+bool ballMeetsHull(const Vec3& centre, float radius, const Box3& points, const Vec3& apex) {
+    if (points.empty()) return false;
+    // (1 - s) * points + s * apex: corners move from the box's to the apex.
+    return ballMeetsMovingBox(centre, radius, points.lo, apex - points.lo, points.hi, apex - points.hi, 1.0);
+}
+
+bool ballMeetsSegments(const Vec3& centre, float radius, const Box3& starts, const Box3& ends) {
+    if (starts.empty() || ends.empty()) return false;
+    return ballMeetsMovingBox(centre, radius, starts.lo, ends.lo - starts.lo, starts.hi, ends.hi - starts.hi, 1.0);
+}
+
+bool ballMeetsSweep(const Vec3& centre, float radius, const Box3& points, const Vec3& direction) {
+    if (points.empty()) return false;
+    const double speed = length(direction);
+    if (!(speed > 0.0)) return ballMeetsMovingBox(centre, radius, points.lo, {}, points.hi, {}, 0.0);
+    // Past this parameter the box is farther from the centre than the radius.
+    const Vec3 middle = (points.lo + points.hi) * 0.5f;
+    const double reach = (length(centre - middle) + 0.5 * length(points.hi - points.lo) + radius) / speed + 1.0;
+    return ballMeetsMovingBox(centre, radius, points.lo, direction, points.hi, direction, reach);
+}
+
+bool RayTreeBounds::mayMeetBall(const Vec3& centre, float radius, const Box3& box,
+                                std::span<const Light> lights) const {
+    if (dependsOnEverything) return true;
+    if (box.empty()) return false;
+    if (boxMeetsSegments(box, segmentStarts, segmentEnds) && ballMeetsSegments(centre, radius, segmentStarts, segmentEnds))
+        return true;
+    if (boxMeetsRays(box, escapeOrigins, escapeDirections)) return true;
+    if (!shaded) return false;
+    for (const Light& light : lights) {
+        const bool meets = light.type == LightType::Directional
+                               ? boxMeetsSweep(box, shadowOrigins, -light.direction) &&
+                                     ballMeetsSweep(centre, radius, shadowOrigins, -light.direction)
+                               : boxMeetsHull(box, shadowOrigins, light.position) &&
+                                     ballMeetsHull(centre, radius, shadowOrigins, light.position);
+        if (meets) return true;
+    }
+    return false;
 }
 
 bool RayTreeBounds::mayMeet(const Box3& box, std::span<const Light> lights) const {

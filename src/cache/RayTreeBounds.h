@@ -54,6 +54,10 @@ struct RayTreeBounds {
     // segment, an escaped ray, or (when shaded) a shadow ray toward one of
     // `lights`. False only when no such ray can touch the box.
     bool mayMeet(const Box3& box, std::span<const Light> lights) const;
+    // The same for a ball (a moving sphere) inside `box`: its box first, then
+    // the ball itself for the traced segments and the shadow rays (escaped
+    // rays keep the box test).
+    bool mayMeetBall(const Vec3& centre, float radius, const Box3& box, std::span<const Light> lights) const;
 };
 
 // The exact tests mayMeet is made of (exposed for tests):
@@ -63,6 +67,14 @@ bool boxMeetsSegments(const Box3& box, const Box3& starts, const Box3& ends);
 bool boxMeetsHull(const Box3& box, const Box3& points, const Vec3& apex);
 // does `box` meet { p + t * direction : p in points, t >= 0 }?
 bool boxMeetsSweep(const Box3& box, const Box3& points, const Vec3& direction);
+// The ball (centre, radius) against the same sets. Each set is, for one
+// parameter s, a box K(s) whose corners move linearly with s, and the
+// distance from the centre to K(s) is convex in s (the sets are convex
+// together with s), so its minimum is found by a golden-section search;
+// a hair of slack keeps the answer conservative.
+bool ballMeetsHull(const Vec3& centre, float radius, const Box3& points, const Vec3& apex);
+bool ballMeetsSegments(const Vec3& centre, float radius, const Box3& starts, const Box3& ends);
+bool ballMeetsSweep(const Vec3& centre, float radius, const Box3& points, const Vec3& direction);
 // does `box` meet { o + t * d : o in origins, d in directions, t >= 0 }?
 // (conservative: the set of rays is widened to every pairing of components)
 bool boxMeetsRays(const Box3& box, const Box3& origins, const Box3& directions);

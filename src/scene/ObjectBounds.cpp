@@ -18,16 +18,24 @@ Box3 worldBounds(const SceneObject& object) {
 
 namespace {
 
-Box3 grownRelative(const Box3& box, float fraction) {
+// The margin grownRelative adds on every side.
+float marginFor(const Box3& box, float fraction) {
     const float extent = std::max({maxComponent(max(-box.lo, box.lo)), maxComponent(max(-box.hi, box.hi)), 1.0f});
-    return box.grown(fraction * extent);
+    return fraction * extent;
 }
+
+Box3 grownRelative(const Box3& box, float fraction) { return box.grown(marginFor(box, fraction)); }
 
 }  // namespace
 
 PartedBounds PartedBounds::grownRelative(float fraction) const {
     PartedBounds out;
     out.whole = raycache::grownRelative(whole, fraction);
+    if (isBall()) {
+        // Grown by the same margin as its box.
+        out.ballCentre = ballCentre;
+        out.ballRadius = ballRadius + marginFor(whole, fraction);
+    }
     for (const Box3& part : parts) out.parts.push_back(raycache::grownRelative(part, fraction));
     for (const Box3& group : groups) out.groups.push_back(raycache::grownRelative(group, fraction));
     return out;
@@ -36,6 +44,7 @@ PartedBounds PartedBounds::grownRelative(float fraction) const {
 PartedBounds PartedBounds::shifted(const Vec3& offset) const {
     PartedBounds out = *this;
     for (Box3* box : {&out.whole}) *box = {box->lo + offset, box->hi + offset};
+    out.ballCentre = ballCentre + offset;
     for (Box3& part : out.parts) part = {part.lo + offset, part.hi + offset};
     for (Box3& group : out.groups) group = {group.lo + offset, group.hi + offset};
     return out;
@@ -43,6 +52,10 @@ PartedBounds PartedBounds::shifted(const Vec3& offset) const {
 
 PartedBounds partedBounds(const SceneObject& object, int trianglesPerPart) {
     PartedBounds out{worldBounds(object), {}};
+    if (const auto* sphere = std::get_if<Sphere>(&object.shape)) {
+        out.ballCentre = sphere->center;
+        out.ballRadius = sphere->radius;
+    }
     const auto* mesh = std::get_if<MeshShape>(&object.shape);
     if (!mesh || !mesh->mesh || trianglesPerPart <= 0) return out;
     const auto& triangles = mesh->mesh->triangles;

@@ -23,6 +23,11 @@ struct PartedBounds {
     // groups[g] bounds parts [g * kPartsPerGroup, (g + 1) * kPartsPerGroup): a
     // test can skip sixteen parts at once.
     std::vector<Box3> groups;
+    // A sphere's own shape (ballRadius >= 0), inside `whole`: tests that can
+    // use it are tighter than with its box.
+    Vec3 ballCentre{};
+    float ballRadius = -1.0f;
+    bool isBall() const { return ballRadius >= 0.0f; }
 
     // Every box grown by `fraction` of its largest absolute coordinate (at
     // least of 1): room for float rounding around the shape.

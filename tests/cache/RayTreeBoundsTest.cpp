@@ -5,6 +5,8 @@
 // clearly separated boxes are not reported.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <random>
 
@@ -116,6 +118,87 @@ TEST(RayTreeBounds, RaysTestNeverMissesASampledMeeting) {
         return SampledCase{target, boxMeetsRays(target, origins, directions), [=](RandomCase& r) {
                                return pointIn(origins, r) + pointIn(directions, r) * r.uniform(0, 20);
                            }};
+    });
+}
+
+// The ball tests (a moving sphere against the same sets), against the
+// distance from the ball's centre to the set, found by sampling the set's
+// parameter densely: for each value the set's slice is a box, whose nearest
+// point to the centre is the centre clamped into it. A ball nearer than its
+// radius must be reported, one farther than its radius plus 1e-3 must not
+// (the tests exist to be tighter than the box tests).
+struct BallCase {
+    Vec3 centre;
+    float radius;
+    bool reported;
+    std::function<Box3(double)> slice;  // the set at parameter s in [0, sMax]
+    double sMax;
+};
+
+double sampledDistance(const BallCase& c) {
+    double nearest = 1e30;
+    for (int k = 0; k <= 20000; ++k) {
+        const Box3 b = c.slice(c.sMax * k / 20000.0);
+        double sum = 0.0;
+        for (int a = 0; a < 3; ++a) {
+            const double gap = std::max({static_cast<double>(b.lo[a]) - c.centre[a], 0.0,
+                                         static_cast<double>(c.centre[a]) - b.hi[a]});
+            sum += gap * gap;
+        }
+        nearest = std::min(nearest, std::sqrt(sum));
+    }
+    return nearest;
+}
+
+void expectBallTestExact(unsigned seed, const std::function<BallCase(RandomCase&)>& makeCase) {
+    RandomCase random(seed);
+    int meetings = 0, misses = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+        const BallCase c = makeCase(random);
+        const double distance = sampledDistance(c);
+        if (distance <= c.radius) {
+            ++meetings;
+            EXPECT_TRUE(c.reported) << "trial " << trial << ": distance " << distance << ", radius " << c.radius;
+        } else if (distance > c.radius + 1e-3) {
+            ++misses;
+            EXPECT_FALSE(c.reported) << "trial " << trial << ": distance " << distance << ", radius " << c.radius;
+        }
+    }
+    EXPECT_GT(meetings, 20);
+    EXPECT_GT(misses, 20);
+}
+
+Box3 movedBox(const Box3& from, const Box3& to, double s) {
+    const auto f = static_cast<float>(s);
+    return box(from.lo + (to.lo - from.lo) * f, from.hi + (to.hi - from.hi) * f);
+}
+
+TEST(RayTreeBounds, BallTestsFindTheDistanceToTheSet) {
+    expectBallTestExact(17, [](RandomCase& random) {  // shadow rays toward a point light
+        const Box3 points = random.randomBox(4.0f, 2.0f);
+        const Vec3 apex = random.point(6.0f), centre = random.point(4.0f);
+        const float radius = random.uniform(0.1f, 1.5f);
+        return BallCase{centre, radius, ballMeetsHull(centre, radius, points, apex),
+                        [=](double s) { return movedBox(points, box(apex, apex), s); }, 1.0};
+    });
+    expectBallTestExact(19, [](RandomCase& random) {  // traced segments
+        const Box3 starts = random.randomBox(4.0f, 1.0f), ends = random.randomBox(4.0f, 1.5f);
+        const Vec3 centre = random.point(4.0f);
+        const float radius = random.uniform(0.1f, 1.5f);
+        return BallCase{centre, radius, ballMeetsSegments(centre, radius, starts, ends),
+                        [=](double s) { return movedBox(starts, ends, s); }, 1.0};
+    });
+    expectBallTestExact(23, [](RandomCase& random) {  // shadow rays toward a directional light
+        const Box3 points = random.randomBox(4.0f, 2.0f);
+        const Vec3 direction = normalize(random.point(1.0f) + Vec3{0.0f, 1e-3f, 0.0f});
+        const Vec3 centre = random.point(6.0f);
+        const float radius = random.uniform(0.1f, 1.5f);
+        return BallCase{centre, radius, ballMeetsSweep(centre, radius, points, direction),
+                        [=](double s) {
+                            const Vec3 step = direction * static_cast<float>(s);
+                            return box(points.lo + step, points.hi + step);
+                        },
+                        40.0};
     });
 }
 
