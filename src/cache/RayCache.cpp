@@ -318,6 +318,7 @@ std::int64_t RayCache::sceneChanged(const Scene& posed, const SceneChanges& chan
     lastChangeRegionObjects_.clear();
     lastChangeTranslated_.clear();
     lastChangeLit_ = false;
+    changedBeforeThisFrame_ = !changes.empty();
     if (changes.empty()) return 0;
     const auto changed = [&](int object) {
         return std::binary_search(changes.objects.begin(), changes.objects.end(), object);
@@ -542,6 +543,7 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
     else
         applyPartition(0, 1);
     // The change is this frame's: a frame rendered without one stores everything.
+    changedBeforeThisFrame_ = false;
     lastChangeRegions_.clear();
     lastChangeRegionObjects_.clear();
     lastChangeTranslated_.clear();
@@ -638,6 +640,9 @@ void RayCache::resizeEntry(Entry& e, int size) {
 
 std::vector<int> RayCache::objectsAwaitingPrefill(std::span<const CacheWorker> workers) const {
     std::vector<int> objects;
+    // The next change would empty the cubes again (CDCT cubes go whole):
+    // pre-filling while the scene moves traced a whole cube per frame.
+    if (changedBeforeThisFrame_ && skipStoresReachingChanges_) return objects;
     for (std::size_t c = 0; c < cubes_.size(); ++c) {
         if (!fillsByPrefill(cubes_[c]) || cubes_[c].prefilled) continue;
         const bool asked = std::any_of(workers.begin(), workers.end(),

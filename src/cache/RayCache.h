@@ -106,8 +106,10 @@ struct RayCacheSettings {
     // frame most likely moves it again the next, which would drop the texel
     // before any frame reads it: the store, and the drop, would be work for
     // nothing (docs/dynamic-scenes.md, "Stores the next change would drop").
-    // Counted in ObjectCacheStats::skippedStores. Off under invalidationOracle,
-    // whose records must cover every texel.
+    // Counted in ObjectCacheStats::skippedStores. Likewise an improved-CDCT
+    // cube, which any change empties whole, is not pre-filled in a frame that
+    // follows a change. Off under invalidationOracle, whose records must
+    // cover every texel.
     bool skipStoresReachingChanges = true;
 };
 
@@ -444,6 +446,10 @@ private:
     std::vector<int> lastChangeRegionObjects_;          // the object each region is of
     std::vector<unsigned char> lastChangeTranslated_;   // per object: onlyTranslated in that change
     bool lastChangeLit_ = false;
+    // The scene changed before this frame (sceneChanged; endFrame forgets it):
+    // with skipStoresReachingChanges_, improved-CDCT cubes, which any change
+    // empties, wait for a frame without one to be pre-filled.
+    bool changedBeforeThisFrame_ = false;
     // Whether a store into `cachingObject`'s cube with `bounds` reaches the
     // last change (the skip's test).
     bool reachesLastChange(const RayTreeBounds& bounds, int cachingObject) const;

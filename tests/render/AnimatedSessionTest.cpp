@@ -235,6 +235,36 @@ TEST(AnimatedSession, StoresResumeWhenTheSceneStopsChanging) {
     EXPECT_GT(still.cache->stores(), 0u);
 }
 
+// Improved CDCT cubes are emptied whole by any change, so while the scene
+// moves they are not pre-filled (a whole cube traced per frame for nothing);
+// the frame after the scene stops fills them.
+TEST(AnimatedSession, CdctCubesWaitForTheSceneToStopBeforeTheirPrefill) {
+    const Scene scene = *makeBuiltinScene("orbit");
+    for (const bool skip : {false, true}) {
+        RenderSettings settings = smallSettings(CacheTechnique::Cdct);
+        settings.cache.resolutionOverride = 16;
+        settings.cache.skipStoresReachingChanges = skip;
+        RenderSession session(scene, settings);
+        Image film;
+        std::uint64_t prefilledWhileMoving = 0;
+        for (int frame = 0; frame < 4; ++frame) {
+            session.setTime(static_cast<float>(frame) / scene.fps);
+            const FrameStats stats = session.render(scene.camera, film);
+            if (frame > 0) prefilledWhileMoving += stats.cache->prefilledTexels();
+        }
+        session.setTime(3.0f / scene.fps);  // the same pose: the scene stopped
+        const FrameStats stopped = session.render(scene.camera, film);
+        if (skip) {
+            EXPECT_EQ(prefilledWhileMoving, 0u);
+            EXPECT_GT(stopped.cache->prefilledTexels(), 0u);
+        } else {
+            // Every moving frame filled the cubes again; the last fill stands.
+            EXPECT_GT(prefilledWhileMoving, 0u);
+            EXPECT_EQ(stopped.cache->prefilledTexels(), 0u);
+        }
+    }
+}
+
 TEST(AnimatedSession, StillSceneIgnoresTime) {
     const Scene scene = *makeBuiltinScene("grid-4");
     RenderSession session(scene, smallSettings(CacheTechnique::Cct));
