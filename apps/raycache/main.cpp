@@ -73,8 +73,9 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
                        "(smallest objects' first) and a note says so; a scene that cannot fit even at 16² faces "
                        "is refused (default: the scene file's cacheBudget, else half the machine's memory)");
     command.add_flag("--cache-store-changing", job.cacheStoreChanging,
-                     "Animated scenes: also store what reached the objects and lights the last change moved "
-                     "(by default such stores are skipped: the next change would drop them; docs/dynamic-scenes.md)");
+                     "Animated scenes: also store what reached the objects and lights the last change moved, and "
+                     "pre-fill CDCT cubes in frames that follow a change (by default both are skipped: the next "
+                     "change would drop them; docs/dynamic-scenes.md)");
     command.add_flag("--cache-ideal", job.cacheIdeal,
                      "Benchmark switch: cache misses return black instead of being traced");
     command.add_flag("--stage-times", job.stageTimes,
