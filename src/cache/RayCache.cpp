@@ -377,6 +377,9 @@ std::int64_t RayCache::sceneChanged(const Scene& posed, const SceneChanges& chan
     for (Entry& e : cubes_) {
         std::fill(e.droppedBits.begin(), e.droppedBits.end(), 0);
         if (e.blocks.empty()) {  // CDCT: its searches read across blocks; all or nothing
+            // A cube that holds nothing and fills nothing (one that waits for
+            // the scene to stop) has nothing to drop: skip walking its texels.
+            if (e.cube.validCount() == 0 && !e.prefilled && e.prefillRowsDone == 0) continue;
             for (int t = 0; t < static_cast<int>(e.cube.texelCount()); ++t) dropped += dropTexel(e, t) ? 1 : 0;
             clearEntry(e);
             continue;
