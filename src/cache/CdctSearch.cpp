@@ -96,6 +96,16 @@ float sineToBlockEdge(const CubeCoord& coord, int n, int blockSide) {
     return std::max(0.0f, nearest / std::sqrt(1.0f + u * u + v * v) - 1e-5f);
 }
 
+// The search's answer once it met texel `found` at `v` (a direction from the
+// centre): rejected by error control, filtered, or the texel's colour.
+CdctResult answerAt(const CachingCube& cube, const CdctParameters& p, const CdctImprovements& improvements,
+                    int found, const Vec3& v, const Vec3& origin, const Vec3& d, int samples) {
+    if (improvements.errorControl && !onRay(cube, found, p.tolerance, origin, d))
+        return {CdctOutcome::Rejected, {}, samples, found};
+    if (improvements.filter)
+        return {CdctOutcome::Found, filteredColor(cube, found, v, p.tolerance, origin, d), samples, found};
+    return {CdctOutcome::Found, *cube.read(found), samples, found};
+}
 
 // The frame of a cube face: a point p (relative to the centre) lies in the
 // face's cone when p·n > 0 and |p·a|, |p·b| <= p·n, and then addresses face
@@ -193,7 +203,6 @@ CdctResult searchCdctParity(const CachingCube& cube, const CdctParameters& p, co
     return {};  // not reached: the last step returns
 }
 
-
 namespace {
 
 // Improved CDCT's search as a walk over the texels the ray crosses
@@ -208,6 +217,7 @@ namespace {
 CdctResult faceWalk(const CachingCube& cube, const CdctParameters& p, const CdctImprovements& improvements,
                     const DepthPyramid* pyramid, const Vec3& origin, const Vec3& d, float tStart, float tEnd,
                     float tMaxDepth, long maxSteps) {
+    constexpr double kNever = std::numeric_limits<double>::infinity();
     const int n = cube.size();
     const double size = static_cast<double>(n);
     const Vec3 p0 = origin - cube.center();
@@ -250,9 +260,9 @@ CdctResult faceWalk(const CachingCube& cube, const CdctParameters& p, const Cdct
     // axis; infinity when it never does (the coordinate tends to a limit
     // inside, or the edge's plane is met only behind the centre, w <= 0).
     const auto leaves = [&](const FaceAxis& axis, int lo, int span) {
-        if (axis.step == 0) return kInfinity + 0.0;
+        if (axis.step == 0) return kNever;
         const double at = axis.tAt(edgeAt(axis.step > 0 ? std::min(lo + span, n) : lo), w0, wd);
-        return at >= t - 1e-9 * (1.0 + std::fabs(t)) && w0 + wd * at > 0.0 ? std::max(at, t) : kInfinity + 0.0;
+        return at >= t - 1e-9 * (1.0 + std::fabs(t)) && w0 + wd * at > 0.0 ? std::max(at, t) : kNever;
     };
     const auto found = [&](int texel, double tIn, double tOut) {
         // Where along [tIn, tOut] the ray reaches the stored depth.
@@ -260,16 +270,11 @@ CdctResult faceWalk(const CachingCube& cube, const CdctParameters& p, const Cdct
         double tHit = tIn;
         if (distance2(tIn) < static_cast<double>(depth) * depth)
             tHit = std::clamp(static_cast<double>(rayParameterAtDistance(cube.center(), origin, d, depth)), tIn, tOut);
-        const Vec3 v = p0 + d * static_cast<float>(tHit);
-        if (improvements.errorControl && !onRay(cube, texel, p.tolerance, origin, d))
-            return CdctResult{CdctOutcome::Rejected, {}, samples, texel};
-        if (improvements.filter)
-            return CdctResult{CdctOutcome::Found, filteredColor(cube, texel, v, p.tolerance, origin, d), samples, texel};
-        return CdctResult{CdctOutcome::Found, *cube.read(texel), samples, texel};
+        return answerAt(cube, p, improvements, texel, p0 + d * static_cast<float>(tHit), origin, d, samples);
     };
 
     enter(t);
-    const double tLast = tEnd;
+    const double tLast = tEnd;  // in double, as the walk's parameters
     for (long step = 0; step <= maxSteps; ++step) {
         if (t >= tLast) break;
         ++samples;
@@ -333,11 +338,7 @@ CdctResult faceWalk(const CachingCube& cube, const CdctParameters& p, const Cdct
     const Vec3 far = origin + d * tMaxDepth - cube.center();
     const int texel = cube.texelIndexFor(far);
     if (!cube.isValid(texel)) return {CdctOutcome::Invalid, {}, samples};
-    if (improvements.errorControl && !onRay(cube, texel, p.tolerance, origin, d))
-        return {CdctOutcome::Rejected, {}, samples, texel};
-    if (improvements.filter)
-        return {CdctOutcome::Found, filteredColor(cube, texel, far, p.tolerance, origin, d), samples, texel};
-    return {CdctOutcome::Found, *cube.read(texel), samples, texel};
+    return answerAt(cube, p, improvements, texel, far, origin, d, samples);
 }
 
 }  // namespace
@@ -471,11 +472,7 @@ CdctResult searchCdctImproved(const CachingCube& cube, const CdctParameters& p, 
         s = sampleAt(t);
     }
 
-    if (improvements.errorControl && !onRay(cube, found, p.tolerance, origin, d))
-        return {CdctOutcome::Rejected, {}, samples, found};
-    if (improvements.filter)
-        return {CdctOutcome::Found, filteredColor(cube, found, foundV, p.tolerance, origin, d), samples, found};
-    return {CdctOutcome::Found, *cube.read(found), samples, found};
+    return answerAt(cube, p, improvements, found, foundV, origin, d, samples);
 }
 
 }  // namespace raycache

@@ -239,21 +239,17 @@ std::int64_t RayCache::dropBlock(Entry& e, int block) {
 }
 
 bool RayCache::reaches(const RayTreeBounds& bounds, std::span<const PartedBounds> regions, bool lightChanged,
-                       std::span<const Light> lights) {
+                       std::span<const Light> lights, std::span<const int> regionObjects, int ignoredObject) {
     if (bounds.dependsOnEverything || (lightChanged && bounds.shaded)) return true;
-    for (const PartedBounds& region : regions) {
+    for (std::size_t r = 0; r < regions.size(); ++r) {
+        if (ignoredObject >= 0 && regionObjects[r] == ignoredObject) continue;
+        const PartedBounds& region = regions[r];
         const bool meets = region.isBall() ? bounds.mayMeetBall(region.ballCentre, region.ballRadius, region.whole, lights)
                                            : region.any([&](const Box3& box) { return bounds.mayMeet(box, lights); });
         if (meets) return true;
     }
     return false;
 }
-
-namespace {
-
-Box3 shiftedBox(const Box3& box, const Vec3& offset) { return box.empty() ? box : Box3{box.lo + offset, box.hi + offset}; }
-
-}  // namespace
 
 bool RayCache::escapesOnly(const RayTreeBounds& bounds) {
     return !bounds.escapeOrigins.empty() && bounds.segmentStarts.empty() && bounds.shadowOrigins.empty() &&
@@ -284,26 +280,29 @@ void RayCache::shiftBlockRecords(Entry& e, int block, const Vec3& movedBy) {
         for (int x = x0; x < std::min(x0 + kBlockSize, n); ++x) {
             RayTreeRecord& record = e.storedTrees[static_cast<std::size_t>((face * n + y) * n + x)];
             record.origin += movedBy;
-            record.bounds.escapeOrigins = shiftedBox(record.bounds.escapeOrigins, movedBy);
+            record.bounds.escapeOrigins = record.bounds.escapeOrigins.shifted(movedBy);
         }
 }
 
 bool RayCache::reachesLastChange(const RayTreeBounds& bounds, int cachingObject) const {
-    if (bounds.dependsOnEverything || (lastChangeLit_ && bounds.shaded)) return true;
     // A caching sphere that only moved keeps the texels whose rays escape
     // (sceneChanged): its own move does not reach them.
     const bool ownMoveKept = static_cast<std::size_t>(cachingObject) < lastChangeTranslated_.size() &&
                              lastChangeTranslated_[static_cast<std::size_t>(cachingObject)] && escapesOnly(bounds);
-    for (std::size_t r = 0; r < lastChangeRegions_.size(); ++r) {
-        if (ownMoveKept && lastChangeRegionObjects_[r] == cachingObject) continue;
-        if (lastChangeRegions_[r].any([&](const Box3& box) { return bounds.mayMeet(box, lights_); })) return true;
-    }
-    return false;
+    return reaches(bounds, lastChangeRegions_, lastChangeLit_, lights_, lastChangeRegionObjects_,
+                   ownMoveKept ? cachingObject : -1);
+}
+
+void RayCache::forgetLastChange() {
+    lastChangeRegions_.clear();
+    lastChangeRegionObjects_.clear();
+    lastChangeTranslated_.clear();
+    lastChangeLit_ = false;
 }
 
 bool RayCache::stillEscapes(const RayTreeBounds& bounds, const Vec3& movedBy, int objectId) const {
     if (wholeBounds_.empty()) return false;  // more objects than kMostObjectsForMovedEscapes
-    const Box3 origins = shiftedBox(bounds.escapeOrigins, movedBy);
+    const Box3 origins = bounds.escapeOrigins.shifted(movedBy);
     // The rays leave their sphere outward and never meet it again; any other
     // object's box they may meet could now stand in their way.
     for (std::size_t k = 0; k < wholeBounds_.size(); ++k)
@@ -314,10 +313,7 @@ bool RayCache::stillEscapes(const RayTreeBounds& bounds, const Vec3& movedBy, in
 
 std::int64_t RayCache::sceneChanged(const Scene& posed, const SceneChanges& changes,
                                    const PartitionRunner& runPartitions) {
-    lastChangeRegions_.clear();
-    lastChangeRegionObjects_.clear();
-    lastChangeTranslated_.clear();
-    lastChangeLit_ = false;
+    forgetLastChange();
     changedBeforeThisFrame_ = !changes.empty();
     if (changes.empty()) return 0;
     const auto changed = [&](int object) {
@@ -413,7 +409,7 @@ std::int64_t RayCache::sceneChanged(const Scene& posed, const SceneChanges& chan
         for (std::size_t b = 0; b < e.blocks.size(); ++b) {
             if (reached[b] == 1) dropped += dropBlock(e, static_cast<int>(b));
             if (reached[b] == 2) {
-                e.blocks[b].escapeOrigins = shiftedBox(e.blocks[b].escapeOrigins, movedBy);
+                e.blocks[b].escapeOrigins = e.blocks[b].escapeOrigins.shifted(movedBy);
                 if (oracle_) shiftBlockRecords(e, static_cast<int>(b), movedBy);
             }
         }
@@ -547,10 +543,7 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
         applyPartition(0, 1);
     // The change is this frame's: a frame rendered without one stores everything.
     changedBeforeThisFrame_ = false;
-    lastChangeRegions_.clear();
-    lastChangeRegionObjects_.clear();
-    lastChangeTranslated_.clear();
-    lastChangeLit_ = false;
+    forgetLastChange();
 
     for (std::size_t c = 0; c < cubes_.size(); ++c) {
         ObjectCacheStats& s = stats.objects[c];

@@ -201,9 +201,11 @@ public:
     bool tracksDependencies() const { return tracksDependencies_; }
     // Whether a tree with `bounds` may see a change that reached `regions`
     // (object bounds before and after it) and, if `lightChanged`, the lights:
-    // the test that drops a block, and that skips a store.
+    // the test that drops a block, and that skips a store. Regions of object
+    // `ignoredObject` (regionObjects[r]: region r's object) are left out.
     static bool reaches(const RayTreeBounds& bounds, std::span<const PartedBounds> regions, bool lightChanged,
-                        std::span<const Light> lights);
+                        std::span<const Light> lights, std::span<const int> regionObjects = {},
+                        int ignoredObject = -1);
     // Texels per side of the square blocks whose dependencies are kept together.
     static constexpr int kBlockSize = 8;
     // Bytes of the dependency records (included in bytes()).
@@ -453,6 +455,8 @@ private:
     // Whether a store into `cachingObject`'s cube with `bounds` reaches the
     // last change (the skip's test).
     bool reachesLastChange(const RayTreeBounds& bounds, int cachingObject) const;
+    // Empties the record of the last change (lastChange*).
+    void forgetLastChange();
 
     // A caching sphere that moves keeps the texels whose trees are single
     // rays escaping to the environment, as long as those rays, moved along

@@ -27,6 +27,8 @@ struct Box3 {
         return lo.x <= b.hi.x && b.lo.x <= hi.x && lo.y <= b.hi.y && b.lo.y <= hi.y && lo.z <= b.hi.z &&
                b.lo.z <= hi.z;
     }
+    // The box moved by `offset` (an empty box stays empty).
+    Box3 shifted(const Vec3& offset) const { return empty() ? *this : Box3{lo + offset, hi + offset}; }
     // The box grown by `margin` on every side.
     Box3 grown(float margin) const {
         const Vec3 m{margin, margin, margin};

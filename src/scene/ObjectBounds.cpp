@@ -43,10 +43,10 @@ PartedBounds PartedBounds::grownRelative(float fraction) const {
 
 PartedBounds PartedBounds::shifted(const Vec3& offset) const {
     PartedBounds out = *this;
-    for (Box3* box : {&out.whole}) *box = {box->lo + offset, box->hi + offset};
+    out.whole = whole.shifted(offset);
     out.ballCentre = ballCentre + offset;
-    for (Box3& part : out.parts) part = {part.lo + offset, part.hi + offset};
-    for (Box3& group : out.groups) group = {group.lo + offset, group.hi + offset};
+    for (Box3& part : out.parts) part = part.shifted(offset);
+    for (Box3& group : out.groups) group = group.shifted(offset);
     return out;
 }
 

@@ -35,21 +35,34 @@ std::uint64_t total(const PathRender& run, std::uint64_t (FrameCacheStats::*coun
     return sum;
 }
 
-PathRender cdct(const char* scene, const CdctImprovements& improvements) {
-    return renderPath(scene, CacheTechnique::Cdct, kFrames, false, kSize, 2, kFaces, nullptr, TileBalance::Dynamic, 1,
-                      0, false, VisibleFill::Off, improvements);
+// A scene's camera path with improved CDCT with one of its switches off
+// (`without`) and with all on, beside CCT; PSNRs against the uncached path.
+struct SwitchComparison {
+    PathRender without, with;
+    double cctDb, withoutDb, withDb;
+};
+
+SwitchComparison compareSwitch(const Scene& scene, const CdctImprovements& without) {
+    const auto cdct = [&](const CdctImprovements& improvements) {
+        return renderPath(scene, CacheTechnique::Cdct, kFrames, false, kSize, 2, kFaces, nullptr,
+                          TileBalance::Dynamic, 1, 0, false, VisibleFill::Off, improvements);
+    };
+    const PathRender plain = renderPath(scene, CacheTechnique::None, kFrames, false, kSize, 2, kFaces);
+    const PathRender cct = renderPath(scene, CacheTechnique::Cct, kFrames, false, kSize, 2, kFaces);
+    SwitchComparison c{cdct(without), cdct({}), meanPsnr(cct, plain), 0.0, 0.0};
+    c.withoutDb = meanPsnr(c.without, plain);
+    c.withDb = meanPsnr(c.with, plain);
+    return c;
 }
 
 }  // namespace
 
 TEST(CdctOwnSurface, ConcaveMirrorsCloserToUncachedThanCctAndThanWithoutTheTest) {
-    const PathRender plain = renderPath("bowl", CacheTechnique::None, kFrames, false, kSize, 2, kFaces);
-    const PathRender cct = renderPath("bowl", CacheTechnique::Cct, kFrames, false, kSize, 2, kFaces);
     CdctImprovements without;
     without.traceOwnSurface = false;
-    const PathRender blind = cdct("bowl", without);
-    const PathRender tested = cdct("bowl", {});
-    const double cctDb = meanPsnr(cct, plain), blindDb = meanPsnr(blind, plain), testedDb = meanPsnr(tested, plain);
+    const SwitchComparison c = compareSwitch(*makeBuiltinScene("bowl"), without);
+    const PathRender &blind = c.without, &tested = c.with;
+    const double cctDb = c.cctDb, blindDb = c.withoutDb, testedDb = c.withDb;
     std::printf("bowl %dx%d, %d^2 faces, frames 2-%d: CCT %.2f dB, CDCT without the own-surface test %.2f dB, "
                 "with it %.2f dB\n", kSize, kSize, kFaces, kFrames, cctDb, blindDb, testedDb);
     RecordProperty("cct_psnr_db", std::to_string(cctDb));
@@ -63,13 +76,11 @@ TEST(CdctOwnSurface, ConcaveMirrorsCloserToUncachedThanCctAndThanWithoutTheTest)
 }
 
 TEST(CdctOwnSurface, MirrorsSeenFromTheCentreAreTracedAndTheImageComesCloser) {
-    const PathRender plain = renderPath("shapes", CacheTechnique::None, kFrames, false, kSize, 2, kFaces);
-    const PathRender cct = renderPath("shapes", CacheTechnique::Cct, kFrames, false, kSize, 2, kFaces);
     CdctImprovements without;
     without.traceViewDependent = false;
-    const PathRender cached = cdct("shapes", without);
-    const PathRender traced = cdct("shapes", {});
-    const double cctDb = meanPsnr(cct, plain), cachedDb = meanPsnr(cached, plain), tracedDb = meanPsnr(traced, plain);
+    const SwitchComparison c = compareSwitch(*makeBuiltinScene("shapes"), without);
+    const PathRender &cached = c.without, &traced = c.with;
+    const double cctDb = c.cctDb, cachedDb = c.withoutDb, tracedDb = c.withDb;
     std::printf("shapes %dx%d, %d^2 faces, frames 2-%d: CCT %.2f dB, CDCT with mirrors cached as seen from the "
                 "centre %.2f dB, traced %.2f dB\n", kSize, kSize, kFaces, kFrames, cctDb, cachedDb, tracedDb);
     EXPECT_EQ(total(cached, &FrameCacheStats::viewDependent), 0u);
@@ -96,14 +107,11 @@ TEST(CdctOwnSurface, MirrorTeapotCloserToUncachedThanCct) {
                     Transform::scale({scale, scale, scale}) * Transform::translate(centre * -1.0f)))};
     mirror.origin = place;
     scene.objects.erase(scene.objects.begin() + 2);  // the ball that sat in the bowl
-    const PathRender plain = renderPath(scene, CacheTechnique::None, kFrames, false, kSize, 2, kFaces);
-    const PathRender cct = renderPath(scene, CacheTechnique::Cct, kFrames, false, kSize, 2, kFaces);
-    const PathRender cdctRun = renderPath(scene, CacheTechnique::Cdct, kFrames, false, kSize, 2, kFaces);
     CdctImprovements without;
     without.traceOwnSurface = false;
-    const PathRender blind = renderPath(scene, CacheTechnique::Cdct, kFrames, false, kSize, 2, kFaces, nullptr,
-                                        TileBalance::Dynamic, 1, 0, false, VisibleFill::Off, without);
-    const double cctDb = meanPsnr(cct, plain), cdctDb = meanPsnr(cdctRun, plain), blindDb = meanPsnr(blind, plain);
+    const SwitchComparison c = compareSwitch(scene, without);
+    const PathRender& cdctRun = c.with;
+    const double cctDb = c.cctDb, cdctDb = c.withDb, blindDb = c.withoutDb;
     std::printf("mirror teapot %dx%d, %d^2 faces, frames 2-%d: CCT %.2f dB, CDCT without the own-surface test %.2f "
                 "dB, with it %.2f dB (own surface %llu)\n",
                 kSize, kSize, kFaces, kFrames, cctDb, blindDb, cdctDb,

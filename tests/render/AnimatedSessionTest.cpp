@@ -218,8 +218,7 @@ TEST(AnimatedSession, StoresReachingAMovingLightAreSkippedWhileItMoves) {
     }
 }
 
-// Once the scene stops changing, stores are made again; a store whose tree
-// meets nothing that moved is made even while things move.
+// Once the scene stops changing, stores are made again.
 TEST(AnimatedSession, StoresResumeWhenTheSceneStopsChanging) {
     const Scene scene = *makeBuiltinScene("orbit");
     RenderSession session(scene, smallSettings(CacheTechnique::Cct));
