@@ -238,21 +238,43 @@ std::int64_t RayCache::dropBlock(Entry& e, int block) {
     return dropped;
 }
 
-bool RayCache::reaches(const RayTreeBounds& bounds, std::span<const PartedBounds> regions, bool lightChanged,
-                       std::span<const Light> lights, std::span<const int> regionObjects, int ignoredObject) {
+bool RayCache::reaches(const RayTreeBounds& bounds, std::span<const ChangedRegion> regions, bool lightChanged,
+                       std::span<const Light> lights, int ignoredObject) {
     if (bounds.dependsOnEverything || (lightChanged && bounds.shaded)) return true;
-    for (std::size_t r = 0; r < regions.size(); ++r) {
-        if (ignoredObject >= 0 && regionObjects[r] == ignoredObject) continue;
-        const PartedBounds& region = regions[r];
-        const bool meets = region.isBall() ? bounds.mayMeetBall(region.ballCentre, region.ballRadius, region.whole, lights)
-                                           : region.any([&](const Box3& box) { return bounds.mayMeet(box, lights); });
+    // Shadow rays something stopped stay stopped when a ball the change put
+    // there stops every one of them, whatever stopped them before (a moving
+    // ball's shadow that still covers them). Its radius shrunk by twice the
+    // regions' growth (PartedBounds::grownRelative) for rounding.
+    bool blockedStayBlocked = false;
+    if (bounds.shaded && !bounds.blockedShadowOrigins.empty())
+        for (const ChangedRegion& changed : regions) {
+            const PartedBounds& region = changed.bounds;
+            if (changed.pose != RegionPose::After || !region.isBall() ||
+                (ignoredObject >= 0 && changed.object == ignoredObject))
+                continue;
+            const float growth = 1e-3f * std::max({maxComponent(max(-region.whole.lo, region.whole.hi)), 1.0f});
+            if (bounds.blockedRaysAllMeetBall(region.ballCentre, region.ballRadius - 2.0f * growth,
+                                              region.ballRadius + growth, lights)) {
+                blockedStayBlocked = true;
+                break;
+            }
+        }
+    for (const ChangedRegion& changed : regions) {
+        if (ignoredObject >= 0 && changed.object == ignoredObject) continue;
+        const PartedBounds& region = changed.bounds;
+        const bool meets = region.isBall()
+                               ? bounds.mayMeetBall(region.ballCentre, region.ballRadius, region.whole, lights,
+                                                    changed.pose, blockedStayBlocked)
+                               : region.any([&](const Box3& box) {
+                                     return bounds.mayMeet(box, lights, changed.pose, blockedStayBlocked);
+                                 });
         if (meets) return true;
     }
     return false;
 }
 
 bool RayCache::escapesOnly(const RayTreeBounds& bounds) {
-    return !bounds.escapeOrigins.empty() && bounds.segmentStarts.empty() && bounds.shadowOrigins.empty() &&
+    return !bounds.escapeOrigins.empty() && bounds.segmentStarts.empty() && !bounds.hasShadowRays() &&
            !bounds.shaded && !bounds.dependsOnEverything;
 }
 
@@ -289,13 +311,11 @@ bool RayCache::reachesLastChange(const RayTreeBounds& bounds, int cachingObject)
     // (sceneChanged): its own move does not reach them.
     const bool ownMoveKept = static_cast<std::size_t>(cachingObject) < lastChangeTranslated_.size() &&
                              lastChangeTranslated_[static_cast<std::size_t>(cachingObject)] && escapesOnly(bounds);
-    return reaches(bounds, lastChangeRegions_, lastChangeLit_, lights_, lastChangeRegionObjects_,
-                   ownMoveKept ? cachingObject : -1);
+    return reaches(bounds, lastChangeRegions_, lastChangeLit_, lights_, ownMoveKept ? cachingObject : -1);
 }
 
 void RayCache::forgetLastChange() {
     lastChangeRegions_.clear();
-    lastChangeRegionObjects_.clear();
     lastChangeTranslated_.clear();
     lastChangeLit_ = false;
 }
@@ -338,12 +358,11 @@ std::int64_t RayCache::sceneChanged(const Scene& posed, const SceneChanges& chan
     // Where the changed objects were and are, whole and by parts. Grown a
     // little: hit points are computed in float, and ray origins sit a surface
     // offset (render/LocalShading.h, 1e-4 of the coordinates) off their surfaces.
-    std::vector<PartedBounds> changedRegions;
+    std::vector<ChangedRegion> changedRegions;
     // Where the changed objects will be if they go on as they went: now,
     // moved once more by what this change moved them (the stores skipped
     // until the next change are those reaching it; a guess, never a drop).
-    std::vector<PartedBounds> nextRegions;
-    std::vector<int> changedRegionObjects, nextRegionObjects;  // whose regions they are
+    std::vector<ChangedRegion> nextRegions;
     // Per object: a caching sphere that only moved, by its cube's step (onlyTranslated).
     std::vector<unsigned char> translated(posed.objects.size(), 0);
     for (const int object : changes.objects) {
@@ -354,16 +373,14 @@ std::int64_t RayCache::sceneChanged(const Scene& posed, const SceneChanges& chan
             translated[i] = onlyTranslated(posed.objects[i], objectBounds_[i].whole, now.whole,
                                            cubeMovedBy[static_cast<std::size_t>(c)]);
         if (!wholeBounds_.empty()) wholeBounds_[i] = now.whole.empty() ? Box3{} : now.grownRelative(1e-3f).whole;
-        for (const PartedBounds* region : {&objectBounds_[i], &now})
-            if (!region->whole.empty()) {
-                changedRegions.push_back(region->grownRelative(1e-3f));
-                changedRegionObjects.push_back(object);
-            }
+        if (!objectBounds_[i].whole.empty())
+            changedRegions.push_back({objectBounds_[i].grownRelative(1e-3f), object, RegionPose::Before});
+        if (!now.whole.empty()) changedRegions.push_back({now.grownRelative(1e-3f), object, RegionPose::After});
         if (skipStoresReachingChanges_ && !now.whole.empty() && !objectBounds_[i].whole.empty()) {
             const Box3& before = objectBounds_[i].whole;
             const Vec3 moved = (now.whole.lo + now.whole.hi - before.lo - before.hi) * 0.5f;
-            nextRegions.push_back(PartedBounds{now.whole, {}, {}}.shifted(moved).grownRelative(1e-3f));
-            nextRegionObjects.push_back(object);
+            nextRegions.push_back({PartedBounds{now.whole, {}, {}}.shifted(moved).grownRelative(1e-3f), object,
+                                   RegionPose::Either});
         }
         objectBounds_[i] = std::move(now);
     }
@@ -417,12 +434,11 @@ std::int64_t RayCache::sceneChanged(const Scene& posed, const SceneChanges& chan
     if (skipStoresReachingChanges_) {
         // Whole boxes only: a store is tested where a block is, and skipping
         // one too many only costs a trace.
+        // Either pose: the next change's old pose is this one's new.
         lastChangeRegions_.clear();
-        for (const PartedBounds& region : changedRegions) lastChangeRegions_.push_back({region.whole, {}, {}});
-        for (PartedBounds& region : nextRegions) lastChangeRegions_.push_back(std::move(region));
-        lastChangeRegionObjects_ = std::move(changedRegionObjects);
-        lastChangeRegionObjects_.insert(lastChangeRegionObjects_.end(), nextRegionObjects.begin(),
-                                        nextRegionObjects.end());
+        for (const ChangedRegion& region : changedRegions)
+            lastChangeRegions_.push_back({PartedBounds{region.bounds.whole, {}, {}}, region.object, RegionPose::Either});
+        for (ChangedRegion& region : nextRegions) lastChangeRegions_.push_back(std::move(region));
         lastChangeTranslated_ = std::move(translated);
         lastChangeLit_ = lightChanged;
     }

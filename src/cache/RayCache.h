@@ -199,13 +199,18 @@ public:
     // keep their blocks' bounds: on for animated scenes, where a change must
     // find what it reaches.
     bool tracksDependencies() const { return tracksDependencies_; }
+    // Where a change put or took an object: its bounds in one pose.
+    struct ChangedRegion {
+        PartedBounds bounds;
+        int object = -1;
+        RegionPose pose = RegionPose::Either;
+    };
     // Whether a tree with `bounds` may see a change that reached `regions`
     // (object bounds before and after it) and, if `lightChanged`, the lights:
     // the test that drops a block, and that skips a store. Regions of object
-    // `ignoredObject` (regionObjects[r]: region r's object) are left out.
-    static bool reaches(const RayTreeBounds& bounds, std::span<const PartedBounds> regions, bool lightChanged,
-                        std::span<const Light> lights, std::span<const int> regionObjects = {},
-                        int ignoredObject = -1);
+    // `ignoredObject` are left out.
+    static bool reaches(const RayTreeBounds& bounds, std::span<const ChangedRegion> regions, bool lightChanged,
+                        std::span<const Light> lights, int ignoredObject = -1);
     // Texels per side of the square blocks whose dependencies are kept together.
     static constexpr int kBlockSize = 8;
     // Bytes of the dependency records (included in bytes()).
@@ -444,8 +449,7 @@ private:
     // and what the sceneChanged before this frame reached (emptied by
     // endFrame: a frame that follows no change skips nothing).
     bool skipStoresReachingChanges_ = false;
-    std::vector<PartedBounds> lastChangeRegions_;
-    std::vector<int> lastChangeRegionObjects_;          // the object each region is of
+    std::vector<ChangedRegion> lastChangeRegions_;
     std::vector<unsigned char> lastChangeTranslated_;   // per object: onlyTranslated in that change
     bool lastChangeLit_ = false;
     // The scene changed before this frame (sceneChanged; endFrame forgets it):

@@ -169,38 +169,125 @@ bool ballMeetsSweep(const Vec3& centre, float radius, const Box3& points, const 
     return ballMeetsMovingBox(centre, radius, points.lo, direction, points.hi, direction, reach);
 }
 
-bool RayTreeBounds::mayMeetBall(const Vec3& centre, float radius, const Box3& box,
-                                std::span<const Light> lights) const {
-    if (dependsOnEverything) return true;
-    if (box.empty()) return false;
-    if (boxMeetsSegments(box, segmentStarts, segmentEnds) && ballMeetsSegments(centre, radius, segmentStarts, segmentEnds))
-        return true;
-    if (boxMeetsRays(box, escapeOrigins, escapeDirections)) return true;
-    if (!shaded) return false;
-    for (const Light& light : lights) {
-        const bool meets = light.type == LightType::Directional
-                               ? boxMeetsSweep(box, shadowOrigins, -light.direction) &&
-                                     ballMeetsSweep(centre, radius, shadowOrigins, -light.direction)
-                               : boxMeetsHull(box, shadowOrigins, light.position) &&
-                                     ballMeetsHull(centre, radius, shadowOrigins, light.position);
-        if (meets) return true;
+bool ballMeetsRays(const Vec3& centre, float radius, const Box3& origins, const Box3& directions) {
+    if (origins.empty() || directions.empty()) return false;
+    // Past the smallest such t one face of the box has left the ball behind:
+    // an axis whose directions all point one way moves that face away.
+    double reach = kInfinity;
+    for (int a = 0; a < 3; ++a) {
+        if (directions.lo[a] > 0.0f)
+            reach = std::min(reach, (static_cast<double>(centre[a]) + radius - origins.lo[a]) / directions.lo[a]);
+        if (directions.hi[a] < 0.0f)
+            reach = std::min(reach, (static_cast<double>(origins.hi[a]) - (centre[a] - radius)) / -directions.hi[a]);
+    }
+    if (reach == kInfinity) return boxMeetsRays(Box3{centre - Vec3{radius, radius, radius}, centre + Vec3{radius, radius, radius}},
+                                                 origins, directions);
+    return ballMeetsMovingBox(centre, radius, origins.lo, directions.lo, origins.hi, directions.hi,
+                              std::max(reach, 0.0) + 1.0);
+}
+
+namespace {
+
+// The shadow rays whose answer a changed object in pose `pose` can change
+// (RayTreeBounds.h): `meets(origins, light)` for the rays that reached their
+// light against the new pose, for the stopped ones against the old.
+template <typename Meets>
+bool shadowRayMayChange(const RayTreeBounds& bounds, std::span<const Light> lights, RegionPose pose,
+                        bool blockedStayBlocked, const Meets& meets) {
+    if (!bounds.shaded) return false;
+    const bool testLit = pose != RegionPose::Before;
+    const bool testBlocked = pose != RegionPose::After && !blockedStayBlocked;
+    for (std::size_t i = 0; i < lights.size() && i < 64; ++i) {
+        const std::uint64_t bit = std::uint64_t{1} << i;
+        if (testLit && (bounds.litLights & bit) && meets(bounds.litShadowOrigins, lights[i])) return true;
+        if (testBlocked && (bounds.blockedLights & bit) && meets(bounds.blockedShadowOrigins, lights[i])) return true;
     }
     return false;
 }
 
-bool RayTreeBounds::mayMeet(const Box3& box, std::span<const Light> lights) const {
+// Squared distance from `c` to the segment from `a` to `b`.
+double distanceToSegment2(const Vec3& c, const Vec3& a, const Vec3& b) {
+    double ab[3], ac[3], abab = 0.0, abac = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        ab[k] = static_cast<double>(b[k]) - a[k];
+        ac[k] = static_cast<double>(c[k]) - a[k];
+        abab += ab[k] * ab[k];
+        abac += ab[k] * ac[k];
+    }
+    const double s = abab > 0.0 ? std::clamp(abac / abab, 0.0, 1.0) : 0.0;
+    double sum = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        const double gap = ac[k] - s * ab[k];
+        sum += gap * gap;
+    }
+    return sum;
+}
+
+// Squared distance from `c` to the ray from `a` along `u` (t >= 0).
+double distanceToRay2(const Vec3& c, const Vec3& a, const Vec3& u) {
+    double ac[3], uu = 0.0, uac = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        ac[k] = static_cast<double>(c[k]) - a[k];
+        uu += static_cast<double>(u[k]) * u[k];
+        uac += static_cast<double>(u[k]) * ac[k];
+    }
+    const double t = uu > 0.0 ? std::max(uac / uu, 0.0) : 0.0;
+    double sum = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        const double gap = ac[k] - t * u[k];
+        sum += gap * gap;
+    }
+    return sum;
+}
+
+}  // namespace
+
+bool RayTreeBounds::blockedRaysAllMeetBall(const Vec3& centre, float radius, float lightClearance,
+                                           std::span<const Light> lights) const {
+    if (blockedShadowOrigins.empty() || !(radius > 0.0f)) return false;
+    if (lights.size() < 64 && (blockedLights >> lights.size()) != 0) return false;  // a light not given
+    const double r2 = static_cast<double>(radius) * radius;
+    const Box3& b = blockedShadowOrigins;
+    for (std::size_t i = 0; i < lights.size() && i < 64; ++i) {
+        if (!(blockedLights & (std::uint64_t{1} << i))) continue;
+        const Light& light = lights[i];
+        const bool directional = light.type == LightType::Directional;
+        if (!directional && length(light.position - centre) <= lightClearance) return false;
+        for (int corner = 0; corner < 8; ++corner) {
+            const Vec3 p{(corner & 1) ? b.hi.x : b.lo.x, (corner & 2) ? b.hi.y : b.lo.y, (corner & 4) ? b.hi.z : b.lo.z};
+            const double d2 = directional ? distanceToRay2(centre, p, -light.direction)
+                                          : distanceToSegment2(centre, p, light.position);
+            if (!(d2 <= r2)) return false;
+        }
+    }
+    return true;
+}
+
+bool RayTreeBounds::mayMeetBall(const Vec3& centre, float radius, const Box3& box, std::span<const Light> lights,
+                                RegionPose pose, bool blockedStayBlocked) const {
+    if (dependsOnEverything) return true;
+    if (box.empty()) return false;
+    if (boxMeetsSegments(box, segmentStarts, segmentEnds) && ballMeetsSegments(centre, radius, segmentStarts, segmentEnds))
+        return true;
+    if (boxMeetsRays(box, escapeOrigins, escapeDirections) && ballMeetsRays(centre, radius, escapeOrigins, escapeDirections))
+        return true;
+    return shadowRayMayChange(*this, lights, pose, blockedStayBlocked, [&](const Box3& origins, const Light& light) {
+        return light.type == LightType::Directional
+                   ? boxMeetsSweep(box, origins, -light.direction) && ballMeetsSweep(centre, radius, origins, -light.direction)
+                   : boxMeetsHull(box, origins, light.position) && ballMeetsHull(centre, radius, origins, light.position);
+    });
+}
+
+bool RayTreeBounds::mayMeet(const Box3& box, std::span<const Light> lights, RegionPose pose,
+                            bool blockedStayBlocked) const {
     if (dependsOnEverything) return true;
     if (box.empty()) return false;
     if (boxMeetsSegments(box, segmentStarts, segmentEnds)) return true;
     if (boxMeetsRays(box, escapeOrigins, escapeDirections)) return true;
-    if (!shaded) return false;
-    for (const Light& light : lights) {
-        const bool meets = light.type == LightType::Directional
-                               ? boxMeetsSweep(box, shadowOrigins, -light.direction)
-                               : boxMeetsHull(box, shadowOrigins, light.position);
-        if (meets) return true;
-    }
-    return false;
+    return shadowRayMayChange(*this, lights, pose, blockedStayBlocked, [&](const Box3& origins, const Light& light) {
+        return light.type == LightType::Directional ? boxMeetsSweep(box, origins, -light.direction)
+                                                    : boxMeetsHull(box, origins, light.position);
+    });
 }
 
 }  // namespace raycache

@@ -12,10 +12,24 @@
 //     segment from a start to an end lies in the convex hull of the two boxes
 //     (a thin slab when a block's rays go from one mirror to one wall, where
 //     one box around both would be large);
-//   - `shadowOrigins`: where the shadow rays start (beside the shaded hits);
-//     those toward a point or spot light L lie inside hull(shadowOrigins, L),
-//     those toward a directional light inside shadowOrigins swept along it;
+//   - `litShadowOrigins`, `blockedShadowOrigins`: where the shadow rays start
+//     (beside the shaded hits), apart for those that reached their light and
+//     those something stopped, with the lights each kind went toward
+//     (`litLights`, `blockedLights`); those toward a point or spot light L
+//     lie inside hull(origins, L), those toward a directional light inside
+//     the origins swept along it;
 //   - escaped rays lie inside escapeOrigins + t * escapeDirections, t >= 0.
+//
+// Why the shadow rays are kept apart: a ray that reached its light crossed
+// nothing, so only a changed object's new pose can stop it; a ray something
+// stopped stays stopped unless what stopped it moved, so only a changed
+// object's old pose can free it. Each is tested against the one pose that
+// can change its answer (RegionPose). A texel shadowed by a still object
+// keeps its shadow while another object passes through it; a lit texel keeps
+// its light when the ray merely crosses where an object was. A light toward
+// which a hit sent no shadow ray (below its horizon) cannot be changed for it
+// by a moving object: only a changed light, which drops every shaded tree.
+#include <cstdint>
 #include <span>
 
 #include "core/Box3.h"
@@ -23,9 +37,14 @@
 
 namespace raycache {
 
+// Which pose of a changed object a region bounds: where it was before the
+// change, where it is after, or either (a test that does not tell them apart).
+enum class RegionPose : unsigned char { Before, After, Either };
+
 struct RayTreeBounds {
     Box3 segmentStarts, segmentEnds;
-    Box3 shadowOrigins;
+    Box3 litShadowOrigins, blockedShadowOrigins;
+    std::uint64_t litLights = 0, blockedLights = 0;  // bit i: a ray toward Scene::lights[i] (kMaxLights = 64)
     Box3 escapeOrigins;
     Box3 escapeDirections;
     bool shaded = false;              // some hit was lit: depends on every light
@@ -36,6 +55,25 @@ struct RayTreeBounds {
         segmentStarts.add(origin);
         segmentEnds.add(hit);
     }
+    // A shadow ray from `origin` toward light `light` and whether it reached it.
+    void addShadowRay(const Vec3& origin, int light, bool reachedLight) {
+        const std::uint64_t bit = std::uint64_t{1} << light;
+        if (reachedLight) {
+            litShadowOrigins.add(origin);
+            litLights |= bit;
+        } else {
+            blockedShadowOrigins.add(origin);
+            blockedLights |= bit;
+        }
+    }
+    // Shadow rays toward every light whose answers are not known here:
+    // counted as both kinds.
+    void addShadowRaysOfUnknownAnswer(const Vec3& origin) {
+        litShadowOrigins.add(origin);
+        blockedShadowOrigins.add(origin);
+        litLights = blockedLights = ~std::uint64_t{0};
+    }
+    bool hasShadowRays() const { return !litShadowOrigins.empty() || !blockedShadowOrigins.empty(); }
     void addEscape(const Vec3& origin, const Vec3& direction) {
         escapeOrigins.add(origin);
         escapeDirections.add(direction);
@@ -43,21 +81,40 @@ struct RayTreeBounds {
     void add(const RayTreeBounds& o) {
         segmentStarts.add(o.segmentStarts);
         segmentEnds.add(o.segmentEnds);
-        shadowOrigins.add(o.shadowOrigins);
+        litShadowOrigins.add(o.litShadowOrigins);
+        blockedShadowOrigins.add(o.blockedShadowOrigins);
+        litLights |= o.litLights;
+        blockedLights |= o.blockedLights;
         escapeOrigins.add(o.escapeOrigins);
         escapeDirections.add(o.escapeDirections);
         shaded = shaded || o.shaded;
         dependsOnEverything = dependsOnEverything || o.dependsOnEverything;
     }
 
-    // Whether a shape inside `box` may meet a ray of the tree: a traced
-    // segment, an escaped ray, or (when shaded) a shadow ray toward one of
-    // `lights`. False only when no such ray can touch the box.
-    bool mayMeet(const Box3& box, std::span<const Light> lights) const;
+    // Whether a changed object inside `box` in pose `pose` may change a ray
+    // of the tree: meet a traced segment or an escaped ray, or (when shaded)
+    // stop a shadow ray that reached one of `lights` (pose After or Either) or
+    // free one that was stopped (pose Before or Either). False only when it
+    // cannot.
+    bool mayMeet(const Box3& box, std::span<const Light> lights, RegionPose pose = RegionPose::Either,
+                 bool blockedStayBlocked = false) const;
+    // `blockedStayBlocked`: leave the stopped shadow rays out (another shape
+    // of the change stops every one of them: blockedRaysAllMeetBall).
     // The same for a ball (a moving sphere) inside `box`: its box first, then
-    // the ball itself for the traced segments and the shadow rays (escaped
-    // rays keep the box test).
-    bool mayMeetBall(const Vec3& centre, float radius, const Box3& box, std::span<const Light> lights) const;
+    // the ball itself.
+    bool mayMeetBall(const Vec3& centre, float radius, const Box3& box, std::span<const Light> lights,
+                     RegionPose pose = RegionPose::Either, bool blockedStayBlocked = false) const;
+    // Whether every stopped shadow ray, from anywhere in
+    // `blockedShadowOrigins` toward any light of `blockedLights`, meets the
+    // ball (centre, radius) and no such light lies within `lightClearance`
+    // of the centre: a ball that a change put there then stops them all again
+    // (a shadow that a moving ball still casts stays), whatever stopped them
+    // before. The points whose segment to a light meets a ball form a convex
+    // set (the ball and the cone of its shadow behind it; along a
+    // directional light, the ball swept against it), so the box's corners
+    // decide. The caller passes a radius shrunk for rounding.
+    bool blockedRaysAllMeetBall(const Vec3& centre, float radius, float lightClearance,
+                                std::span<const Light> lights) const;
 };
 
 // The exact tests mayMeet is made of (exposed for tests):
@@ -75,6 +132,11 @@ bool boxMeetsSweep(const Box3& box, const Box3& points, const Vec3& direction);
 bool ballMeetsHull(const Vec3& centre, float radius, const Box3& points, const Vec3& apex);
 bool ballMeetsSegments(const Vec3& centre, float radius, const Box3& starts, const Box3& ends);
 bool ballMeetsSweep(const Vec3& centre, float radius, const Box3& points, const Vec3& direction);
+// The ball against { o + t * d : o in origins, d in directions, t >= 0 }
+// (widened as boxMeetsRays is): per axis [olo + t*dlo, ohi + t*dhi], again a
+// box whose corners move linearly with t. When the directions' box holds the
+// zero vector the set never leaves the ball's reach: true if the box test is.
+bool ballMeetsRays(const Vec3& centre, float radius, const Box3& origins, const Box3& directions);
 // does `box` meet { o + t * d : o in origins, d in directions, t >= 0 }?
 // (conservative: the set of rays is widened to every pairing of components)
 bool boxMeetsRays(const Box3& box, const Box3& origins, const Box3& directions);

@@ -302,17 +302,6 @@ void TileKernel::traceShadowRays(TileScratch& s, bool coherent) const {
         count += static_cast<std::size_t>(shading_.shadowQueries(s.surfaces[i], s.queries.data() + count));
     }
     s.firstQuery[n] = static_cast<int>(count);
-    if (s.trackTrees)
-        for (std::size_t i = 0; i < n; ++i) {
-            const auto node = static_cast<std::size_t>(s.vertices[i].node);
-            if (!s.nodes[node].tracked) continue;
-            // The hit's light depends on every light (even one below its
-            // horizon, which may rise) and on what its shadow rays cross.
-            RayTreeBounds& bounds = s.nodeBounds[node];
-            bounds.shaded = true;
-            for (int q = s.firstQuery[i]; q < s.firstQuery[i + 1]; ++q)
-                bounds.shadowOrigins.add(s.queries[static_cast<std::size_t>(q)].ray.origin);
-        }
     s.rays.resize(count);
     s.occluded.resize(count);
     for (std::size_t q = 0; q < count; ++q) s.rays[q] = s.queries[q].ray;
@@ -328,6 +317,20 @@ void TileKernel::traceShadowRays(TileScratch& s, bool coherent) const {
         tracer_.occludedIncoherent(std::span(s.rays.data(), count), std::span(s.occluded.data(), count));
     }
     s.counts.shadow += count;
+    if (s.trackTrees)
+        for (std::size_t i = 0; i < n; ++i) {
+            const auto node = static_cast<std::size_t>(s.vertices[i].node);
+            if (!s.nodes[node].tracked) continue;
+            // The hit's light depends on every light (even one below its
+            // horizon, which may rise) and on what its shadow rays cross,
+            // kept apart by their answers (cache/RayTreeBounds.h).
+            RayTreeBounds& bounds = s.nodeBounds[node];
+            bounds.shaded = true;
+            for (int q = s.firstQuery[i]; q < s.firstQuery[i + 1]; ++q)
+                bounds.addShadowRay(s.queries[static_cast<std::size_t>(q)].ray.origin,
+                                    s.queries[static_cast<std::size_t>(q)].lightIndex,
+                                    !s.occluded[static_cast<std::size_t>(q)]);
+        }
 }
 
 void TileKernel::shadeDirect(TileScratch& s) const {

@@ -110,7 +110,9 @@ std::uint64_t VisibleSurfaceFill::fillTile(std::span<const VisiblePoint> points,
             // object and on its light: every light and its shadow rays.
             RayTreeRecord tree{{}, c.ray.origin, c.ray.direction, 2, 1.0f};
             tree.bounds.addSegment(c.ray.origin, point.position);
-            tree.bounds.shadowOrigins.add(point.position);
+            // Whether the point's shadow rays reached their lights is not kept
+            // with its colour.
+            tree.bounds.addShadowRaysOfUnknownAnswer(point.position);
             tree.bounds.shaded = true;
             cache_->store(c.objectId, c.ray.origin, c.ray.direction, point.color, hitDistance, worker, c.texel, &tree);
         } else {

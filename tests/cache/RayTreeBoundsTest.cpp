@@ -200,6 +200,30 @@ TEST(RayTreeBounds, BallTestsFindTheDistanceToTheSet) {
                         },
                         40.0};
     });
+    expectBallTestExact(29, [](RandomCase& random) {  // escaped rays
+        const Box3 origins = random.randomBox(4.0f, 1.0f);
+        const Vec3 d0 = normalize(random.point(1.0f) + Vec3{1e-3f, 0.0f, 0.0f});
+        Box3 directions = box(d0, d0);
+        directions.add(normalize(d0 + random.point(0.2f)));
+        const Vec3 centre = random.point(5.0f);
+        const float radius = random.uniform(0.1f, 1.5f);
+        return BallCase{centre, radius, ballMeetsRays(centre, radius, origins, directions),
+                        [=](double t) {
+                            const auto f = static_cast<float>(t);
+                            return box(origins.lo + directions.lo * f, origins.hi + directions.hi * f);
+                        },
+                        40.0};
+    });
+}
+
+TEST(RayTreeBounds, BallAgainstRaysWhoseDirectionsHoldZeroKeepsTheBoxAnswer) {
+    // Directions spanning both signs on every axis: no face of the set ever
+    // moves away, so the answer is the box test's.
+    const Box3 origins = box({0, 0, 0}, {0.1f, 0.1f, 0.1f});
+    const Box3 directions = box({-1, -1, -1}, {1, 1, 1});
+    EXPECT_TRUE(ballMeetsRays({5, 5, 5}, 0.5f, origins, directions));
+    const Box3 outward = box({0.5f, -0.1f, -0.1f}, {1.0f, 0.1f, 0.1f});
+    EXPECT_FALSE(ballMeetsRays({-5, 0, 0}, 0.5f, origins, outward));
 }
 
 TEST(RayTreeBounds, SeparatedBoxesAreNotReported) {
@@ -232,7 +256,7 @@ TEST(RayTreeBounds, MayMeetCombinesSegmentsEscapesAndShadowRays) {
     const Box3 between = box({-0.2f, 5, -0.2f}, {0.2f, 6, 0.2f});
     EXPECT_FALSE(bounds.mayMeet(between, lights));  // no shadow rays
     bounds.shaded = true;
-    bounds.shadowOrigins.add({0, 0, 0});
+    bounds.addShadowRay({0, 0, 0}, 0, true);
     EXPECT_TRUE(bounds.mayMeet(between, lights));
     // Only shadow rays from where they start: none passes far to the left.
     EXPECT_FALSE(bounds.mayMeet(box({-3.2f, 5, -0.2f}, {-2.8f, 6, 0.2f}), lights));
@@ -244,6 +268,95 @@ TEST(RayTreeBounds, MayMeetCombinesSegmentsEscapesAndShadowRays) {
     RayTreeBounds everything;
     everything.dependsOnEverything = true;
     EXPECT_TRUE(everything.mayMeet(box({100, 100, 100}, {101, 101, 101}), lights));
+}
+
+// A shadow ray that reached its light can only be stopped by what a change
+// put on it; one that was stopped can only be freed by what the change took
+// away (the stopper stays otherwise). Each is tested against that pose only.
+TEST(RayTreeBounds, ShadowRaysAreTestedAgainstThePoseThatCanChangeTheirAnswer) {
+    std::vector<Light> lights(1);
+    lights[0].position = {0, 10, 0};
+    const Box3 onTheRay = box({-0.2f, 5, -0.2f}, {0.2f, 6, 0.2f});
+    RayTreeBounds lit;
+    lit.shaded = true;
+    lit.addShadowRay({0, 0, 0}, 0, true);
+    EXPECT_TRUE(lit.mayMeet(onTheRay, lights, RegionPose::After));
+    EXPECT_FALSE(lit.mayMeet(onTheRay, lights, RegionPose::Before));
+    EXPECT_TRUE(lit.mayMeet(onTheRay, lights, RegionPose::Either));
+    RayTreeBounds blocked;
+    blocked.shaded = true;
+    blocked.addShadowRay({0, 0, 0}, 0, false);
+    EXPECT_TRUE(blocked.mayMeet(onTheRay, lights, RegionPose::Before));
+    EXPECT_FALSE(blocked.mayMeet(onTheRay, lights, RegionPose::After));
+    EXPECT_TRUE(blocked.mayMeetBall({0, 5.5f, 0}, 0.3f, onTheRay, lights, RegionPose::Before));
+    EXPECT_FALSE(blocked.mayMeetBall({0, 5.5f, 0}, 0.3f, onTheRay, lights, RegionPose::After));
+    RayTreeBounds unknown;
+    unknown.shaded = true;
+    unknown.addShadowRaysOfUnknownAnswer({0, 0, 0});
+    EXPECT_TRUE(unknown.mayMeet(onTheRay, lights, RegionPose::Before));
+    EXPECT_TRUE(unknown.mayMeet(onTheRay, lights, RegionPose::After));
+    // Ray off to the side: neither pose reaches it.
+    EXPECT_FALSE(unknown.mayMeet(box({-3.2f, 5, -0.2f}, {-2.8f, 6, 0.2f}), lights, RegionPose::Either));
+    // Each kind only toward the lights it went to: lit toward light 0,
+    // stopped toward light 1; a box on the way to light 1 can only free it.
+    lights.resize(2);
+    lights[1].position = {10, 0, 0};
+    const Box3 towardSecond = box({4.8f, -0.2f, -0.2f}, {5.2f, 0.2f, 0.2f});
+    RayTreeBounds both;
+    both.shaded = true;
+    both.addShadowRay({0, 0, 0}, 0, true);
+    both.addShadowRay({0, 0, 0}, 1, false);
+    EXPECT_FALSE(both.mayMeet(towardSecond, lights, RegionPose::After));
+    EXPECT_TRUE(both.mayMeet(towardSecond, lights, RegionPose::Before));
+    EXPECT_FALSE(both.mayMeet(onTheRay, lights, RegionPose::Before));
+    EXPECT_TRUE(both.mayMeet(onTheRay, lights, RegionPose::After));
+}
+
+// "Every stopped shadow ray meets the ball" lets a block keep texels that a
+// moving ball shadowed before and still shadows: it must never claim that of
+// a box one of whose points sends a ray past the ball (sampled), and it must
+// claim it for some boxes, or it keeps nothing.
+TEST(RayTreeBounds, BlockedRaysAllMeetBallNeverClaimsASampledRayThatMissesIt) {
+    RandomCase random(31);
+    int claimed = 0, refused = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        std::vector<Light> lights(1);
+        const bool directional = trial % 3 == 0;
+        if (directional) {
+            lights[0].type = LightType::Directional;
+            lights[0].direction = normalize(Vec3{random.uniform(-0.3f, 0.3f), -1.0f, random.uniform(-0.3f, 0.3f)});
+        } else {
+            lights[0].position = Vec3{random.uniform(-1, 1), 10.0f, random.uniform(-1, 1)};
+        }
+        const Vec3 centre{random.uniform(-1, 1), random.uniform(2, 6), random.uniform(-1, 1)};
+        const float radius = random.uniform(0.3f, 2.0f);
+        RayTreeBounds bounds;
+        bounds.shaded = true;
+        const Box3 origins = random.randomBox(1.5f, 0.8f);
+        bounds.addShadowRay(origins.lo, 0, false);
+        bounds.addShadowRay(origins.hi, 0, false);
+        const bool claim = bounds.blockedRaysAllMeetBall(centre, radius, 0.0f, lights);
+        (claim ? claimed : refused) += 1;
+        if (!claim) continue;
+        for (int k = 0; k < 200; ++k) {
+            const Vec3 p = pointIn(origins, random);
+            const Vec3 end = directional ? p - lights[0].direction * 100.0f : lights[0].position;
+            // Nearest point of the segment to the centre.
+            const Vec3 d = end - p;
+            const float s = std::clamp(dot(centre - p, d) / dot(d, d), 0.0f, 1.0f);
+            EXPECT_LE(length(p + d * s - centre), radius * 1.0001f) << "trial " << trial;
+        }
+    }
+    EXPECT_GT(claimed, 30);
+    EXPECT_GT(refused, 30);
+    // A light inside the clearance is never claimed: the ray could stop short of the surface.
+    std::vector<Light> inside(1);
+    inside[0].position = {0, 3.5f, 0};
+    RayTreeBounds under;
+    under.shaded = true;
+    under.addShadowRay({0, 0, 0}, 0, false);
+    EXPECT_TRUE(under.blockedRaysAllMeetBall({0, 3, 0}, 1.0f, 0.0f, inside));
+    EXPECT_FALSE(under.blockedRaysAllMeetBall({0, 3, 0}, 1.0f, 1.1f, inside));
 }
 
 }  // namespace
