@@ -236,22 +236,38 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     std::vector<PrimarySample>& traced = traced_;
     std::uint64_t key = trace(camera, requests.pixels, 0, cacheFrame, traced);
     {
+        // On all threads: the requested pixels are distinct, and each one's
+        // writes touch only its own slot, key and state. (On one thread
+        // this loop's cache misses cost about 4 ms per frame at 1024².)
         const CameraRays rays(camera, width, height);
-        for (std::size_t i = 0; i < traced.size(); ++i) {
-            const PixelCoord p = requests.pixels[i];
-            const std::size_t slot = image_.pixelIndex(p.x, p.y);
-            newSamples += image_.hasSample(p.x, p.y) ? 0 : 1;
-            keep(slot, traced[i], rays, p);
-            int px, py;
-            float depth = std::numeric_limits<float>::infinity();  // a camera ray's hit is never behind the eye
-            projectSample(pool_, slot, origins, projection, px, py, depth);
-            // Placed where it was traced, whatever rounding says about the reprojection.
-            image_.place(p.x, p.y, depth);
-            PixelState& s = state[static_cast<std::size_t>(p.y * width + p.x)];
-            stats.reprojected -= s == PixelState::Reprojected ? 1 : 0;
-            s = PixelState::Fresh;
-            if (predictedBudget > 0) nextPixel_[slot] = imagePixelThrough(pool_, slot, origins, nextProjection, width, height);
-        }
+        const int chunks = static_cast<int>((traced.size() + kTraceChunk - 1) / kTraceChunk);
+        std::vector<std::int64_t> newPerChunk(static_cast<std::size_t>(chunks), 0);
+        std::vector<std::int64_t> replacedPerChunk(static_cast<std::size_t>(chunks), 0);
+        parallel_.forEachIndex(chunks, [&](int chunk, int) {
+            const std::size_t begin = static_cast<std::size_t>(chunk) * kTraceChunk;
+            const std::size_t end = std::min(traced.size(), begin + kTraceChunk);
+            std::int64_t fresh = 0, replaced = 0;
+            for (std::size_t i = begin; i < end; ++i) {
+                const PixelCoord p = requests.pixels[i];
+                const std::size_t slot = image_.pixelIndex(p.x, p.y);
+                fresh += image_.hasSample(p.x, p.y) ? 0 : 1;
+                keep(slot, traced[i], rays, p);
+                int px, py;
+                float depth = std::numeric_limits<float>::infinity();  // a camera ray's hit is never behind the eye
+                projectSample(pool_, slot, origins, projection, px, py, depth);
+                // Placed where it was traced, whatever rounding says about the reprojection.
+                image_.place(p.x, p.y, depth);
+                PixelState& s = state[static_cast<std::size_t>(p.y * width + p.x)];
+                replaced += s == PixelState::Reprojected ? 1 : 0;
+                s = PixelState::Fresh;
+                if (predictedBudget > 0)
+                    nextPixel_[slot] = imagePixelThrough(pool_, slot, origins, nextProjection, width, height);
+            }
+            newPerChunk[static_cast<std::size_t>(chunk)] = fresh;
+            replacedPerChunk[static_cast<std::size_t>(chunk)] = replaced;
+        });
+        for (std::int64_t n : newPerChunk) newSamples += n;
+        for (std::int64_t n : replacedPerChunk) stats.reprojected -= n;
     }
     stats.fresh = static_cast<std::int64_t>(traced.size());
     stats.traceMs = millisecondsSince(start);

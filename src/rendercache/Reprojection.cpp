@@ -131,7 +131,7 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
         }
         Landed sample{static_cast<std::uint32_t>(slot), 0.0f, 0.0f, 0.0f};
         if (!projectSample(from, slot, origins, projection, sample.x, sample.y, sample.depth)) return;
-        const int x = static_cast<int>(std::floor(sample.x)), y = static_cast<int>(std::floor(sample.y));
+        const int x = ScreenProjection::pixelOf(sample.x), y = ScreenProjection::pixelOf(sample.y);
         if (!image.covers(x, y)) return;
         if (next) nextOfSource[slot] = imagePixelThrough(from, slot, origins, *next, image.width(), image.height());
         if (band < 0 || withinReach(band, y + margin)) offer(x, y, sample, band);
@@ -139,12 +139,12 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
     });
     for (const std::vector<Landed>& list : far)
         for (const Landed& sample : list)
-            offer(static_cast<int>(std::floor(sample.x)), static_cast<int>(std::floor(sample.y)), sample, -1);
+            offer(ScreenProjection::pixelOf(sample.x), ScreenProjection::pixelOf(sample.y), sample, -1);
 
     // Second chance: a loser offers itself to the nearest neighbouring pixel
     // that the first round left empty (first-round winners stay).
     const auto secondChance = [&](const Landed& l) {
-        const int x = static_cast<int>(std::floor(l.x)), y = static_cast<int>(std::floor(l.y));
+        const int x = ScreenProjection::pixelOf(l.x), y = ScreenProjection::pixelOf(l.y);
         // The nearest empty neighbour by distance to its centre; among
         // equals the first in row order (a fixed order).
         const float fx = l.x - static_cast<float>(x) - 0.5f, fy = l.y - static_cast<float>(y) - 0.5f;

@@ -82,8 +82,8 @@ inline bool projectSample(const SamplePool& pool, std::size_t slot, const std::v
                           const ScreenProjection& projection, int& x, int& y, float& depth) {
     float px, py;
     if (!projectSample(pool, slot, origins, projection, px, py, depth)) return false;
-    x = static_cast<int>(std::floor(px));
-    y = static_cast<int>(std::floor(py));
+    x = ScreenProjection::pixelOf(px);
+    y = ScreenProjection::pixelOf(py);
     return true;
 }
 
