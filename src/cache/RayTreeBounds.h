@@ -95,11 +95,11 @@ struct RayTreeBounds {
     // of the tree: meet a traced segment or an escaped ray, or (when shaded)
     // stop a shadow ray that reached one of `lights` (pose After or Either) or
     // free one that was stopped (pose Before or Either). False only when it
-    // cannot.
+    // cannot. `blockedStayBlocked`: leave the stopped shadow rays out (a
+    // shape the change put there stops every one of them again:
+    // blockedRaysAllMeetBall).
     bool mayMeet(const Box3& box, std::span<const Light> lights, RegionPose pose = RegionPose::Either,
                  bool blockedStayBlocked = false) const;
-    // `blockedStayBlocked`: leave the stopped shadow rays out (another shape
-    // of the change stops every one of them: blockedRaysAllMeetBall).
     // The same for a ball (a moving sphere) inside `box`: its box first, then
     // the ball itself.
     bool mayMeetBall(const Vec3& centre, float radius, const Box3& box, std::span<const Light> lights,
@@ -134,8 +134,9 @@ bool ballMeetsSegments(const Vec3& centre, float radius, const Box3& starts, con
 bool ballMeetsSweep(const Vec3& centre, float radius, const Box3& points, const Vec3& direction);
 // The ball against { o + t * d : o in origins, d in directions, t >= 0 }
 // (widened as boxMeetsRays is): per axis [olo + t*dlo, ohi + t*dhi], again a
-// box whose corners move linearly with t. When the directions' box holds the
-// zero vector the set never leaves the ball's reach: true if the box test is.
+// box whose corners move linearly with t. When the directions' box spans zero
+// on every axis no face of the set moves away from the ball: then the answer
+// is the box test's against the ball's box.
 bool ballMeetsRays(const Vec3& centre, float radius, const Box3& origins, const Box3& directions);
 // does `box` meet { o + t * d : o in origins, d in directions, t >= 0 }?
 // (conservative: the set of rays is widened to every pairing of components)
