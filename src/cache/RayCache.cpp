@@ -15,6 +15,12 @@ namespace raycache {
 
 namespace {
 
+// Changed objects' regions are grown by this share of their coordinates
+// (relativeMargin): hit points are computed in float, and ray origins sit a
+// surface offset (render/LocalShading.h, 1e-4 of the coordinates) off their
+// surfaces.
+constexpr float kRegionGrowth = 1e-3f;
+
 std::string formatNumber(float v) {
     std::ostringstream out;
     out << v;
@@ -172,7 +178,7 @@ RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings)
         if (scene.objects.size() <= kMostObjectsForMovedEscapes)
             for (const SceneObject& object : scene.objects) {
                 const Box3 box = worldBounds(object);
-                wholeBounds_.push_back(box.empty() ? box : PartedBounds{box, {}, {}}.grownRelative(1e-3f).whole);
+                wholeBounds_.push_back(box.empty() ? box : PartedBounds{box, {}, {}}.grownRelative(kRegionGrowth).whole);
             }
         lights_ = scene.lights;
     }
@@ -252,7 +258,7 @@ bool RayCache::reaches(const RayTreeBounds& bounds, std::span<const ChangedRegio
             if (changed.pose != RegionPose::After || !region.isBall() ||
                 (ignoredObject >= 0 && changed.object == ignoredObject))
                 continue;
-            const float growth = 1e-3f * std::max({maxComponent(max(-region.whole.lo, region.whole.hi)), 1.0f});
+            const float growth = relativeMargin(region.whole, kRegionGrowth);
             if (bounds.blockedRaysAllMeetBall(region.ballCentre, region.ballRadius - 2.0f * growth,
                                               region.ballRadius + growth, lights)) {
                 blockedStayBlocked = true;
@@ -372,14 +378,14 @@ std::int64_t RayCache::sceneChanged(const Scene& posed, const SceneChanges& chan
         if (c >= 0)
             translated[i] = onlyTranslated(posed.objects[i], objectBounds_[i].whole, now.whole,
                                            cubeMovedBy[static_cast<std::size_t>(c)]);
-        if (!wholeBounds_.empty()) wholeBounds_[i] = now.whole.empty() ? Box3{} : now.grownRelative(1e-3f).whole;
+        if (!wholeBounds_.empty()) wholeBounds_[i] = now.whole.empty() ? Box3{} : now.grownRelative(kRegionGrowth).whole;
         if (!objectBounds_[i].whole.empty())
-            changedRegions.push_back({objectBounds_[i].grownRelative(1e-3f), object, RegionPose::Before});
-        if (!now.whole.empty()) changedRegions.push_back({now.grownRelative(1e-3f), object, RegionPose::After});
+            changedRegions.push_back({objectBounds_[i].grownRelative(kRegionGrowth), object, RegionPose::Before});
+        if (!now.whole.empty()) changedRegions.push_back({now.grownRelative(kRegionGrowth), object, RegionPose::After});
         if (skipStoresReachingChanges_ && !now.whole.empty() && !objectBounds_[i].whole.empty()) {
             const Box3& before = objectBounds_[i].whole;
             const Vec3 moved = (now.whole.lo + now.whole.hi - before.lo - before.hi) * 0.5f;
-            nextRegions.push_back({PartedBounds{now.whole, {}, {}}.shifted(moved).grownRelative(1e-3f), object,
+            nextRegions.push_back({PartedBounds{now.whole, {}, {}}.shifted(moved).grownRelative(kRegionGrowth), object,
                                    RegionPose::Either});
         }
         objectBounds_[i] = std::move(now);

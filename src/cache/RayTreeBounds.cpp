@@ -205,36 +205,19 @@ bool shadowRayMayChange(const RayTreeBounds& bounds, std::span<const Light> ligh
     return false;
 }
 
-// Squared distance from `c` to the segment from `a` to `b`.
-double distanceToSegment2(const Vec3& c, const Vec3& a, const Vec3& b) {
-    double ab[3], ac[3], abab = 0.0, abac = 0.0;
-    for (int k = 0; k < 3; ++k) {
-        ab[k] = static_cast<double>(b[k]) - a[k];
-        ac[k] = static_cast<double>(c[k]) - a[k];
-        abab += ab[k] * ab[k];
-        abac += ab[k] * ac[k];
-    }
-    const double s = abab > 0.0 ? std::clamp(abac / abab, 0.0, 1.0) : 0.0;
-    double sum = 0.0;
-    for (int k = 0; k < 3; ++k) {
-        const double gap = ac[k] - s * ab[k];
-        sum += gap * gap;
-    }
-    return sum;
-}
-
-// Squared distance from `c` to the ray from `a` along `u` (t >= 0).
-double distanceToRay2(const Vec3& c, const Vec3& a, const Vec3& u) {
+// Squared distance from `c` to { a + s * u : 0 <= s <= sMax } (a segment
+// with sMax = 1, a ray with sMax = infinity); u in double.
+double distanceToSpan2(const Vec3& c, const Vec3& a, const double (&u)[3], double sMax) {
     double ac[3], uu = 0.0, uac = 0.0;
     for (int k = 0; k < 3; ++k) {
         ac[k] = static_cast<double>(c[k]) - a[k];
-        uu += static_cast<double>(u[k]) * u[k];
-        uac += static_cast<double>(u[k]) * ac[k];
+        uu += u[k] * u[k];
+        uac += u[k] * ac[k];
     }
-    const double t = uu > 0.0 ? std::max(uac / uu, 0.0) : 0.0;
+    const double s = uu > 0.0 ? std::clamp(uac / uu, 0.0, sMax) : 0.0;
     double sum = 0.0;
     for (int k = 0; k < 3; ++k) {
-        const double gap = ac[k] - t * u[k];
+        const double gap = ac[k] - s * u[k];
         sum += gap * gap;
     }
     return sum;
@@ -255,8 +238,10 @@ bool RayTreeBounds::blockedRaysAllMeetBall(const Vec3& centre, float radius, flo
         if (!directional && length(light.position - centre) <= lightClearance) return false;
         for (int corner = 0; corner < 8; ++corner) {
             const Vec3 p{(corner & 1) ? b.hi.x : b.lo.x, (corner & 2) ? b.hi.y : b.lo.y, (corner & 4) ? b.hi.z : b.lo.z};
-            const double d2 = directional ? distanceToRay2(centre, p, -light.direction)
-                                          : distanceToSegment2(centre, p, light.position);
+            const Vec3 toward = directional ? -light.direction : light.position;
+            double u[3];
+            for (int k = 0; k < 3; ++k) u[k] = directional ? toward[k] : static_cast<double>(toward[k]) - p[k];
+            const double d2 = distanceToSpan2(centre, p, u, directional ? kInfinity : 1.0);
             if (!(d2 <= r2)) return false;
         }
     }

@@ -29,6 +29,18 @@ double millisecondsSince(Clock::time_point start) {
 // Pixels handed to the tile kernel at once: enough for full packets and
 // waves, few enough to spread over the workers.
 constexpr std::size_t kTraceChunk = 256;
+// How many chunks of kTraceChunk make `count`.
+std::size_t chunkCount(std::size_t count) { return (count + kTraceChunk - 1) / kTraceChunk; }
+// Runs body(begin, end, chunk, worker) over [0, count) in chunks of
+// kTraceChunk on all threads; the chunk index orders the cache's stores
+// where the body traces.
+template <typename Body>
+void forEachChunk(const Parallel& parallel, std::size_t count, const Body& body) {
+    parallel.forEachIndex(static_cast<int>(chunkCount(count)), [&](int chunk, int worker) {
+        const std::size_t begin = static_cast<std::size_t>(chunk) * kTraceChunk;
+        body(begin, std::min(count, begin + kTraceChunk), chunk, worker);
+    });
+}
 // Every pixel of the image, 16x16 tile by tile (coherent packets).
 void allPixels(int width, int height, std::vector<PixelCoord>& out) {
     constexpr int kTile = 16;
@@ -114,16 +126,13 @@ std::uint64_t RenderCachePipeline::trace(const Camera& camera, const std::vector
                                          std::vector<PrimarySample>& out) {
     out.resize(pixels.size());
     const CameraRays rays(camera, settings_.width, settings_.height);
-    const int chunks = static_cast<int>((pixels.size() + kTraceChunk - 1) / kTraceChunk);
-    parallel_.forEachIndex(chunks, [&](int chunk, int worker) {
-        const std::size_t begin = static_cast<std::size_t>(chunk) * kTraceChunk;
-        const std::size_t count = std::min(kTraceChunk, pixels.size() - begin);
-        kernel_.renderCameraPixels(rays, std::span(pixels.data() + begin, count),
+    forEachChunk(parallel_, pixels.size(), [&](std::size_t begin, std::size_t end, int chunk, int worker) {
+        kernel_.renderCameraPixels(rays, std::span(pixels.data() + begin, end - begin),
                                    firstKey + static_cast<std::uint64_t>(chunk),
                                    scratch_[static_cast<std::size_t>(worker)], cacheFrame.worker(worker),
-                                   std::span(out.data() + begin, count));
+                                   std::span(out.data() + begin, end - begin));
     });
-    return firstKey + static_cast<std::uint64_t>(chunks);
+    return firstKey + static_cast<std::uint64_t>(chunkCount(pixels.size()));
 }
 
 FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
@@ -240,12 +249,9 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
         // writes touch only its own slot, key and state. (On one thread
         // this loop's cache misses cost about 4 ms per frame at 1024².)
         const CameraRays rays(camera, width, height);
-        const int chunks = static_cast<int>((traced.size() + kTraceChunk - 1) / kTraceChunk);
-        std::vector<std::int64_t> newPerChunk(static_cast<std::size_t>(chunks), 0);
-        std::vector<std::int64_t> replacedPerChunk(static_cast<std::size_t>(chunks), 0);
-        parallel_.forEachIndex(chunks, [&](int chunk, int) {
-            const std::size_t begin = static_cast<std::size_t>(chunk) * kTraceChunk;
-            const std::size_t end = std::min(traced.size(), begin + kTraceChunk);
+        std::vector<std::int64_t> newPerChunk(chunkCount(traced.size()), 0);
+        std::vector<std::int64_t> replacedPerChunk(chunkCount(traced.size()), 0);
+        forEachChunk(parallel_, traced.size(), [&](std::size_t begin, std::size_t end, int chunk, int) {
             std::int64_t fresh = 0, replaced = 0;
             for (std::size_t i = begin; i < end; ++i) {
                 const PixelCoord p = requests.pixels[i];
@@ -356,17 +362,12 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
         });
         std::vector<Rgb>& colors = reshadeColors_;
         colors.resize(reshade.size());
-        const int chunks = static_cast<int>((reshade.size() + kTraceChunk - 1) / kTraceChunk);
-        parallel_.forEachIndex(chunks, [&](int chunk, int worker) {
-            const std::size_t begin = static_cast<std::size_t>(chunk) * kTraceChunk;
-            const std::size_t count = std::min(kTraceChunk, reshade.size() - begin);
-            kernel_.reshadeSurfaces(std::span(reshade.data() + begin, count), key + static_cast<std::uint64_t>(chunk),
-                                    scratch_[static_cast<std::size_t>(worker)], cacheFrame.worker(worker),
-                                    std::span(colors.data() + begin, count));
+        forEachChunk(parallel_, reshade.size(), [&](std::size_t begin, std::size_t end, int chunk, int worker) {
+            kernel_.reshadeSurfaces(std::span(reshade.data() + begin, end - begin),
+                                    key + static_cast<std::uint64_t>(chunk), scratch_[static_cast<std::size_t>(worker)],
+                                    cacheFrame.worker(worker), std::span(colors.data() + begin, end - begin));
         });
-        parallel_.forEachIndex(chunks, [&](int chunk, int) {
-            const std::size_t begin = static_cast<std::size_t>(chunk) * kTraceChunk;
-            const std::size_t end = std::min(slots.size(), begin + kTraceChunk);
+        forEachChunk(parallel_, slots.size(), [&](std::size_t begin, std::size_t end, int, int) {
             for (std::size_t i = begin; i < end; ++i) pool_.look[slots[i]].color = colors[i];
         });
         stats.reshaded = static_cast<std::int64_t>(slots.size());

@@ -16,15 +16,14 @@ Box3 worldBounds(const SceneObject& object) {
     return box;
 }
 
-namespace {
-
-// The margin grownRelative adds on every side.
-float marginFor(const Box3& box, float fraction) {
+float relativeMargin(const Box3& box, float fraction) {
     const float extent = std::max({maxComponent(max(-box.lo, box.lo)), maxComponent(max(-box.hi, box.hi)), 1.0f});
     return fraction * extent;
 }
 
-Box3 grownRelative(const Box3& box, float fraction) { return box.grown(marginFor(box, fraction)); }
+namespace {
+
+Box3 grownRelative(const Box3& box, float fraction) { return box.grown(relativeMargin(box, fraction)); }
 
 }  // namespace
 
@@ -34,7 +33,7 @@ PartedBounds PartedBounds::grownRelative(float fraction) const {
     if (isBall()) {
         // Grown by the same margin as its box.
         out.ballCentre = ballCentre;
-        out.ballRadius = ballRadius + marginFor(whole, fraction);
+        out.ballRadius = ballRadius + relativeMargin(whole, fraction);
     }
     for (const Box3& part : parts) out.parts.push_back(raycache::grownRelative(part, fraction));
     for (const Box3& group : groups) out.groups.push_back(raycache::grownRelative(group, fraction));

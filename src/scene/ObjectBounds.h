@@ -52,5 +52,8 @@ struct PartedBounds {
     }
 };
 PartedBounds partedBounds(const SceneObject& object, int trianglesPerPart);
+// The margin PartedBounds::grownRelative adds on every side of `box`:
+// `fraction` of its largest absolute coordinate, at least of 1.
+float relativeMargin(const Box3& box, float fraction);
 
 }  // namespace raycache
