@@ -9,6 +9,7 @@
 
 #include "render/CacheFrame.h"
 #include "render/CameraRays.h"
+#include "render/HitOnPrimitive.h"
 #include "rendercache/CameraPrediction.h"
 #include "rendercache/DepthCulling.h"
 #include "rendercache/HoleFilling.h"
@@ -337,24 +338,32 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
         for (std::size_t y = 0; y < static_cast<std::size_t>(height); ++y) rowStart[y + 1] += rowStart[y];
         reshade.resize(rowStart.back());
         slots.resize(rowStart.back());
+        const CameraRays pixelRays(camera, width, height);
         parallel_.forEachIndex(height, [&](int y, int) {
             std::size_t i = rowStart[static_cast<std::size_t>(y)];
             for (int x = 0; x < width; ++x) {
                 if (!reshaded(x, y)) continue;
                 const auto slot = static_cast<std::uint32_t>(image_.pixelIndex(x, y));
                 const int object = pool_.point[slot].objectId;
-                const Vec3 point = scene_.objects[static_cast<std::size_t>(object)].origin + pool_.point[slot].position;
+                const SceneObject& sceneObject = scene_.objects[static_cast<std::size_t>(object)];
+                const Vec3 point = sceneObject.origin + pool_.point[slot].position;
                 const ReshadeInputs& inputs = pool_.reshade[slot];
                 const Vec3 toPoint = point - camera.position;
                 const float distance = length(toPoint);
                 ReshadeRequest& r = reshade[i];
                 r = ReshadeRequest{};
-                r.ray = Ray{camera.position, toPoint * (1.0f / distance)};
-                r.hit.t = distance;
-                r.hit.objectId = object;
-                r.hit.primitiveId = inputs.primitiveId;
-                r.hit.u = inputs.baryU;
-                r.hit.v = inputs.baryV;
+                // Shaded where the pixel's centre meets the sample's surface:
+                // a reflection on a curved mirror changes within a pixel, so
+                // shading the sample's own point (up to a pixel off) smears it.
+                // Where that ray misses the surface, the sample's point.
+                const Ray centreRay = pixelRays.ray(x, y);
+                if (const auto atCentre = hitOnPrimitive(sceneObject, object, inputs.primitiveId, centreRay, distance)) {
+                    r.ray = centreRay;
+                    r.hit = *atCentre;
+                } else {
+                    r.ray = Ray{camera.position, toPoint * (1.0f / distance)};
+                    r.hit = TraceHit{distance, object, inputs.primitiveId, inputs.baryU, inputs.baryV};
+                }
                 r.viewIndependent = inputs.viewIndependent;
                 r.litMask = inputs.litMask;
                 slots[i++] = slot;

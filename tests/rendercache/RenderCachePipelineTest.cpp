@@ -454,19 +454,22 @@ MirrorError mirrorError(const char* sceneName, int frames) {
 
 }  // namespace
 
-// The quality the reshade option promises: mirror pixels follow the eye.
+// The quality the reshade option promises: mirror pixels follow the eye,
+// shaded where the pixel's centre meets the sample's surface.
 // Measured (release, 64x64, technique none, default budget 5 %, frames 2-8
 // of the scene's orbit, mean absolute error summed over r, g, b):
-//   room:     reshade 0.1990, reproject 0.2582 over 1964 mirror pixels (ratio 0.77);
-//   behind-8: reshade 0.1592, reproject 0.2287 over 8848 mirror pixels (ratio 0.70).
-// Bound: reshade below 0.85 of reproject, so losing most of the gain fails.
+//   room:     reshade 0.0168, reproject 0.2424 over 1964 mirror pixels (ratio 0.07);
+//   behind-8: reshade 0.0101, reproject 0.2334 over 8848 mirror pixels (ratio 0.04).
+// Shading each sample's own point instead (hitOnPrimitive disabled) gives
+// 0.1889 and 0.1619 (ratios 0.78, 0.69). Bound: reshade below 0.25 of
+// reproject, which that fails.
 TEST(RenderCachePipeline, ReshadingBeatsReprojectingOnMirrors) {
     for (const char* name : {"room", "behind-8"}) {
         const MirrorError e = mirrorError(name, 8);
         std::printf("[ %s ] mirror pixels %ld: mean error reshade %.4f, reproject %.4f\n", name, e.pixels, e.reshade,
                     e.reproject);
         ASSERT_GT(e.pixels, 1000) << name;
-        EXPECT_LT(e.reshade, 0.85 * e.reproject) << name;
+        EXPECT_LT(e.reshade, 0.25 * e.reproject) << name;
     }
 }
 

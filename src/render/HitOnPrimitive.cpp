@@ -1,0 +1,53 @@
+#include "render/HitOnPrimitive.h"
+
+#include <cmath>
+#include <limits>
+
+#include "trace/SphereIntersection.h"
+
+namespace raycache {
+
+namespace {
+
+std::optional<TraceHit> hitOnSphere(const Sphere& sphere, int objectId, const Ray& ray, float expectedT) {
+    const Vec3& o = ray.origin;
+    const Vec3& d = ray.direction;
+    // The root nearest expectedT: the first root past the midpoint between
+    // the eye and the point, so that a sample on the far wall of a sphere the
+    // eye is inside stays on that wall.
+    const float t = sphereRoot(sphere, o.x, o.y, o.z, d.x, d.y, d.z, 0.5f * expectedT,
+                               std::numeric_limits<float>::infinity());
+    if (!(t > 0.0f)) return std::nullopt;
+    return TraceHit{t, objectId, 0, 0.0f, 0.0f};
+}
+
+std::optional<TraceHit> hitOnTriangle(const TriangleMesh& mesh, int objectId, int primitiveId, const Ray& ray) {
+    if (primitiveId < 0 || static_cast<std::size_t>(primitiveId) >= mesh.triangles.size()) return std::nullopt;
+    const auto& tri = mesh.triangles[static_cast<std::size_t>(primitiveId)];
+    const Vec3& p0 = mesh.positions[tri[0]];
+    const Vec3 e1 = mesh.positions[tri[1]] - p0, e2 = mesh.positions[tri[2]] - p0;
+    // Möller-Trumbore without its range tests: the ray against the plane, in
+    // the triangle's barycentrics.
+    const Vec3 p = cross(ray.direction, e2);
+    const float det = dot(e1, p);
+    if (!(std::fabs(det) > 1e-12f * dot(e1, e1) * length(e2))) return std::nullopt;  // edge-on or degenerate
+    const float inverse = 1.0f / det;
+    const Vec3 s = ray.origin - p0;
+    const float u = dot(s, p) * inverse;
+    const Vec3 q = cross(s, e1);
+    const float v = dot(ray.direction, q) * inverse;
+    const float t = dot(e2, q) * inverse;
+    if (!(t > 0.0f) || !(u >= -kTriangleSlack) || !(v >= -kTriangleSlack) || !(1.0f - u - v >= -kTriangleSlack))
+        return std::nullopt;
+    return TraceHit{t, objectId, primitiveId, u, v};
+}
+
+}  // namespace
+
+std::optional<TraceHit> hitOnPrimitive(const SceneObject& object, int objectId, int primitiveId, const Ray& ray,
+                                       float expectedT) {
+    if (const auto* sphere = std::get_if<Sphere>(&object.shape)) return hitOnSphere(*sphere, objectId, ray, expectedT);
+    return hitOnTriangle(*std::get<MeshShape>(object.shape).mesh, objectId, primitiveId, ray);
+}
+
+}  // namespace raycache

@@ -1,0 +1,26 @@
+#pragma once
+// Where a ray meets one known primitive of an object, ignoring everything
+// else: used to move a reprojected sample's view-dependent shading from the
+// sample's own point (up to a pixel off) to the point its pixel's centre
+// sees on the same surface.
+#include <optional>
+
+#include "core/Ray.h"
+#include "scene/SceneObject.h"
+#include "trace/TraceHit.h"
+
+namespace raycache {
+
+// The hit of `ray` on primitive `primitiveId` of object `objectId` alone, as
+// the tracer would report it (distance, primitive, barycentrics), or nothing
+// when the ray misses it. A sphere is met where it really is, at the root
+// nearest `expectedT` (the distance of the point being moved). A triangle is
+// met on its plane, also a little outside its edges (barycentrics down to
+// -kTriangleSlack), where the plane and the interpolated normals continue the
+// surface; farther out, or on a plane seen edge-on, it is missed.
+std::optional<TraceHit> hitOnPrimitive(const SceneObject& object, int objectId, int primitiveId, const Ray& ray,
+                                       float expectedT);
+
+inline constexpr float kTriangleSlack = 0.5f;
+
+}  // namespace raycache
