@@ -30,7 +30,9 @@ std::optional<TraceHit> hitOnTriangle(const TriangleMesh& mesh, int objectId, in
     // the triangle's barycentrics.
     const Vec3 p = cross(ray.direction, e2);
     const float det = dot(e1, p);
-    if (!(std::fabs(det) > 1e-12f * dot(e1, e1) * length(e2))) return std::nullopt;  // edge-on or degenerate
+    // det = |e1||e2| sin(angle between the ray and the plane) sin(the triangle's angle):
+    // near zero the plane is seen edge-on or the triangle is degenerate.
+    if (!(std::fabs(det) > 1e-7f * length(e1) * length(e2))) return std::nullopt;
     const float inverse = 1.0f / det;
     const Vec3 s = ray.origin - p0;
     const float u = dot(s, p) * inverse;

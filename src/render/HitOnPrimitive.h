@@ -13,8 +13,9 @@ namespace raycache {
 
 // The hit of `ray` on primitive `primitiveId` of object `objectId` alone, as
 // the tracer would report it (distance, primitive, barycentrics), or nothing
-// when the ray misses it. A sphere is met where it really is, at the root
-// nearest `expectedT` (the distance of the point being moved). A triangle is
+// when the ray misses it. A sphere is met where it really is, at its first
+// root beyond half of `expectedT` (the distance of the point being moved:
+// the same wall of the sphere, also from inside it). A triangle is
 // met on its plane, also a little outside its edges (barycentrics down to
 // -kTriangleSlack), where the plane and the interpolated normals continue the
 // surface; farther out, or on a plane seen edge-on, it is missed.
