@@ -164,9 +164,22 @@ GridAgreement compareGridsWithEmbree(const Scene& scene, const Camera& camera, i
                 best.u != fromGrid.u || best.v != fromGrid.v)
                 ++result.bruteForceDifferences;
         }
+        // Shadow rays as packets, light by light in batches of 256, against each ray alone.
+        std::vector<unsigned char> batchBlocked(shadowRays.size()), refusedShadows(shadowRays.size());
+        for (std::size_t base = 0; base < shadowRays.size();) {
+            std::size_t end = base + 1;
+            while (end < shadowRays.size() && end - base < 256 && lights[end] == lights[base]) ++end;
+            direct.occludedShadowBatch(std::span<const Ray>(shadowRays).subspan(base, end - base), lights[base],
+                                       std::span(batchBlocked).subspan(base, end - base),
+                                       std::span(refusedShadows).subspan(base, end - base));
+            base = end;
+        }
         for (std::size_t i = 0; i < shadowRays.size(); ++i) {
             bool fromGrid = false;
-            if (!direct.occludedShadow(shadowRays[i], lights[i], fromGrid)) continue;
+            const bool covered = direct.occludedShadow(shadowRays[i], lights[i], fromGrid);
+            if (covered == static_cast<bool>(refusedShadows[i]) || (covered && fromGrid != static_cast<bool>(batchBlocked[i])))
+                ++result.bruteForceDifferences;
+            if (!covered) continue;
             const WatertightRay wr(shadowRays[i]);
             bool blocked = false;
             for (std::uint32_t prim = 0; prim < primitives.count() && !blocked; ++prim)

@@ -471,6 +471,7 @@ struct RefusedRays {
     std::vector<unsigned char> occluded;
     std::vector<unsigned char> refusedFlags;
     std::vector<std::uint64_t> order;
+    std::vector<Ray> sorted;
 };
 
 RefusedRays& refusedRays() {
@@ -521,13 +522,27 @@ void TraceScene::occludedPrimaryShadows(std::span<const Ray> rays, std::span<con
                                 (static_cast<std::uint64_t>(column) << 24) | i);
     }
     std::sort(refused.order.begin(), refused.order.end());
+    // The rays in that order, each light's run answered as packets.
+    const auto indexOf = [](std::uint64_t key) { return static_cast<std::size_t>(key & ((std::uint64_t{1} << 24) - 1)); };
+    refused.sorted.clear();
+    for (const std::uint64_t key : refused.order) refused.sorted.push_back(rays[indexOf(key)]);
+    refused.occluded.resize(rays.size());
+    refused.refusedFlags.resize(rays.size());
+    for (std::size_t begin = 0; begin < rays.size();) {
+        const int light = lights[indexOf(refused.order[begin])];
+        std::size_t end = begin + 1;
+        while (end < rays.size() && lights[indexOf(refused.order[end])] == light) ++end;
+        grids->occludedShadowBatch(std::span<const Ray>(refused.sorted).subspan(begin, end - begin), light,
+                                   std::span(refused.occluded).subspan(begin, end - begin),
+                                   std::span(refused.refusedFlags).subspan(begin, end - begin));
+        begin = end;
+    }
     refused.index.clear();
     refused.rays.clear();
-    for (const std::uint64_t key : refused.order) {
-        const std::size_t i = key & ((std::uint64_t{1} << 24) - 1);
-        bool blocked = false;
-        if (grids->occludedShadow(rays[i], lights[i], blocked)) {
-            occluded[i] = blocked ? 1 : 0;
+    for (std::size_t s = 0; s < rays.size(); ++s) {
+        const std::size_t i = indexOf(refused.order[s]);
+        if (!refused.refusedFlags[s]) {
+            occluded[i] = refused.occluded[s];
         } else {
             refused.index.push_back(i);
             refused.rays.push_back(rays[i]);

@@ -501,6 +501,154 @@ bool FrustumGrid::occluded(const Ray& ray, bool& blocked) const {
     return true;
 }
 
+namespace {
+
+// What decides whether two shadow rays can share a packet: not the origin
+// (each lane has its own), only the shear axis and the cells' columns.
+struct ShadowPacketKey {
+    int kz, kx, ky;
+    int i0, i1, j0, j1;
+    bool ascending;
+    bool nearPart;
+    auto tie() const { return std::tie(kz, kx, ky, i0, i1, j0, j1, ascending, nearPart); }
+};
+
+}  // namespace
+
+void FrustumGrid::occludedBatch(std::span<const Ray> rays, std::span<unsigned char> blocked,
+                                std::span<unsigned char> refused) const {
+    thread_local std::vector<std::pair<ShadowPacketKey, std::uint32_t>> packable;
+    thread_local std::vector<Traversal> traversals;
+    thread_local std::vector<std::uint32_t> lanes;
+    packable.clear();
+    traversals.resize(rays.size());
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        refused[i] = 0;
+        blocked[i] = 0;
+        traversals[i] = traversalOf(rays[i]);
+        const Traversal& tr = traversals[i];
+        if (!tr.covered) {
+            refused[i] = 1;
+            continue;
+        }
+        if (!tr.gridPart) {
+            bool b = false;
+            occluded(rays[i], b);
+            blocked[i] = b ? 1 : 0;
+            continue;
+        }
+        const WatertightRay wr(rays[i]);
+        packable.push_back({ShadowPacketKey{wr.kz, wr.kx, wr.ky, tr.i0, tr.i1, tr.j0, tr.j1, tr.ascending, tr.nearPart},
+                            static_cast<std::uint32_t>(i)});
+    }
+    std::stable_sort(packable.begin(), packable.end(),
+                     [](const auto& a, const auto& b) { return a.first.tie() < b.first.tie(); });
+    for (std::size_t begin = 0; begin < packable.size();) {
+        std::size_t end = begin + 1;
+        while (end < packable.size() && end - begin < kLanes &&
+               packable[end].first.tie() == packable[begin].first.tie())
+            ++end;
+        lanes.clear();
+        Traversal walk = traversals[packable[begin].second];
+        for (std::size_t p = begin; p < end; ++p) {
+            const Traversal& tr = traversals[packable[p].second];
+            walk.k0 = std::min(walk.k0, tr.k0);
+            walk.k1 = std::max(walk.k1, tr.k1);
+            lanes.push_back(packable[p].second);
+        }
+        occludedPacket(rays, lanes, walk, blocked);
+        begin = end;
+    }
+}
+
+void FrustumGrid::occludedPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes,
+                                 const Traversal& walk, std::span<unsigned char> blocked) const {
+    const std::size_t n = lanes.size();
+    // Each lane's origin and shear in the packet's common axes (kx, ky, kz).
+    alignas(64) float ox[kLanes], oy[kLanes], oz[kLanes], sx[kLanes], sy[kLanes], sz[kLanes];
+    alignas(64) float tNear[kLanes], tFar[kLanes];
+    alignas(64) int accepted[kLanes], zeroEdge[kLanes];
+    bool done[kLanes] = {};
+    std::size_t open = n;
+    const WatertightRay shape(rays[lanes[0]]);
+    const int kx = shape.kx, ky = shape.ky, kz = shape.kz;
+    for (std::size_t l = 0; l < kLanes; ++l) {
+        // Lanes past n repeat the first ray; their answers are dropped.
+        const Ray& ray = rays[lanes[l < n ? l : 0]];
+        const WatertightRay wr(ray);
+        ox[l] = ray.origin[kx];
+        oy[l] = ray.origin[ky];
+        oz[l] = ray.origin[kz];
+        sx[l] = wr.sx;
+        sy[l] = wr.sy;
+        sz[l] = wr.sz;
+        tNear[l] = wr.tNear;
+        tFar[l] = wr.tFar;
+    }
+    const auto settle = [&](std::size_t l) {
+        done[l] = true;
+        --open;
+    };
+    // Inlined at both call sites, as intersectPacket's, so the lane loop stays vectorised.
+    const auto visit = [&](std::uint32_t primitive) __attribute__((always_inline)) {
+        if (primitives_->sphere(primitive)) {
+            for (std::size_t l = 0; l < n; ++l) {
+                const Ray& ray = rays[lanes[l]];
+                if (!done[l] && primitives_->occludes(primitive, ray, WatertightRay(ray))) settle(l);
+            }
+            return open == 0;
+        }
+        Vec3 p0, p1, p2;
+        primitives_->triangle(primitive, p0, p1, p2);
+        const float p0x = p0[kx], p0y = p0[ky], p0z = p0[kz];
+        const float p1x = p1[kx], p1y = p1[ky], p1z = p1[kz];
+        const float p2x = p2[kx], p2y = p2[ky], p2z = p2[kz];
+        // The watertight test's float path, lane by lane, in the same
+        // operations as intersectWatertight (WatertightTriangle.h): the
+        // corners relative to the lane's origin, then sheared.
+        for (std::size_t l = 0; l < kLanes; ++l) {
+            const float akx = p0x - ox[l], aky = p0y - oy[l], akz = p0z - oz[l];
+            const float bkx = p1x - ox[l], bky = p1y - oy[l], bkz = p1z - oz[l];
+            const float ckx = p2x - ox[l], cky = p2y - oy[l], ckz = p2z - oz[l];
+            const float ax = akx - sx[l] * akz, ay = aky - sy[l] * akz;
+            const float bx = bkx - sx[l] * bkz, by = bky - sy[l] * bkz;
+            const float cx = ckx - sx[l] * ckz, cy = cky - sy[l] * ckz;
+            const float u = cx * by - cy * bx;
+            const float v = ax * cy - ay * cx;
+            const float w = bx * ay - by * ax;
+            const float det = u + v + w;
+            const float t = u * (sz[l] * akz) + v * (sz[l] * bkz) + w * (sz[l] * ckz);
+            const float absDet = std::fabs(det);
+            const float signedT = det < 0.0f ? -t : t;
+            const bool negative = (u < 0.0f) | (v < 0.0f) | (w < 0.0f);
+            const bool positive = (u > 0.0f) | (v > 0.0f) | (w > 0.0f);
+            zeroEdge[l] = static_cast<int>((u == 0.0f) | (v == 0.0f) | (w == 0.0f));
+            accepted[l] = static_cast<int>(!(negative & positive) & (det != 0.0f) & (signedT > tNear[l] * absDet) &
+                                           (signedT <= tFar[l] * absDet));
+        }
+        for (std::size_t l = 0; l < n; ++l) {
+            if (done[l]) continue;
+            if (zeroEdge[l]) {
+                // An edge value of exactly zero: the double-precision path, as the scalar test.
+                const Ray& ray = rays[lanes[l]];
+                if (primitives_->occludes(primitive, ray, WatertightRay(ray))) settle(l);
+            } else if (accepted[l]) {
+                settle(l);
+            }
+        }
+        return open == 0;
+    };
+    bool finished = false;
+    if (walk.nearPart)
+        for (const std::uint32_t p : nearZone_)
+            if ((finished = visit(p))) break;
+    // Every primitive of every cell a lane visits is tested for it (the walk
+    // covers each lane's slices); testing one beyond a lane's segment cannot
+    // block it, since the test keeps to the lane's own tNear..tFar.
+    if (!finished && walk.gridPart) walkCells(walk, visit, [](int) { return false; });
+    for (std::size_t l = 0; l < n; ++l) blocked[lanes[l]] = done[l] ? 1 : 0;
+}
+
 std::vector<Vec3> FrustumGrid::occupiedColumnCorners() const {
     std::vector<Vec3> corners;
     if (zLo_ > zHi_ || !spec_.frame.perspective()) return corners;

@@ -74,6 +74,14 @@ public:
     void intersectBatch(std::span<const Ray> rays, std::span<TraceHit> hits, std::span<unsigned char> refused) const;
     // Any hit in the segment. False: the ray is not covered.
     bool occluded(const Ray& ray, bool& blocked) const;
+    // Any-hit answers of a batch, blocked[i] for rays[i]; refused[i] = 1 for
+    // the rays the grid does not cover (blocked[i] then 0). Rays that share
+    // a shear axis and a column range (a light tile's shadow rays: in the
+    // light's frame they run along its radial lines) are traced as packets
+    // of up to 16 lanes over the union of their slices, each with its own
+    // origin; the answers are those of occluded().
+    void occludedBatch(std::span<const Ray> rays, std::span<unsigned char> blocked,
+                       std::span<unsigned char> refused) const;
     // The column (i + nx * j) a world point projects into, or -1 outside the
     // rectangle or the perspective grid's depth range.
     int columnOf(const Vec3& point) const;
@@ -101,6 +109,9 @@ private:
     Traversal traversalOf(const Ray& ray) const;
     void intersectPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& tr,
                          std::span<TraceHit> hits) const;
+    // `walk`: the union of the lanes' traversals (same columns, every slice any of them visits).
+    void occludedPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& walk,
+                        std::span<unsigned char> blocked) const;
     CellRange binPrimitive(std::uint32_t primitive, bool& inNearZone) const;
     // Index of cell (i, j) of depth slice k in cellStart_.
     std::size_t flatCell(int k, int j, int i) const {

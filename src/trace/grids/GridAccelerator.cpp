@@ -237,6 +237,27 @@ bool GridAccelerator::occludedShadow(const Ray& ray, int light, bool& blocked) c
     return grid && grid->occluded(ray, blocked);
 }
 
+void GridAccelerator::occludedShadowBatch(std::span<const Ray> rays, int light, std::span<unsigned char> blocked,
+                                          std::span<unsigned char> refused) const {
+    // Runs of rays that go to the same grid (a point light's six faces
+    // split them), each run answered as one batch.
+    for (std::size_t begin = 0; begin < rays.size();) {
+        int face = 0;
+        const FrustumGrid* grid = lightGridFor(rays[begin], light, face);
+        std::size_t end = begin + 1;
+        for (int next = 0; end < rays.size() && lightGridFor(rays[end], light, next) == grid; ++end) {
+        }
+        if (grid) {
+            grid->occludedBatch(rays.subspan(begin, end - begin), blocked.subspan(begin, end - begin),
+                                refused.subspan(begin, end - begin));
+        } else {
+            std::fill(blocked.begin() + static_cast<std::ptrdiff_t>(begin), blocked.begin() + static_cast<std::ptrdiff_t>(end), 0);
+            std::fill(refused.begin() + static_cast<std::ptrdiff_t>(begin), refused.begin() + static_cast<std::ptrdiff_t>(end), 1);
+        }
+        begin = end;
+    }
+}
+
 int GridAccelerator::lightColumn(const Ray& ray, int light) const {
     int face = 0;
     const FrustumGrid* grid = lightGridFor(ray, light, face);
