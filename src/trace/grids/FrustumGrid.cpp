@@ -347,6 +347,26 @@ struct PacketKey {
     auto tie() const { return std::tie(ox, oy, oz, kz, kx, ky, i0, i1, j0, j1, k0, k1, ascending, nearPart); }
 };
 
+// Sorts (key, ray index) pairs so that equal keys lie together, in batch
+// order within a key, and hands each run of at most kLanes equal keys to
+// `packet` as the span of its ray indices.
+template <typename Key, typename Packet>
+void forEachPacket(std::vector<std::pair<Key, std::uint32_t>>& packable, std::vector<std::uint32_t>& lanes,
+                   Packet&& packet) {
+    std::stable_sort(packable.begin(), packable.end(),
+                     [](const auto& a, const auto& b) { return a.first.tie() < b.first.tie(); });
+    for (std::size_t begin = 0; begin < packable.size();) {
+        std::size_t end = begin + 1;
+        while (end < packable.size() && end - begin < kLanes &&
+               packable[end].first.tie() == packable[begin].first.tie())
+            ++end;
+        lanes.clear();
+        for (std::size_t p = begin; p < end; ++p) lanes.push_back(packable[p].second);
+        packet(std::span<const std::uint32_t>(lanes));
+        begin = end;
+    }
+}
+
 }  // namespace
 
 void FrustumGrid::intersectBatch(std::span<const Ray> rays, std::span<TraceHit> hits,
@@ -375,19 +395,9 @@ void FrustumGrid::intersectBatch(std::span<const Ray> rays, std::span<TraceHit> 
                                       tr.i1, tr.j0, tr.j1, tr.k0, tr.k1, tr.ascending, tr.nearPart},
                             static_cast<std::uint32_t>(i)});
     }
-    // Rays with equal keys next to each other, in batch order within a key.
-    std::stable_sort(packable.begin(), packable.end(),
-                     [](const auto& a, const auto& b) { return a.first.tie() < b.first.tie(); });
-    for (std::size_t begin = 0; begin < packable.size();) {
-        std::size_t end = begin + 1;
-        while (end < packable.size() && end - begin < kLanes &&
-               packable[end].first.tie() == packable[begin].first.tie())
-            ++end;
-        lanes.clear();
-        for (std::size_t p = begin; p < end; ++p) lanes.push_back(packable[p].second);
-        intersectPacket(rays, lanes, traversals[lanes[0]], hits);
-        begin = end;
-    }
+    forEachPacket(packable, lanes, [&](std::span<const std::uint32_t> packet) {
+        intersectPacket(rays, packet, traversals[packet[0]], hits);
+    });
 }
 
 void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& tr,
@@ -541,24 +551,14 @@ void FrustumGrid::occludedBatch(std::span<const Ray> rays, std::span<unsigned ch
         packable.push_back({ShadowPacketKey{wr.kz, wr.kx, wr.ky, tr.i0, tr.i1, tr.j0, tr.j1, tr.ascending, tr.nearPart},
                             static_cast<std::uint32_t>(i)});
     }
-    std::stable_sort(packable.begin(), packable.end(),
-                     [](const auto& a, const auto& b) { return a.first.tie() < b.first.tie(); });
-    for (std::size_t begin = 0; begin < packable.size();) {
-        std::size_t end = begin + 1;
-        while (end < packable.size() && end - begin < kLanes &&
-               packable[end].first.tie() == packable[begin].first.tie())
-            ++end;
-        lanes.clear();
-        Traversal walk = traversals[packable[begin].second];
-        for (std::size_t p = begin; p < end; ++p) {
-            const Traversal& tr = traversals[packable[p].second];
-            walk.k0 = std::min(walk.k0, tr.k0);
-            walk.k1 = std::max(walk.k1, tr.k1);
-            lanes.push_back(packable[p].second);
+    forEachPacket(packable, lanes, [&](std::span<const std::uint32_t> packet) {
+        Traversal walk = traversals[packet[0]];
+        for (const std::uint32_t ray : packet) {
+            walk.k0 = std::min(walk.k0, traversals[ray].k0);
+            walk.k1 = std::max(walk.k1, traversals[ray].k1);
         }
-        occludedPacket(rays, lanes, walk, blocked);
-        begin = end;
-    }
+        occludedPacket(rays, packet, walk, blocked);
+    });
 }
 
 void FrustumGrid::occludedPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes,
