@@ -513,34 +513,40 @@ void TraceScene::occludedPrimaryShadows(std::span<const Ray> rays, std::span<con
         return;
     }
     RefusedRays& refused = refusedRays();
-    // Rays of one light tile together (SPEC §7): sorted by light, then by
-    // the light-grid column of their origin, then by their place in the batch.
+    // Each light's rays as one batch, in batch order: the rays of a tile lie
+    // close together in a light's space too, and the grids gather those of
+    // one light tile into packets (FrustumGrid::occludedBatch). With several
+    // lights the rays are first put in light order.
+    const std::size_t count = rays.size();
+    const bool oneLight = std::all_of(lights.begin(), lights.end(), [&](int l) { return l == lights[0]; });
     refused.order.clear();
-    for (std::size_t i = 0; i < rays.size(); ++i) {
-        const auto column = static_cast<std::uint32_t>(grids->lightColumn(rays[i], lights[i]) + 1);
-        refused.order.push_back((static_cast<std::uint64_t>(lights[i]) << 56) |
-                                (static_cast<std::uint64_t>(column) << 24) | i);
+    std::span<const Ray> ordered = rays;
+    if (!oneLight) {
+        for (std::size_t i = 0; i < count; ++i)
+            refused.order.push_back((static_cast<std::uint64_t>(lights[i]) << 32) | i);
+        std::sort(refused.order.begin(), refused.order.end());
+        refused.sorted.clear();
+        for (const std::uint64_t key : refused.order) refused.sorted.push_back(rays[key & 0xffffffffu]);
+        ordered = refused.sorted;
     }
-    std::sort(refused.order.begin(), refused.order.end());
-    // The rays in that order, each light's run answered as packets.
-    const auto indexOf = [](std::uint64_t key) { return static_cast<std::size_t>(key & ((std::uint64_t{1} << 24) - 1)); };
-    refused.sorted.clear();
-    for (const std::uint64_t key : refused.order) refused.sorted.push_back(rays[indexOf(key)]);
-    refused.occluded.resize(rays.size());
-    refused.refusedFlags.resize(rays.size());
-    for (std::size_t begin = 0; begin < rays.size();) {
-        const int light = lights[indexOf(refused.order[begin])];
+    const auto indexOf = [&](std::size_t position) {
+        return oneLight ? position : static_cast<std::size_t>(refused.order[position] & 0xffffffffu);
+    };
+    refused.occluded.resize(count);
+    refused.refusedFlags.resize(count);
+    for (std::size_t begin = 0; begin < count;) {
+        const int light = lights[indexOf(begin)];
         std::size_t end = begin + 1;
-        while (end < rays.size() && lights[indexOf(refused.order[end])] == light) ++end;
-        grids->occludedShadowBatch(std::span<const Ray>(refused.sorted).subspan(begin, end - begin), light,
+        while (end < count && lights[indexOf(end)] == light) ++end;
+        grids->occludedShadowBatch(ordered.subspan(begin, end - begin), light,
                                    std::span(refused.occluded).subspan(begin, end - begin),
                                    std::span(refused.refusedFlags).subspan(begin, end - begin));
         begin = end;
     }
     refused.index.clear();
     refused.rays.clear();
-    for (std::size_t s = 0; s < rays.size(); ++s) {
-        const std::size_t i = indexOf(refused.order[s]);
+    for (std::size_t s = 0; s < count; ++s) {
+        const std::size_t i = indexOf(s);
         if (!refused.refusedFlags[s]) {
             occluded[i] = refused.occluded[s];
         } else {

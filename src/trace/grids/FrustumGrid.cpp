@@ -1,6 +1,7 @@
 #include "trace/grids/FrustumGrid.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -62,10 +63,6 @@ bool clipDepth(double oz, double dz, double lo, double hi, double& ta, double& t
     ta = std::max(ta, t1);
     tb = std::min(tb, t2);
     return ta <= tb;
-}
-
-int cellIndex(double value, double origin, double size, int count) {
-    return static_cast<int>(std::clamp(std::floor((value - origin) / size), 0.0, static_cast<double>(count - 1)));
 }
 
 }  // namespace
@@ -135,20 +132,15 @@ FrustumGrid::CellRange FrustumGrid::binPrimitive(std::uint32_t primitive, bool& 
             tHi = std::max(tHi, v + mv);
         }
         if (polygon.count == 0) return kNone;
-        sLo = frame.grid(sLo);
-        sHi = frame.grid(sHi);
-        tLo = frame.grid(tLo);
-        tHi = frame.grid(tHi);
     } else {
         sLo = bounds.lo.x - m;
         sHi = bounds.hi.x + m;
         tLo = bounds.lo.y - m;
         tHi = bounds.hi.y + m;
     }
-    if (sHi < spec_.s0 || sLo > spec_.s1 || tHi < spec_.t0 || tLo > spec_.t1) return kNone;
-    return {cellIndex(sLo, spec_.s0, ds_, spec_.nx), cellIndex(sHi, spec_.s0, ds_, spec_.nx),
-            cellIndex(tLo, spec_.t0, dt_, spec_.ny), cellIndex(tHi, spec_.t0, dt_, spec_.ny),
-            cellIndex(zA, zLo_, sliceDepth_, nz_),   cellIndex(zB, zLo_, sliceDepth_, nz_)};
+    if (sHi < sAxis_.lower() || sLo > sAxis_.upper() || tHi < tAxis_.lower() || tLo > tAxis_.upper()) return kNone;
+    return {sAxis_.cellOf(sLo),     sAxis_.cellOf(sHi),     tAxis_.cellOf(tLo),
+            tAxis_.cellOf(tHi),     depthAxis_.cellOf(zA), depthAxis_.cellOf(zB)};
 }
 
 void FrustumGrid::build(const FrustumGridSpec& spec, const GridPrimitives& primitives, const Parallel& parallel) {
@@ -184,11 +176,17 @@ void FrustumGrid::build(const FrustumGridSpec& spec, const GridPrimitives& primi
     }
     zLo_ = spec_.frame.perspective() ? std::max(spec_.zNear, geometryZLo_) : geometryZLo_;
     zHi_ = std::min(geometryZHi_, spec_.zFarLimit);
-    ds_ = (spec_.s1 - spec_.s0) / spec_.nx;
-    dt_ = (spec_.t1 - spec_.t0) / spec_.ny;
+    if (spec_.frame.mapping == GridMapping::Angular) {
+        sAxis_.setAngular(spec_.s0, spec_.s1, spec_.nx);
+        tAxis_.setAngular(spec_.t0, spec_.t1, spec_.ny);
+    } else {
+        sAxis_.setUniform(spec_.s0, spec_.s1, spec_.nx);
+        tAxis_.setUniform(spec_.t0, spec_.t1, spec_.ny);
+    }
     const double columns = static_cast<double>(spec_.nx) * spec_.ny;
     nz_ = std::clamp(static_cast<int>(spec_.cellsPerPrimitive * count / columns), 1, spec_.maxSlices);
-    sliceDepth_ = zHi_ > zLo_ ? (zHi_ - zLo_) / nz_ : 1.0;
+    // Slices of depth 1 when there is no geometry: nothing is binned, and no ray walks them.
+    depthAxis_.setUniform(zLo_, zHi_ > zLo_ ? zHi_ : zLo_ + nz_, nz_);
     stats_.nx = spec_.nx;
     stats_.ny = spec_.ny;
     stats_.nz = nz_;
@@ -293,21 +291,23 @@ FrustumGrid::Traversal FrustumGrid::traversalOf(const Ray& ray) const {
         return tr;
     }
     const Point3d a = along(o, d, ga), b = along(o, d, gb);
-    const double sa = frame.grid(frame.planar(a.x, a.z)), sb = frame.grid(frame.planar(b.x, b.z));
-    const double va = frame.grid(frame.planar(a.y, a.z)), vb = frame.grid(frame.planar(b.y, b.z));
+    const double sa = frame.planar(a.x, a.z), sb = frame.planar(b.x, b.z);
+    const double va = frame.planar(a.y, a.z), vb = frame.planar(b.y, b.z);
     const double sLo = std::min(sa, sb), sHi = std::max(sa, sb), tLo = std::min(va, vb), tHi = std::max(va, vb);
-    if (sLo < spec_.s0 || sHi > spec_.s1 || tLo < spec_.t0 || tHi > spec_.t1) {
+    if (sLo < sAxis_.lower() || sHi > sAxis_.upper() || tLo < tAxis_.lower() || tHi > tAxis_.upper()) {
         tr.covered = false;
         return tr;
     }
     tr.gridPart = true;
-    tr.i0 = cellIndex(sLo, spec_.s0, ds_, spec_.nx);
-    tr.i1 = cellIndex(sHi, spec_.s0, ds_, spec_.nx);
-    tr.j0 = cellIndex(tLo, spec_.t0, dt_, spec_.ny);
-    tr.j1 = cellIndex(tHi, spec_.t0, dt_, spec_.ny);
+    // A camera ray, and a shadow ray in a point light's space, keeps to one
+    // column: its far end is found from its near end's cell.
+    tr.i0 = sAxis_.cellOf(sLo);
+    tr.i1 = sAxis_.cellFrom(tr.i0, sHi);
+    tr.j0 = tAxis_.cellOf(tLo);
+    tr.j1 = tAxis_.cellFrom(tr.j0, tHi);
     const double zA = std::min(a.z, b.z), zB = std::max(a.z, b.z);
-    tr.k0 = cellIndex(zA, zLo_, sliceDepth_, nz_);
-    tr.k1 = cellIndex(zB, zLo_, sliceDepth_, nz_);
+    tr.k0 = depthAxis_.cellOf(zA);
+    tr.k1 = depthAxis_.cellOf(zB);
     tr.ascending = d.z >= 0.0;
     return tr;
 }
@@ -344,37 +344,74 @@ struct PacketKey {
     int i0, i1, j0, j1, k0, k1;
     bool ascending;
     bool nearPart;
-    auto tie() const { return std::tie(ox, oy, oz, kz, kx, ky, i0, i1, j0, j1, k0, k1, ascending, nearPart); }
+    bool operator==(const PacketKey&) const = default;
 };
 
-// Sorts (key, ray index) pairs so that equal keys lie together, in batch
-// order within a key, and hands each run of at most kLanes equal keys to
-// `packet` as the span of its ray indices.
-template <typename Key, typename Packet>
-void forEachPacket(std::vector<std::pair<Key, std::uint32_t>>& packable, std::vector<std::uint32_t>& lanes,
-                   Packet&& packet) {
-    std::stable_sort(packable.begin(), packable.end(),
-                     [](const auto& a, const auto& b) { return a.first.tie() < b.first.tie(); });
-    for (std::size_t begin = 0; begin < packable.size();) {
-        std::size_t end = begin + 1;
-        while (end < packable.size() && end - begin < kLanes &&
-               packable[end].first.tie() == packable[begin].first.tie())
-            ++end;
-        lanes.clear();
-        for (std::size_t p = begin; p < end; ++p) lanes.push_back(packable[p].second);
-        packet(std::span<const std::uint32_t>(lanes));
-        begin = end;
+// Gathers rays with equal keys into packets of at most kLanes, in batch
+// order within a packet, and hands each full packet, and at flush() every
+// partial one, to `packet` as the span of its ray indices. A key is matched
+// against the few packets open at the time only: rays that belong together
+// come close together in a batch (a tile's camera rays row by row across a
+// few columns, shadow rays in light-tile order). An equal key met later
+// opens another packet: a packet less full, never another answer, since
+// every lane's answer is its own.
+template <typename Key>
+class PacketGatherer {
+public:
+    template <typename Packet>
+    void add(const Key& key, std::uint32_t ray, Packet&& packet) {
+        std::size_t slot = last_;
+        if (slot >= used_ || !(open_[slot].key == key)) {
+            slot = 0;
+            while (slot < used_ && !(open_[slot].key == key)) ++slot;
+            if (slot == used_) {
+                if (used_ < kOpen) {
+                    ++used_;
+                } else {
+                    // Every slot taken: the oldest-opened one is handed on and reused.
+                    slot = evict_;
+                    evict_ = (evict_ + 1) % kOpen;
+                    emit(open_[slot], packet);
+                }
+                open_[slot].key = key;
+            }
+        }
+        last_ = slot;
+        Open& open = open_[slot];
+        open.lanes[open.count++] = ray;
+        if (open.count == kLanes) emit(open, packet);
     }
-}
+    template <typename Packet>
+    void flush(Packet&& packet) {
+        for (std::size_t slot = 0; slot < used_; ++slot) emit(open_[slot], packet);
+        used_ = last_ = evict_ = 0;
+    }
+
+private:
+    static constexpr std::size_t kOpen = 8;
+    struct Open {
+        Key key{};
+        std::size_t count = 0;
+        std::uint32_t lanes[kLanes];
+    };
+    template <typename Packet>
+    static void emit(Open& open, Packet& packet) {
+        if (open.count > 0) packet(std::span<const std::uint32_t>(open.lanes, open.count));
+        open.count = 0;
+    }
+    std::array<Open, kOpen> open_{};
+    std::size_t used_ = 0, last_ = 0, evict_ = 0;
+};
 
 }  // namespace
 
 void FrustumGrid::intersectBatch(std::span<const Ray> rays, std::span<TraceHit> hits,
                                  std::span<unsigned char> refused) const {
-    thread_local std::vector<std::pair<PacketKey, std::uint32_t>> packable;
     thread_local std::vector<Traversal> traversals;
-    thread_local std::vector<std::uint32_t> lanes;
-    packable.clear();
+    PacketGatherer<PacketKey> gatherer;
+    const auto trace = [&](std::span<const std::uint32_t> packet) {
+        intersectPacket(rays, packet, traversals[packet[0]], hits);
+    };
     traversals.resize(rays.size());
     for (std::size_t i = 0; i < rays.size(); ++i) {
         refused[i] = 0;
@@ -391,13 +428,11 @@ void FrustumGrid::intersectBatch(std::span<const Ray> rays, std::span<TraceHit> 
         // Camera rays share the apex, so those that also cross the near zone
         // (geometry behind or beside the eye: a floor, a room) pack as well.
         const WatertightRay wr(rays[i]);
-        packable.push_back({PacketKey{rays[i].origin.x, rays[i].origin.y, rays[i].origin.z, wr.kz, wr.kx, wr.ky, tr.i0,
-                                      tr.i1, tr.j0, tr.j1, tr.k0, tr.k1, tr.ascending, tr.nearPart},
-                            static_cast<std::uint32_t>(i)});
+        gatherer.add(PacketKey{rays[i].origin.x, rays[i].origin.y, rays[i].origin.z, wr.kz, wr.kx, wr.ky, tr.i0, tr.i1,
+                               tr.j0, tr.j1, tr.k0, tr.k1, tr.ascending, tr.nearPart},
+                     static_cast<std::uint32_t>(i), trace);
     }
-    forEachPacket(packable, lanes, [&](std::span<const std::uint32_t> packet) {
-        intersectPacket(rays, packet, traversals[packet[0]], hits);
-    });
+    gatherer.flush(trace);
 }
 
 void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& tr,
@@ -520,17 +555,23 @@ struct ShadowPacketKey {
     int i0, i1, j0, j1;
     bool ascending;
     bool nearPart;
-    auto tie() const { return std::tie(kz, kx, ky, i0, i1, j0, j1, ascending, nearPart); }
+    bool operator==(const ShadowPacketKey&) const = default;
 };
 
 }  // namespace
 
 void FrustumGrid::occludedBatch(std::span<const Ray> rays, std::span<unsigned char> blocked,
                                 std::span<unsigned char> refused) const {
-    thread_local std::vector<std::pair<ShadowPacketKey, std::uint32_t>> packable;
     thread_local std::vector<Traversal> traversals;
-    thread_local std::vector<std::uint32_t> lanes;
-    packable.clear();
+    PacketGatherer<ShadowPacketKey> gatherer;
+    const auto trace = [&](std::span<const std::uint32_t> packet) {
+        Traversal walk = traversals[packet[0]];
+        for (const std::uint32_t ray : packet) {
+            walk.k0 = std::min(walk.k0, traversals[ray].k0);
+            walk.k1 = std::max(walk.k1, traversals[ray].k1);
+        }
+        occludedPacket(rays, packet, walk, blocked);
+    };
     traversals.resize(rays.size());
     for (std::size_t i = 0; i < rays.size(); ++i) {
         refused[i] = 0;
@@ -548,17 +589,10 @@ void FrustumGrid::occludedBatch(std::span<const Ray> rays, std::span<unsigned ch
             continue;
         }
         const WatertightRay wr(rays[i]);
-        packable.push_back({ShadowPacketKey{wr.kz, wr.kx, wr.ky, tr.i0, tr.i1, tr.j0, tr.j1, tr.ascending, tr.nearPart},
-                            static_cast<std::uint32_t>(i)});
+        gatherer.add(ShadowPacketKey{wr.kz, wr.kx, wr.ky, tr.i0, tr.i1, tr.j0, tr.j1, tr.ascending, tr.nearPart},
+                     static_cast<std::uint32_t>(i), trace);
     }
-    forEachPacket(packable, lanes, [&](std::span<const std::uint32_t> packet) {
-        Traversal walk = traversals[packet[0]];
-        for (const std::uint32_t ray : packet) {
-            walk.k0 = std::min(walk.k0, traversals[ray].k0);
-            walk.k1 = std::max(walk.k1, traversals[ray].k1);
-        }
-        occludedPacket(rays, packet, walk, blocked);
-    });
+    gatherer.flush(trace);
 }
 
 void FrustumGrid::occludedPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes,
@@ -668,12 +702,10 @@ std::vector<Vec3> FrustumGrid::occupiedColumnCorners() const {
             }
             if (first < 0) continue;
             for (int corner = 0; corner < 8; ++corner) {
-                const double u = std::tan(spec_.s0 + (i + (corner & 1)) * ds_);
-                const double v = std::tan(spec_.t0 + (j + ((corner >> 1) & 1)) * dt_);
+                // The axes' boundaries are planar values (x/z): a corner's direction at depth 1.
+                const double uu = sAxis_.boundary(i + (corner & 1));
+                const double vv = tAxis_.boundary(j + ((corner >> 1) & 1));
                 const double z = sliceLower((corner & 4) ? last + 1 : first);
-                // Angular grids store atan(u): tan undoes it; perspective ones store u itself.
-                const double uu = f.mapping == GridMapping::Angular ? u : spec_.s0 + (i + (corner & 1)) * ds_;
-                const double vv = f.mapping == GridMapping::Angular ? v : spec_.t0 + (j + ((corner >> 1) & 1)) * dt_;
                 corners.push_back(
                     Vec3{static_cast<float>(f.apex.x + z * (uu * f.right.x + vv * f.up.x + f.forward.x)),
                          static_cast<float>(f.apex.y + z * (uu * f.right.y + vv * f.up.y + f.forward.y)),
@@ -681,15 +713,6 @@ std::vector<Vec3> FrustumGrid::occupiedColumnCorners() const {
             }
         }
     return corners;
-}
-
-int FrustumGrid::columnOf(const Vec3& point) const {
-    const GridFrame& frame = spec_.frame;
-    const Point3d p = frame.toFrame(point);
-    if (frame.perspective() && p.z <= 0.0) return -1;
-    const double s = frame.grid(frame.planar(p.x, p.z)), t = frame.grid(frame.planar(p.y, p.z));
-    if (s < spec_.s0 || s > spec_.s1 || t < spec_.t0 || t > spec_.t1) return -1;
-    return cellIndex(s, spec_.s0, ds_, spec_.nx) + spec_.nx * cellIndex(t, spec_.t0, dt_, spec_.ny);
 }
 
 }  // namespace raycache

@@ -21,6 +21,7 @@
 #include "core/Parallel.h"
 #include "core/Ray.h"
 #include "trace/TraceHit.h"
+#include "trace/grids/GridAxis.h"
 #include "trace/grids/GridFrame.h"
 #include "trace/grids/GridPrimitives.h"
 
@@ -82,9 +83,6 @@ public:
     // origin; the answers are those of occluded().
     void occludedBatch(std::span<const Ray> rays, std::span<unsigned char> blocked,
                        std::span<unsigned char> refused) const;
-    // The column (i + nx * j) a world point projects into, or -1 outside the
-    // rectangle or the perspective grid's depth range.
-    int columnOf(const Vec3& point) const;
 
     // World-space corners of the part of every column between its first and
     // last occupied slice (8 per column that holds anything): their hull
@@ -128,7 +126,7 @@ private:
         const int firstK = tr.ascending ? std::max(r.k0, tr.k0) : std::min(r.k1, tr.k1);
         return k == firstK && j == std::max(r.j0, tr.j0) && i == std::max(r.i0, tr.i0);
     }
-    double sliceLower(int k) const { return zLo_ + k * sliceDepth_; }
+    double sliceLower(int k) const { return depthAxis_.boundary(k); }
     // Whether a hit at frame depth `z` ends a front-to-back walk after slice
     // k: a primitive not met yet lies wholly beyond the slice (by the
     // margin), so it cannot be nearer.
@@ -156,9 +154,10 @@ private:
     FrustumGridSpec spec_;
     const GridPrimitives* primitives_ = nullptr;
     double geometryZLo_ = 0.0, geometryZHi_ = -1.0;  // every primitive's depth range (margins included)
-    double zLo_ = 0.0, zHi_ = 0.0, sliceDepth_ = 1.0;
+    double zLo_ = 0.0, zHi_ = 0.0;
     int nz_ = 1;
-    double ds_ = 1.0, dt_ = 1.0;
+    // Columns across (planar s = x/z or x, and t) and slices along depth z.
+    GridAxis sAxis_, tAxis_, depthAxis_;
     std::vector<std::uint32_t> cellStart_;  // cells + 1 offsets into cellPrimitives_
     std::vector<std::uint32_t> cellPrimitives_;
     std::vector<std::uint32_t> nearZone_;

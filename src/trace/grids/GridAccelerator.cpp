@@ -258,12 +258,4 @@ void GridAccelerator::occludedShadowBatch(std::span<const Ray> rays, int light, 
     }
 }
 
-int GridAccelerator::lightColumn(const Ray& ray, int light) const {
-    int face = 0;
-    const FrustumGrid* grid = lightGridFor(ray, light, face);
-    if (!grid) return -1;
-    const int column = grid->columnOf(ray.origin);
-    return column < 0 ? -1 : face * grid->spec().nx * grid->spec().ny + column;
-}
-
 }  // namespace raycache

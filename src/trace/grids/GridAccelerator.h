@@ -58,13 +58,9 @@ public:
     // False when light `light` has no grid or its grid does not cover the ray.
     bool occludedShadow(const Ray& ray, int light, bool& blocked) const;
     // The same for a batch of rays toward light `light`, as packets
-    // (FrustumGrid::occludedBatch); refused[i] = 1: not covered. Rays that
-    // follow one another in light-tile order pack best.
+    // (FrustumGrid::occludedBatch); refused[i] = 1: not covered.
     void occludedShadowBatch(std::span<const Ray> rays, int light, std::span<unsigned char> blocked,
                              std::span<unsigned char> refused) const;
-    // The light-grid column of a shadow ray's origin, to trace rays of one
-    // light tile together; -1 when there is none.
-    int lightColumn(const Ray& ray, int light) const;
 
     const FrustumGrid& cameraGrid() const { return camera_; }
 

@@ -41,12 +41,10 @@ struct GridFrame {
         return {d.x * right.x + d.y * right.y + d.z * right.z, d.x * up.x + d.y * up.y + d.z * up.z,
                 d.x * forward.x + d.y * forward.y + d.z * forward.z};
     }
-    // The perspective coordinate before the angular mapping (x/z), or x.
+    // The planar coordinate of a point across the grid: x/z (both
+    // perspective mappings; the angular one spaces its cells evenly in
+    // atan of it, GridAxis.h), or x.
     double planar(double lateral, double z) const { return perspective() ? lateral / z : lateral; }
-    // The grid coordinate of a planar coordinate.
-    double grid(double planarValue) const {
-        return mapping == GridMapping::Angular ? std::atan(planarValue) : planarValue;
-    }
 };
 
 // The frame whose forward is `forward` (need not be unit), with `upHint`
