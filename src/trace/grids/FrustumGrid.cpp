@@ -687,14 +687,11 @@ std::vector<Vec3> FrustumGrid::occupiedColumnCorners() const {
     std::vector<Vec3> corners;
     if (zLo_ > zHi_ || !spec_.frame.perspective()) return corners;
     const GridFrame& f = spec_.frame;
-    const std::size_t columns = static_cast<std::size_t>(spec_.nx) * static_cast<std::size_t>(spec_.ny);
     for (int j = 0; j < spec_.ny; ++j)
         for (int i = 0; i < spec_.nx; ++i) {
-            const std::size_t column =
-                static_cast<std::size_t>(j) * static_cast<std::size_t>(spec_.nx) + static_cast<std::size_t>(i);
             int first = -1, last = -1;
             for (int k = 0; k < nz_; ++k) {
-                const std::size_t cell = static_cast<std::size_t>(k) * columns + column;
+                const std::size_t cell = flatCell(k, j, i);
                 if (cellStart_[cell + 1] > cellStart_[cell]) {
                     if (first < 0) first = k;
                     last = k;

@@ -111,11 +111,12 @@ private:
     void occludedPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& walk,
                         std::span<unsigned char> blocked) const;
     CellRange binPrimitive(std::uint32_t primitive, bool& inNearZone) const;
-    // Index of cell (i, j) of depth slice k in cellStart_.
+    // Index of cell (i, j) of depth slice k in cellStart_. A column's slices
+    // lie next to one another: a ray walks one column front to back.
     std::size_t flatCell(int k, int j, int i) const {
-        return (static_cast<std::size_t>(k) * static_cast<std::size_t>(spec_.ny) + static_cast<std::size_t>(j)) *
-                   static_cast<std::size_t>(spec_.nx) +
-               static_cast<std::size_t>(i);
+        return (static_cast<std::size_t>(j) * static_cast<std::size_t>(spec_.nx) + static_cast<std::size_t>(i)) *
+                   static_cast<std::size_t>(nz_) +
+               static_cast<std::size_t>(k);
     }
     // True in the first cell, in the traversal's order, where the ray meets
     // `primitive`: a primitive spanning many cells (a floor, a wall) is
