@@ -37,7 +37,7 @@ GridAgreement compareGridsWithEmbree(const Scene& scene, const Camera& camera, i
     const TraceScene grids(scene, gridOptions);
     const TraceScene embree(scene);
     grids.prepareFrame(scene, camera, width, height, parallel);
-    const GridPrimitives primitives(scene);
+    const GridPrimitives primitives(scene, parallel);
 
     const CameraRays cameraRays(camera, width, height);
     std::vector<Ray> rays;

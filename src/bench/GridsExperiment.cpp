@@ -8,16 +8,13 @@
 #include <span>
 
 #include "bench/GridAgreement.h"
+#include "bench/GridsWorkload.h"
 #include "bench/MarkdownTable.h"
 #include "bench/ResultsJson.h"
 #include "bench/SvgPlot.h"
 #include "core/AtomicFile.h"
 #include "core/Errors.h"
-#include "render/CameraRays.h"
-#include "render/LocalShading.h"
-#include "render/SurfacePoint.h"
 #include "scene/BuiltinScenes.h"
-#include "scene/MeshGenerators.h"
 #include "scene/ScenePose.h"
 #include "trace/TraceScene.h"
 
@@ -30,8 +27,6 @@ using Clock = std::chrono::steady_clock;
 double millisecondsSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
-
-constexpr int kTile = 16;
 
 // The document's Table 1 (GTX 280, 1024², build + trace, with shadows).
 struct PaperRow {
@@ -65,96 +60,11 @@ struct FrameCosts {
     double gridPrimaryBuild = 0.0, gridShadowBuild = 0.0;
 };
 
-struct Model {
-    std::string name;
-    Scene scene;
-    bool animated = false;
-};
-
-// A torus of about `triangles` triangles on a floor under one point light.
-Model torusModel(int triangles) {
-    const int tube = std::max(8, static_cast<int>(std::sqrt(triangles / 4.0)));
-    const int ring = std::max(8, triangles / (2 * tube));
-    Scene s;
-    auto mesh = std::make_shared<TriangleMesh>(makeTorus(0.35f, 0.15f, ring, tube));
-    for (Vec3& p : mesh->positions) p = p * 3.0f;
-    SceneObject torus;
-    torus.name = "torus";
-    torus.shape = MeshShape{mesh};
-    s.objects.push_back(torus);
-    auto floor = std::make_shared<TriangleMesh>(makePlane());
-    for (Vec3& p : floor->positions) p = p * 10.0f + Vec3{0.0f, -1.0f, 0.0f};
-    SceneObject f;
-    f.name = "floor";
-    f.shape = MeshShape{floor};
-    s.objects.push_back(f);
-    Light light;
-    light.position = {2.0f, 6.0f, 3.0f};
-    s.lights.push_back(light);
-    s.camera = Camera{{0.0f, 2.5f, 5.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 50.0f};
-    s.cameraPath.kind = CameraPathKind::Orbit;
-    s.cameraPath.center = {0.0f, 0.0f, 0.0f};
-    s.cameraPath.degreesPerFrame = 2.0f;
-    const std::size_t count = mesh->triangles.size() + floor->triangles.size();
-    return {"torus " + std::to_string((count + 500) / 1000) + "k", std::move(s), false};
-}
-
 std::uint64_t triangleCount(const Scene& scene) {
     std::uint64_t n = 0;
     for (const SceneObject& o : scene.objects)
         if (const auto* m = std::get_if<MeshShape>(&o.shape)) n += m->mesh->triangles.size();
     return n;
-}
-
-// One frame: primary rays by tile, then the shadow rays of their hits by
-// tile, through `tracer` (grids: its primary/shadow calls; Embree: packets).
-struct FrameRays {
-    std::vector<TileRange> tiles;
-    std::vector<std::vector<Ray>> primary;  // per tile
-    std::vector<std::vector<Ray>> shadow;   // per tile, from Embree's hits
-    std::vector<std::vector<int>> lights;
-};
-
-FrameRays cameraRaysByTile(const Camera& camera, int side) {
-    FrameRays rays;
-    const CameraRays cameraRays(camera, side, side);
-    for (int y0 = 0; y0 < side; y0 += kTile)
-        for (int x0 = 0; x0 < side; x0 += kTile) {
-            const TileRange tile{x0, y0, std::min(side, x0 + kTile), std::min(side, y0 + kTile)};
-            rays.tiles.push_back(tile);
-            std::vector<Ray> tileRays;
-            for (int y = tile.y0; y < tile.y1; ++y)
-                for (int x = tile.x0; x < tile.x1; ++x) tileRays.push_back(cameraRays.ray(x, y));
-            rays.primary.push_back(std::move(tileRays));
-        }
-    return rays;
-}
-
-double tracePrimary(const TraceScene& tracer, const FrameRays& rays, const Parallel& parallel, bool grids,
-                    std::vector<std::vector<TraceHit>>* keepHits) {
-    std::vector<std::vector<TraceHit>> hits(rays.tiles.size());
-    const auto start = Clock::now();
-    parallel.forEachIndex(static_cast<int>(rays.tiles.size()), [&](int t, int) {
-        const auto i = static_cast<std::size_t>(t);
-        hits[i].resize(rays.primary[i].size());
-        if (grids) tracer.intersectPrimary(rays.primary[i], hits[i]);
-        else tracer.intersectCoherent(rays.primary[i], hits[i]);
-    });
-    const double ms = millisecondsSince(start);
-    if (keepHits) *keepHits = std::move(hits);
-    return ms;
-}
-
-double traceShadows(const TraceScene& tracer, const FrameRays& rays, const Parallel& parallel, bool grids) {
-    std::vector<std::vector<unsigned char>> blocked(rays.tiles.size());
-    const auto start = Clock::now();
-    parallel.forEachIndex(static_cast<int>(rays.tiles.size()), [&](int t, int) {
-        const auto i = static_cast<std::size_t>(t);
-        blocked[i].resize(rays.shadow[i].size());
-        if (grids) tracer.occludedPrimaryShadows(rays.shadow[i], rays.lights[i], blocked[i]);
-        else tracer.occludedCoherent(rays.shadow[i], blocked[i]);
-    });
-    return millisecondsSince(start);
 }
 
 // `updated` (animated models): the animation's own tracer, updated to
@@ -164,7 +74,7 @@ FrameCosts measureFrame(const Scene& posed, const Camera& camera, int side, cons
     // Every structure is built from scratch for this frame, as for a still scene.
     Scene still = posed;
     still.animation = SceneAnimation{};
-    FrameRays rays = cameraRaysByTile(camera, side);
+    GridsFrameRays rays = cameraRaysByTile(camera, side);
     FrameCosts costs;
     for (const EmbreeBuildQuality quality : {EmbreeBuildQuality::Medium, EmbreeBuildQuality::Low}) {
         TraceOptions options;
@@ -175,25 +85,8 @@ FrameCosts measureFrame(const Scene& posed, const Camera& camera, int side, cons
         c.build = millisecondsSince(start);
         std::vector<std::vector<TraceHit>> hits;
         c.primary = tracePrimary(tracer, rays, parallel, false, rays.shadow.empty() ? &hits : nullptr);
-        if (rays.shadow.empty()) {
-            // The shadow rays of the frame, from Embree's hits, shared by every tracer.
-            const LocalShading shading(still);
-            std::vector<ShadowQuery> queries(still.lights.size());
-            rays.shadow.resize(rays.tiles.size());
-            rays.lights.resize(rays.tiles.size());
-            for (std::size_t t = 0; t < rays.tiles.size(); ++t)
-                for (std::size_t i = 0; i < hits[t].size(); ++i) {
-                    const TraceHit& h = hits[t][i];
-                    if (!h.hit()) continue;
-                    const SurfacePoint sp =
-                        surfacePointAt(still.objects[static_cast<std::size_t>(h.objectId)], rays.primary[t][i], h, false);
-                    const int count = shading.shadowQueries(sp, queries.data());
-                    for (int q = 0; q < count; ++q) {
-                        rays.shadow[t].push_back(queries[static_cast<std::size_t>(q)].ray);
-                        rays.lights[t].push_back(queries[static_cast<std::size_t>(q)].lightIndex);
-                    }
-                }
-        }
+        // The shadow rays of the frame, from Embree's hits, shared by every tracer.
+        if (rays.shadow.empty()) addShadowRays(still, hits, rays);
         c.shadow = traceShadows(tracer, rays, parallel, false);
         (quality == EmbreeBuildQuality::Low ? costs.embreeLow : costs.embreeMedium) = c;
     }
@@ -255,8 +148,8 @@ public:
     ExperimentOutput run(ExperimentContext& context) const override {
         const SizePlan plan = planFor(context.settings.size);
         const double frameWork = static_cast<double>(plan.side) * plan.side / 1e6 * 4.0;
-        std::vector<Model> models;
-        for (const int n : plan.torusTriangles) models.push_back(torusModel(n));
+        std::vector<GridsModel> models;
+        for (const int n : plan.torusTriangles) models.push_back(gridsTorusModel(n));
         for (const std::string& name : plan.animated) {
             std::optional<Scene> scene = makeBuiltinScene(name);
             if (!scene) throw RuntimeError("built-in scene " + name + " is missing");
@@ -273,7 +166,7 @@ public:
         plot.yLabel = "ms per frame";
         PlotSeries gridLine{"grids", {}}, lowLine{"Embree LOW rebuilt", {}}, mediumLine{"Embree MEDIUM rebuilt", {}};
         ExperimentOutput out;
-        for (const Model& model : models) {
+        for (const GridsModel& model : models) {
             context.progress.step("grids: " + model.name);
             Costs grids, low, medium, updated;
             double gridPrimaryBuild = 0.0, gridShadowBuild = 0.0;

@@ -44,7 +44,7 @@ GridFrameStats GridAccelerator::buildFrame(const Scene& scene, const Camera& cam
                                            const Parallel& parallel) {
     GridFrameStats stats;
     auto start = Clock::now();
-    primitives_ = std::make_unique<GridPrimitives>(scene);
+    primitives_ = std::make_unique<GridPrimitives>(scene, parallel);
     stats.primitives = primitives_->count();
     worldScale_ = worldScaleOf(scene, camera);
 

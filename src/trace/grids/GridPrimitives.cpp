@@ -1,12 +1,13 @@
 #include "trace/grids/GridPrimitives.h"
 
+#include <algorithm>
 #include <variant>
 
 #include "trace/SphereIntersection.h"
 
 namespace raycache {
 
-GridPrimitives::GridPrimitives(const Scene& scene) {
+GridPrimitives::GridPrimitives(const Scene& scene, const Parallel& parallel) {
     objects_.reserve(scene.objects.size());
     firstPrimitive_.reserve(scene.objects.size() + 1);
     for (const SceneObject& object : scene.objects) {
@@ -23,22 +24,28 @@ GridPrimitives::GridPrimitives(const Scene& scene) {
     }
     firstPrimitive_.push_back(count_);
     primitiveObject_.resize(count_);
-    for (std::size_t o = 0; o < objects_.size(); ++o)
-        for (std::uint32_t p = firstPrimitive_[o]; p < firstPrimitive_[o + 1]; ++p)
+    corners_.resize(count_);
+    isSphere_.resize(count_);
+    // Blocks of primitives, each filled from its objects' geometry.
+    constexpr std::uint32_t kBlock = 16384;
+    const int blocks = static_cast<int>((count_ + kBlock - 1) / kBlock);
+    parallel.forEachIndex(blocks, [&](int b, int) {
+        const std::uint32_t begin = static_cast<std::uint32_t>(b) * kBlock;
+        const std::uint32_t end = std::min(count_, begin + kBlock);
+        // The object holding `begin`: the last whose first primitive is at or before it.
+        std::size_t o = static_cast<std::size_t>(
+            std::upper_bound(firstPrimitive_.begin(), firstPrimitive_.end() - 1, begin) - firstPrimitive_.begin() - 1);
+        for (std::uint32_t p = begin; p < end; ++p) {
+            while (p >= firstPrimitive_[o + 1]) ++o;
             primitiveObject_[p] = static_cast<int>(o);
-}
-
-const Sphere* GridPrimitives::sphere(std::uint32_t primitive) const {
-    return objects_[static_cast<std::size_t>(objectOf(primitive))].sphere;
-}
-
-void GridPrimitives::triangle(std::uint32_t primitive, Vec3& p0, Vec3& p1, Vec3& p2) const {
-    const int object = objectOf(primitive);
-    const TriangleMesh& mesh = *objects_[static_cast<std::size_t>(object)].mesh;
-    const auto& indices = mesh.triangles[primitive - firstPrimitive_[static_cast<std::size_t>(object)]];
-    p0 = mesh.positions[indices[0]];
-    p1 = mesh.positions[indices[1]];
-    p2 = mesh.positions[indices[2]];
+            const ObjectGeometry& geometry = objects_[o];
+            isSphere_[p] = geometry.sphere ? 1 : 0;
+            if (geometry.sphere) continue;
+            const auto& indices = geometry.mesh->triangles[p - firstPrimitive_[o]];
+            corners_[p] = {geometry.mesh->positions[indices[0]], geometry.mesh->positions[indices[1]],
+                           geometry.mesh->positions[indices[2]]};
+        }
+    });
 }
 
 

@@ -3,10 +3,13 @@
 // every mesh and every sphere of the posed scene, numbered consecutively
 // (object by object, in object order), with the intersection tests the grids
 // run. Holds pointers into the scene, which must not change while the frame
-// is traced.
+// is traced, and a copy of every triangle's corners: the grids fetch a
+// triangle many times a frame (binned into every grid, tested by packets),
+// and one flat array is one load where the mesh is three dependent ones.
 #include <cstdint>
 #include <vector>
 
+#include "core/Parallel.h"
 #include "core/Ray.h"
 #include "scene/Scene.h"
 #include "trace/TraceHit.h"
@@ -16,7 +19,7 @@ namespace raycache {
 
 class GridPrimitives {
 public:
-    explicit GridPrimitives(const Scene& scene);
+    GridPrimitives(const Scene& scene, const Parallel& parallel);
 
     std::uint32_t count() const { return count_; }
     int objectOf(std::uint32_t primitive) const { return primitiveObject_[primitive]; }
@@ -24,9 +27,16 @@ public:
         return static_cast<int>(primitive - firstPrimitive_[static_cast<std::size_t>(objectOf(primitive))]);
     }
     // Null for a triangle.
-    const Sphere* sphere(std::uint32_t primitive) const;
+    const Sphere* sphere(std::uint32_t primitive) const {
+        return isSphere_[primitive] ? objects_[static_cast<std::size_t>(objectOf(primitive))].sphere : nullptr;
+    }
     // The world-space corners of a triangle primitive.
-    void triangle(std::uint32_t primitive, Vec3& p0, Vec3& p1, Vec3& p2) const;
+    void triangle(std::uint32_t primitive, Vec3& p0, Vec3& p1, Vec3& p2) const {
+        const Corners& c = corners_[primitive];
+        p0 = c.p0;
+        p1 = c.p1;
+        p2 = c.p2;
+    }
 
     // The primitive's hit on `ray` if it is nearer than `best` (ties on
     // distance go to the smaller object id, then primitive id, so the answer
@@ -49,6 +59,11 @@ private:
     std::vector<ObjectGeometry> objects_;
     std::vector<std::uint32_t> firstPrimitive_;  // per object, and the total at the end
     std::vector<int> primitiveObject_;
+    struct Corners {
+        Vec3 p0, p1, p2;
+    };
+    std::vector<Corners> corners_;            // per primitive; a sphere's are unused
+    std::vector<unsigned char> isSphere_;     // per primitive
     std::uint32_t count_ = 0;
 };
 

@@ -1,0 +1,118 @@
+// The grids against Embree on one model, interleaved over many rounds: per
+// round the grids' build (camera and light grids), their primary and shadow
+// rays, and Embree's fastest (LOW) build and 16-wide packets on the same
+// rays. Medians with min-max over the rounds. For comparing variants of the
+// grids where `raycache bench grids` (five frames per model, means) is too
+// coarse: run two binaries alternately and compare the medians and ranges.
+// Usage: grids_speed [--model "torus 100k" | cloth | orbit | ...] [--size 1024] [--rounds 15]
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bench/GridsWorkload.h"
+#include "bench/SampleSummary.h"
+#include "core/Errors.h"
+#include "scene/BuiltinScenes.h"
+
+using namespace raycache;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// "torus <thousands>k" or a built-in scene's name (posed as at time 0, kept still).
+std::optional<GridsModel> modelNamed(const std::string& name) {
+    int thousands = 0;
+    char k = 0;
+    if (std::sscanf(name.c_str(), "torus %d%c", &thousands, &k) == 2 && k == 'k' && thousands > 0 &&
+        thousands <= 4000)
+        return gridsTorusModel(thousands * 1000);
+    std::optional<Scene> scene = makeBuiltinScene(name);
+    if (!scene) return std::nullopt;
+    scene->animation = SceneAnimation{};
+    return GridsModel{name, std::move(*scene), false};
+}
+
+void report(const char* label, const std::vector<double>& samples) {
+    const SampleSummary s = summarize(samples);
+    std::printf("  %-16s %8.2f ms  (%.2f-%.2f)\n", label, s.median, s.min, s.max);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app("Grids vs Embree rebuilt, one model, many interleaved rounds (medians with min-max)");
+    std::string modelName = "torus 100k";
+    int size = 1024, rounds = 15, threads = 0;
+    app.add_option("--model", modelName, "\"torus <N>k\" (N thousand triangles, 1-4000) or a built-in scene")
+        ->capture_default_str();
+    app.add_option("--size", size, "Image side in pixels")->capture_default_str()->check(CLI::Range(16, 8192));
+    app.add_option("--rounds", rounds, "Rounds, each timing every part once")->capture_default_str()->check(
+        CLI::Range(1, 10000));
+    app.add_option("--threads", threads, "Worker threads, 0 = all")->capture_default_str()->check(CLI::Range(0, 1024));
+    CLI11_PARSE(app, argc, argv);
+
+    const std::optional<GridsModel> model = modelNamed(modelName);
+    if (!model) {
+        std::fprintf(stderr, "grids_speed: --model: no model named \"%s\"\n", modelName.c_str());
+        return 2;
+    }
+    const Parallel parallel(threads);
+    const Scene& scene = model->scene;
+    const Camera& camera = scene.camera;
+    GridsFrameRays rays = cameraRaysByTile(camera, size);
+    {
+        // The shadow rays of Embree's hits, as in `bench grids`.
+        const TraceScene embree(scene);
+        std::vector<std::vector<TraceHit>> hits;
+        tracePrimary(embree, rays, parallel, false, &hits);
+        addShadowRays(scene, hits, rays);
+    }
+    std::size_t shadowCount = 0;
+    for (const auto& tile : rays.shadow) shadowCount += tile.size();
+
+    TraceOptions gridOptions;
+    gridOptions.accelerator = Accelerator::Grids;
+    const TraceScene grids(scene, gridOptions);  // its Embree BVH answers only refused rays: not timed
+    TraceOptions lowOptions;
+    lowOptions.stillSceneQuality = EmbreeBuildQuality::Low;
+    std::vector<double> gridBuild, gridPrimary, gridShadow, gridTotal, embreeBuild, embreePrimary, embreeShadow,
+        embreeTotal;
+    for (int round = 0; round < rounds; ++round) {
+        auto start = Clock::now();
+        grids.prepareFrame(scene, camera, size, size, parallel);
+        gridBuild.push_back(msSince(start));
+        gridPrimary.push_back(tracePrimary(grids, rays, parallel, true, nullptr));
+        gridShadow.push_back(traceShadows(grids, rays, parallel, true));
+        gridTotal.push_back(gridBuild.back() + gridPrimary.back() + gridShadow.back());
+
+        start = Clock::now();
+        const TraceScene embree(scene, lowOptions);
+        embreeBuild.push_back(msSince(start));
+        embreePrimary.push_back(tracePrimary(embree, rays, parallel, false, nullptr));
+        embreeShadow.push_back(traceShadows(embree, rays, parallel, false));
+        embreeTotal.push_back(embreeBuild.back() + embreePrimary.back() + embreeShadow.back());
+    }
+    const FrameTraceStats stats = grids.frameStats();
+    std::printf("%s, %dx%d, %zu shadow rays, %d threads, %d rounds; grids refused %llu shadow rays\n",
+                model->name.c_str(), size, size, shadowCount, parallel.threadCount(), rounds,
+                static_cast<unsigned long long>(stats.shadowRefused));
+    std::printf("grids\n");
+    report("build", gridBuild);
+    report("primary", gridPrimary);
+    report("shadow", gridShadow);
+    report("total", gridTotal);
+    std::printf("Embree LOW, rebuilt\n");
+    report("build", embreeBuild);
+    report("primary", embreePrimary);
+    report("shadow", embreeShadow);
+    report("total", embreeTotal);
+    return 0;
+}
