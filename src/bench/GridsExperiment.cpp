@@ -67,10 +67,14 @@ std::uint64_t triangleCount(const Scene& scene) {
     return n;
 }
 
-// `updated` (animated models): the animation's own tracer, updated to
-// `posed` here (`changed`: the objects the pose moved), timed beside the rebuilds.
+// `gridTracer`: the model's grid tracer, kept from frame to frame as a
+// renderer keeps it (its grids rebuilt here, every frame, timed; its Embree
+// BVH, which answers only refused rays, already posed). `updated` (animated
+// models): the animation's own tracer, updated to `posed` here (`changed`:
+// the objects the pose moved), timed beside the rebuilds.
 FrameCosts measureFrame(const Scene& posed, const Camera& camera, int side, const Parallel& parallel,
-                        TraceScene* updated = nullptr, std::span<const int> changed = {}) {
+                        const TraceScene& gridTracer, TraceScene* updated = nullptr,
+                        std::span<const int> changed = {}) {
     // Every structure is built from scratch for this frame, as for a still scene.
     Scene still = posed;
     still.animation = SceneAnimation{};
@@ -99,9 +103,6 @@ FrameCosts measureFrame(const Scene& posed, const Camera& camera, int side, cons
         c.shadow = traceShadows(*updated, rays, parallel, false);
         costs.embreeUpdated = c;
     }
-    TraceOptions gridOptions;
-    gridOptions.accelerator = Accelerator::Grids;
-    const TraceScene gridTracer(still, gridOptions);  // its Embree BVH only answers refused rays: not timed
     auto start = Clock::now();
     gridTracer.prepareFrame(still, camera, side, side, parallel);
     costs.grids.build = millisecondsSince(start);
@@ -174,11 +175,17 @@ public:
             // The animation's own tracer, built once as a renderer builds it (untimed).
             std::optional<TraceScene> animationTracer;
             if (model.animated) animationTracer.emplace(model.scene);
+            TraceOptions gridOptions;
+            gridOptions.accelerator = Accelerator::Grids;
+            TraceScene gridTracer(model.scene, gridOptions);
             for (int frame = 0; frame < plan.frames; ++frame) {
                 SceneChanges changes;
-                if (model.animated) changes = poseScene(model.scene, static_cast<float>(frame) / model.scene.fps, posed);
+                if (model.animated) {
+                    changes = poseScene(model.scene, static_cast<float>(frame) / model.scene.fps, posed);
+                    gridTracer.update(posed, changes.objects);  // untimed: only refused rays use it
+                }
                 const Camera camera = model.scene.cameraPath.cameraAt(model.scene.camera, frame);
-                const FrameCosts c = measureFrame(posed, camera, plan.side, context.parallel,
+                const FrameCosts c = measureFrame(posed, camera, plan.side, context.parallel, gridTracer,
                                                   animationTracer ? &*animationTracer : nullptr, changes.objects);
                 grids += c.grids;
                 low += c.embreeLow;

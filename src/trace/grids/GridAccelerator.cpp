@@ -44,7 +44,8 @@ GridFrameStats GridAccelerator::buildFrame(const Scene& scene, const Camera& cam
                                            const Parallel& parallel) {
     GridFrameStats stats;
     auto start = Clock::now();
-    primitives_ = std::make_unique<GridPrimitives>(scene, parallel);
+    if (!primitives_) primitives_ = std::make_unique<GridPrimitives>();
+    primitives_->rebuild(scene, parallel);
     stats.primitives = primitives_->count();
     worldScale_ = worldScaleOf(scene, camera);
 
@@ -138,7 +139,11 @@ const Vec3 kFaceAxes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 
 void GridAccelerator::buildLightGrid(const Light& light, std::size_t index, const std::vector<Vec3>& visible,
                                      const Parallel& parallel, GridFrameStats& stats) {
     LightGrids& grids = lights_[index];
-    grids = {};
+    // Last frame's grids are rebuilt in place: their arrays keep their memory.
+    for (std::unique_ptr<FrustumGrid>& grid : grids.grids)
+        if (grid) grids.spare.push_back(std::move(grid));
+    grids.grids.clear();
+    grids.faces = false;
     if (visible.empty()) return;
     // Shadow rays start a surface offset off the hit (render/LocalShading.cpp)
     // and end that far from a point light: the grids are padded by twice it.
@@ -214,7 +219,13 @@ void GridAccelerator::buildLightGrid(const Light& light, std::size_t index, cons
             grids.grids.emplace_back();
             continue;
         }
-        auto grid = std::make_unique<FrustumGrid>();
+        std::unique_ptr<FrustumGrid> grid;
+        if (grids.spare.empty()) {
+            grid = std::make_unique<FrustumGrid>();
+        } else {
+            grid = std::move(grids.spare.back());
+            grids.spare.pop_back();
+        }
         grid->build(spec, *primitives_, parallel);
         stats.shadowPairs += grid->stats().pairs;
         ++stats.lightGrids;

@@ -76,6 +76,7 @@ private:
     // the geometry). Null entries: no grid (nothing to cover).
     struct LightGrids {
         std::vector<std::unique_ptr<FrustumGrid>> grids;
+        std::vector<std::unique_ptr<FrustumGrid>> spare;  // earlier frames' grids, to rebuild in place
         bool faces = false;
     };
     const FrustumGrid* lightGridFor(const Ray& ray, int light, int& face) const;

@@ -7,7 +7,10 @@
 
 namespace raycache {
 
-GridPrimitives::GridPrimitives(const Scene& scene, const Parallel& parallel) {
+void GridPrimitives::rebuild(const Scene& scene, const Parallel& parallel) {
+    objects_.clear();
+    firstPrimitive_.clear();
+    count_ = 0;
     objects_.reserve(scene.objects.size());
     firstPrimitive_.reserve(scene.objects.size() + 1);
     for (const SceneObject& object : scene.objects) {

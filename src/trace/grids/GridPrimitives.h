@@ -19,7 +19,12 @@ namespace raycache {
 
 class GridPrimitives {
 public:
-    GridPrimitives(const Scene& scene, const Parallel& parallel);
+    GridPrimitives() = default;
+    GridPrimitives(const Scene& scene, const Parallel& parallel) { rebuild(scene, parallel); }
+    // The primitives of `scene`, in place: a renderer calls this every
+    // frame, and the arrays keep their memory (fresh pages would be zeroed
+    // by the kernel each time).
+    void rebuild(const Scene& scene, const Parallel& parallel);
 
     std::uint32_t count() const { return count_; }
     int objectOf(std::uint32_t primitive) const { return primitiveObject_[primitive]; }
