@@ -18,6 +18,7 @@
 #include "scene/MeshGenerators.h"
 #include "scene/MeshLoader.h"
 #include "scene/ScenePose.h"
+#include "trace/grids/GridAxis.h"
 #include "trace/grids/RadixSort.h"
 #include "trace/grids/WatertightTriangle.h"
 
@@ -133,6 +134,66 @@ TEST(WatertightTriangle, BarycentricsAndDistanceOfACentreHit) {
     // Zero-area triangles never hit.
     EXPECT_FALSE(intersectWatertight(WatertightRay(Ray{{0, 0, 0}, {0, 0, -1}}), p0, p0, p2, h));
     EXPECT_FALSE(intersectWatertight(WatertightRay(Ray{{0, 0, 0}, {0, 0, -1}}), {-1, 0, -3}, {0, 0, -3}, {1, 0, -3}, h));
+}
+
+// The cell a value falls in, by definition: the last boundary it reaches, clamped.
+int cellBySearch(const GridAxis& axis, double value) {
+    int cell = 0;
+    for (int i = 1; i < axis.count(); ++i)
+        if (value >= axis.boundary(i)) cell = i;
+    return cell;
+}
+
+TEST(GridAxis, CellIsTheLastBoundaryReachedOnEveryAxis) {
+    std::mt19937 random(7);
+    struct Case {
+        bool angular;
+        double lo, hi;
+        int count;
+    };
+    // Wide and narrow, uniform and angular: on the narrow angular axis the
+    // estimate of the cell is off by many cells, and the boundaries decide.
+    const Case cases[] = {{false, -0.6, 0.6, 128}, {false, 2.0, 9.0, 64},       {true, -0.80, 0.80, 128},
+                          {true, -1.39, 1.39, 128}, {true, 0.300, 0.302, 128}, {true, -0.9, -0.1, 1}};
+    for (const Case& c : cases) {
+        GridAxis axis;
+        if (c.angular) axis.setAngular(c.lo, c.hi, c.count);
+        else axis.setUniform(c.lo, c.hi, c.count);
+        ASSERT_EQ(axis.count(), c.count);
+        const double lower = axis.lower(), upper = axis.upper();
+        EXPECT_DOUBLE_EQ(lower, c.angular ? std::tan(c.lo) : c.lo);
+        EXPECT_DOUBLE_EQ(upper, c.angular ? std::tan(c.hi) : c.hi);
+        std::uniform_real_distribution<double> inside(lower - 0.1 * (upper - lower), upper + 0.1 * (upper - lower));
+        int previous = 0;
+        std::vector<double> values;
+        for (int i = 0; i < 20000; ++i) values.push_back(inside(random));
+        // Every boundary, and the doubles either side of it.
+        for (int i = 0; i <= c.count; ++i)
+            for (const double b : {axis.boundary(i), std::nextafter(axis.boundary(i), -1e300),
+                                   std::nextafter(axis.boundary(i), 1e300)})
+                values.push_back(b);
+        std::sort(values.begin(), values.end());
+        for (const double v : values) {
+            const int cell = axis.cellOf(v);
+            ASSERT_EQ(cell, cellBySearch(axis, v)) << "value " << v;
+            ASSERT_GE(cell, previous) << "not monotonic at " << v;  // values are sorted
+            previous = cell;
+            for (int from = 0; from <= cell; ++from) ASSERT_EQ(axis.cellFrom(from, v), cell);
+        }
+        // The external oracle: angular cells are evenly spaced in atan.
+        if (c.angular)
+            for (int i = 0; i < 2000; ++i) {
+                const double angle = c.lo + (c.hi - c.lo) * (i + 0.5) / 2000.0;
+                const int expected = static_cast<int>(std::floor((angle - c.lo) / ((c.hi - c.lo) / c.count)));
+                const double nearestBoundary = c.lo + std::round((angle - c.lo) / ((c.hi - c.lo) / c.count)) *
+                                                          ((c.hi - c.lo) / c.count);
+                if (std::fabs(angle - nearestBoundary) < 1e-9) continue;  // too close to a boundary to judge
+                EXPECT_EQ(axis.cellOf(std::tan(angle)), expected) << "angle " << angle;
+            }
+        EXPECT_EQ(axis.cellOf(std::nan("")), 0);
+        EXPECT_EQ(axis.cellOf(-1e300), 0);
+        EXPECT_EQ(axis.cellOf(1e300), c.count - 1);
+    }
 }
 
 TEST(RadixSort, EqualsAStableSortWhateverTheThreadCount) {
