@@ -31,8 +31,7 @@ double msSince(Clock::time_point start) {
 std::optional<GridsModel> modelNamed(const std::string& name) {
     int thousands = 0;
     char k = 0;
-    if (std::sscanf(name.c_str(), "torus %d%c", &thousands, &k) == 2 && k == 'k' && thousands > 0 &&
-        thousands <= 4000)
+    if (std::sscanf(name.c_str(), "torus %d%c", &thousands, &k) == 2 && k == 'k' && thousands > 0 && thousands <= 4000)
         return gridsTorusModel(thousands * 1000);
     std::optional<Scene> scene = makeBuiltinScene(name);
     if (!scene) return std::nullopt;
@@ -54,8 +53,9 @@ int main(int argc, char** argv) {
     app.add_option("--model", modelName, "\"torus <N>k\" (N thousand triangles, 1-4000) or a built-in scene")
         ->capture_default_str();
     app.add_option("--size", size, "Image side in pixels")->capture_default_str()->check(CLI::Range(16, 8192));
-    app.add_option("--rounds", rounds, "Rounds, each timing every part once")->capture_default_str()->check(
-        CLI::Range(1, 10000));
+    app.add_option("--rounds", rounds, "Rounds, each timing every part once")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 10000));
     app.add_option("--threads", threads, "Worker threads, 0 = all")->capture_default_str()->check(CLI::Range(0, 1024));
     CLI11_PARSE(app, argc, argv);
 

@@ -73,8 +73,10 @@ double tracePrimary(const TraceScene& tracer, const GridsFrameRays& rays, const 
     parallel.forEachIndex(static_cast<int>(rays.tiles.size()), [&](int t, int) {
         const auto i = static_cast<std::size_t>(t);
         hits[i].resize(rays.primary[i].size());
-        if (grids) tracer.intersectPrimary(rays.primary[i], hits[i]);
-        else tracer.intersectCoherent(rays.primary[i], hits[i]);
+        if (grids)
+            tracer.intersectPrimary(rays.primary[i], hits[i]);
+        else
+            tracer.intersectCoherent(rays.primary[i], hits[i]);
     });
     const double ms = millisecondsSince(start);
     if (keepHits) *keepHits = std::move(hits);
@@ -87,8 +89,10 @@ double traceShadows(const TraceScene& tracer, const GridsFrameRays& rays, const 
     parallel.forEachIndex(static_cast<int>(rays.tiles.size()), [&](int t, int) {
         const auto i = static_cast<std::size_t>(t);
         blocked[i].resize(rays.shadow[i].size());
-        if (grids) tracer.occludedPrimaryShadows(rays.shadow[i], rays.lights[i], blocked[i]);
-        else tracer.occludedCoherent(rays.shadow[i], blocked[i]);
+        if (grids)
+            tracer.occludedPrimaryShadows(rays.shadow[i], rays.lights[i], blocked[i]);
+        else
+            tracer.occludedCoherent(rays.shadow[i], blocked[i]);
     });
     return millisecondsSince(start);
 }

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <limits>
 #include <string>
-#include <tuple>
 
 #include "core/Errors.h"
 #include "trace/grids/RadixSort.h"
@@ -139,8 +138,8 @@ FrustumGrid::CellRange FrustumGrid::binPrimitive(std::uint32_t primitive, bool& 
         tHi = bounds.hi.y + m;
     }
     if (sHi < sAxis_.lower() || sLo > sAxis_.upper() || tHi < tAxis_.lower() || tLo > tAxis_.upper()) return kNone;
-    return {sAxis_.cellOf(sLo),     sAxis_.cellOf(sHi),     tAxis_.cellOf(tLo),
-            tAxis_.cellOf(tHi),     depthAxis_.cellOf(zA), depthAxis_.cellOf(zB)};
+    return {sAxis_.cellOf(sLo), sAxis_.cellOf(sHi),    tAxis_.cellOf(tLo),
+            tAxis_.cellOf(tHi), depthAxis_.cellOf(zA), depthAxis_.cellOf(zB)};
 }
 
 void FrustumGrid::build(const FrustumGridSpec& spec, const GridPrimitives& primitives, const Parallel& parallel) {
@@ -352,7 +351,8 @@ struct PacketKey {
 // partial one, to `packet` as the span of its ray indices. A key is matched
 // against the few packets open at the time only: rays that belong together
 // come close together in a batch (a tile's camera rays row by row across a
-// few columns, shadow rays in light-tile order). An equal key met later
+// few columns; a tile's shadow rays, whose origins lie close together in
+// the light's space too). An equal key met later
 // opens another packet: a packet less full, never another answer, since
 // every lane's answer is its own.
 template <typename Key>
@@ -368,7 +368,7 @@ public:
                 if (used_ < kOpen) {
                     ++used_;
                 } else {
-                    // Every slot taken: the oldest-opened one is handed on and reused.
+                    // Every slot taken: the slots are handed on and reused in turn.
                     slot = evict_;
                     evict_ = (evict_ + 1) % kOpen;
                     emit(open_[slot], packet);
@@ -595,8 +595,8 @@ void FrustumGrid::occludedBatch(std::span<const Ray> rays, std::span<unsigned ch
     gatherer.flush(trace);
 }
 
-void FrustumGrid::occludedPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes,
-                                 const Traversal& walk, std::span<unsigned char> blocked) const {
+void FrustumGrid::occludedPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& walk,
+                                 std::span<unsigned char> blocked) const {
     const std::size_t n = lanes.size();
     // Each lane's origin and shear in the packet's common axes (kx, ky, kz).
     alignas(64) float ox[kLanes], oy[kLanes], oz[kLanes], sx[kLanes], sy[kLanes], sz[kLanes];

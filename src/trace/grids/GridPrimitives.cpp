@@ -51,7 +51,6 @@ void GridPrimitives::rebuild(const Scene& scene, const Parallel& parallel) {
     });
 }
 
-
 void GridPrimitives::intersect(std::uint32_t primitive, const Ray& ray, const WatertightRay& watertight,
                                TraceHit& best) const {
     const int object = objectOf(primitive);
@@ -76,8 +75,8 @@ void GridPrimitives::intersect(std::uint32_t primitive, const Ray& ray, const Wa
 bool GridPrimitives::occludes(std::uint32_t primitive, const Ray& ray, const WatertightRay& watertight) const {
     const ObjectGeometry& geometry = objects_[static_cast<std::size_t>(objectOf(primitive))];
     if (geometry.sphere)
-        return sphereRoot(*geometry.sphere, ray.origin.x, ray.origin.y, ray.origin.z, ray.direction.x,
-                          ray.direction.y, ray.direction.z, ray.tNear, ray.tFar) >= 0.0f;
+        return sphereRoot(*geometry.sphere, ray.origin.x, ray.origin.y, ray.origin.z, ray.direction.x, ray.direction.y,
+                          ray.direction.z, ray.tNear, ray.tFar) >= 0.0f;
     Vec3 p0, p1, p2;
     triangle(primitive, p0, p1, p2);
     TriangleHit hit;

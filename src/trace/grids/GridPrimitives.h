@@ -67,8 +67,8 @@ private:
     struct Corners {
         Vec3 p0, p1, p2;
     };
-    std::vector<Corners> corners_;            // per primitive; a sphere's are unused
-    std::vector<unsigned char> isSphere_;     // per primitive
+    std::vector<Corners> corners_;         // per primitive; a sphere's are unused
+    std::vector<unsigned char> isSphere_;  // per primitive
     std::uint32_t count_ = 0;
 };
 
