@@ -475,29 +475,16 @@ void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std
         const float ckx = c[kx], cky = c[ky], ckz = c[kz];
         for (std::size_t l = 0; l < kLanes; ++l)
             if (best[l].hit()) tFar[l] = best[l].t;
-        // The watertight test's float path, lane by lane, in the same operations as
-        // intersectWatertight (WatertightTriangle.h) so the answers are identical.
+        // The watertight test's float path, lane by lane (watertightLane).
         for (std::size_t l = 0; l < kLanes; ++l) {
-            const float ax = akx - sx[l] * akz, ay = aky - sy[l] * akz;
-            const float bx = bkx - sx[l] * bkz, by = bky - sy[l] * bkz;
-            const float cx = ckx - sx[l] * ckz, cy = cky - sy[l] * ckz;
-            const float u = cx * by - cy * bx;
-            const float v = ax * cy - ay * cx;
-            const float w = bx * ay - by * ax;
-            const float det = u + v + w;
-            const float t = u * (sz[l] * akz) + v * (sz[l] * bkz) + w * (sz[l] * ckz);
-            const float absDet = std::fabs(det);
-            const float signedT = det < 0.0f ? -t : t;
-            // Bitwise, not short-circuit, so the loop has no branches to stop vectorisation.
-            const bool negative = (u < 0.0f) | (v < 0.0f) | (w < 0.0f);
-            const bool positive = (u > 0.0f) | (v > 0.0f) | (w > 0.0f);
-            zeroEdge[l] = static_cast<int>((u == 0.0f) | (v == 0.0f) | (w == 0.0f));
-            accepted[l] = static_cast<int>(!(negative & positive) & (det != 0.0f) & (signedT > tNear[l] * absDet) &
-                                           (signedT <= tFar[l] * absDet));
-            edgeV[l] = v;
-            edgeW[l] = w;
-            numerator[l] = t;
-            determinant[l] = det;
+            const WatertightLane lane =
+                watertightLane(akx, aky, akz, bkx, bky, bkz, ckx, cky, ckz, sx[l], sy[l], sz[l], tNear[l], tFar[l]);
+            zeroEdge[l] = static_cast<int>(lane.zeroEdge);
+            accepted[l] = static_cast<int>(lane.accepted);
+            edgeV[l] = lane.v;
+            edgeW[l] = lane.w;
+            numerator[l] = lane.t;
+            determinant[l] = lane.det;
         }
         const int object = primitives_->objectOf(primitive);
         const int local = primitives_->localIndex(primitive);
@@ -637,28 +624,14 @@ void FrustumGrid::occludedPacket(std::span<const Ray> rays, std::span<const std:
         const float p0x = p0[kx], p0y = p0[ky], p0z = p0[kz];
         const float p1x = p1[kx], p1y = p1[ky], p1z = p1[kz];
         const float p2x = p2[kx], p2y = p2[ky], p2z = p2[kz];
-        // The watertight test's float path, lane by lane, in the same
-        // operations as intersectWatertight (WatertightTriangle.h): the
-        // corners relative to the lane's origin, then sheared.
+        // The watertight test's float path, lane by lane (watertightLane),
+        // the corners made relative to each lane's own origin.
         for (std::size_t l = 0; l < kLanes; ++l) {
-            const float akx = p0x - ox[l], aky = p0y - oy[l], akz = p0z - oz[l];
-            const float bkx = p1x - ox[l], bky = p1y - oy[l], bkz = p1z - oz[l];
-            const float ckx = p2x - ox[l], cky = p2y - oy[l], ckz = p2z - oz[l];
-            const float ax = akx - sx[l] * akz, ay = aky - sy[l] * akz;
-            const float bx = bkx - sx[l] * bkz, by = bky - sy[l] * bkz;
-            const float cx = ckx - sx[l] * ckz, cy = cky - sy[l] * ckz;
-            const float u = cx * by - cy * bx;
-            const float v = ax * cy - ay * cx;
-            const float w = bx * ay - by * ax;
-            const float det = u + v + w;
-            const float t = u * (sz[l] * akz) + v * (sz[l] * bkz) + w * (sz[l] * ckz);
-            const float absDet = std::fabs(det);
-            const float signedT = det < 0.0f ? -t : t;
-            const bool negative = (u < 0.0f) | (v < 0.0f) | (w < 0.0f);
-            const bool positive = (u > 0.0f) | (v > 0.0f) | (w > 0.0f);
-            zeroEdge[l] = static_cast<int>((u == 0.0f) | (v == 0.0f) | (w == 0.0f));
-            accepted[l] = static_cast<int>(!(negative & positive) & (det != 0.0f) & (signedT > tNear[l] * absDet) &
-                                           (signedT <= tFar[l] * absDet));
+            const WatertightLane lane =
+                watertightLane(p0x - ox[l], p0y - oy[l], p0z - oz[l], p1x - ox[l], p1y - oy[l], p1z - oz[l],
+                               p2x - ox[l], p2y - oy[l], p2z - oz[l], sx[l], sy[l], sz[l], tNear[l], tFar[l]);
+            zeroEdge[l] = static_cast<int>(lane.zeroEdge);
+            accepted[l] = static_cast<int>(lane.accepted);
         }
         for (std::size_t l = 0; l < n; ++l) {
             if (done[l]) continue;

@@ -70,4 +70,38 @@ inline bool intersectWatertight(const WatertightRay& r, const Vec3& p0, const Ve
     return true;
 }
 
+// The test's float path without a branch, for one lane of a packet (the
+// grids vectorise loops over it, trace/grids/FrustumGrid.cpp): the corners
+// a, b, c relative to the lane's origin, already in its (kx, ky, kz) order,
+// and the lane's shear and segment. The same operations as
+// intersectWatertight, so a lane's answer is bit for bit the ray's, except
+// where `zeroEdge` is set: an edge value rounded to exactly zero, which
+// intersectWatertight redoes in double.
+struct WatertightLane {
+    float v, w, det, t;  // the hit is at t / det, barycentrics v / det, w / det
+    bool accepted, zeroEdge;
+};
+
+[[gnu::always_inline]] inline WatertightLane watertightLane(float akx, float aky, float akz, float bkx, float bky,
+                                                            float bkz, float ckx, float cky, float ckz, float sx,
+                                                            float sy, float sz, float tNear, float tFar) {
+    const float ax = akx - sx * akz, ay = aky - sy * akz;
+    const float bx = bkx - sx * bkz, by = bky - sy * bkz;
+    const float cx = ckx - sx * ckz, cy = cky - sy * ckz;
+    const float u = cx * by - cy * bx;
+    const float v = ax * cy - ay * cx;
+    const float w = bx * ay - by * ax;
+    const float det = u + v + w;
+    const float t = u * (sz * akz) + v * (sz * bkz) + w * (sz * ckz);
+    const float absDet = std::fabs(det);
+    const float signedT = det < 0.0f ? -t : t;
+    // Bitwise, not short-circuit, so a loop over lanes has no branches to stop vectorisation.
+    const bool negative = (u < 0.0f) | (v < 0.0f) | (w < 0.0f);
+    const bool positive = (u > 0.0f) | (v > 0.0f) | (w > 0.0f);
+    const bool zeroEdge = (u == 0.0f) | (v == 0.0f) | (w == 0.0f);
+    const bool accepted = !(negative & positive) & (det != 0.0f) & (signedT > tNear * absDet) &
+                          (signedT <= tFar * absDet);
+    return {v, w, det, t, accepted, zeroEdge};
+}
+
 }  // namespace raycache
