@@ -186,6 +186,17 @@ void FrustumGrid::build(const FrustumGridSpec& spec, const GridPrimitives& primi
     nz_ = std::clamp(static_cast<int>(spec_.cellsPerPrimitive * count / columns), 1, spec_.maxSlices);
     // Slices of depth 1 when there is no geometry: nothing is binned, and no ray walks them.
     depthAxis_.setUniform(zLo_, zHi_ > zLo_ ? zHi_ : zLo_ + nz_, nz_);
+    apex_ = Vec3{static_cast<float>(spec_.frame.apex.x), static_cast<float>(spec_.frame.apex.y),
+                 static_cast<float>(spec_.frame.apex.z)};
+    {
+        const FrameBox& box = spec_.nearZone;
+        const double zn = spec_.zNear;
+        apexRays_ = spec_.frame.mapping == GridMapping::Perspective && zn > 0.0 &&
+                    apex_.x == spec_.frame.apex.x && apex_.y == spec_.frame.apex.y && apex_.z == spec_.frame.apex.z &&
+                    box.lo.x <= std::min(0.0, spec_.s0 * zn) && box.hi.x >= std::max(0.0, spec_.s1 * zn) &&
+                    box.lo.y <= std::min(0.0, spec_.t0 * zn) && box.hi.y >= std::max(0.0, spec_.t1 * zn) &&
+                    box.lo.z <= 0.0 && box.hi.z >= zn;
+    }
     stats_.nx = spec_.nx;
     stats_.ny = spec_.ny;
     stats_.nz = nz_;
@@ -255,8 +266,35 @@ void FrustumGrid::build(const FrustumGridSpec& spec, const GridPrimitives& primi
     for (std::uint64_t c = afterLast; c <= cells; ++c) cellStart_[c] = static_cast<std::uint32_t>(pairs);
 }
 
+bool FrustumGrid::apexTraversal(const Ray& ray, Traversal& tr) const {
+    // The origin is the apex exactly, so it is (0, 0, 0) in the frame.
+    if (!(ray.origin.x == apex_.x && ray.origin.y == apex_.y && ray.origin.z == apex_.z)) return false;
+    const Point3d d = spec_.frame.directionToFrame(ray.direction);
+    // The segment must start before the first slice and end beyond the
+    // last, with slices and no geometry past them (a light grid's end).
+    if (!(d.z > 0.0) || zLo_ > zHi_ || zHi_ < geometryZHi_ || !(ray.tNear * d.z <= zLo_) ||
+        !(ray.tFar * d.z >= geometryZHi_))
+        return false;
+    const double s = d.x / d.z, t = d.y / d.z;
+    if (!(s >= sAxis_.lower() && s <= sAxis_.upper() && t >= tAxis_.lower() && t <= tAxis_.upper())) return false;
+    tr.origin = {};
+    tr.direction = d;
+    // Through the rectangle from the apex, the ray runs inside the frustum's
+    // tip up to zNear, which the near zone holds (apexRays_).
+    tr.nearPart = geometryZLo_ < spec_.zNear && ray.tNear * d.z <= spec_.zNear;
+    tr.gridPart = true;
+    // On a line through the apex s and t are the same everywhere: one column.
+    tr.i0 = tr.i1 = sAxis_.cellOf(s);
+    tr.j0 = tr.j1 = tAxis_.cellOf(t);
+    tr.k0 = 0;
+    tr.k1 = nz_ - 1;
+    tr.ascending = true;
+    return true;
+}
+
 FrustumGrid::Traversal FrustumGrid::traversalOf(const Ray& ray) const {
     Traversal tr;
+    if (apexRays_ && apexTraversal(ray, tr)) return tr;
     const GridFrame& frame = spec_.frame;
     tr.origin = frame.toFrame(ray.origin);
     tr.direction = frame.directionToFrame(ray.direction);
@@ -427,14 +465,22 @@ void FrustumGrid::intersectBatch(std::span<const Ray> rays, std::span<TraceHit> 
         }
         // Camera rays share the apex, so those that also cross the near zone
         // (geometry behind or beside the eye: a floor, a room) pack as well.
-        const WatertightRay wr(rays[i]);
-        gatherer.add(PacketKey{rays[i].origin.x, rays[i].origin.y, rays[i].origin.z, wr.kz, wr.kx, wr.ky, tr.i0, tr.i1,
-                               tr.j0, tr.j1, tr.k0, tr.k1, tr.ascending, tr.nearPart},
+        int kx = 0, ky = 0, kz = 0;
+        WatertightRay::shearAxes(rays[i].direction, kx, ky, kz);
+        gatherer.add(PacketKey{rays[i].origin.x, rays[i].origin.y, rays[i].origin.z, kz, kx, ky, tr.i0, tr.i1, tr.j0,
+                               tr.j1, tr.k0, tr.k1, tr.ascending, tr.nearPart},
                      static_cast<std::uint32_t>(i), trace);
     }
     gatherer.flush(trace);
 }
 
+// Compiled twice, for AVX2 (8-wide lane loops) and for baseline x86-64
+// (4-wide), chosen at load time by the CPU. Both clones give the same bits:
+// the lane loops are IEEE additions, multiplications and comparisons, and
+// -ffp-contract=off (cmake/Warnings.cmake) keeps them from becoming FMAs.
+// An AVX-512 clone measured no faster (docs/performance.md). walkCells is
+// always inlined so the lane loops are compiled inside each clone.
+[[gnu::target_clones("arch=x86-64-v3", "default")]]
 void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& tr,
                                   std::span<TraceHit> hits) const {
     const std::size_t n = lanes.size();
@@ -463,6 +509,7 @@ void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std
             for (std::size_t l = 0; l < n; ++l) {
                 const Ray& ray = rays[lanes[l]];
                 primitives_->intersect(primitive, ray, WatertightRay(ray), best[l]);
+                if (best[l].hit()) tFar[l] = best[l].t;
             }
             return false;
         }
@@ -473,9 +520,8 @@ void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std
         const float akx = a[kx], aky = a[ky], akz = a[kz];
         const float bkx = b[kx], bky = b[ky], bkz = b[kz];
         const float ckx = c[kx], cky = c[ky], ckz = c[kz];
-        for (std::size_t l = 0; l < kLanes; ++l)
-            if (best[l].hit()) tFar[l] = best[l].t;
         // The watertight test's float path, lane by lane (watertightLane).
+        int anyToSettle = 0;
         for (std::size_t l = 0; l < kLanes; ++l) {
             const WatertightLane lane =
                 watertightLane(akx, aky, akz, bkx, bky, bkz, ckx, cky, ckz, sx[l], sy[l], sz[l], tNear[l], tFar[l]);
@@ -485,7 +531,10 @@ void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std
             edgeW[l] = lane.w;
             numerator[l] = lane.t;
             determinant[l] = lane.det;
+            anyToSettle |= zeroEdge[l] | accepted[l];
         }
+        // Most triangles of a cell miss every lane: nothing to settle.
+        if (!anyToSettle) return false;
         const int object = primitives_->objectOf(primitive);
         const int local = primitives_->localIndex(primitive);
         for (std::size_t l = 0; l < n; ++l) {
@@ -493,13 +542,17 @@ void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std
                 // An edge value of exactly zero: the double-precision path, as the scalar test.
                 const Ray& ray = rays[lanes[l]];
                 primitives_->intersect(primitive, ray, WatertightRay(ray), best[l]);
+                if (best[l].hit()) tFar[l] = best[l].t;
                 continue;
             }
             if (!accepted[l]) continue;
             const float inverseDet = 1.0f / determinant[l];
             const float t = numerator[l] * inverseDet;
-            if (GridPrimitives::nearer(t, object, local, best[l]))
+            if (GridPrimitives::nearer(t, object, local, best[l])) {
                 best[l] = TraceHit{t, object, local, edgeV[l] * inverseDet, edgeW[l] * inverseDet};
+                // Later triangles need only reach the nearest hit so far (a tie at it is decided by ids).
+                tFar[l] = t;
+            }
         }
         return false;
     };
@@ -575,13 +628,16 @@ void FrustumGrid::occludedBatch(std::span<const Ray> rays, std::span<unsigned ch
             blocked[i] = b ? 1 : 0;
             continue;
         }
-        const WatertightRay wr(rays[i]);
-        gatherer.add(ShadowPacketKey{wr.kz, wr.kx, wr.ky, tr.i0, tr.i1, tr.j0, tr.j1, tr.ascending, tr.nearPart},
+        int kx = 0, ky = 0, kz = 0;
+        WatertightRay::shearAxes(rays[i].direction, kx, ky, kz);
+        gatherer.add(ShadowPacketKey{kz, kx, ky, tr.i0, tr.i1, tr.j0, tr.j1, tr.ascending, tr.nearPart},
                      static_cast<std::uint32_t>(i), trace);
     }
     gatherer.flush(trace);
 }
 
+// Cloned for AVX2 and baseline x86-64, as intersectPacket.
+[[gnu::target_clones("arch=x86-64-v3", "default")]]
 void FrustumGrid::occludedPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& walk,
                                  std::span<unsigned char> blocked) const {
     const std::size_t n = lanes.size();
@@ -626,13 +682,17 @@ void FrustumGrid::occludedPacket(std::span<const Ray> rays, std::span<const std:
         const float p2x = p2[kx], p2y = p2[ky], p2z = p2[kz];
         // The watertight test's float path, lane by lane (watertightLane),
         // the corners made relative to each lane's own origin.
+        int anyToSettle = 0;
         for (std::size_t l = 0; l < kLanes; ++l) {
             const WatertightLane lane =
                 watertightLane(p0x - ox[l], p0y - oy[l], p0z - oz[l], p1x - ox[l], p1y - oy[l], p1z - oz[l],
                                p2x - ox[l], p2y - oy[l], p2z - oz[l], sx[l], sy[l], sz[l], tNear[l], tFar[l]);
             zeroEdge[l] = static_cast<int>(lane.zeroEdge);
             accepted[l] = static_cast<int>(lane.accepted);
+            anyToSettle |= zeroEdge[l] | accepted[l];
         }
+        // Most triangles of a cell block no lane: nothing to settle.
+        if (!anyToSettle) return false;
         for (std::size_t l = 0; l < n; ++l) {
             if (done[l]) continue;
             if (zeroEdge[l]) {

@@ -105,6 +105,11 @@ private:
         Point3d origin, direction;  // frame coordinates
     };
     Traversal traversalOf(const Ray& ray) const;
+    // traversalOf for a ray from the apex of a perspective grid whose
+    // segment spans every slice (a camera ray): its column is that of its
+    // direction, and its slices are all of them. False: not such a ray; the
+    // general traversal decides.
+    bool apexTraversal(const Ray& ray, Traversal& tr) const;
     void intersectPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& tr,
                          std::span<TraceHit> hits) const;
     // `walk`: the union of the lanes' traversals (same columns, every slice any of them visits).
@@ -138,7 +143,7 @@ private:
     // once for every primitive p of the covered cells (in its first cell),
     // then sliceDone(k) after slice k; stops as soon as either returns true.
     template <typename Visit, typename SliceDone>
-    void walkCells(const Traversal& tr, Visit&& visit, SliceDone&& sliceDone) const {
+    [[gnu::always_inline]] void walkCells(const Traversal& tr, Visit&& visit, SliceDone&& sliceDone) const {
         const int steps = tr.k1 - tr.k0 + 1;
         for (int step = 0; step < steps; ++step) {
             const int k = tr.ascending ? tr.k0 + step : tr.k1 - step;
@@ -154,6 +159,11 @@ private:
 
     FrustumGridSpec spec_;
     const GridPrimitives* primitives_ = nullptr;
+    // Whether apexTraversal may be used: a perspective grid whose near zone
+    // holds the frustum's tip, so a ray from the apex through the rectangle
+    // never leaves it before zNear. The apex as the float rays start from.
+    bool apexRays_ = false;
+    Vec3 apex_;
     double geometryZLo_ = 0.0, geometryZHi_ = -1.0;  // every primitive's depth range (margins included)
     double zLo_ = 0.0, zHi_ = 0.0;
     int nz_ = 1;

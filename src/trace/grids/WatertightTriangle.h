@@ -21,14 +21,20 @@ struct WatertightRay {
     float sx = 0.0f, sy = 0.0f, sz = 1.0f;
     float tNear = 0.0f, tFar = 0.0f;
 
-    explicit WatertightRay(const Ray& ray) : origin(ray.origin), tNear(ray.tNear), tFar(ray.tFar) {
-        const Vec3& d = ray.direction;
+    // The axes alone, without the shear's divisions: kz the direction's
+    // major axis, (kx, ky) the others in the order that keeps the edge
+    // functions' winding when the major axis points backwards.
+    static void shearAxes(const Vec3& d, int& kx, int& ky, int& kz) {
         const float ax = std::fabs(d.x), ay = std::fabs(d.y), az = std::fabs(d.z);
         kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
         kx = kz == 2 ? 0 : kz + 1;
         ky = kx == 2 ? 0 : kx + 1;
-        // Keep the winding of the edge functions when the major axis points backwards.
         if (d[kz] < 0.0f) std::swap(kx, ky);
+    }
+
+    explicit WatertightRay(const Ray& ray) : origin(ray.origin), tNear(ray.tNear), tFar(ray.tFar) {
+        const Vec3& d = ray.direction;
+        shearAxes(d, kx, ky, kz);
         sx = d[kx] / d[kz];
         sy = d[ky] / d[kz];
         sz = 1.0f / d[kz];
