@@ -7,7 +7,7 @@ function(raycache_set_warnings target)
                                            -Wno-missing-field-initializers)
   # No fused multiply-adds the source does not write: GCC contracts a * b + c
   # into one FMA in C++ by default wherever the target has FMA (-march=native,
-  # the grids' AVX2/AVX-512 clones), which rounds differently, so images and
+  # the grids' AVX2 clones), which rounds differently, so images and
   # answers would depend on the machine.
   target_compile_options(${target} PRIVATE -ffp-contract=off)
   if(RAYCACHE_NATIVE)

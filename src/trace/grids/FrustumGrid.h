@@ -110,9 +110,14 @@ private:
     // direction, and its slices are all of them. False: not such a ray; the
     // general traversal decides.
     bool apexTraversal(const Ray& ray, Traversal& tr) const;
+    // The packets are compiled for AVX2 and for baseline x86-64, the CPU
+    // choosing at load time (FrustumGrid.cpp). The attribute must be on the
+    // first declaration for clang.
+    [[gnu::target_clones("arch=x86-64-v3", "default")]]
     void intersectPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& tr,
                          std::span<TraceHit> hits) const;
     // `walk`: the union of the lanes' traversals (same columns, every slice any of them visits).
+    [[gnu::target_clones("arch=x86-64-v3", "default")]]
     void occludedPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& walk,
                         std::span<unsigned char> blocked) const;
     CellRange binPrimitive(std::uint32_t primitive, bool& inNearZone) const;
