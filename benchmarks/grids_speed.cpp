@@ -14,6 +14,7 @@
 
 #include "bench/GridsWorkload.h"
 #include "bench/SampleSummary.h"
+#include "core/Elapsed.h"
 #include "core/Errors.h"
 #include "scene/BuiltinScenes.h"
 
@@ -22,10 +23,6 @@ using namespace raycache;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // "torus <thousands>k" or a built-in scene's name (posed as at time 0, kept still).
 std::optional<GridsModel> modelNamed(const std::string& name) {
@@ -88,14 +85,14 @@ int main(int argc, char** argv) {
     for (int round = 0; round < rounds; ++round) {
         auto start = Clock::now();
         grids.prepareFrame(scene, camera, size, size, parallel);
-        gridBuild.push_back(msSince(start));
+        gridBuild.push_back(millisecondsSince(start));
         gridPrimary.push_back(tracePrimary(grids, rays, parallel, true, nullptr));
         gridShadow.push_back(traceShadows(grids, rays, parallel, true));
         gridTotal.push_back(gridBuild.back() + gridPrimary.back() + gridShadow.back());
 
         start = Clock::now();
         const TraceScene embree(scene, lowOptions);
-        embreeBuild.push_back(msSince(start));
+        embreeBuild.push_back(millisecondsSince(start));
         embreePrimary.push_back(tracePrimary(embree, rays, parallel, false, nullptr));
         embreeShadow.push_back(traceShadows(embree, rays, parallel, false));
         embreeTotal.push_back(embreeBuild.back() + embreePrimary.back() + embreeShadow.back());

@@ -11,6 +11,7 @@
 #include "bench/SampleSummary.h"
 #include "bench/SvgPlot.h"
 #include "core/AtomicFile.h"
+#include "core/Elapsed.h"
 #include "core/Errors.h"
 #include "render/InvalidationOracle.h"
 #include "render/RenderSession.h"
@@ -53,10 +54,6 @@ nlohmann::json oracleJson(const InvalidationCounts& o) {
             {"moved_cube", o.movedCube},
             {"moved_cube_within_tolerance", o.movedCubeWithinTolerance},
             {"moved_cube_kept", o.movedCubeKept}};
-}
-
-double millisecondsSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
 struct SceneRun {

@@ -13,6 +13,7 @@
 #include "bench/ResultsJson.h"
 #include "bench/SvgPlot.h"
 #include "core/AtomicFile.h"
+#include "core/Elapsed.h"
 #include "core/Errors.h"
 #include "scene/BuiltinScenes.h"
 #include "scene/ScenePose.h"
@@ -23,10 +24,6 @@ namespace raycache {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double millisecondsSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // The document's Table 1 (GTX 280, 1024², build + trace, with shadows).
 struct PaperRow {

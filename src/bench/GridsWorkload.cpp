@@ -5,6 +5,7 @@
 #include <cmath>
 #include <memory>
 
+#include "core/Elapsed.h"
 #include "render/CameraRays.h"
 #include "render/LocalShading.h"
 #include "render/SurfacePoint.h"
@@ -15,10 +16,6 @@ namespace raycache {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double millisecondsSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 constexpr int kTile = 16;
 

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <vector>
 
+#include "core/Elapsed.h"
 #include "render/CacheFrame.h"
 #include "render/CameraRays.h"
 #include "render/FrameRenderer.h"
@@ -12,10 +13,6 @@ namespace raycache {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double millisecondsSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 }  // namespace
 

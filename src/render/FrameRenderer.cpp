@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/Elapsed.h"
 #include "core/Errors.h"
 #include "render/CacheFrame.h"
 #include "render/CameraRays.h"
@@ -14,10 +15,6 @@ namespace raycache {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double millisecondsSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // This frame's owner of every tile, decided by process 0 and sent to all,
 // so that every process agrees even if their clocks or builds differ.

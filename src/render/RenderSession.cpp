@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "core/Elapsed.h"
 #include "core/Errors.h"
 
 #include "scene/ScenePose.h"
@@ -15,10 +16,6 @@ std::unique_ptr<Scene> copyIfAnimated(const Scene& scene) {
 }
 
 using Clock = std::chrono::steady_clock;
-
-double millisecondsSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 }  // namespace
 

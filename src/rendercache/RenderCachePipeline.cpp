@@ -7,6 +7,7 @@
 #include <limits>
 #include <sstream>
 
+#include "core/Elapsed.h"
 #include "render/CacheFrame.h"
 #include "render/CameraRays.h"
 #include "render/HitOnPrimitive.h"
@@ -22,10 +23,6 @@ namespace raycache {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double millisecondsSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // Pixels handed to the tile kernel at once: enough for full packets and
 // waves, few enough to spread over the workers.

@@ -4,6 +4,7 @@
 #include <bit>
 #include <chrono>
 
+#include "core/Elapsed.h"
 #include "core/Errors.h"
 #include "render/FramePipeline.h"
 #include "viewer/CacheLevelOverlayImage.h"
@@ -12,14 +13,6 @@
 #include "viewer/RenderCacheOverlayImage.h"
 
 namespace raycache {
-
-namespace {
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
 
 RenderWorker::RenderWorker(RenderWorkerSetup setup, FrameHandoff& handoff)
     : setup_(std::move(setup)), handoff_(handoff), parallel_(setup_.base.threads), settings_(setup_.base),

@@ -5,15 +5,13 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/Elapsed.h"
+
 namespace raycache {
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double millisecondsSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // The largest coordinate magnitude of the scene's geometry, camera and
 // lights: the scale the grids' margins and near planes are set against.
