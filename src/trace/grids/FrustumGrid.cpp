@@ -15,6 +15,10 @@ namespace raycache {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// A camera packet's key: its column (i, j), whether it crosses the near
+// zone, and its shear axes (kz, then kx; ky follows), in one integer.
+constexpr int kColumnBits = 24;
+constexpr std::uint64_t kColumnMask = (std::uint64_t{1} << kColumnBits) - 1;
 // Primitives per task when binning: small enough to balance, large enough
 // that the task overhead vanishes.
 constexpr std::uint32_t kBinBlock = 4096;
@@ -174,6 +178,10 @@ FrustumGrid::CellRange FrustumGrid::binPrimitive(std::uint32_t primitive, bool& 
 void FrustumGrid::build(const FrustumGridSpec& spec, const GridPrimitives& primitives, const Parallel& parallel) {
     spec_ = spec;
     primitives_ = &primitives;
+    // A camera packet's key holds a column's indices in kColumnBits each.
+    if (spec_.nx < 1 || spec_.ny < 1 || spec_.nx > static_cast<int>(kColumnMask) || spec_.ny > static_cast<int>(kColumnMask))
+        throw RuntimeError("a frustum grid of " + std::to_string(spec_.nx) + " x " + std::to_string(spec_.ny) +
+                           " columns is out of range");
     stats_ = {};
     const std::uint32_t count = primitives.count();
     const int blocks = static_cast<int>((count + kBinBlock - 1) / kBinBlock);
@@ -288,10 +296,10 @@ void FrustumGrid::build(const FrustumGridSpec& spec, const GridPrimitives& primi
     for (std::uint64_t c = afterLast; c <= cells; ++c) cellStart_[c] = static_cast<std::uint32_t>(pairs);
 }
 
-bool FrustumGrid::apexTraversal(const Ray& ray, Traversal& tr) const {
+bool FrustumGrid::apexColumn(const Ray& ray, Point3d& d, ApexColumn& column) const {
     // The origin is the apex exactly, so it is (0, 0, 0) in the frame.
     if (!(ray.origin.x == apex_.x && ray.origin.y == apex_.y && ray.origin.z == apex_.z)) return false;
-    const Point3d d = spec_.frame.directionToFrame(ray.direction);
+    d = spec_.frame.directionToFrame(ray.direction);
     // The segment must start before the first slice and end beyond the
     // last, with slices and no geometry past them (a light grid's end).
     if (!(d.z > 0.0) || zLo_ > zHi_ || zHi_ < geometryZHi_ || !(ray.tNear * d.z <= zLo_) ||
@@ -299,24 +307,43 @@ bool FrustumGrid::apexTraversal(const Ray& ray, Traversal& tr) const {
         return false;
     const double s = d.x / d.z, t = d.y / d.z;
     if (!(s >= sAxis_.lower() && s <= sAxis_.upper() && t >= tAxis_.lower() && t <= tAxis_.upper())) return false;
-    tr.origin = {};
-    tr.direction = d;
     // Through the rectangle from the apex, the ray runs inside the frustum's
     // tip up to zNear, which the near zone holds (apexRays_).
-    tr.nearPart = geometryZLo_ < spec_.zNear && ray.tNear * d.z <= spec_.zNear;
-    tr.gridPart = true;
+    column.nearPart = geometryZLo_ < spec_.zNear && ray.tNear * d.z <= spec_.zNear;
     // On a line through the apex s and t are the same everywhere: one column.
-    tr.i0 = tr.i1 = sAxis_.cellOf(s);
-    tr.j0 = tr.j1 = tAxis_.cellOf(t);
-    tr.k0 = 0;
-    tr.k1 = nz_ - 1;
-    tr.ascending = true;
+    column.i = sAxis_.cellOf(s);
+    column.j = tAxis_.cellOf(t);
     return true;
 }
 
-FrustumGrid::Traversal FrustumGrid::traversalOf(const Ray& ray) const {
+FrustumGrid::Traversal FrustumGrid::apexWalk(const ApexColumn& column) const {
     Traversal tr;
-    if (apexRays_ && apexTraversal(ray, tr)) return tr;
+    tr.origin = {};
+    tr.nearPart = column.nearPart;
+    tr.gridPart = true;
+    tr.i0 = tr.i1 = column.i;
+    tr.j0 = tr.j1 = column.j;
+    tr.k0 = 0;
+    tr.k1 = nz_ - 1;
+    tr.ascending = true;
+    return tr;
+}
+
+FrustumGrid::Traversal FrustumGrid::traversalOf(const Ray& ray) const {
+    if (apexRays_) {
+        Point3d d;
+        ApexColumn column;
+        if (apexColumn(ray, d, column)) {
+            Traversal tr = apexWalk(column);
+            tr.direction = d;
+            return tr;
+        }
+    }
+    return generalTraversal(ray);
+}
+
+FrustumGrid::Traversal FrustumGrid::generalTraversal(const Ray& ray) const {
+    Traversal tr;
     const GridFrame& frame = spec_.frame;
     tr.origin = frame.toFrame(ray.origin);
     tr.direction = frame.directionToFrame(ray.direction);
@@ -396,6 +423,30 @@ namespace {
 
 constexpr std::size_t kLanes = 16;
 
+}  // namespace
+
+std::uint64_t FrustumGrid::cameraKey(const ApexColumn& column, const Vec3& direction) {
+    int kx = 0, ky = 0, kz = 0;
+    WatertightRay::shearAxes(direction, kx, ky, kz);
+    return static_cast<std::uint64_t>(column.i) | static_cast<std::uint64_t>(column.j) << kColumnBits |
+           static_cast<std::uint64_t>(kz) << (2 * kColumnBits) | static_cast<std::uint64_t>(kx) << (2 * kColumnBits + 2) |
+           static_cast<std::uint64_t>(column.nearPart ? 1 : 0) << (2 * kColumnBits + 4);
+}
+
+FrustumGrid::ApexColumn FrustumGrid::unpackCameraKey(std::uint64_t key) {
+    return {static_cast<int>(key & kColumnMask), static_cast<int>((key >> kColumnBits) & kColumnMask),
+            ((key >> (2 * kColumnBits + 4)) & 1) != 0};
+}
+
+namespace {
+
+// Component k of v by one indexed load (Vec3's operator[] is two branches
+// on an index known only at run time, as a packet's shear axes are).
+[[gnu::always_inline]] inline float component(const Vec3& v, int k) {
+    const float c[3] = {v.x, v.y, v.z};
+    return c[k];
+}
+
 // What decides whether two rays can share a packet.
 struct PacketKey {
     float ox, oy, oz;
@@ -456,7 +507,7 @@ private:
     };
     template <typename Packet>
     static void emit(Open& open, Packet& packet) {
-        if (open.count > 0) packet(std::span<const std::uint32_t>(open.lanes, open.count));
+        if (open.count > 0) packet(std::span<const std::uint32_t>(open.lanes, open.count), open.key);
         open.count = 0;
     }
     std::array<Open, kOpen> open_{};
@@ -469,13 +520,28 @@ void FrustumGrid::intersectBatch(std::span<const Ray> rays, std::span<TraceHit> 
                                  std::span<unsigned char> refused) const {
     thread_local std::vector<Traversal> traversals;
     PacketGatherer<PacketKey> gatherer;
-    const auto trace = [&](std::span<const std::uint32_t> packet) {
+    const auto trace = [&](std::span<const std::uint32_t> packet, const PacketKey&) {
         intersectPacket(rays, packet, traversals[packet[0]], hits);
+    };
+    // Camera rays (from the apex through every slice, apexColumn) are keyed
+    // by their column and shear axes alone, packed in one integer, and need
+    // no Traversal of their own: their packet's walk follows from the key.
+    PacketGatherer<std::uint64_t> cameraGatherer;
+    const auto traceCamera = [&](std::span<const std::uint32_t> packet, std::uint64_t key) {
+        intersectPacket(rays, packet, apexWalk(unpackCameraKey(key)), hits);
     };
     traversals.resize(rays.size());
     for (std::size_t i = 0; i < rays.size(); ++i) {
         refused[i] = 0;
-        traversals[i] = traversalOf(rays[i]);
+        if (apexRays_) {
+            Point3d direction;
+            ApexColumn column;
+            if (apexColumn(rays[i], direction, column)) {
+                cameraGatherer.add(cameraKey(column, rays[i].direction), static_cast<std::uint32_t>(i), traceCamera);
+                continue;
+            }
+        }
+        traversals[i] = generalTraversal(rays[i]);
         const Traversal& tr = traversals[i];
         if (!tr.covered) {
             refused[i] = 1;
@@ -494,6 +560,7 @@ void FrustumGrid::intersectBatch(std::span<const Ray> rays, std::span<TraceHit> 
                      static_cast<std::uint32_t>(i), trace);
     }
     gatherer.flush(trace);
+    cameraGatherer.flush(traceCamera);
 }
 
 // Compiled twice, for AVX2 (8-wide lane loops) and for baseline x86-64
@@ -511,18 +578,26 @@ void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std
     double directionZ[kLanes];
     alignas(64) int accepted[kLanes], zeroEdge[kLanes];
     TraceHit best[kLanes];
+    // Lanes with no hit yet: while any is left, no slice can end the walk.
+    std::size_t withoutHit = n;
     const Ray& first = rays[lanes[0]];
-    const WatertightRay shape(first);
-    const int kx = shape.kx, ky = shape.ky, kz = shape.kz;
+    // Every lane has the packet's shear axes (the packet key holds them).
+    int kx = 0, ky = 0, kz = 0;
+    WatertightRay::shearAxes(first.direction, kx, ky, kz);
+    const float originX = component(first.origin, kx), originY = component(first.origin, ky),
+                originZ = component(first.origin, kz);
     for (std::size_t l = 0; l < kLanes; ++l) {
         // Lanes past n repeat the first ray; their answers are dropped.
         const Ray& ray = rays[lanes[l < n ? l : 0]];
-        const WatertightRay wr(ray);
-        sx[l] = wr.sx;
-        sy[l] = wr.sy;
-        sz[l] = wr.sz;
-        tNear[l] = wr.tNear;
-        tFar[l] = wr.tFar;
+        // WatertightRay's shear, in its operations.
+        const float dx = component(ray.direction, kx), dy = component(ray.direction, ky),
+                    dz = component(ray.direction, kz);
+        sx[l] = dx / dz;
+        sy[l] = dy / dz;
+        sz[l] = 1.0f / dz;
+        // Padding lanes get an empty segment: they accept no triangle, so never call for settling.
+        tNear[l] = l < n ? ray.tNear : std::numeric_limits<float>::infinity();
+        tFar[l] = ray.tFar;
         directionZ[l] = spec_.frame.directionToFrame(ray.direction).z;
     }
     // Inlined at both call sites: called out of line, GCC no longer vectorises the lane loop.
@@ -530,18 +605,20 @@ void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std
         if (primitives_->sphere(primitive)) {
             for (std::size_t l = 0; l < n; ++l) {
                 const Ray& ray = rays[lanes[l]];
+                const bool hadHit = best[l].hit();
                 primitives_->intersect(primitive, ray, WatertightRay(ray), best[l]);
-                if (best[l].hit()) tFar[l] = best[l].t;
+                if (best[l].hit()) {
+                    tFar[l] = best[l].t;
+                    withoutHit -= hadHit ? 0 : 1;
+                }
             }
             return false;
         }
-        Vec3 p0, p1, p2;
-        primitives_->triangle(primitive, p0, p1, p2);
         // The packet shares its origin: the corners relative to it are computed once.
-        const Vec3 a = p0 - first.origin, b = p1 - first.origin, c = p2 - first.origin;
-        const float akx = a[kx], aky = a[ky], akz = a[kz];
-        const float bkx = b[kx], bky = b[ky], bkz = b[kz];
-        const float ckx = c[kx], cky = c[ky], ckz = c[kz];
+        const GridPrimitives::TriangleCoordinates& p = primitives_->triangleCoordinates(primitive);
+        const float akx = p[kx] - originX, aky = p[ky] - originY, akz = p[kz] - originZ;
+        const float bkx = p[3 + kx] - originX, bky = p[3 + ky] - originY, bkz = p[3 + kz] - originZ;
+        const float ckx = p[6 + kx] - originX, cky = p[6 + ky] - originY, ckz = p[6 + kz] - originZ;
         // The watertight test's float path, lane by lane (watertightLane).
         int anyToSettle = 0;
         for (std::size_t l = 0; l < kLanes; ++l) {
@@ -563,14 +640,19 @@ void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std
             if (zeroEdge[l]) {
                 // An edge value of exactly zero: the double-precision path, as the scalar test.
                 const Ray& ray = rays[lanes[l]];
+                const bool hadHit = best[l].hit();
                 primitives_->intersect(primitive, ray, WatertightRay(ray), best[l]);
-                if (best[l].hit()) tFar[l] = best[l].t;
+                if (best[l].hit()) {
+                    tFar[l] = best[l].t;
+                    withoutHit -= hadHit ? 0 : 1;
+                }
                 continue;
             }
             if (!accepted[l]) continue;
             const float inverseDet = 1.0f / determinant[l];
             const float t = numerator[l] * inverseDet;
             if (GridPrimitives::nearer(t, object, local, best[l])) {
+                withoutHit -= best[l].hit() ? 0 : 1;
                 best[l] = TraceHit{t, object, local, edgeV[l] * inverseDet, edgeW[l] * inverseDet};
                 // Later triangles need only reach the nearest hit so far (a tie at it is decided by ids).
                 tFar[l] = t;
@@ -582,6 +664,7 @@ void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std
     if (tr.nearPart)
         for (const std::uint32_t p : nearZone_) visit(p);
     walkCells(tr, visit, [&](int k) {
+        if (withoutHit > 0) return false;
         for (std::size_t l = 0; l < n; ++l)
             if (!best[l].hit() || !hitEndsWalk(tr, tr.origin.z + static_cast<double>(best[l].t) * directionZ[l], k))
                 return false;
@@ -626,7 +709,7 @@ void FrustumGrid::occludedBatch(std::span<const Ray> rays, std::span<unsigned ch
                                 std::span<unsigned char> refused) const {
     thread_local std::vector<Traversal> traversals;
     PacketGatherer<ShadowPacketKey> gatherer;
-    const auto trace = [&](std::span<const std::uint32_t> packet) {
+    const auto trace = [&](std::span<const std::uint32_t> packet, const ShadowPacketKey&) {
         Traversal walk = traversals[packet[0]];
         for (const std::uint32_t ray : packet) {
             walk.k0 = std::min(walk.k0, traversals[ray].k0);
@@ -669,23 +752,30 @@ void FrustumGrid::occludedPacket(std::span<const Ray> rays, std::span<const std:
     alignas(64) int accepted[kLanes], zeroEdge[kLanes];
     bool done[kLanes] = {};
     std::size_t open = n;
-    const WatertightRay shape(rays[lanes[0]]);
-    const int kx = shape.kx, ky = shape.ky, kz = shape.kz;
+    // Every lane has the packet's shear axes (the packet key holds them).
+    int kx = 0, ky = 0, kz = 0;
+    WatertightRay::shearAxes(rays[lanes[0]].direction, kx, ky, kz);
     for (std::size_t l = 0; l < kLanes; ++l) {
         // Lanes past n repeat the first ray; their answers are dropped.
         const Ray& ray = rays[lanes[l < n ? l : 0]];
-        const WatertightRay wr(ray);
-        ox[l] = ray.origin[kx];
-        oy[l] = ray.origin[ky];
-        oz[l] = ray.origin[kz];
-        sx[l] = wr.sx;
-        sy[l] = wr.sy;
-        sz[l] = wr.sz;
-        tNear[l] = wr.tNear;
-        tFar[l] = wr.tFar;
+        ox[l] = component(ray.origin, kx);
+        oy[l] = component(ray.origin, ky);
+        oz[l] = component(ray.origin, kz);
+        // WatertightRay's shear, in its operations.
+        const float dx = component(ray.direction, kx), dy = component(ray.direction, ky),
+                    dz = component(ray.direction, kz);
+        sx[l] = dx / dz;
+        sy[l] = dy / dz;
+        sz[l] = 1.0f / dz;
+        // Padding lanes get an empty segment: they accept no triangle, so never call for settling.
+        tNear[l] = l < n ? ray.tNear : std::numeric_limits<float>::infinity();
+        tFar[l] = ray.tFar;
     }
     const auto settle = [&](std::size_t l) {
         done[l] = true;
+        // An empty segment: later triangles no longer accept this lane, so
+        // they skip the settling loop unless they block an open lane.
+        tNear[l] = std::numeric_limits<float>::infinity();
         --open;
     };
     // Inlined at both call sites, as intersectPacket's, so the lane loop stays vectorised.
@@ -697,11 +787,10 @@ void FrustumGrid::occludedPacket(std::span<const Ray> rays, std::span<const std:
             }
             return open == 0;
         }
-        Vec3 p0, p1, p2;
-        primitives_->triangle(primitive, p0, p1, p2);
-        const float p0x = p0[kx], p0y = p0[ky], p0z = p0[kz];
-        const float p1x = p1[kx], p1y = p1[ky], p1z = p1[kz];
-        const float p2x = p2[kx], p2y = p2[ky], p2z = p2[kz];
+        const GridPrimitives::TriangleCoordinates& p = primitives_->triangleCoordinates(primitive);
+        const float p0x = p[kx], p0y = p[ky], p0z = p[kz];
+        const float p1x = p[3 + kx], p1y = p[3 + ky], p1z = p[3 + kz];
+        const float p2x = p[6 + kx], p2y = p[6 + ky], p2z = p[6 + kz];
         // The watertight test's float path, lane by lane (watertightLane),
         // the corners made relative to each lane's own origin.
         int anyToSettle = 0;

@@ -105,11 +105,20 @@ private:
         Point3d origin, direction;  // frame coordinates
     };
     Traversal traversalOf(const Ray& ray) const;
-    // traversalOf for a ray from the apex of a perspective grid whose
-    // segment spans every slice (a camera ray): its column is that of its
-    // direction, and its slices are all of them. False: not such a ray; the
-    // general traversal decides.
-    bool apexTraversal(const Ray& ray, Traversal& tr) const;
+    // The column of a ray from the apex of a perspective grid whose segment
+    // spans every slice (a camera ray): the column of its direction; it
+    // visits all the column's slices (apexWalk). `d`: the direction in
+    // frame coordinates. False: not such a ray; generalTraversal decides.
+    struct ApexColumn {
+        int i = 0, j = 0;
+        bool nearPart = false;
+    };
+    bool apexColumn(const Ray& ray, Point3d& d, ApexColumn& column) const;
+    Traversal apexWalk(const ApexColumn& column) const;
+    Traversal generalTraversal(const Ray& ray) const;
+    // A camera packet's key (column and shear axes in one integer), and the column back from it.
+    static std::uint64_t cameraKey(const ApexColumn& column, const Vec3& direction);
+    static ApexColumn unpackCameraKey(std::uint64_t key);
     // The packets are compiled for AVX2 and for baseline x86-64, the CPU
     // choosing at load time (FrustumGrid.cpp). The attribute must be on the
     // first declaration for clang.
@@ -164,7 +173,7 @@ private:
 
     FrustumGridSpec spec_;
     const GridPrimitives* primitives_ = nullptr;
-    // Whether apexTraversal may be used: a perspective grid whose near zone
+    // Whether apexColumn may be used: a perspective grid whose near zone
     // holds the frustum's tip, so a ray from the apex through the rectangle
     // never leaves it before zNear. The apex as the float rays start from.
     bool apexRays_ = false;

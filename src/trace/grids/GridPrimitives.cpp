@@ -45,8 +45,10 @@ void GridPrimitives::rebuild(const Scene& scene, const Parallel& parallel) {
             isSphere_[p] = geometry.sphere ? 1 : 0;
             if (geometry.sphere) continue;
             const auto& indices = geometry.mesh->triangles[p - firstPrimitive_[o]];
-            corners_[p] = {geometry.mesh->positions[indices[0]], geometry.mesh->positions[indices[1]],
-                           geometry.mesh->positions[indices[2]]};
+            const Vec3& p0 = geometry.mesh->positions[indices[0]];
+            const Vec3& p1 = geometry.mesh->positions[indices[1]];
+            const Vec3& p2 = geometry.mesh->positions[indices[2]];
+            corners_[p] = {p0.x, p0.y, p0.z, p1.x, p1.y, p1.z, p2.x, p2.y, p2.z};
         }
     });
 }

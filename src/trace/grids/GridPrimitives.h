@@ -6,6 +6,7 @@
 // is traced, and a copy of every triangle's corners: the grids fetch a
 // triangle many times a frame (binned into every grid, tested by packets),
 // and one flat array is one load where the mesh is three dependent ones.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -37,11 +38,16 @@ public:
     }
     // The world-space corners of a triangle primitive.
     void triangle(std::uint32_t primitive, Vec3& p0, Vec3& p1, Vec3& p2) const {
-        const Corners& c = corners_[primitive];
-        p0 = c.p0;
-        p1 = c.p1;
-        p2 = c.p2;
+        const TriangleCoordinates& c = corners_[primitive];
+        p0 = {c[0], c[1], c[2]};
+        p1 = {c[3], c[4], c[5]};
+        p2 = {c[6], c[7], c[8]};
     }
+    // The same corners as nine coordinates (p0's x, y, z, then p1's, then
+    // p2's), so a packet picks its axes' components by index: Vec3's
+    // operator[] with an index known only at run time is two branches.
+    using TriangleCoordinates = std::array<float, 9>;
+    const TriangleCoordinates& triangleCoordinates(std::uint32_t primitive) const { return corners_[primitive]; }
 
     // The primitive's hit on `ray` if it is nearer than `best` (ties on
     // distance go to the smaller object id, then primitive id, so the answer
@@ -64,10 +70,7 @@ private:
     std::vector<ObjectGeometry> objects_;
     std::vector<std::uint32_t> firstPrimitive_;  // per object, and the total at the end
     std::vector<int> primitiveObject_;
-    struct Corners {
-        Vec3 p0, p1, p2;
-    };
-    std::vector<Corners> corners_;         // per primitive; a sphere's are unused
+    std::vector<TriangleCoordinates> corners_;  // per primitive; a sphere's are unused
     std::vector<unsigned char> isSphere_;  // per primitive
     std::uint32_t count_ = 0;
 };
