@@ -65,10 +65,13 @@ Point3d along(const Point3d& o, const Point3d& d, double t) {
     return {o.x + t * d.x, o.y + t * d.y, o.z + t * d.z};
 }
 
-// The parameter interval of o + t d with lo <= z <= hi, intersected with [ta, tb].
-bool clipDepth(double oz, double dz, double lo, double hi, double& ta, double& tb) {
+// The parameter interval of o + t d with lo <= z <= hi, intersected with
+// [ta, tb]; inverseDz = 1 / dz. A product where a quotient would do: a
+// traversal clips its ray four times, and a division's latency is a chain
+// the traversal waits on; the ulp it moves a bound is far inside the margin.
+bool clipDepth(double oz, double dz, double inverseDz, double lo, double hi, double& ta, double& tb) {
     if (dz == 0.0) return oz >= lo && oz <= hi && ta <= tb;
-    double t1 = (lo - oz) / dz, t2 = (hi - oz) / dz;
+    double t1 = (lo - oz) * inverseDz, t2 = (hi - oz) * inverseDz;
     if (t1 > t2) std::swap(t1, t2);
     ta = std::max(ta, t1);
     tb = std::min(tb, t2);
@@ -305,14 +308,17 @@ bool FrustumGrid::apexColumn(const Ray& ray, Point3d& d, ApexColumn& column) con
     if (!(d.z > 0.0) || zLo_ > zHi_ || zHi_ < geometryZHi_ || !(ray.tNear * d.z <= zLo_) ||
         !(ray.tFar * d.z >= geometryZHi_))
         return false;
-    const double s = d.x / d.z, t = d.y / d.z;
-    if (!(s >= sAxis_.lower() && s <= sAxis_.upper() && t >= tAxis_.lower() && t <= tAxis_.upper())) return false;
+    // Inside the rectangle: lower <= x/z <= upper, as products (z > 0).
+    if (!(d.x >= sAxis_.lower() * d.z && d.x <= sAxis_.upper() * d.z && d.y >= tAxis_.lower() * d.z &&
+          d.y <= tAxis_.upper() * d.z))
+        return false;
     // Through the rectangle from the apex, the ray runs inside the frustum's
     // tip up to zNear, which the near zone holds (apexRays_).
     column.nearPart = geometryZLo_ < spec_.zNear && ray.tNear * d.z <= spec_.zNear;
-    // On a line through the apex s and t are the same everywhere: one column.
-    column.i = sAxis_.cellOf(s);
-    column.j = tAxis_.cellOf(t);
+    // On a line through the apex s and t are the same everywhere: one column,
+    // found from the column passed in (the ray before's).
+    column.i = sAxis_.cellOfRatio(d.x, d.z, column.i);
+    column.j = tAxis_.cellOfRatio(d.y, d.z, column.j);
     return true;
 }
 
@@ -332,29 +338,30 @@ FrustumGrid::Traversal FrustumGrid::apexWalk(const ApexColumn& column) const {
 FrustumGrid::Traversal FrustumGrid::traversalOf(const Ray& ray) const {
     if (apexRays_) {
         Point3d d;
-        ApexColumn column;
+        ApexColumn column{spec_.nx / 2, spec_.ny / 2, false};
         if (apexColumn(ray, d, column)) {
             Traversal tr = apexWalk(column);
             tr.direction = d;
             return tr;
         }
     }
-    return generalTraversal(ray);
+    return generalTraversal(ray, ApexColumn{-1, -1, false});
 }
 
-FrustumGrid::Traversal FrustumGrid::generalTraversal(const Ray& ray) const {
+FrustumGrid::Traversal FrustumGrid::generalTraversal(const Ray& ray, const ApexColumn& hint) const {
     Traversal tr;
     const GridFrame& frame = spec_.frame;
     tr.origin = frame.toFrame(ray.origin);
     tr.direction = frame.directionToFrame(ray.direction);
     const Point3d& o = tr.origin;
     const Point3d& d = tr.direction;
+    const double inverseDz = 1.0 / d.z;
     double ta = ray.tNear, tb = ray.tFar;
     // Outside the depth range of all geometry there is nothing to meet.
-    if (geometryZLo_ > geometryZHi_ || !clipDepth(o.z, d.z, geometryZLo_, geometryZHi_, ta, tb)) return tr;
+    if (geometryZLo_ > geometryZHi_ || !clipDepth(o.z, d.z, inverseDz, geometryZLo_, geometryZHi_, ta, tb)) return tr;
     if (frame.perspective() && geometryZLo_ < spec_.zNear) {
         double na = ta, nb = tb;
-        if (clipDepth(o.z, d.z, -kInfinity, spec_.zNear, na, nb)) {
+        if (clipDepth(o.z, d.z, inverseDz, -kInfinity, spec_.zNear, na, nb)) {
             if (!std::isfinite(na) || !std::isfinite(nb) || !insideBox(along(o, d, na), spec_.nearZone, spec_.margin) ||
                 !insideBox(along(o, d, nb), spec_.nearZone, spec_.margin)) {
                 tr.covered = false;
@@ -365,10 +372,10 @@ FrustumGrid::Traversal FrustumGrid::generalTraversal(const Ray& ray) const {
     }
     if (zLo_ > zHi_) return tr;
     double ga = ta, gb = tb;
-    if (!clipDepth(o.z, d.z, zLo_, kInfinity, ga, gb)) return tr;
+    if (!clipDepth(o.z, d.z, inverseDz, zLo_, kInfinity, ga, gb)) return tr;
     // Geometry beyond the last slice (a light grid ends at the farthest shadow-ray origin).
     double fa = ga, fb = gb;
-    if (zHi_ < geometryZHi_ && clipDepth(o.z, d.z, zHi_ + spec_.margin, kInfinity, fa, fb)) {
+    if (zHi_ < geometryZHi_ && clipDepth(o.z, d.z, inverseDz, zHi_ + spec_.margin, kInfinity, fa, fb)) {
         tr.covered = false;
         return tr;
     }
@@ -377,20 +384,25 @@ FrustumGrid::Traversal FrustumGrid::generalTraversal(const Ray& ray) const {
         return tr;
     }
     const Point3d a = along(o, d, ga), b = along(o, d, gb);
-    const double sa = frame.planar(a.x, a.z), sb = frame.planar(b.x, b.z);
-    const double va = frame.planar(a.y, a.z), vb = frame.planar(b.y, b.z);
-    const double sLo = std::min(sa, sb), sHi = std::max(sa, sb), tLo = std::min(va, vb), tHi = std::max(va, vb);
-    if (sLo < sAxis_.lower() || sHi > sAxis_.upper() || tLo < tAxis_.lower() || tHi > tAxis_.upper()) {
+    // Both ends' planar coordinates (x/z, or x) against the rectangle and
+    // the columns' boundaries, as products: z > 0 on perspective frames (the
+    // segment starts at zLo_ or beyond).
+    const double za = frame.perspective() ? a.z : 1.0, zb = frame.perspective() ? b.z : 1.0;
+    if (!(a.x >= sAxis_.lower() * za && a.x <= sAxis_.upper() * za && b.x >= sAxis_.lower() * zb &&
+          b.x <= sAxis_.upper() * zb && a.y >= tAxis_.lower() * za && a.y <= tAxis_.upper() * za &&
+          b.y >= tAxis_.lower() * zb && b.y <= tAxis_.upper() * zb)) {
         tr.covered = false;
         return tr;
     }
     tr.gridPart = true;
     // A camera ray, and a shadow ray in a point light's space, keeps to one
     // column: its far end is found from its near end's cell.
-    tr.i0 = sAxis_.cellOf(sLo);
-    tr.i1 = sAxis_.cellFrom(tr.i0, sHi);
-    tr.j0 = tAxis_.cellOf(tLo);
-    tr.j1 = tAxis_.cellFrom(tr.j0, tHi);
+    const int ia = sAxis_.cellOfRatio(a.x, za, hint.i), ib = sAxis_.cellOfRatio(b.x, zb, ia);
+    const int ja = tAxis_.cellOfRatio(a.y, za, hint.j), jb = tAxis_.cellOfRatio(b.y, zb, ja);
+    tr.i0 = std::min(ia, ib);
+    tr.i1 = std::max(ia, ib);
+    tr.j0 = std::min(ja, jb);
+    tr.j1 = std::max(ja, jb);
     const double zA = std::min(a.z, b.z), zB = std::max(a.z, b.z);
     tr.k0 = depthAxis_.cellOf(zA);
     tr.k1 = depthAxis_.cellOf(zB);
@@ -531,17 +543,18 @@ void FrustumGrid::intersectBatch(std::span<const Ray> rays, std::span<TraceHit> 
         intersectPacket(rays, packet, apexWalk(unpackCameraKey(key)), hits);
     };
     traversals.resize(rays.size());
+    // Each camera ray's column is looked for from the one before's.
+    ApexColumn column{spec_.nx / 2, spec_.ny / 2, false};
     for (std::size_t i = 0; i < rays.size(); ++i) {
         refused[i] = 0;
         if (apexRays_) {
             Point3d direction;
-            ApexColumn column;
             if (apexColumn(rays[i], direction, column)) {
                 cameraGatherer.add(cameraKey(column, rays[i].direction), static_cast<std::uint32_t>(i), traceCamera);
                 continue;
             }
         }
-        traversals[i] = generalTraversal(rays[i]);
+        traversals[i] = generalTraversal(rays[i], ApexColumn{-1, -1, false});
         const Traversal& tr = traversals[i];
         if (!tr.covered) {
             refused[i] = 1;
@@ -718,11 +731,15 @@ void FrustumGrid::occludedBatch(std::span<const Ray> rays, std::span<unsigned ch
         occludedPacket(rays, packet, walk, blocked);
     };
     traversals.resize(rays.size());
+    // Each ray's cells are looked for from the last covered ray's: a tile's
+    // shadow rays lie close together in the light's space too.
+    ApexColumn hint{-1, -1, false};
     for (std::size_t i = 0; i < rays.size(); ++i) {
         refused[i] = 0;
         blocked[i] = 0;
-        traversals[i] = traversalOf(rays[i]);
+        traversals[i] = generalTraversal(rays[i], hint);
         const Traversal& tr = traversals[i];
+        if (tr.gridPart) hint = ApexColumn{tr.i0, tr.j0, false};
         if (!tr.covered) {
             refused[i] = 1;
             continue;

@@ -108,14 +108,17 @@ private:
     // The column of a ray from the apex of a perspective grid whose segment
     // spans every slice (a camera ray): the column of its direction; it
     // visits all the column's slices (apexWalk). `d`: the direction in
-    // frame coordinates. False: not such a ray; generalTraversal decides.
+    // frame coordinates. `column` holds a first guess (a neighbour's column)
+    // on entry. False: not such a ray; generalTraversal decides.
     struct ApexColumn {
         int i = 0, j = 0;
         bool nearPart = false;
     };
     bool apexColumn(const Ray& ray, Point3d& d, ApexColumn& column) const;
     Traversal apexWalk(const ApexColumn& column) const;
-    Traversal generalTraversal(const Ray& ray) const;
+    // Any ray. `hint`: a column to look for the ray's from (a neighbour's;
+    // negative: none); the cells found do not depend on it.
+    Traversal generalTraversal(const Ray& ray, const ApexColumn& hint) const;
     // A camera packet's key (column and shear axes in one integer), and the column back from it.
     static std::uint64_t cameraKey(const ApexColumn& column, const Vec3& direction);
     static ApexColumn unpackCameraKey(std::uint64_t key);

@@ -6,6 +6,7 @@ namespace raycache {
 
 void GridAxis::setUniform(double lo, double hi, int count) {
     count_ = count;
+    lastCell_ = count - 1;
     angular_ = false;
     const double step = (hi - lo) / count;
     bounds_.resize(static_cast<std::size_t>(count) + 1);
@@ -17,6 +18,7 @@ void GridAxis::setUniform(double lo, double hi, int count) {
 
 void GridAxis::setAngular(double angleLo, double angleHi, int count) {
     count_ = count;
+    lastCell_ = count - 1;
     angular_ = true;
     const double step = (angleHi - angleLo) / count;
     bounds_.resize(static_cast<std::size_t>(count) + 1);

@@ -31,16 +31,32 @@ public:
     [[gnu::always_inline]] int cellOf(double value) const {
         const double estimate = ((angular_ ? approximateAtan(value) : value) - estimateOrigin_) * estimateScale_;
         // Written so that a NaN estimate gives cell 0, not an undefined conversion.
-        int i = estimate > 0.0 ? (estimate < count_ - 1 ? static_cast<int>(estimate) : count_ - 1) : 0;
-        while (i + 1 < count_ && value >= bounds_[static_cast<std::size_t>(i) + 1]) ++i;
-        while (i > 0 && value < bounds_[static_cast<std::size_t>(i)]) --i;
+        int i = estimate > 0.0 ? (estimate < lastCell_ ? static_cast<int>(estimate) : count_ - 1) : 0;
+        const double* bounds = bounds_.data();
+        while (i + 1 < count_ && value >= bounds[i + 1]) ++i;
+        while (i > 0 && value < bounds[i]) --i;
         return i;
     }
     // cellOf(value) for a value known to be at least one in cell `from`:
     // the far end of a segment whose near end is in `from`, mostly the same cell.
     [[gnu::always_inline]] int cellFrom(int from, double value) const {
         int i = from;
-        while (i + 1 < count_ && value >= bounds_[static_cast<std::size_t>(i) + 1]) ++i;
+        const double* bounds = bounds_.data();
+        while (i + 1 < count_ && value >= bounds[i + 1]) ++i;
+        return i;
+    }
+
+    // The cell of numerator / denominator (denominator > 0), found from `hint` (a neighbour's cell: camera rays come row by
+    // row, mostly in the column of the ray before) by comparing products
+    // with the boundaries, no division. The product rounds differently from
+    // the quotient only at a boundary, within an ulp: far inside the margins
+    // every primitive is binned with, so either neighbour holds what the ray meets.
+    // Without a hint (hint < 0), the quotient's estimated cell is the first guess.
+    [[gnu::always_inline]] int cellOfRatio(double numerator, double denominator, int hint) const {
+        int i = hint < 0 ? cellOf(numerator / denominator) : (hint < count_ ? hint : count_ - 1);
+        const double* bounds = bounds_.data();
+        while (i + 1 < count_ && numerator >= bounds[i + 1] * denominator) ++i;
+        while (i > 0 && numerator < bounds[i] * denominator) --i;
         return i;
     }
 
@@ -54,6 +70,7 @@ private:
 
     std::vector<double> bounds_{0.0, 1.0};
     int count_ = 1;
+    double lastCell_ = 0.0;  // count_ - 1, converted once
     bool angular_ = false;
     double estimateOrigin_ = 0.0, estimateScale_ = 1.0;
 };
