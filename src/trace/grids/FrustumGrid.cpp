@@ -847,7 +847,14 @@ void FrustumGrid::occludedPacket(std::span<const Ray> rays, std::span<const std:
 std::vector<Vec3> FrustumGrid::occupiedColumnCorners() const {
     std::vector<Vec3> corners;
     if (zLo_ > zHi_ || !spec_.frame.perspective()) return corners;
-    const GridFrame& f = spec_.frame;
+    // Columns that share a corner share its line from the apex: per lattice
+    // corner, the nearest and farthest occupied depth of the (up to four)
+    // columns around it. The points between lie on that line, so the two
+    // ends have the same hull as every column's own eight corners, with a
+    // quarter of the points.
+    const std::size_t across = static_cast<std::size_t>(spec_.nx) + 1;
+    const std::size_t latticeCorners = across * (static_cast<std::size_t>(spec_.ny) + 1);
+    std::vector<double> nearest(latticeCorners, kInfinity), farthest(latticeCorners, -kInfinity);
     for (int j = 0; j < spec_.ny; ++j)
         for (int i = 0; i < spec_.nx; ++i) {
             int first = -1, last = -1;
@@ -859,16 +866,25 @@ std::vector<Vec3> FrustumGrid::occupiedColumnCorners() const {
                 }
             }
             if (first < 0) continue;
-            for (int corner = 0; corner < 8; ++corner) {
-                // The axes' boundaries are planar values (x/z): a corner's direction at depth 1.
-                const double uu = sAxis_.boundary(i + (corner & 1));
-                const double vv = tAxis_.boundary(j + ((corner >> 1) & 1));
-                const double z = sliceLower((corner & 4) ? last + 1 : first);
-                corners.push_back(
-                    Vec3{static_cast<float>(f.apex.x + z * (uu * f.right.x + vv * f.up.x + f.forward.x)),
-                         static_cast<float>(f.apex.y + z * (uu * f.right.y + vv * f.up.y + f.forward.y)),
-                         static_cast<float>(f.apex.z + z * (uu * f.right.z + vv * f.up.z + f.forward.z))});
+            const double zFirst = sliceLower(first), zLast = sliceLower(last + 1);
+            for (int corner = 0; corner < 4; ++corner) {
+                const std::size_t at = (static_cast<std::size_t>(j) + static_cast<std::size_t>(corner >> 1)) * across +
+                                       static_cast<std::size_t>(i) + static_cast<std::size_t>(corner & 1);
+                nearest[at] = std::min(nearest[at], zFirst);
+                farthest[at] = std::max(farthest[at], zLast);
             }
+        }
+    const GridFrame& f = spec_.frame;
+    for (int j = 0; j <= spec_.ny; ++j)
+        for (int i = 0; i <= spec_.nx; ++i) {
+            const std::size_t at = static_cast<std::size_t>(j) * across + static_cast<std::size_t>(i);
+            if (nearest[at] > farthest[at]) continue;
+            // The axes' boundaries are planar values (x/z): a corner's direction at depth 1.
+            const double uu = sAxis_.boundary(i), vv = tAxis_.boundary(j);
+            for (const double z : {nearest[at], farthest[at]})
+                corners.push_back(Vec3{static_cast<float>(f.apex.x + z * (uu * f.right.x + vv * f.up.x + f.forward.x)),
+                                       static_cast<float>(f.apex.y + z * (uu * f.right.y + vv * f.up.y + f.forward.y)),
+                                       static_cast<float>(f.apex.z + z * (uu * f.right.z + vv * f.up.z + f.forward.z))});
         }
     return corners;
 }

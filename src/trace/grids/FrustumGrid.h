@@ -84,9 +84,10 @@ public:
     void occludedBatch(std::span<const Ray> rays, std::span<unsigned char> blocked,
                        std::span<unsigned char> refused) const;
 
-    // World-space corners of the part of every column between its first and
-    // last occupied slice (8 per column that holds anything): their hull
-    // holds every point a ray could hit in the grid. Perspective grids only.
+    // Points whose hull holds the part of every column between its first
+    // and last occupied slice, hence every point a ray could hit in the
+    // grid: per corner of the columns' lattice, the nearest and farthest
+    // such depth along its line from the apex. Perspective grids only.
     std::vector<Vec3> occupiedColumnCorners() const;
 
     const FrustumGridStats& stats() const { return stats_; }

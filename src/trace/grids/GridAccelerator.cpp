@@ -93,14 +93,32 @@ FrustumGridSpec angularSpec(const Light& light, const Vec3& forward, const std::
     FrustumGridSpec spec;
     spec.frame = makeGridFrame(light.position, forward, Vec3{0.0f, 1.0f, 0.0f}, GridMapping::Angular);
     double sLo = 1e300, sHi = -1e300, tLo = 1e300, tHi = -1e300, zMax = -1e300;
+    // In front of the light (z > 0: every corner, when one rectangle holds
+    // them) atan2(x, z) = atan(x / z) rises with x / z: the box is taken on
+    // the ratios, and only its ends are turned into angles.
+    double ratioXLo = 1e300, ratioXHi = -1e300, ratioYLo = 1e300, ratioYHi = -1e300;
     for (const Vec3& p : visible) {
         const Point3d q = spec.frame.toFrame(p);
         zMax = std::max(zMax, q.z);
         if (fixedHalfAngle > 0.0) continue;
-        sLo = std::min(sLo, std::atan2(q.x, q.z));
-        sHi = std::max(sHi, std::atan2(q.x, q.z));
-        tLo = std::min(tLo, std::atan2(q.y, q.z));
-        tHi = std::max(tHi, std::atan2(q.y, q.z));
+        if (q.z > 0.0) {
+            const double inverseZ = 1.0 / q.z;
+            ratioXLo = std::min(ratioXLo, q.x * inverseZ);
+            ratioXHi = std::max(ratioXHi, q.x * inverseZ);
+            ratioYLo = std::min(ratioYLo, q.y * inverseZ);
+            ratioYHi = std::max(ratioYHi, q.y * inverseZ);
+        } else {
+            sLo = std::min(sLo, std::atan2(q.x, q.z));
+            sHi = std::max(sHi, std::atan2(q.x, q.z));
+            tLo = std::min(tLo, std::atan2(q.y, q.z));
+            tHi = std::max(tHi, std::atan2(q.y, q.z));
+        }
+    }
+    if (ratioXLo <= ratioXHi) {
+        sLo = std::min(sLo, std::atan(ratioXLo));
+        sHi = std::max(sHi, std::atan(ratioXHi));
+        tLo = std::min(tLo, std::atan(ratioYLo));
+        tHi = std::max(tHi, std::atan(ratioYHi));
     }
     if (fixedHalfAngle > 0.0) {
         sLo = tLo = -fixedHalfAngle;
