@@ -18,8 +18,8 @@
 #include "scene/MeshGenerators.h"
 #include "scene/MeshLoader.h"
 #include "scene/ScenePose.h"
+#include "trace/grids/CellLists.h"
 #include "trace/grids/GridAxis.h"
-#include "trace/grids/RadixSort.h"
 #include "trace/grids/WatertightTriangle.h"
 
 using namespace raycache;
@@ -196,25 +196,42 @@ TEST(GridAxis, CellIsTheLastBoundaryReachedOnEveryAxis) {
     }
 }
 
-TEST(RadixSort, EqualsAStableSortWhateverTheThreadCount) {
+TEST(CellLists, EqualsAStableSortOfThePairsWhateverTheThreadCount) {
+    // Primitives with runs of consecutive cells (as a grid's columns give),
+    // some with none; the oracle sorts the explicit pairs with std::stable_sort.
     std::mt19937 random(7);
-    const std::size_t n = 300000;
-    std::vector<std::uint32_t> keys(n), values(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        keys[i] = static_cast<std::uint32_t>(random() % 100003u);
-        values[i] = static_cast<std::uint32_t>(i);
+    const std::uint32_t primitives = 60000;
+    const std::uint64_t cells = 100003;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> runs(primitives);  // first cell, cell count
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;             // (cell, primitive)
+    for (std::uint32_t p = 0; p < primitives; ++p) {
+        const auto length = static_cast<std::uint32_t>(random() % 6);
+        const auto first = static_cast<std::uint32_t>(random() % (cells - 5));
+        runs[p] = {first, length};
+        for (std::uint32_t c = 0; c < length; ++c) pairs.push_back({first + c, p});
     }
-    std::vector<std::size_t> order(n);
-    for (std::size_t i = 0; i < n; ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return keys[x] < keys[y]; });
-    for (const int threads : {1, 2}) {
+    std::stable_sort(pairs.begin(), pairs.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    const auto cellsOf = [&](std::uint32_t p, auto&& visit) {
+        // Cells in descending order: the lists must not depend on the order a primitive's cells come in.
+        for (std::uint32_t c = runs[p].second; c-- > 0;) visit(std::size_t{runs[p].first + c});
+    };
+    for (const int threads : {1, 2, 3}) {
         const Parallel parallel(threads);
-        std::vector<std::uint32_t> k = keys, v = values, ks, vs;
-        radixSortPairs(k, v, 17, parallel, ks, vs);
-        for (std::size_t i = 0; i < n; ++i) {
-            ASSERT_EQ(k[i], keys[order[i]]) << i;
-            ASSERT_EQ(v[i], values[order[i]]) << i;
+        CellLists lists;
+        lists.build(primitives, cells, pairs.size(), parallel, cellsOf);
+        ASSERT_EQ(lists.cellStart().size(), cells + 1);
+        ASSERT_EQ(lists.primitives().size(), pairs.size());
+        std::size_t at = 0;
+        for (std::uint64_t c = 0; c < cells; ++c) {
+            ASSERT_EQ(lists.cellStart()[c], at) << "cell " << c << ", " << threads << " threads";
+            while (at < pairs.size() && pairs[at].first == c) {
+                ASSERT_EQ(lists.primitives()[at], pairs[at].second) << "cell " << c << ", " << threads << " threads";
+                ++at;
+            }
         }
+        EXPECT_EQ(lists.cellStart()[cells], pairs.size());
+        // A count that disagrees with the cells generated is refused, not written past.
+        EXPECT_THROW(lists.build(primitives, cells, pairs.size() + 1, parallel, cellsOf), RuntimeError);
     }
 }
 

@@ -8,7 +8,6 @@
 #include <string>
 
 #include "core/Errors.h"
-#include "trace/grids/RadixSort.h"
 
 namespace raycache {
 
@@ -235,10 +234,9 @@ void FrustumGrid::build(const FrustumGridSpec& spec, const GridPrimitives& primi
     stats_.nz = nz_;
     const std::uint64_t cells = static_cast<std::uint64_t>(spec_.nx) * spec_.ny * nz_;
 
-    // 2. Every primitive's cells: counted, offsets scanned, (cell, primitive) pairs written.
+    // 2. Every primitive's box of cells.
     ranges_.resize(count);
     nearFlags_.resize(count);
-    pairOffsets_.resize(static_cast<std::size_t>(count) + 1);
     parallel.forEachIndex(blocks, [&](int b, int) {
         auto [begin, end] = blockRange(b);
         for (std::uint32_t p = begin; p < end; ++p) {
@@ -249,54 +247,25 @@ void FrustumGrid::build(const FrustumGridSpec& spec, const GridPrimitives& primi
     });
     std::uint64_t pairs = 0;
     for (std::uint32_t p = 0; p < count; ++p) {
-        pairOffsets_[p] = static_cast<std::uint32_t>(pairs);
         const CellRange& r = ranges_[p];
         if (r.i1 < r.i0) continue;
         pairs += static_cast<std::uint64_t>(r.i1 - r.i0 + 1) * (r.j1 - r.j0 + 1) * (r.k1 - r.k0 + 1);
         ++stats_.primitivesBinned;
     }
-    if (pairs > std::numeric_limits<std::uint32_t>::max())
-        throw RuntimeError("a frustum grid would need " + std::to_string(pairs) + " (cell, primitive) pairs");
-    pairOffsets_[count] = static_cast<std::uint32_t>(pairs);
-    keys_.resize(pairs);
-    cellPrimitives_.resize(pairs);
-    parallel.forEachIndex(blocks, [&](int b, int) {
-        auto [begin, end] = blockRange(b);
-        for (std::uint32_t p = begin; p < end; ++p) {
-            const CellRange& r = ranges_[p];
-            std::uint32_t at = pairOffsets_[p];
-            for (int k = r.k0; k <= r.k1; ++k)
-                for (int j = r.j0; j <= r.j1; ++j)
-                    for (int i = r.i0; i <= r.i1; ++i) {
-                        keys_[at] = static_cast<std::uint32_t>(flatCell(k, j, i));
-                        cellPrimitives_[at++] = p;
-                    }
-        }
-    });
     stats_.pairs = pairs;
     nearZone_.clear();
     for (std::uint32_t p = 0; p < count; ++p)
         if (nearFlags_[p]) nearZone_.push_back(p);
     stats_.nearZone = nearZone_.size();
 
-    // 3. Sort by cell; primitives of one cell stay in primitive order (stable sort).
-    const int keyBits = cells > 1 ? static_cast<int>(std::bit_width(cells - 1)) : 0;
-    radixSortPairs(keys_, cellPrimitives_, keyBits, parallel, keyScratch_, valueScratch_);
-
-    // 4. Each cell's range: every sorted position that starts a new key
-    //    writes the starts of the cells from the previous key up to its own.
-    cellStart_.assign(cells + 1, 0);
-    const int pairBlocks = static_cast<int>((pairs + kBinBlock - 1) / kBinBlock);
-    parallel.forEachIndex(pairBlocks, [&](int b, int) {
-        const std::uint64_t begin = static_cast<std::uint64_t>(b) * kBinBlock;
-        const std::uint64_t end = std::min<std::uint64_t>(pairs, begin + kBinBlock);
-        for (std::uint64_t i = begin; i < end; ++i) {
-            const std::uint64_t previous = i == 0 ? 0 : static_cast<std::uint64_t>(keys_[i - 1]) + 1;
-            for (std::uint64_t c = previous; c <= keys_[i]; ++c) cellStart_[c] = static_cast<std::uint32_t>(i);
-        }
+    // 3. The (cell, primitive) pairs sorted by cell, each cell's primitives
+    //    in primitive order (CellLists: a counting sort on the cell index).
+    cellLists_.build(count, cells, pairs, parallel, [&](std::uint32_t p, auto&& visit) {
+        const CellRange& r = ranges_[p];
+        for (int j = r.j0; j <= r.j1; ++j)
+            for (int i = r.i0; i <= r.i1; ++i)
+                for (int k = r.k0; k <= r.k1; ++k) visit(flatCell(k, j, i));
     });
-    const std::uint64_t afterLast = pairs == 0 ? 0 : static_cast<std::uint64_t>(keys_[pairs - 1]) + 1;
-    for (std::uint64_t c = afterLast; c <= cells; ++c) cellStart_[c] = static_cast<std::uint32_t>(pairs);
 }
 
 bool FrustumGrid::apexColumn(const Ray& ray, Point3d& d, ApexColumn& column) const {
@@ -860,7 +829,7 @@ std::vector<Vec3> FrustumGrid::occupiedColumnCorners() const {
             int first = -1, last = -1;
             for (int k = 0; k < nz_; ++k) {
                 const std::size_t cell = flatCell(k, j, i);
-                if (cellStart_[cell + 1] > cellStart_[cell]) {
+                if (cellLists_.cellStart()[cell + 1] > cellLists_.cellStart()[cell]) {
                     if (first < 0) first = k;
                     last = k;
                 }

@@ -21,6 +21,7 @@
 #include "core/Parallel.h"
 #include "core/Ray.h"
 #include "trace/TraceHit.h"
+#include "trace/grids/CellLists.h"
 #include "trace/grids/GridAxis.h"
 #include "trace/grids/GridFrame.h"
 #include "trace/grids/GridPrimitives.h"
@@ -134,7 +135,7 @@ private:
     void occludedPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& walk,
                         std::span<unsigned char> blocked) const;
     CellRange binPrimitive(std::uint32_t primitive, bool& inNearZone) const;
-    // Index of cell (i, j) of depth slice k in cellStart_. A column's slices
+    // Index of cell (i, j) of depth slice k in cellLists_. A column's slices
     // lie next to one another: a ray walks one column front to back.
     std::size_t flatCell(int k, int j, int i) const {
         return (static_cast<std::size_t>(j) * static_cast<std::size_t>(spec_.nx) + static_cast<std::size_t>(i)) *
@@ -168,8 +169,8 @@ private:
             for (int j = tr.j0; j <= tr.j1; ++j)
                 for (int i = tr.i0; i <= tr.i1; ++i) {
                     const std::size_t cell = flatCell(k, j, i);
-                    for (std::uint32_t at = cellStart_[cell]; at < cellStart_[cell + 1]; ++at)
-                        if (firstVisit(cellPrimitives_[at], tr, k, j, i) && visit(cellPrimitives_[at])) return;
+                    for (std::uint32_t at = cellLists_.cellStart()[cell]; at < cellLists_.cellStart()[cell + 1]; ++at)
+                        if (firstVisit(cellLists_.primitives()[at], tr, k, j, i) && visit(cellLists_.primitives()[at])) return;
                 }
             if (sliceDone(k)) return;
         }
@@ -187,14 +188,12 @@ private:
     int nz_ = 1;
     // Columns across (planar s = x/z or x, and t) and slices along depth z.
     GridAxis sAxis_, tAxis_, depthAxis_;
-    std::vector<std::uint32_t> cellStart_;  // cells + 1 offsets into cellPrimitives_
-    std::vector<std::uint32_t> cellPrimitives_;
+    CellLists cellLists_;  // every cell's primitives
     std::vector<std::uint32_t> nearZone_;
     FrustumGridStats stats_;
     // Reused from frame to frame.
     std::vector<CellRange> ranges_;
     std::vector<unsigned char> nearFlags_;
-    std::vector<std::uint32_t> pairOffsets_, keys_, keyScratch_, valueScratch_;
 };
 
 }  // namespace raycache
