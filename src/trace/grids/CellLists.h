@@ -36,7 +36,8 @@ public:
         // beside the caches; beyond that one block (a serial count).
         int blocks = std::max(1, parallel.threadCount());
         if (cells * static_cast<std::uint64_t>(blocks) > kMaxCounters || primitives < kMinBlockPrimitives) blocks = 1;
-        const std::uint32_t perBlock = (primitives + static_cast<std::uint32_t>(blocks) - 1) / static_cast<std::uint32_t>(blocks);
+        const std::uint32_t perBlock =
+            (primitives + static_cast<std::uint32_t>(blocks) - 1) / static_cast<std::uint32_t>(blocks);
         const std::size_t stride = static_cast<std::size_t>(cells);
         counts_.assign(stride * static_cast<std::size_t>(blocks), 0);
         const auto blockRange = [&](int b) {

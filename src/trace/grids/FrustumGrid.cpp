@@ -104,8 +104,8 @@ static Polygon cornersOf(const GridFrame& frame, const GridPrimitives& primitive
 
 // The depth range (frame z) of a primitive, without its other coordinates:
 // the first pass of a build needs nothing else.
-static void depthRangeOf(const GridFrame& frame, const GridPrimitives& primitives, std::uint32_t primitive,
-                         double& lo, double& hi) {
+static void depthRangeOf(const GridFrame& frame, const GridPrimitives& primitives, std::uint32_t primitive, double& lo,
+                         double& hi) {
     const Point3d& f = frame.forward;
     const auto depth = [&](const Vec3& p) {
         return (p.x - frame.apex.x) * f.x + (p.y - frame.apex.y) * f.y + (p.z - frame.apex.z) * f.z;
@@ -181,7 +181,8 @@ void FrustumGrid::build(const FrustumGridSpec& spec, const GridPrimitives& primi
     spec_ = spec;
     primitives_ = &primitives;
     // A camera packet's key holds a column's indices in kColumnBits each.
-    if (spec_.nx < 1 || spec_.ny < 1 || spec_.nx > static_cast<int>(kColumnMask) || spec_.ny > static_cast<int>(kColumnMask))
+    if (spec_.nx < 1 || spec_.ny < 1 || spec_.nx > static_cast<int>(kColumnMask) ||
+        spec_.ny > static_cast<int>(kColumnMask))
         throw RuntimeError("a frustum grid of " + std::to_string(spec_.nx) + " x " + std::to_string(spec_.ny) +
                            " columns is out of range");
     stats_ = {};
@@ -314,10 +315,10 @@ FrustumGrid::Traversal FrustumGrid::traversalOf(const Ray& ray) const {
             return tr;
         }
     }
-    return generalTraversal(ray, ApexColumn{-1, -1, false});
+    return generalTraversal(ray, ColumnHint{});
 }
 
-FrustumGrid::Traversal FrustumGrid::generalTraversal(const Ray& ray, const ApexColumn& hint) const {
+FrustumGrid::Traversal FrustumGrid::generalTraversal(const Ray& ray, ColumnHint hint) const {
     Traversal tr;
     const GridFrame& frame = spec_.frame;
     tr.origin = frame.toFrame(ray.origin);
@@ -410,7 +411,8 @@ std::uint64_t FrustumGrid::cameraKey(const ApexColumn& column, const Vec3& direc
     int kx = 0, ky = 0, kz = 0;
     WatertightRay::shearAxes(direction, kx, ky, kz);
     return static_cast<std::uint64_t>(column.i) | static_cast<std::uint64_t>(column.j) << kColumnBits |
-           static_cast<std::uint64_t>(kz) << (2 * kColumnBits) | static_cast<std::uint64_t>(kx) << (2 * kColumnBits + 2) |
+           static_cast<std::uint64_t>(kz) << (2 * kColumnBits) |
+           static_cast<std::uint64_t>(kx) << (2 * kColumnBits + 2) |
            static_cast<std::uint64_t>(column.nearPart ? 1 : 0) << (2 * kColumnBits + 4);
 }
 
@@ -523,7 +525,7 @@ void FrustumGrid::intersectBatch(std::span<const Ray> rays, std::span<TraceHit> 
                 continue;
             }
         }
-        traversals[i] = generalTraversal(rays[i], ApexColumn{-1, -1, false});
+        traversals[i] = generalTraversal(rays[i], ColumnHint{});
         const Traversal& tr = traversals[i];
         if (!tr.covered) {
             refused[i] = 1;
@@ -702,13 +704,13 @@ void FrustumGrid::occludedBatch(std::span<const Ray> rays, std::span<unsigned ch
     traversals.resize(rays.size());
     // Each ray's cells are looked for from the last covered ray's: a tile's
     // shadow rays lie close together in the light's space too.
-    ApexColumn hint{-1, -1, false};
+    ColumnHint hint;
     for (std::size_t i = 0; i < rays.size(); ++i) {
         refused[i] = 0;
         blocked[i] = 0;
         traversals[i] = generalTraversal(rays[i], hint);
         const Traversal& tr = traversals[i];
-        if (tr.gridPart) hint = ApexColumn{tr.i0, tr.j0, false};
+        if (tr.gridPart) hint = ColumnHint{tr.i0, tr.j0};
         if (!tr.covered) {
             refused[i] = 1;
             continue;
@@ -851,9 +853,10 @@ std::vector<Vec3> FrustumGrid::occupiedColumnCorners() const {
             // The axes' boundaries are planar values (x/z): a corner's direction at depth 1.
             const double uu = sAxis_.boundary(i), vv = tAxis_.boundary(j);
             for (const double z : {nearest[at], farthest[at]})
-                corners.push_back(Vec3{static_cast<float>(f.apex.x + z * (uu * f.right.x + vv * f.up.x + f.forward.x)),
-                                       static_cast<float>(f.apex.y + z * (uu * f.right.y + vv * f.up.y + f.forward.y)),
-                                       static_cast<float>(f.apex.z + z * (uu * f.right.z + vv * f.up.z + f.forward.z))});
+                corners.push_back(
+                    Vec3{static_cast<float>(f.apex.x + z * (uu * f.right.x + vv * f.up.x + f.forward.x)),
+                         static_cast<float>(f.apex.y + z * (uu * f.right.y + vv * f.up.y + f.forward.y)),
+                         static_cast<float>(f.apex.z + z * (uu * f.right.z + vv * f.up.z + f.forward.z))});
         }
     return corners;
 }

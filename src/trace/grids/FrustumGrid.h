@@ -120,7 +120,10 @@ private:
     Traversal apexWalk(const ApexColumn& column) const;
     // Any ray. `hint`: a column to look for the ray's from (a neighbour's;
     // negative: none); the cells found do not depend on it.
-    Traversal generalTraversal(const Ray& ray, const ApexColumn& hint) const;
+    struct ColumnHint {
+        int i = -1, j = -1;
+    };
+    Traversal generalTraversal(const Ray& ray, ColumnHint hint) const;
     // A camera packet's key (column and shear axes in one integer), and the column back from it.
     static std::uint64_t cameraKey(const ApexColumn& column, const Vec3& direction);
     static ApexColumn unpackCameraKey(std::uint64_t key);
@@ -169,8 +172,9 @@ private:
             for (int j = tr.j0; j <= tr.j1; ++j)
                 for (int i = tr.i0; i <= tr.i1; ++i) {
                     const std::size_t cell = flatCell(k, j, i);
+                    const std::uint32_t* primitives = cellLists_.primitives().data();
                     for (std::uint32_t at = cellLists_.cellStart()[cell]; at < cellLists_.cellStart()[cell + 1]; ++at)
-                        if (firstVisit(cellLists_.primitives()[at], tr, k, j, i) && visit(cellLists_.primitives()[at])) return;
+                        if (firstVisit(primitives[at], tr, k, j, i) && visit(primitives[at])) return;
                 }
             if (sliceDone(k)) return;
         }

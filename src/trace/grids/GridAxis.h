@@ -46,12 +46,13 @@ public:
         return i;
     }
 
-    // The cell of numerator / denominator (denominator > 0), found from `hint` (a neighbour's cell: camera rays come row by
-    // row, mostly in the column of the ray before) by comparing products
-    // with the boundaries, no division. The product rounds differently from
-    // the quotient only at a boundary, within an ulp: far inside the margins
-    // every primitive is binned with, so either neighbour holds what the ray meets.
-    // Without a hint (hint < 0), the quotient's estimated cell is the first guess.
+    // The cell of numerator / denominator (denominator > 0), found from
+    // `hint` (a neighbour's cell: camera rays come row by row, mostly in the
+    // column of the ray before) by comparing products with the boundaries,
+    // with no division. The product rounds differently from the quotient
+    // only at a boundary, within an ulp: far inside the margins every
+    // primitive is binned with, so either neighbour holds what the ray
+    // meets. Without a hint (hint < 0) the quotient's cell is the first guess.
     [[gnu::always_inline]] int cellOfRatio(double numerator, double denominator, int hint) const {
         int i = hint < 0 ? cellOf(numerator / denominator) : (hint < count_ ? hint : count_ - 1);
         const double* bounds = bounds_.data();

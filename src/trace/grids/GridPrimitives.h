@@ -71,7 +71,7 @@ private:
     std::vector<std::uint32_t> firstPrimitive_;  // per object, and the total at the end
     std::vector<int> primitiveObject_;
     std::vector<TriangleCoordinates> corners_;  // per primitive; a sphere's are unused
-    std::vector<unsigned char> isSphere_;  // per primitive
+    std::vector<unsigned char> isSphere_;       // per primitive
     std::uint32_t count_ = 0;
 };
 
