@@ -18,7 +18,9 @@
 #include "scene/MeshGenerators.h"
 #include "scene/MeshLoader.h"
 #include "scene/ScenePose.h"
+#include "trace/TraceScene.h"
 #include "trace/grids/CellLists.h"
+#include "trace/grids/GridAccelerator.h"
 #include "trace/grids/GridAxis.h"
 #include "trace/grids/WatertightTriangle.h"
 
@@ -308,6 +310,42 @@ TEST(Grids, DegenerateLightInsideTheFrustumAndBehindTheCamera) {
     expectExact("light inside the frustum", inside);
     s.lights = {pointLight({0.5f, 2.5f, 9.0f})};  // behind the camera
     expectExact("light behind the camera", compare(s, s.camera, 80));
+}
+
+// A light among the geometry gets six face grids, and each bins only the
+// primitives that could lie in its pyramid or beside the light (its near
+// zone reaches past the pyramid's tip). A ray of the +x face whose near part
+// runs out of that pyramid to a triangle just beside the light must still
+// meet it. Positions in units of the world's scale (10: the room's corners):
+// near plane 0.01, shadow pad 0.002 (GridAccelerator.cpp).
+TEST(Grids, FaceGridsKeepWhatLiesBesideTheLight) {
+    Scene s;
+    s.objects.push_back(meshObject("room", scaled(makeBox(), 20.0f, {0, 0, 0})));
+    // In the plane x = -0.0005, around lateral z = 0.012: seen from the light
+    // it lies in the +z face, wholly outside the +x face's pyramid.
+    TriangleMesh beside;
+    beside.positions = {{-0.0005f, -0.001f, 0.011f}, {-0.0005f, 0.001f, 0.011f}, {-0.0005f, 0.0f, 0.013f}};
+    beside.triangles = {{0, 1, 2}};
+    s.objects.push_back(meshObject("beside the light", beside));
+    s.lights = {pointLight({0, 0, 0})};
+    s.camera = Camera{{0, 0, -5.0f}, {0, 0, 0}, {0, 1, 0}, 120.0f};
+    const Parallel parallel(2);
+    GridAccelerator grids(GridSettings{});
+    ASSERT_EQ(grids.buildFrame(s, s.camera, 64, 64, parallel).lightsWithSixFaces, 1);
+    // From far along +x, entering the near zone at lateral z = 0.01 (x =
+    // 0.01: inside the rectangle) and ending at x = -0.001, lateral 0.012
+    // (inside the near zone's box, beyond the pyramid).
+    const Vec3 origin{1.0f, 0.0f, -0.17f}, end{-0.001f, 0.0f, 0.012f};
+    Ray ray;
+    ray.origin = origin;
+    ray.direction = normalize(end - origin);
+    ray.tNear = 0.0f;
+    ray.tFar = length(end - origin);
+    const TraceScene embree(s);
+    ASSERT_TRUE(embree.occluded(ray)) << "the ray must cross the triangle beside the light";
+    bool blocked = false;
+    ASSERT_TRUE(grids.occludedShadow(ray, 0, blocked)) << "the +x face grid must cover the ray";
+    EXPECT_TRUE(blocked);
 }
 
 TEST(Grids, DegenerateZeroAreaTriangles) {

@@ -124,7 +124,6 @@ static void depthRangeOf(const GridFrame& frame, const GridPrimitives& primitive
 }
 
 FrustumGrid::CellRange FrustumGrid::binPrimitive(std::uint32_t primitive, bool& inNearZone) const {
-    constexpr CellRange kNone{0, -1, 0, -1, 0, -1};
     const GridFrame& frame = spec_.frame;
     const double m = spec_.margin;
     bool isBox = false;
@@ -142,7 +141,7 @@ FrustumGrid::CellRange FrustumGrid::binPrimitive(std::uint32_t primitive, bool& 
         inNearZone = boxesOverlap(padded, spec_.nearZone);
     }
     const double zA = std::max(bounds.lo.z - m, zLo_), zB = std::min(bounds.hi.z + m, zHi_);
-    if (zA > zB) return kNone;
+    if (zA > zB) return kNoCells;
     double sLo = kInfinity, sHi = -kInfinity, tLo = kInfinity, tHi = -kInfinity;
     if (frame.perspective()) {
         // Only the part in front of the first slice projects into the grid.
@@ -165,19 +164,20 @@ FrustumGrid::CellRange FrustumGrid::binPrimitive(std::uint32_t primitive, bool& 
             tLo = std::min(tLo, v - mv);
             tHi = std::max(tHi, v + mv);
         }
-        if (polygon.count == 0) return kNone;
+        if (polygon.count == 0) return kNoCells;
     } else {
         sLo = bounds.lo.x - m;
         sHi = bounds.hi.x + m;
         tLo = bounds.lo.y - m;
         tHi = bounds.hi.y + m;
     }
-    if (sHi < sAxis_.lower() || sLo > sAxis_.upper() || tHi < tAxis_.lower() || tLo > tAxis_.upper()) return kNone;
+    if (sHi < sAxis_.lower() || sLo > sAxis_.upper() || tHi < tAxis_.lower() || tLo > tAxis_.upper()) return kNoCells;
     return {sAxis_.cellOf(sLo), sAxis_.cellOf(sHi),    tAxis_.cellOf(tLo),
             tAxis_.cellOf(tHi), depthAxis_.cellOf(zA), depthAxis_.cellOf(zB)};
 }
 
-void FrustumGrid::build(const FrustumGridSpec& spec, const GridPrimitives& primitives, const Parallel& parallel) {
+void FrustumGrid::build(const FrustumGridSpec& spec, const GridPrimitives& primitives, const Parallel& parallel,
+                        PrimitiveFilter filter) {
     spec_ = spec;
     primitives_ = &primitives;
     // A camera packet's key holds a column's indices in kColumnBits each.
@@ -193,18 +193,29 @@ void FrustumGrid::build(const FrustumGridSpec& spec, const GridPrimitives& primi
         return std::pair{begin, std::min(count, begin + kBinBlock)};
     };
 
-    // 1. The depth range of all geometry in this frame: beyond it a ray meets nothing.
-    std::vector<std::pair<double, double>> blockDepth(static_cast<std::size_t>(blocks), {kInfinity, -kInfinity});
+    // 1. The depth range of all geometry in this frame (of the candidates):
+    //    beyond it a ray meets nothing.
+    struct BlockDepth {
+        double lo = kInfinity, hi = -kInfinity;
+        std::uint32_t candidates = 0;
+    };
+    std::vector<BlockDepth> blockDepth(static_cast<std::size_t>(blocks));
     parallel.forEachIndex(blocks, [&](int b, int) {
         auto [begin, end] = blockRange(b);
-        auto& [lo, hi] = blockDepth[static_cast<std::size_t>(b)];
-        for (std::uint32_t p = begin; p < end; ++p) depthRangeOf(spec_.frame, primitives, p, lo, hi);
+        BlockDepth& depth = blockDepth[static_cast<std::size_t>(b)];
+        for (std::uint32_t p = begin; p < end; ++p)
+            if (filter.admits(p)) {
+                depthRangeOf(spec_.frame, primitives, p, depth.lo, depth.hi);
+                ++depth.candidates;
+            }
     });
     geometryZLo_ = kInfinity;
     geometryZHi_ = -kInfinity;
-    for (const auto& [lo, hi] : blockDepth) {
-        geometryZLo_ = std::min(geometryZLo_, lo - spec_.margin);
-        geometryZHi_ = std::max(geometryZHi_, hi + spec_.margin);
+    std::uint32_t candidates = 0;
+    for (const BlockDepth& depth : blockDepth) {
+        geometryZLo_ = std::min(geometryZLo_, depth.lo - spec_.margin);
+        geometryZHi_ = std::max(geometryZHi_, depth.hi + spec_.margin);
+        candidates += depth.candidates;
     }
     zLo_ = spec_.frame.perspective() ? std::max(spec_.zNear, geometryZLo_) : geometryZLo_;
     zHi_ = std::min(geometryZHi_, spec_.zFarLimit);
@@ -216,7 +227,7 @@ void FrustumGrid::build(const FrustumGridSpec& spec, const GridPrimitives& primi
         tAxis_.setUniform(spec_.t0, spec_.t1, spec_.ny);
     }
     const double columns = static_cast<double>(spec_.nx) * spec_.ny;
-    nz_ = std::clamp(static_cast<int>(spec_.cellsPerPrimitive * count / columns), 1, spec_.maxSlices);
+    nz_ = std::clamp(static_cast<int>(spec_.cellsPerPrimitive * candidates / columns), 1, spec_.maxSlices);
     // Slices of depth 1 when there is no geometry: nothing is binned, and no ray walks them.
     depthAxis_.setUniform(zLo_, zHi_ > zLo_ ? zHi_ : zLo_ + nz_, nz_);
     apex_ = Vec3{static_cast<float>(spec_.frame.apex.x), static_cast<float>(spec_.frame.apex.y),
@@ -242,7 +253,7 @@ void FrustumGrid::build(const FrustumGridSpec& spec, const GridPrimitives& primi
         auto [begin, end] = blockRange(b);
         for (std::uint32_t p = begin; p < end; ++p) {
             bool nearZone = false;
-            ranges_[p] = binPrimitive(p, nearZone);
+            ranges_[p] = filter.admits(p) ? binPrimitive(p, nearZone) : kNoCells;
             nearFlags_[p] = nearZone ? 1 : 0;
         }
     });

@@ -60,10 +60,22 @@ struct FrustumGridStats {
     int nx = 0, ny = 0, nz = 0;
 };
 
+// The primitives a grid is built over may be narrowed to candidates: those
+// whose byte in `masks` has `bit` set. A primitive left out must be one no
+// ray the grid covers can meet (GridAccelerator: the face grids of a light
+// among the geometry). No masks: every primitive.
+struct PrimitiveFilter {
+    std::span<const std::uint8_t> masks;
+    std::uint8_t bit = 0;
+    bool admits(std::uint32_t primitive) const { return masks.empty() || (masks[primitive] & bit) != 0; }
+};
+
 class FrustumGrid {
 public:
-    // Rebuilds the grid over `primitives` (which must outlive the queries).
-    void build(const FrustumGridSpec& spec, const GridPrimitives& primitives, const Parallel& parallel);
+    // Rebuilds the grid over `primitives` (which must outlive the queries),
+    // or over the candidates among them.
+    void build(const FrustumGridSpec& spec, const GridPrimitives& primitives, const Parallel& parallel,
+               PrimitiveFilter filter = {});
 
     // Nearest hit, as TraceScene::intersect. False: the ray is not covered (`hit` untouched).
     bool intersect(const Ray& ray, TraceHit& hit) const;
@@ -98,6 +110,7 @@ private:
     struct CellRange {
         int i0, i1, j0, j1, k0, k1;  // inclusive; i1 < i0 when the primitive has no cell
     };
+    static constexpr CellRange kNoCells{0, -1, 0, -1, 0, -1};
     // The part of a ray's segment the grid must cover, in ray parameter t.
     struct Traversal {
         bool covered = true;

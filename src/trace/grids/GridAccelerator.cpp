@@ -35,6 +35,13 @@ double worldScaleOf(const Scene& scene, const Camera& camera) {
 }
 
 constexpr double kDegrees = std::numbers::pi / 180.0;
+// Fractions of the world's scale (its largest coordinate): every grid's
+// positional margin, and where perspective grids start their slices.
+constexpr double kMarginOfScale = 1e-5;
+constexpr double kNearOfScale = 1e-3;
+// Shadow rays start a surface offset off the hit (render/LocalShading.cpp)
+// and end that far from a point light: light grids are padded by twice it.
+constexpr double kShadowPadOfScale = 2e-4;
 
 }  // namespace
 
@@ -57,8 +64,8 @@ GridFrameStats GridAccelerator::buildFrame(const Scene& scene, const Camera& cam
     spec.s0 = -spec.s1;
     spec.t1 = tanHalf * 1.001;
     spec.t0 = -spec.t1;
-    spec.margin = 1e-5 * worldScale_;
-    spec.zNear = 1e-3 * worldScale_;
+    spec.margin = kMarginOfScale * worldScale_;
+    spec.zNear = kNearOfScale * worldScale_;
     // Camera rays start at the apex: before zNear they stay in the frustum's tip.
     spec.nearZone = {{spec.s0 * spec.zNear, spec.t0 * spec.zNear, -spec.margin},
                      {spec.s1 * spec.zNear, spec.t1 * spec.zNear, spec.zNear}};
@@ -129,7 +136,7 @@ FrustumGridSpec angularSpec(const Light& light, const Vec3& forward, const std::
     spec.s1 = sHi + widen;
     spec.t0 = tLo - widen;
     spec.t1 = tHi + widen;
-    spec.zNear = 1e-3 * worldScale;
+    spec.zNear = kNearOfScale * worldScale;
     // Shadow rays end at the light: inside the rectangle's pyramid up to
     // zNear, give or take the surface offset.
     const double uLo = std::min(0.0, std::tan(spec.s0)), uHi = std::max(0.0, std::tan(spec.s1));
@@ -149,6 +156,74 @@ int faceOf(const Vec3& d) {
 }
 
 const Vec3 kFaceAxes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+// A face grid's rectangle spans ±(45° + 0.01 rad), widened by 0.1 %: a
+// tangent of 1.0205. Primitives are culled against a wider pyramid.
+constexpr double kFaceCullTangent = 1.05;
+
+// Which of a light's six face grids each primitive may meet: bit f for
+// kFaceAxes[f]. A face grid answers only rays inside its rectangle's
+// pyramid around the light or inside its near zone (the pyramid's tip,
+// padded); a primitive that lies wholly beyond one side of the wider
+// pyramid (every corner beyond it by `slack`, so one plane separates them)
+// and away from the light's neighbourhood cannot be met by them, and that
+// face's grid need not bin it. Without this, each of the six grids bins
+// every primitive of the scene.
+void faceCandidates(const GridPrimitives& primitives, const Vec3& light, double slack, double nearRadius,
+                    const Parallel& parallel, std::vector<std::uint8_t>& masks) {
+    masks.resize(primitives.count());
+    // Inside face +x: x >= k |y| and x >= k |z|. The side planes' normals
+    // (1, ±k) are shorter than 1.5, so 1.5 slack in value is slack in distance.
+    const double k = 1.0 / kFaceCullTangent, beyond = -1.5 * slack;
+    constexpr std::uint32_t kBlock = 16384;
+    const int blocks = static_cast<int>((primitives.count() + kBlock - 1) / kBlock);
+    parallel.forEachIndex(blocks, [&](int b, int) {
+        const std::uint32_t begin = static_cast<std::uint32_t>(b) * kBlock;
+        const std::uint32_t end = std::min(primitives.count(), begin + kBlock);
+        for (std::uint32_t p = begin; p < end; ++p) {
+            // The corners relative to the light: a triangle's three or a sphere's box's eight.
+            double corners[8][3];
+            int count = 0;
+            if (const Sphere* sphere = primitives.sphere(p)) {
+                for (int c = 0; c < 8; ++c, ++count) {
+                    corners[c][0] = sphere->center.x + ((c & 1) ? sphere->radius : -sphere->radius) - light.x;
+                    corners[c][1] = sphere->center.y + ((c & 2) ? sphere->radius : -sphere->radius) - light.y;
+                    corners[c][2] = sphere->center.z + ((c & 4) ? sphere->radius : -sphere->radius) - light.z;
+                }
+            } else {
+                const GridPrimitives::TriangleCoordinates& t = primitives.triangleCoordinates(p);
+                for (int c = 0; c < 3; ++c, ++count)
+                    for (int axis = 0; axis < 3; ++axis)
+                        corners[c][axis] = static_cast<double>(t[static_cast<std::size_t>(3 * c + axis)]) -
+                                           static_cast<double>(light[axis]);
+            }
+            // Near the light every face's near zone may reach it.
+            bool nearLight = true;
+            for (int axis = 0; axis < 3 && nearLight; ++axis) {
+                double lo = corners[0][axis], hi = corners[0][axis];
+                for (int c = 1; c < count; ++c) {
+                    lo = std::min(lo, corners[c][axis]);
+                    hi = std::max(hi, corners[c][axis]);
+                }
+                nearLight = lo <= nearRadius && hi >= -nearRadius;
+            }
+            std::uint8_t mask = 0;
+            for (int face = 0; face < 6; ++face) {
+                const int axis = face / 2, v = (axis + 1) % 3, w = (axis + 2) % 3;
+                const double sign = (face & 1) ? -1.0 : 1.0;
+                bool separated = false;
+                for (int side = 0; side < 4 && !separated; ++side) {
+                    const int across = side < 2 ? v : w;
+                    const double slope = (side & 1) ? k : -k;
+                    separated = true;
+                    for (int c = 0; c < count && separated; ++c)
+                        separated = sign * corners[c][axis] + slope * corners[c][across] < beyond;
+                }
+                if (nearLight || !separated) mask = static_cast<std::uint8_t>(mask | (1u << face));
+            }
+            masks[p] = mask;
+        }
+    });
+}
 
 }  // namespace
 
@@ -161,9 +236,7 @@ void GridAccelerator::buildLightGrid(const Light& light, std::size_t index, cons
     grids.grids.clear();
     grids.faces = false;
     if (visible.empty()) return;
-    // Shadow rays start a surface offset off the hit (render/LocalShading.cpp)
-    // and end that far from a point light: the grids are padded by twice it.
-    const double pad = 2e-4 * worldScale_;
+    const double pad = kShadowPadOfScale * worldScale_;
     std::vector<FrustumGridSpec> specs;
     if (light.type == LightType::Directional) {
         FrustumGridSpec spec;
@@ -220,12 +293,17 @@ void GridAccelerator::buildLightGrid(const Light& light, std::size_t index, cons
         } else {
             grids.faces = true;
             ++stats.lightsWithSixFaces;
+            // Shadow rays end at the light give or take `pad`; a face's near
+            // zone reaches 1.0205 zNear + pad from it sideways and zNear ahead.
+            const double zNear = kNearOfScale * worldScale_, margin = kMarginOfScale * worldScale_;
+            faceCandidates(*primitives_, light.position, 2.0 * (pad + margin), 2.0 * (zNear + pad) + margin, parallel,
+                           faceMasks_);
             for (const Vec3& axis : kFaceAxes)
                 specs.push_back(angularSpec(light, axis, visible, 0.25 * std::numbers::pi + 0.01, pad, worldScale_));
         }
     }
     for (FrustumGridSpec& spec : specs) {
-        spec.margin = 1e-5 * worldScale_;
+        spec.margin = kMarginOfScale * worldScale_;
         spec.maxSlices = settings_.maxSlices;
         spec.cellsPerPrimitive = settings_.cellsPerPrimitive;
         spec.nx = camera_.spec().nx;
@@ -242,7 +320,9 @@ void GridAccelerator::buildLightGrid(const Light& light, std::size_t index, cons
             grid = std::move(grids.spare.back());
             grids.spare.pop_back();
         }
-        grid->build(spec, *primitives_, parallel);
+        grid->build(spec, *primitives_, parallel,
+                    grids.faces ? PrimitiveFilter{faceMasks_, static_cast<std::uint8_t>(1u << grids.grids.size())}
+                                : PrimitiveFilter{});
         stats.shadowPairs += grid->stats().pairs;
         ++stats.lightGrids;
         grids.grids.push_back(std::move(grid));

@@ -83,6 +83,8 @@ private:
 
     std::vector<LightGrids> lights_;
     std::vector<Vec3> lightPositions_;
+    // Per primitive, the face grids of the light being built that may meet it.
+    std::vector<std::uint8_t> faceMasks_;
     double worldScale_ = 1.0;
 };
 
