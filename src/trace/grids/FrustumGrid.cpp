@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <new>
 #include <string>
 
 #include "core/Errors.h"
@@ -536,7 +537,10 @@ void FrustumGrid::intersectBatch(std::span<const Ray> rays, std::span<TraceHit> 
                 continue;
             }
         }
-        traversals[i] = generalTraversal(rays[i], ColumnHint{});
+        // Made in place (a prvalue initialising the element: no copy).
+        // Copying the returned record from the stack stalled on store
+        // forwarding: a third of occludedBatch's own time on `orbit`.
+        ::new (static_cast<void*>(&traversals[i])) Traversal(generalTraversal(rays[i], ColumnHint{}));
         const Traversal& tr = traversals[i];
         if (!tr.covered) {
             refused[i] = 1;
@@ -719,7 +723,8 @@ void FrustumGrid::occludedBatch(std::span<const Ray> rays, std::span<unsigned ch
     for (std::size_t i = 0; i < rays.size(); ++i) {
         refused[i] = 0;
         blocked[i] = 0;
-        traversals[i] = generalTraversal(rays[i], hint);
+        // Made in place, as in intersectBatch.
+        ::new (static_cast<void*>(&traversals[i])) Traversal(generalTraversal(rays[i], hint));
         const Traversal& tr = traversals[i];
         if (tr.gridPart) hint = ColumnHint{tr.i0, tr.j0};
         if (!tr.covered) {
