@@ -180,7 +180,11 @@ TEST(GridAxis, CellIsTheLastBoundaryReachedOnEveryAxis) {
             ASSERT_EQ(cell, cellBySearch(axis, v)) << "value " << v;
             ASSERT_GE(cell, previous) << "not monotonic at " << v;  // values are sorted
             previous = cell;
-            for (int from = 0; from <= cell; ++from) ASSERT_EQ(axis.cellFrom(from, v), cell);
+            // The same cell from products, whatever the hint: v z against each
+            // boundary times z, with z a power of two above 1 so no product rounds.
+            for (const double z : {1.0, 4.0})
+                for (const int hint : {-1, 0, cell, c.count - 1, c.count + 3})
+                    ASSERT_EQ(axis.cellOfRatio(v * z, z, hint), cell) << "value " << v << ", hint " << hint;
         }
         // The external oracle: angular cells are evenly spaced in atan.
         if (c.angular)

@@ -37,15 +37,6 @@ public:
         while (i > 0 && value < bounds[i]) --i;
         return i;
     }
-    // cellOf(value) for a value known to be at least one in cell `from`:
-    // the far end of a segment whose near end is in `from`, mostly the same cell.
-    [[gnu::always_inline]] int cellFrom(int from, double value) const {
-        int i = from;
-        const double* bounds = bounds_.data();
-        while (i + 1 < count_ && value >= bounds[i + 1]) ++i;
-        return i;
-    }
-
     // The cell of numerator / denominator (denominator > 0), found from
     // `hint` (a neighbour's cell: camera rays come row by row, mostly in the
     // column of the ray before) by comparing products with the boundaries,

@@ -41,10 +41,6 @@ struct GridFrame {
         return {d.x * right.x + d.y * right.y + d.z * right.z, d.x * up.x + d.y * up.y + d.z * up.z,
                 d.x * forward.x + d.y * forward.y + d.z * forward.z};
     }
-    // The planar coordinate of a point across the grid: x/z (both
-    // perspective mappings; the angular one spaces its cells evenly in
-    // atan of it, GridAxis.h), or x.
-    double planar(double lateral, double z) const { return perspective() ? lateral / z : lateral; }
 };
 
 // The frame whose forward is `forward` (need not be unit), with `upHint`
