@@ -441,6 +441,20 @@ namespace {
     return c[k];
 }
 
+// A packet lane's shear (WatertightRay's, in its operations, along the
+// packet's axes kx, ky, kz) and segment. A padding lane (one past the
+// packet's rays, repeating its first) gets an empty segment: it accepts no
+// triangle, so never calls for settling.
+[[gnu::always_inline]] inline void setLane(const Ray& ray, bool padding, int kx, int ky, int kz, float& sx, float& sy,
+                                           float& sz, float& tNear, float& tFar) {
+    const float dx = component(ray.direction, kx), dy = component(ray.direction, ky), dz = component(ray.direction, kz);
+    sx = dx / dz;
+    sy = dy / dz;
+    sz = 1.0f / dz;
+    tNear = padding ? std::numeric_limits<float>::infinity() : ray.tNear;
+    tFar = ray.tFar;
+}
+
 // What decides whether two rays can share a packet.
 struct PacketKey {
     float ox, oy, oz;
@@ -587,15 +601,7 @@ void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std
     for (std::size_t l = 0; l < kLanes; ++l) {
         // Lanes past n repeat the first ray; their answers are dropped.
         const Ray& ray = rays[lanes[l < n ? l : 0]];
-        // WatertightRay's shear, in its operations.
-        const float dx = component(ray.direction, kx), dy = component(ray.direction, ky),
-                    dz = component(ray.direction, kz);
-        sx[l] = dx / dz;
-        sy[l] = dy / dz;
-        sz[l] = 1.0f / dz;
-        // Padding lanes get an empty segment: they accept no triangle, so never call for settling.
-        tNear[l] = l < n ? ray.tNear : std::numeric_limits<float>::infinity();
-        tFar[l] = ray.tFar;
+        setLane(ray, l >= n, kx, ky, kz, sx[l], sy[l], sz[l], tNear[l], tFar[l]);
         directionZ[l] = spec_.frame.directionToFrame(ray.direction).z;
     }
     // Inlined at both call sites: called out of line, GCC no longer vectorises the lane loop.
@@ -764,15 +770,7 @@ void FrustumGrid::occludedPacket(std::span<const Ray> rays, std::span<const std:
         ox[l] = component(ray.origin, kx);
         oy[l] = component(ray.origin, ky);
         oz[l] = component(ray.origin, kz);
-        // WatertightRay's shear, in its operations.
-        const float dx = component(ray.direction, kx), dy = component(ray.direction, ky),
-                    dz = component(ray.direction, kz);
-        sx[l] = dx / dz;
-        sy[l] = dy / dz;
-        sz[l] = 1.0f / dz;
-        // Padding lanes get an empty segment: they accept no triangle, so never call for settling.
-        tNear[l] = l < n ? ray.tNear : std::numeric_limits<float>::infinity();
-        tFar[l] = ray.tFar;
+        setLane(ray, l >= n, kx, ky, kz, sx[l], sy[l], sz[l], tNear[l], tFar[l]);
     }
     const auto settle = [&](std::size_t l) {
         done[l] = true;
