@@ -156,8 +156,10 @@ int faceOf(const Vec3& d) {
 }
 
 const Vec3 kFaceAxes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-// A face grid's rectangle spans ±(45° + 0.01 rad), widened by 0.1 %: a
-// tangent of 1.0205. Primitives are culled against a wider pyramid.
+// A face grid's rectangle spans ±kFaceHalfAngle (45° + 0.01 rad), which
+// angularSpec widens by 0.1 %: a tangent of 1.0205. Primitives are culled
+// against a wider pyramid; the two constants go together.
+constexpr double kFaceHalfAngle = 0.25 * std::numbers::pi + 0.01;
 constexpr double kFaceCullTangent = 1.05;
 
 // Which of a light's six face grids each primitive may meet: bit f for
@@ -299,7 +301,7 @@ void GridAccelerator::buildLightGrid(const Light& light, std::size_t index, cons
             faceCandidates(*primitives_, light.position, 2.0 * (pad + margin), 2.0 * (zNear + pad) + margin, parallel,
                            faceMasks_);
             for (const Vec3& axis : kFaceAxes)
-                specs.push_back(angularSpec(light, axis, visible, 0.25 * std::numbers::pi + 0.01, pad, worldScale_));
+                specs.push_back(angularSpec(light, axis, visible, kFaceHalfAngle, pad, worldScale_));
         }
     }
     for (FrustumGridSpec& spec : specs) {
