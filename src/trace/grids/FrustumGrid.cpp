@@ -7,7 +7,14 @@
 #include <new>
 #include <string>
 
+#include "core/DoubleLanes.h"
 #include "core/Errors.h"
+
+// GCC notes that 32-byte vectors change the calling convention of functions
+// compiled without AVX (the default clones, reported at the end of the
+// file). Vectors here are passed only to functions that are always inlined
+// (core/DoubleLanes.h), so no call passes one.
+#pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace raycache {
 
@@ -53,28 +60,6 @@ Polygon clipBelow(const Polygon& in, double plane) {
 bool boxesOverlap(const FrameBox& a, const FrameBox& b) {
     return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y && a.lo.z <= b.hi.z &&
            b.lo.z <= a.hi.z;
-}
-
-bool insideBox(const Point3d& p, const FrameBox& box, double margin) {
-    return p.x >= box.lo.x - margin && p.x <= box.hi.x + margin && p.y >= box.lo.y - margin &&
-           p.y <= box.hi.y + margin && p.z >= box.lo.z - margin && p.z <= box.hi.z + margin;
-}
-
-Point3d along(const Point3d& o, const Point3d& d, double t) {
-    return {o.x + t * d.x, o.y + t * d.y, o.z + t * d.z};
-}
-
-// The parameter interval of o + t d with lo <= z <= hi, intersected with
-// [ta, tb]; inverseDz = 1 / dz. A product where a quotient would do: a
-// traversal clips its ray four times, and a division's latency is a chain
-// the traversal waits on; the ulp it moves a bound is far inside the margin.
-bool clipDepth(double oz, double dz, double inverseDz, double lo, double hi, double& ta, double& tb) {
-    if (dz == 0.0) return oz >= lo && oz <= hi && ta <= tb;
-    double t1 = (lo - oz) * inverseDz, t2 = (hi - oz) * inverseDz;
-    if (t1 > t2) std::swap(t1, t2);
-    ta = std::max(ta, t1);
-    tb = std::min(tb, t2);
-    return ta <= tb;
 }
 
 }  // namespace
@@ -329,66 +314,134 @@ FrustumGrid::Traversal FrustumGrid::traversalOf(const Ray& ray) const {
     return generalTraversal(ray, ColumnHint{});
 }
 
-FrustumGrid::Traversal FrustumGrid::generalTraversal(const Ray& ray, ColumnHint hint) const {
-    Traversal tr;
+namespace {
+
+// The parameter interval of o + t d with lo <= z <= hi, intersected with
+// [ta, tb], for kDoubleLanes rays at once; inverseDz = 1 / dz. Returns the
+// lanes where it is not empty (a lane with dz = 0: whether its oz is in
+// [lo, hi]). A product where a quotient would do: a traversal clips its rays
+// four times, and the ulp the product moves a bound is far inside the margin.
+[[gnu::always_inline]] inline LaneMask clipDepthLanes(DoubleLanes oz, DoubleLanes dz, DoubleLanes inverseDz, double lo,
+                                                      double hi, DoubleLanes& ta, DoubleLanes& tb) {
+    const LaneMask flat = dz == 0.0;
+    const DoubleLanes t1 = (lo - oz) * inverseDz, t2 = (hi - oz) * inverseDz;
+    const LaneMask swapped = t1 > t2;
+    const DoubleLanes a = laneMax(ta, swapped ? t2 : t1), b = laneMin(tb, swapped ? t1 : t2);
+    const LaneMask flatInside = (oz >= lo) & (oz <= hi) & (ta <= tb);
+    const LaneMask nonEmpty = flat ? flatInside : (a <= b);
+    ta = flat ? ta : a;
+    tb = flat ? tb : b;
+    return nonEmpty;
+}
+
+// Whether each of kDoubleLanes points lies in the box widened by `margin`.
+[[gnu::always_inline]] inline LaneMask insideBoxLanes(DoubleLanes x, DoubleLanes y, DoubleLanes z, const FrameBox& box,
+                                                      double margin) {
+    return (x >= box.lo.x - margin) & (x <= box.hi.x + margin) & (y >= box.lo.y - margin) &
+           (y <= box.hi.y + margin) & (z >= box.lo.z - margin) & (z <= box.hi.z + margin);
+}
+
+}  // namespace
+
+// Cloned for AVX2 and baseline x86-64, as the packets: each quantity of the
+// lanes' rays is one DoubleLanes, so the clips and tests below are one AVX2
+// instruction for four rays. Only the cells' boundary searches run lane by lane.
+[[gnu::target_clones("arch=x86-64-v3", "default")]]
+void FrustumGrid::generalTraversals(std::span<const Ray> rays, Traversal* out, ColumnHint& hint) const {
+    const std::size_t n = std::min(rays.size(), static_cast<std::size_t>(kDoubleLanes));
     const GridFrame& frame = spec_.frame;
-    tr.origin = frame.toFrame(ray.origin);
-    tr.direction = frame.directionToFrame(ray.direction);
-    const Point3d& o = tr.origin;
-    const Point3d& d = tr.direction;
-    const double inverseDz = 1.0 / d.z;
-    double ta = ray.tNear, tb = ray.tFar;
+    // Lanes past n repeat the first ray; their results are not written.
+    DoubleLanes rox, roy, roz, rdx, rdy, rdz, tNear, tFar;
+    for (std::size_t l = 0; l < static_cast<std::size_t>(kDoubleLanes); ++l) {
+        const Ray& ray = rays[l < n ? l : 0];
+        rox[l] = ray.origin.x;
+        roy[l] = ray.origin.y;
+        roz[l] = ray.origin.z;
+        rdx[l] = ray.direction.x;
+        rdy[l] = ray.direction.y;
+        rdz[l] = ray.direction.z;
+        tNear[l] = ray.tNear;
+        tFar[l] = ray.tFar;
+    }
+    // Frame coordinates, as GridFrame::toFrame and directionToFrame.
+    const DoubleLanes px = rox - frame.apex.x, py = roy - frame.apex.y, pz = roz - frame.apex.z;
+    const DoubleLanes ox = px * frame.right.x + py * frame.right.y + pz * frame.right.z;
+    const DoubleLanes oy = px * frame.up.x + py * frame.up.y + pz * frame.up.z;
+    const DoubleLanes oz = px * frame.forward.x + py * frame.forward.y + pz * frame.forward.z;
+    const DoubleLanes dx = rdx * frame.right.x + rdy * frame.right.y + rdz * frame.right.z;
+    const DoubleLanes dy = rdx * frame.up.x + rdy * frame.up.y + rdz * frame.up.z;
+    const DoubleLanes dz = rdx * frame.forward.x + rdy * frame.forward.y + rdz * frame.forward.z;
+    const DoubleLanes inverseDz = 1.0 / dz;
+    // Lanes still to decide; lanes found not covered; lanes crossing the near zone.
+    LaneMask open = ~LaneMask{}, refused = LaneMask{}, nearPart = LaneMask{};
+    DoubleLanes ta = tNear, tb = tFar;
     // Outside the depth range of all geometry there is nothing to meet.
-    if (geometryZLo_ > geometryZHi_ || !clipDepth(o.z, d.z, inverseDz, geometryZLo_, geometryZHi_, ta, tb)) return tr;
+    if (geometryZLo_ > geometryZHi_)
+        open = LaneMask{};
+    else
+        open &= clipDepthLanes(oz, dz, inverseDz, geometryZLo_, geometryZHi_, ta, tb);
     if (frame.perspective() && geometryZLo_ < spec_.zNear) {
-        double na = ta, nb = tb;
-        if (clipDepth(o.z, d.z, inverseDz, -kInfinity, spec_.zNear, na, nb)) {
-            if (!std::isfinite(na) || !std::isfinite(nb) || !insideBox(along(o, d, na), spec_.nearZone, spec_.margin) ||
-                !insideBox(along(o, d, nb), spec_.nearZone, spec_.margin)) {
-                tr.covered = false;
-                return tr;
-            }
-            tr.nearPart = true;
-        }
+        DoubleLanes na = ta, nb = tb;
+        const LaneMask crosses = open & clipDepthLanes(oz, dz, inverseDz, -kInfinity, spec_.zNear, na, nb);
+        const LaneMask inside = laneFinite(na) & laneFinite(nb) &
+                                insideBoxLanes(ox + na * dx, oy + na * dy, oz + na * dz, spec_.nearZone, spec_.margin) &
+                                insideBoxLanes(ox + nb * dx, oy + nb * dy, oz + nb * dz, spec_.nearZone, spec_.margin);
+        refused |= crosses & ~inside;
+        nearPart = crosses & inside;
+        open &= ~refused;
     }
-    if (zLo_ > zHi_) return tr;
-    double ga = ta, gb = tb;
-    if (!clipDepth(o.z, d.z, inverseDz, zLo_, kInfinity, ga, gb)) return tr;
+    if (zLo_ > zHi_) open = LaneMask{};
+    DoubleLanes ga = ta, gb = tb;
+    open &= clipDepthLanes(oz, dz, inverseDz, zLo_, kInfinity, ga, gb);
     // Geometry beyond the last slice (a light grid ends at the farthest shadow-ray origin).
-    double fa = ga, fb = gb;
-    if (zHi_ < geometryZHi_ && clipDepth(o.z, d.z, inverseDz, zHi_ + spec_.margin, kInfinity, fa, fb)) {
-        tr.covered = false;
-        return tr;
+    if (zHi_ < geometryZHi_) {
+        DoubleLanes fa = ga, fb = gb;
+        const LaneMask beyond = open & clipDepthLanes(oz, dz, inverseDz, zHi_ + spec_.margin, kInfinity, fa, fb);
+        refused |= beyond;
+        open &= ~beyond;
     }
-    if (!std::isfinite(ga) || !std::isfinite(gb)) {
-        tr.covered = false;
-        return tr;
-    }
-    const Point3d a = along(o, d, ga), b = along(o, d, gb);
+    const LaneMask unbounded = open & ~(laneFinite(ga) & laneFinite(gb));
+    refused |= unbounded;
+    open &= ~unbounded;
+    const DoubleLanes ax = ox + ga * dx, ay = oy + ga * dy, az = oz + ga * dz;
+    const DoubleLanes bx = ox + gb * dx, by = oy + gb * dy, bz = oz + gb * dz;
     // Both ends' planar coordinates (x/z, or x) against the rectangle and
     // the columns' boundaries, as products: z > 0 on perspective frames (the
     // segment starts at zLo_ or beyond).
-    const double za = frame.perspective() ? a.z : 1.0, zb = frame.perspective() ? b.z : 1.0;
-    if (!(a.x >= sAxis_.lower() * za && a.x <= sAxis_.upper() * za && b.x >= sAxis_.lower() * zb &&
-          b.x <= sAxis_.upper() * zb && a.y >= tAxis_.lower() * za && a.y <= tAxis_.upper() * za &&
-          b.y >= tAxis_.lower() * zb && b.y <= tAxis_.upper() * zb)) {
-        tr.covered = false;
-        return tr;
+    const DoubleLanes za = frame.perspective() ? az : DoubleLanes{} + 1.0;
+    const DoubleLanes zb = frame.perspective() ? bz : DoubleLanes{} + 1.0;
+    const LaneMask inRectangle = (ax >= sAxis_.lower() * za) & (ax <= sAxis_.upper() * za) &
+                                 (bx >= sAxis_.lower() * zb) & (bx <= sAxis_.upper() * zb) &
+                                 (ay >= tAxis_.lower() * za) & (ay <= tAxis_.upper() * za) &
+                                 (by >= tAxis_.lower() * zb) & (by <= tAxis_.upper() * zb);
+    refused |= open & ~inRectangle;
+    open &= inRectangle;
+    for (std::size_t l = 0; l < n; ++l) {
+        Traversal& tr = out[l];
+        tr.covered = refused[l] == 0;
+        tr.nearPart = nearPart[l] != 0;
+        tr.gridPart = open[l] != 0;
+        tr.origin = {ox[l], oy[l], oz[l]};
+        tr.direction = {dx[l], dy[l], dz[l]};
+        tr.ascending = true;
+        if (!tr.gridPart) {
+            tr.i0 = tr.j0 = tr.k0 = 0;
+            tr.i1 = tr.j1 = tr.k1 = -1;
+            continue;
+        }
+        // A camera ray, and a shadow ray in a point light's space, keeps to
+        // one column: its far end is found from its near end's cell.
+        const int ia = sAxis_.cellOfRatio(ax[l], za[l], hint.i), ib = sAxis_.cellOfRatio(bx[l], zb[l], ia);
+        const int ja = tAxis_.cellOfRatio(ay[l], za[l], hint.j), jb = tAxis_.cellOfRatio(by[l], zb[l], ja);
+        tr.i0 = std::min(ia, ib);
+        tr.i1 = std::max(ia, ib);
+        tr.j0 = std::min(ja, jb);
+        tr.j1 = std::max(ja, jb);
+        tr.k0 = depthAxis_.cellOf(std::min(az[l], bz[l]));
+        tr.k1 = depthAxis_.cellOf(std::max(az[l], bz[l]));
+        tr.ascending = dz[l] >= 0.0;
+        hint = ColumnHint{tr.i0, tr.j0};
     }
-    tr.gridPart = true;
-    // A camera ray, and a shadow ray in a point light's space, keeps to one
-    // column: its far end is found from its near end's cell.
-    const int ia = sAxis_.cellOfRatio(a.x, za, hint.i), ib = sAxis_.cellOfRatio(b.x, zb, ia);
-    const int ja = tAxis_.cellOfRatio(a.y, za, hint.j), jb = tAxis_.cellOfRatio(b.y, zb, ja);
-    tr.i0 = std::min(ia, ib);
-    tr.i1 = std::max(ia, ib);
-    tr.j0 = std::min(ja, jb);
-    tr.j1 = std::max(ja, jb);
-    const double zA = std::min(a.z, b.z), zB = std::max(a.z, b.z);
-    tr.k0 = depthAxis_.cellOf(zA);
-    tr.k1 = depthAxis_.cellOf(zB);
-    tr.ascending = d.z >= 0.0;
-    return tr;
 }
 
 bool FrustumGrid::intersect(const Ray& ray, TraceHit& hit) const {
@@ -728,10 +781,11 @@ void FrustumGrid::occludedBatch(std::span<const Ray> rays, std::span<unsigned ch
     for (std::size_t i = 0; i < rays.size(); ++i) {
         refused[i] = 0;
         blocked[i] = 0;
-        // Made in place, as in intersectBatch.
-        ::new (static_cast<void*>(&traversals[i])) Traversal(generalTraversal(rays[i], hint));
+        // Four rays' traversals at a time, written in place (as in intersectBatch).
+        if (i % kDoubleLanes == 0) {
+            generalTraversals(rays.subspan(i), &traversals[i], hint);
+        }
         const Traversal& tr = traversals[i];
-        if (tr.gridPart) hint = ColumnHint{tr.i0, tr.j0};
         if (!tr.covered) {
             refused[i] = 1;
             continue;

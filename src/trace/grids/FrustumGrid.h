@@ -136,7 +136,17 @@ private:
     struct ColumnHint {
         int i = -1, j = -1;
     };
-    Traversal generalTraversal(const Ray& ray, ColumnHint hint) const;
+    // The traversals of the first kDoubleLanes (4) of `rays` at once, into
+    // out[0..]: each quantity of the lanes is one vector (core/DoubleLanes.h),
+    // so four rays cost about what one did in scalar code. `hint` is updated
+    // to the last covered ray's column. Compiled for AVX2 and baseline x86-64.
+    [[gnu::target_clones("arch=x86-64-v3", "default")]]
+    void generalTraversals(std::span<const Ray> rays, Traversal* out, ColumnHint& hint) const;
+    Traversal generalTraversal(const Ray& ray, ColumnHint hint) const {
+        Traversal tr;
+        generalTraversals(std::span<const Ray>(&ray, 1), &tr, hint);
+        return tr;
+    }
     // A camera packet's key (column and shear axes in one integer), and the column back from it.
     static std::uint64_t cameraKey(const ApexColumn& column, const Vec3& direction);
     static ApexColumn unpackCameraKey(std::uint64_t key);
