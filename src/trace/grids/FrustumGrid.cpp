@@ -28,6 +28,8 @@ constexpr std::uint64_t kColumnMask = (std::uint64_t{1} << kColumnBits) - 1;
 // Primitives per task when binning: small enough to balance, large enough
 // that the task overhead vanishes.
 constexpr std::uint32_t kBinBlock = 4096;
+// FrustumGridSpec::refineAboveSlices: how much finer columns may become, per axis.
+constexpr double kMaxColumnRefinement = 4.0;
 
 // A corner of a polygon being clipped. Unlike Point3d it is not
 // zero-initialised: a Polygon is made twice per primitive per grid, and
@@ -201,6 +203,20 @@ void FrustumGrid::build(const FrustumGridSpec& spec, const GridPrimitives& primi
         geometryZLo_ = std::min(geometryZLo_, depth.lo - spec_.margin);
         geometryZHi_ = std::max(geometryZHi_, depth.hi + spec_.margin);
         candidates += depth.candidates;
+    }
+    // A crowded grid gets finer columns rather than more slices (light
+    // grids: their rays cross every slice up to the light).
+    if (spec_.refineAboveSlices > 0) {
+        const double slicesWanted =
+            spec_.cellsPerPrimitive * candidates / (static_cast<double>(spec_.nx) * spec_.ny);
+        if (slicesWanted > spec_.refineAboveSlices) {
+            const double refinement = std::min(kMaxColumnRefinement, std::sqrt(slicesWanted / spec_.refineAboveSlices));
+            const auto refine = [&](int columns) {
+                return static_cast<int>(std::min(std::ceil(columns * refinement), static_cast<double>(kColumnMask)));
+            };
+            spec_.nx = refine(spec_.nx);
+            spec_.ny = refine(spec_.ny);
+        }
     }
     zLo_ = spec_.frame.perspective() ? std::max(spec_.zNear, geometryZLo_) : geometryZLo_;
     zHi_ = std::min(geometryZHi_, spec_.zFarLimit);

@@ -48,6 +48,11 @@ struct FrustumGridSpec {
     // Slices: about cellsPerPrimitive cells per primitive in the rectangle, at most maxSlices.
     double cellsPerPrimitive = 2.0;
     int maxSlices = 64;
+    // When more than this many slices would be needed, the columns are made
+    // finer instead (at most kMaxColumnRefinement times across each axis),
+    // so a ray crosses fewer cells (0: nx x ny columns always). Light grids:
+    // their shadow rays cross every slice between their origin and the light.
+    int refineAboveSlices = 0;
     // Positional margin in world units added around every primitive's
     // bounds; covers the rounding of the float intersection tests.
     double margin = 1e-5;

@@ -310,6 +310,7 @@ void GridAccelerator::buildLightGrid(const Light& light, std::size_t index, cons
         spec.cellsPerPrimitive = settings_.cellsPerPrimitive;
         spec.nx = camera_.spec().nx;
         spec.ny = camera_.spec().ny;
+        spec.refineAboveSlices = settings_.lightRefineAboveSlices;
         // A face nothing visible lies in front of holds no ray origin.
         if (spec.zFarLimit <= 0.0 && spec.frame.perspective()) {
             grids.grids.emplace_back();

@@ -21,6 +21,10 @@ struct GridSettings {
     int pixelsPerColumn = 8;         // camera grid: one column per this many pixels squared
     int maxSlices = 64;              // depth slices of any grid, at most
     double cellsPerPrimitive = 2.0;  // how many slices: about this many cells per primitive
+    // Light grids start with the camera grid's columns and get finer ones
+    // where they would need more slices than this (FrustumGridSpec): a
+    // shadow ray crosses every slice between its origin and the light.
+    int lightRefineAboveSlices = 16;
     // A point light's single grid may cover points up to this far from its
     // axis; beyond, the light gets six grids, one per axis face.
     double maxLightHalfAngleDeg = 80.0;
