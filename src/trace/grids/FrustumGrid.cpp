@@ -28,6 +28,7 @@ constexpr std::uint64_t kColumnMask = (std::uint64_t{1} << kColumnBits) - 1;
 // Primitives per task when binning: small enough to balance, large enough
 // that the task overhead vanishes.
 constexpr std::uint32_t kBinBlock = 4096;
+static_assert(kBinBlock % kDoubleLanes == 0);
 // FrustumGridSpec::refineAboveSlices: how much finer columns may become, per axis.
 constexpr double kMaxColumnRefinement = 4.0;
 
@@ -163,6 +164,89 @@ FrustumGrid::CellRange FrustumGrid::binPrimitive(std::uint32_t primitive, bool& 
             tAxis_.cellOf(tHi), depthAxis_.cellOf(zA), depthAxis_.cellOf(zB)};
 }
 
+// Cloned for AVX2 and baseline x86-64, as generalTraversals: the triangles'
+// corners, bounds and projections are one vector per quantity for four
+// triangles, the same operations as binPrimitive's lane by lane. A lane that
+// is a sphere or must be clipped takes binPrimitive itself.
+[[gnu::target_clones("arch=x86-64-v3", "default")]]
+void FrustumGrid::binPrimitives(std::uint32_t first, std::uint32_t count, PrimitiveFilter filter) {
+    const GridFrame& frame = spec_.frame;
+    const double m = spec_.margin;
+    // The corners in frame coordinates, as GridFrame::toFrame; lanes past
+    // `count` repeat the first primitive, their results unused.
+    DoubleLanes x[3], y[3], z[3];
+    for (std::uint32_t l = 0; l < static_cast<std::uint32_t>(kDoubleLanes); ++l) {
+        const GridPrimitives::TriangleCoordinates& c = primitives_->triangleCoordinates(first + (l < count ? l : 0));
+        for (int k = 0; k < 3; ++k) {
+            x[k][l] = c[static_cast<std::size_t>(3 * k)];
+            y[k][l] = c[static_cast<std::size_t>(3 * k + 1)];
+            z[k][l] = c[static_cast<std::size_t>(3 * k + 2)];
+        }
+    }
+    DoubleLanes loX = kInfinity + DoubleLanes{}, loY = loX, loZ = loX, hiX = -loX, hiY = hiX, hiZ = hiX;
+    for (int k = 0; k < 3; ++k) {
+        const DoubleLanes px = x[k] - frame.apex.x, py = y[k] - frame.apex.y, pz = z[k] - frame.apex.z;
+        x[k] = px * frame.right.x + py * frame.right.y + pz * frame.right.z;
+        y[k] = px * frame.up.x + py * frame.up.y + pz * frame.up.z;
+        z[k] = px * frame.forward.x + py * frame.forward.y + pz * frame.forward.z;
+        loX = laneMin(loX, x[k]);
+        loY = laneMin(loY, y[k]);
+        loZ = laneMin(loZ, z[k]);
+        hiX = laneMax(hiX, x[k]);
+        hiY = laneMax(hiY, y[k]);
+        hiZ = laneMax(hiZ, z[k]);
+    }
+    const FrameBox& zone = spec_.nearZone;
+    const LaneMask nearZone = frame.perspective()
+                                  ? (loZ - m < spec_.zNear) & (loX - m <= zone.hi.x) & (zone.lo.x <= hiX + m) &
+                                        (loY - m <= zone.hi.y) & (zone.lo.y <= hiY + m) & (loZ - m <= zone.hi.z) &
+                                        (zone.lo.z <= hiZ + m)
+                                  : LaneMask{};
+    const DoubleLanes zA = laneMax(loZ - m, zLo_ + DoubleLanes{}), zB = laneMin(hiZ + m, zHi_ + DoubleLanes{});
+    const LaneMask clipped = frame.perspective() ? loZ < zLo_ : LaneMask{};
+    DoubleLanes sLo, sHi, tLo, tHi;
+    if (frame.perspective()) {
+        sLo = tLo = kInfinity + DoubleLanes{};
+        sHi = tHi = -sLo;
+        for (int k = 0; k < 3; ++k) {
+            // One division: x (1/z) is within an ulp or two of x/z, far below the margin.
+            const DoubleLanes inverseZ = 1.0 / z[k];
+            const DoubleLanes u = x[k] * inverseZ, v = y[k] * inverseZ;
+            // Moving the point by m moves its projection by at most m (1 + |u|) / z.
+            const DoubleLanes mu = m * (1.0 + (u < 0.0 ? -u : u)) * inverseZ;
+            const DoubleLanes mv = m * (1.0 + (v < 0.0 ? -v : v)) * inverseZ;
+            sLo = laneMin(sLo, u - mu);
+            sHi = laneMax(sHi, u + mu);
+            tLo = laneMin(tLo, v - mv);
+            tHi = laneMax(tHi, v + mv);
+        }
+    } else {
+        sLo = loX - m;
+        sHi = hiX + m;
+        tLo = loY - m;
+        tHi = hiY + m;
+    }
+    const LaneMask outside = (zA > zB) | (sHi < sAxis_.lower()) | (sLo > sAxis_.upper()) | (tHi < tAxis_.lower()) |
+                             (tLo > tAxis_.upper());
+    for (std::uint32_t l = 0; l < count; ++l) {
+        const std::uint32_t p = first + l;
+        CellRange& range = ranges_[p];
+        bool inNearZone = false;
+        if (!filter.admits(p)) {
+            range = kNoCells;
+        } else if (primitives_->sphere(p) || (clipped[l] != 0 && !(zA[l] > zB[l]))) {
+            range = binPrimitive(p, inNearZone);
+        } else {
+            inNearZone = nearZone[l] != 0;
+            range = outside[l] != 0 ? kNoCells
+                                    : CellRange{sAxis_.cellOf(sLo[l]),      sAxis_.cellOf(sHi[l]),
+                                                tAxis_.cellOf(tLo[l]),      tAxis_.cellOf(tHi[l]),
+                                                depthAxis_.cellOf(zA[l]), depthAxis_.cellOf(zB[l])};
+        }
+        nearFlags_[p] = inNearZone ? 1 : 0;
+    }
+}
+
 void FrustumGrid::build(const FrustumGridSpec& spec, const GridPrimitives& primitives, const Parallel& parallel,
                         PrimitiveFilter filter) {
     spec_ = spec;
@@ -252,11 +336,9 @@ void FrustumGrid::build(const FrustumGridSpec& spec, const GridPrimitives& primi
     nearFlags_.resize(count);
     parallel.forEachIndex(blocks, [&](int b, int) {
         auto [begin, end] = blockRange(b);
-        for (std::uint32_t p = begin; p < end; ++p) {
-            bool nearZone = false;
-            ranges_[p] = filter.admits(p) ? binPrimitive(p, nearZone) : kNoCells;
-            nearFlags_[p] = nearZone ? 1 : 0;
-        }
+        // Four primitives at a time (kBinBlock is a multiple of four).
+        for (std::uint32_t p = begin; p < end; p += kDoubleLanes)
+            binPrimitives(p, std::min<std::uint32_t>(kDoubleLanes, end - p), filter);
     });
     std::uint64_t pairs = 0;
     for (std::uint32_t p = 0; p < count; ++p) {

@@ -166,6 +166,12 @@ private:
     void occludedPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& walk,
                         std::span<unsigned char> blocked) const;
     CellRange binPrimitive(std::uint32_t primitive, bool& inNearZone) const;
+    // ranges_ and nearFlags_ of primitives first .. first + count - 1
+    // (count <= kDoubleLanes), as binPrimitive gives them, the triangles'
+    // arithmetic four at a time (core/DoubleLanes.h). Compiled for AVX2 and
+    // baseline x86-64.
+    [[gnu::target_clones("arch=x86-64-v3", "default")]]
+    void binPrimitives(std::uint32_t first, std::uint32_t count, PrimitiveFilter filter);
     // Index of cell (i, j) of depth slice k in cellLists_. A column's slices
     // lie next to one another: a ray walks one column front to back.
     std::size_t flatCell(int k, int j, int i) const {
