@@ -111,7 +111,7 @@ static void depthRangeOf(const GridFrame& frame, const GridPrimitives& primitive
     hi = std::max({hi, z0, z1, z2});
 }
 
-FrustumGrid::CellRange FrustumGrid::binPrimitive(std::uint32_t primitive, bool& inNearZone) const {
+FrustumGrid::CellRange FrustumGrid::binPrimitive(std::uint32_t primitive, bool& inNearZone, PlanarBox& box) const {
     const GridFrame& frame = spec_.frame;
     const double m = spec_.margin;
     bool isBox = false;
@@ -160,6 +160,29 @@ FrustumGrid::CellRange FrustumGrid::binPrimitive(std::uint32_t primitive, bool& 
         tHi = bounds.hi.y + m;
     }
     if (sHi < sAxis_.lower() || sLo > sAxis_.upper() || tHi < tAxis_.lower() || tLo > tAxis_.upper()) return kNoCells;
+    return cellRangeOf(sLo, sHi, tLo, tHi, zA, zB, box);
+}
+
+namespace {
+
+// A float not below `value` (direction +1) or not above it (-1): moved
+// outward by four times the float rounding before the conversion, which
+// rounds by at most half a float ulp (2^-24 relative; 1e-30 covers the
+// denormals). Cheaper than std::nextafter, a library call per bound.
+float roundedOutward(double value, double direction) {
+    return static_cast<float>(value + direction * (std::fabs(value) * 0x1p-22 + 1e-30));
+}
+
+}  // namespace
+
+inline FrustumGrid::CellRange FrustumGrid::cellRangeOf(double sLo, double sHi, double tLo, double tHi, double zA, double zB,
+                                                PlanarBox& box) const {
+    // Within the rectangle (rays outside it are refused), so the floats are finite.
+    sLo = std::max(sLo, sAxis_.lower());
+    sHi = std::min(sHi, sAxis_.upper());
+    tLo = std::max(tLo, tAxis_.lower());
+    tHi = std::min(tHi, tAxis_.upper());
+    box = {roundedOutward(sLo, -1.0), roundedOutward(sHi, 1.0), roundedOutward(tLo, -1.0), roundedOutward(tHi, 1.0)};
     return {sAxis_.cellOf(sLo), sAxis_.cellOf(sHi),    tAxis_.cellOf(tLo),
             tAxis_.cellOf(tHi), depthAxis_.cellOf(zA), depthAxis_.cellOf(zB)};
 }
@@ -235,13 +258,10 @@ void FrustumGrid::binPrimitives(std::uint32_t first, std::uint32_t count, Primit
         if (!filter.admits(p)) {
             range = kNoCells;
         } else if (primitives_->sphere(p) || (clipped[l] != 0 && !(zA[l] > zB[l]))) {
-            range = binPrimitive(p, inNearZone);
+            range = binPrimitive(p, inNearZone, boxes_[p]);
         } else {
             inNearZone = nearZone[l] != 0;
-            range = outside[l] != 0 ? kNoCells
-                                    : CellRange{sAxis_.cellOf(sLo[l]),      sAxis_.cellOf(sHi[l]),
-                                                tAxis_.cellOf(tLo[l]),      tAxis_.cellOf(tHi[l]),
-                                                depthAxis_.cellOf(zA[l]), depthAxis_.cellOf(zB[l])};
+            range = outside[l] != 0 ? kNoCells : cellRangeOf(sLo[l], sHi[l], tLo[l], tHi[l], zA[l], zB[l], boxes_[p]);
         }
         nearFlags_[p] = inNearZone ? 1 : 0;
     }
@@ -333,6 +353,7 @@ void FrustumGrid::build(const FrustumGridSpec& spec, const GridPrimitives& primi
 
     // 2. Every primitive's box of cells.
     ranges_.resize(count);
+    boxes_.resize(count);
     nearFlags_.resize(count);
     parallel.forEachIndex(blocks, [&](int b, int) {
         auto [begin, end] = blockRange(b);
@@ -514,6 +535,8 @@ void FrustumGrid::generalTraversals(std::span<const Ray> rays, Traversal* out, C
                                  (by >= tAxis_.lower() * zb) & (by <= tAxis_.upper() * zb);
     refused |= open & ~inRectangle;
     open &= inRectangle;
+    // The ends' planar coordinates bound the segment's (packets cull with them).
+    const DoubleLanes sa = ax / za, sb = bx / zb, ta2 = ay / za, tb2 = by / zb;
     for (std::size_t l = 0; l < n; ++l) {
         Traversal& tr = out[l];
         tr.covered = refused[l] == 0;
@@ -538,6 +561,7 @@ void FrustumGrid::generalTraversals(std::span<const Ray> rays, Traversal* out, C
         tr.k0 = depthAxis_.cellOf(std::min(az[l], bz[l]));
         tr.k1 = depthAxis_.cellOf(std::max(az[l], bz[l]));
         tr.ascending = dz[l] >= 0.0;
+        tr.planar = {std::min(sa[l], sb[l]), std::max(sa[l], sb[l]), std::min(ta2[l], tb2[l]), std::max(ta2[l], tb2[l])};
         hint = ColumnHint{tr.i0, tr.j0};
     }
 }
@@ -680,14 +704,16 @@ void FrustumGrid::intersectBatch(std::span<const Ray> rays, std::span<TraceHit> 
     thread_local std::vector<Traversal> traversals;
     PacketGatherer<PacketKey> gatherer;
     const auto trace = [&](std::span<const std::uint32_t> packet, const PacketKey&) {
-        intersectPacket(rays, packet, traversals[packet[0]], hits);
+        PlanarRange planar = kNoPlanarRange;
+        for (const std::uint32_t ray : packet) planar.add(traversals[ray].planar);
+        intersectPacket(rays, packet, traversals[packet[0]], &planar, hits);
     };
     // Camera rays (from the apex through every slice, apexColumn) are keyed
     // by their column and shear axes alone, packed in one integer, and need
     // no Traversal of their own: their packet's walk follows from the key.
     PacketGatherer<std::uint64_t> cameraGatherer;
     const auto traceCamera = [&](std::span<const std::uint32_t> packet, std::uint64_t key) {
-        intersectPacket(rays, packet, apexWalk(unpackCameraKey(key)), hits);
+        intersectPacket(rays, packet, apexWalk(unpackCameraKey(key)), nullptr, hits);
     };
     traversals.resize(rays.size());
     // Each camera ray's column is looked for from the one before's.
@@ -734,11 +760,12 @@ void FrustumGrid::intersectBatch(std::span<const Ray> rays, std::span<TraceHit> 
 // always inlined so the lane loops are compiled inside each clone.
 [[gnu::target_clones("arch=x86-64-v3", "default")]]
 void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& tr,
-                                  std::span<TraceHit> hits) const {
+                                  const PlanarRange* lanesPlanar, std::span<TraceHit> hits) const {
     const std::size_t n = lanes.size();
     alignas(64) float sx[kLanes], sy[kLanes], sz[kLanes], tNear[kLanes], tFar[kLanes];
     alignas(64) float edgeV[kLanes], edgeW[kLanes], numerator[kLanes], determinant[kLanes];
-    double directionZ[kLanes];
+    alignas(64) float rayDirectionX[kLanes], rayDirectionY[kLanes], rayDirectionZ[kLanes];
+    alignas(64) double directionZ[kLanes];
     alignas(64) int accepted[kLanes], zeroEdge[kLanes];
     TraceHit best[kLanes];
     // Lanes with no hit yet: while any is left, no slice can end the walk.
@@ -753,8 +780,39 @@ void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std
         // Lanes past n repeat the first ray; their answers are dropped.
         const Ray& ray = rays[lanes[l < n ? l : 0]];
         setLane(ray, l >= n, kx, ky, kz, sx[l], sy[l], sz[l], tNear[l], tFar[l]);
-        directionZ[l] = spec_.frame.directionToFrame(ray.direction).z;
+        rayDirectionX[l] = ray.direction.x;
+        rayDirectionY[l] = ray.direction.y;
+        rayDirectionZ[l] = ray.direction.z;
     }
+    // The lanes' directions in frame coordinates (GridFrame::directionToFrame),
+    // four lanes a vector; for rays from the apex their planar coordinates
+    // too, the same all along them. Padding lanes repeat lane 0.
+    static_assert(kLanes % kDoubleLanes == 0);
+    const GridFrame& frame = spec_.frame;
+    DoubleLanes sLo = kInfinity + DoubleLanes{}, sHi = -sLo, tLo = sLo, tHi = sHi;
+    for (std::size_t l = 0; l < kLanes; l += kDoubleLanes) {
+        DoubleLanes rx, ry, rz;
+        for (int k = 0; k < kDoubleLanes; ++k) {
+            rx[k] = rayDirectionX[l + static_cast<std::size_t>(k)];
+            ry[k] = rayDirectionY[l + static_cast<std::size_t>(k)];
+            rz[k] = rayDirectionZ[l + static_cast<std::size_t>(k)];
+        }
+        const DoubleLanes z = rx * frame.forward.x + ry * frame.forward.y + rz * frame.forward.z;
+        __builtin_memcpy(directionZ + l, &z, sizeof z);
+        if (lanesPlanar) continue;
+        const DoubleLanes x = rx * frame.right.x + ry * frame.right.y + rz * frame.right.z;
+        const DoubleLanes y = rx * frame.up.x + ry * frame.up.y + rz * frame.up.z;
+        const DoubleLanes s = x / z, t = y / z;
+        sLo = laneMin(sLo, s);
+        sHi = laneMax(sHi, s);
+        tLo = laneMin(tLo, t);
+        tHi = laneMax(tHi, t);
+    }
+    PlanarRange planar = kNoPlanarRange;
+    if (lanesPlanar)
+        planar = *lanesPlanar;
+    else
+        for (int l = 0; l < kDoubleLanes; ++l) planar.add({sLo[l], sHi[l], tLo[l], tHi[l]});
     // Inlined at both call sites: called out of line, GCC no longer vectorises the lane loop.
     const auto visit = [&](std::uint32_t primitive) __attribute__((always_inline)) {
         if (primitives_->sphere(primitive)) {
@@ -818,7 +876,13 @@ void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std
     // As intersect(): the near zone's primitives first, then the cells.
     if (tr.nearPart)
         for (const std::uint32_t p : nearZone_) visit(p);
-    walkCells(tr, visit, [&](int k) {
+    // In the cells, a primitive whose planar box misses every lane's is
+    // skipped: most of a cell's triangles miss the whole packet. (A lane's
+    // hit nearer than the first slice is in the near zone, tested above.)
+    const auto visitCell = [&](std::uint32_t primitive) __attribute__((always_inline)) {
+        return missesRange(primitive, planar) ? false : visit(primitive);
+    };
+    walkCells(tr, visitCell, [&](int k) {
         if (withoutHit > 0) return false;
         for (std::size_t l = 0; l < n; ++l)
             if (!best[l].hit() || !hitEndsWalk(tr, tr.origin.z + static_cast<double>(best[l].t) * directionZ[l], k))
@@ -869,6 +933,7 @@ void FrustumGrid::occludedBatch(std::span<const Ray> rays, std::span<unsigned ch
         for (const std::uint32_t ray : packet) {
             walk.k0 = std::min(walk.k0, traversals[ray].k0);
             walk.k1 = std::max(walk.k1, traversals[ray].k1);
+            walk.planar.add(traversals[ray].planar);
         }
         occludedPacket(rays, packet, walk, blocked);
     };
@@ -976,7 +1041,12 @@ void FrustumGrid::occludedPacket(std::span<const Ray> rays, std::span<const std:
     // Every primitive of every cell a lane visits is tested for it (the walk
     // covers each lane's slices); testing one beyond a lane's segment cannot
     // block it, since the test keeps to the lane's own tNear..tFar.
-    if (!finished && walk.gridPart) walkCells(walk, visit, [](int) { return false; });
+    // A primitive whose planar box misses every lane's is skipped, as in
+    // intersectPacket (most of a cell's triangles block no lane).
+    const auto visitCell = [&](std::uint32_t primitive) __attribute__((always_inline)) {
+        return missesRange(primitive, walk.planar) ? false : visit(primitive);
+    };
+    if (!finished && walk.gridPart) walkCells(walk, visitCell, [](int) { return false; });
     for (std::size_t l = 0; l < n; ++l) blocked[lanes[l]] = done[l] ? 1 : 0;
 }
 

@@ -15,6 +15,7 @@
 // caller answers it another way (trace/TraceScene.cpp: Embree, counted).
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -112,10 +113,43 @@ public:
     const FrustumGridSpec& spec() const { return spec_; }
 
 private:
+    // A range of planar grid coordinates (s, t: x/z and y/z, or x and y).
+    struct PlanarRange {
+        double sLo = 0.0, sHi = -1.0, tLo = 0.0, tHi = -1.0;
+        void add(const PlanarRange& other) {
+            sLo = std::min(sLo, other.sLo);
+            sHi = std::max(sHi, other.sHi);
+            tLo = std::min(tLo, other.tLo);
+            tHi = std::max(tHi, other.tHi);
+        }
+    };
+    static constexpr PlanarRange kNoPlanarRange{std::numeric_limits<double>::infinity(),
+                                                -std::numeric_limits<double>::infinity(),
+                                                std::numeric_limits<double>::infinity(),
+                                                -std::numeric_limits<double>::infinity()};
     struct CellRange {
         int i0, i1, j0, j1, k0, k1;  // inclusive; i1 < i0 when the primitive has no cell
     };
     static constexpr CellRange kNoCells{0, -1, 0, -1, 0, -1};
+    // A binned primitive's planar box: its projected box (margin included)
+    // within the rectangle, rounded outward to float. A packet skips a
+    // primitive whose box misses every lane's planar range.
+    struct PlanarBox {
+        float sLo, sHi, tLo, tHi;
+    };
+    // The cells and planar box of a primitive whose planar box is sLo..tHi
+    // (overlapping the rectangle) and depth range zA..zB.
+    // Always inlined, so binPrimitives' clones compile it for their targets.
+    [[gnu::always_inline]] CellRange cellRangeOf(double sLo, double sHi, double tLo, double tHi, double zA, double zB,
+                                                 PlanarBox& box) const;
+    // Whether `primitive`'s planar box misses `range`: then no ray whose
+    // segment's part in the grid projects into `range` can meet it there
+    // (the box holds the projection of every point of the primitive at
+    // z >= the first slice, by the margin).
+    bool missesRange(std::uint32_t primitive, const PlanarRange& range) const {
+        const PlanarBox& b = boxes_[primitive];
+        return b.sHi < range.sLo || b.sLo > range.sHi || b.tHi < range.tLo || b.tLo > range.tHi;
+    }
     // The part of a ray's segment the grid must cover, in ray parameter t.
     struct Traversal {
         bool covered = true;
@@ -123,6 +157,9 @@ private:
         int i0 = 0, i1 = -1, j0 = 0, j1 = -1, k0 = 0, k1 = -1;
         bool ascending = true;
         Point3d origin, direction;  // frame coordinates
+        // The planar range of the segment's part in the grid (s and t are
+        // monotonic along a segment: its ends' values bound it).
+        PlanarRange planar;
     };
     Traversal traversalOf(const Ray& ray) const;
     // The column of a ray from the apex of a perspective grid whose segment
@@ -158,15 +195,19 @@ private:
     // The packets are compiled for AVX2 and for baseline x86-64, the CPU
     // choosing at load time (FrustumGrid.cpp). The attribute must be on the
     // first declaration for clang.
+    // `lanesPlanar`: the union of the lanes' planar ranges in the grid part;
+    // null for rays from the apex (apexWalk), whose planar coordinates are
+    // their directions'.
     [[gnu::target_clones("arch=x86-64-v3", "default")]]
     void intersectPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& tr,
-                         std::span<TraceHit> hits) const;
-    // `walk`: the union of the lanes' traversals (same columns, every slice any of them visits).
+                         const PlanarRange* lanesPlanar, std::span<TraceHit> hits) const;
+    // `walk`: the union of the lanes' traversals (same columns, every slice
+    // any of them visits, the union of their planar ranges).
     [[gnu::target_clones("arch=x86-64-v3", "default")]]
     void occludedPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& walk,
                         std::span<unsigned char> blocked) const;
-    CellRange binPrimitive(std::uint32_t primitive, bool& inNearZone) const;
-    // ranges_ and nearFlags_ of primitives first .. first + count - 1
+    CellRange binPrimitive(std::uint32_t primitive, bool& inNearZone, PlanarBox& box) const;
+    // ranges_, boxes_ and nearFlags_ of primitives first .. first + count - 1
     // (count <= kDoubleLanes), as binPrimitive gives them, the triangles'
     // arithmetic four at a time (core/DoubleLanes.h). Compiled for AVX2 and
     // baseline x86-64.
@@ -231,6 +272,7 @@ private:
     FrustumGridStats stats_;
     // Reused from frame to frame.
     std::vector<CellRange> ranges_;
+    std::vector<PlanarBox> boxes_;  // set for the primitives with cells
     std::vector<unsigned char> nearFlags_;
 };
 
