@@ -1,5 +1,6 @@
 #include "bench/GridsExperiment.h"
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -69,9 +70,14 @@ std::uint64_t triangleCount(const Scene& scene) {
 // BVH, which answers only refused rays, already posed). `updated` (animated
 // models): the animation's own tracer, updated to `posed` here (`changed`:
 // the objects the pose moved), timed beside the rebuilds.
+// `rebuilt`: the model's Embree scenes rebuilt every frame, at quality
+// MEDIUM and LOW, kept from frame to frame as a renderer keeps one scene:
+// made in the first frame, every hierarchy built again from nothing in the
+// memory they hold afterwards (TraceScene::rebuild), both timed. Made anew
+// each frame instead, their build times grew long tails (fresh pages).
 FrameCosts measureFrame(const Scene& posed, const Camera& camera, int side, const Parallel& parallel,
-                        const TraceScene& gridTracer, TraceScene* updated = nullptr,
-                        std::span<const int> changed = {}) {
+                        const TraceScene& gridTracer, std::array<std::optional<TraceScene>, 2>& rebuilt,
+                        TraceScene* updated = nullptr, std::span<const int> changed = {}) {
     // Every structure is built from scratch for this frame, as for a still scene.
     Scene still = posed;
     still.animation = SceneAnimation{};
@@ -80,8 +86,13 @@ FrameCosts measureFrame(const Scene& posed, const Camera& camera, int side, cons
     for (const EmbreeBuildQuality quality : {EmbreeBuildQuality::Medium, EmbreeBuildQuality::Low}) {
         TraceOptions options;
         options.stillSceneQuality = quality;
+        std::optional<TraceScene>& kept = rebuilt[quality == EmbreeBuildQuality::Low ? 1 : 0];
         auto start = Clock::now();
-        const TraceScene tracer(still, options);
+        if (kept)
+            kept->rebuild(still);
+        else
+            kept.emplace(still, options);
+        const TraceScene& tracer = *kept;
         Costs c;
         c.build = millisecondsSince(start);
         std::vector<std::vector<TraceHit>> hits;
@@ -175,6 +186,7 @@ public:
             TraceOptions gridOptions;
             gridOptions.accelerator = Accelerator::Grids;
             TraceScene gridTracer(model.scene, gridOptions);
+            std::array<std::optional<TraceScene>, 2> rebuilt;
             for (int frame = 0; frame < plan.frames; ++frame) {
                 SceneChanges changes;
                 if (model.animated) {
@@ -182,7 +194,7 @@ public:
                     gridTracer.update(posed, changes.objects);  // untimed: only refused rays use it
                 }
                 const Camera camera = model.scene.cameraPath.cameraAt(model.scene.camera, frame);
-                const FrameCosts c = measureFrame(posed, camera, plan.side, context.parallel, gridTracer,
+                const FrameCosts c = measureFrame(posed, camera, plan.side, context.parallel, gridTracer, rebuilt,
                                                   animationTracer ? &*animationTracer : nullptr, changes.objects);
                 grids += c.grids;
                 low += c.embreeLow;

@@ -188,6 +188,7 @@ struct TraceScene::Impl {
     std::vector<Representation> representation;  // per object
     std::vector<RTCScene> instanced;             // per object: its own scene for RigidInstance
     std::vector<unsigned char> isSphere;         // per object
+    std::vector<std::size_t> vertexCount;        // per object: a mesh geometry's vertices (rebuild())
     // Per object: a scene holding only the object's geometry (the top-level
     // scene's own, shared), for meetsObject; null until prepareOwnSurfaceTests.
     std::vector<RTCScene> alone;
@@ -258,6 +259,7 @@ TraceScene::TraceScene(const Scene& scene, const TraceOptions& options) : impl_(
     impl_->instanced.assign(scene.objects.size(), nullptr);
     impl_->alone.assign(scene.objects.size(), nullptr);
     impl_->isSphere.assign(scene.objects.size(), 0);
+    impl_->vertexCount.assign(scene.objects.size(), 0);
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
         const SceneObject& object = scene.objects[i];
         const Representation representation = representationOf(scene, i);
@@ -284,6 +286,7 @@ TraceScene::TraceScene(const Scene& scene, const TraceOptions& options) : impl_(
             setInstanceTransform(geom, object.placement);
         } else {
             geom = makeMeshGeometry(impl_->device, *std::get<MeshShape>(object.shape).mesh);
+            impl_->vertexCount[i] = std::get<MeshShape>(object.shape).mesh->positions.size();
         }
         if (animated && representation != Representation::RigidInstance) {
             const bool refit = representation == Representation::DeformingMesh &&
@@ -330,6 +333,33 @@ void TraceScene::update(const Scene& posed, std::span<const int> changed) {
     }
     rtcCommitScene(impl_->scene);
     throwOnDeviceError(impl_->device, "updating the scene");
+}
+
+void TraceScene::rebuild(const Scene& posed) {
+    if (posed.objects.size() != impl_->representation.size())
+        throw RuntimeError("the tracer was asked to rebuild " + std::to_string(posed.objects.size()) +
+                           " objects; it holds " + std::to_string(impl_->representation.size()));
+    for (std::size_t i = 0; i < posed.objects.size(); ++i) {
+        if (impl_->representation[i] != Representation::Still)
+            throw RuntimeError("the tracer was asked to rebuild object " + std::to_string(i) +
+                               ", which its scene animates (update() moves it)");
+        RTCGeometry geom = rtcGetGeometry(impl_->scene, static_cast<unsigned>(i));
+        if (impl_->isSphere[i]) {
+            impl_->spheres[i] = std::get<Sphere>(posed.objects[i].shape);
+        } else {
+            const TriangleMesh& mesh = *std::get<MeshShape>(posed.objects[i].shape).mesh;
+            if (mesh.positions.size() != impl_->vertexCount[i])
+                throw RuntimeError("the tracer was asked to rebuild object " + std::to_string(i) +
+                                   " with another vertex count");
+            copyVertices(mesh, static_cast<float*>(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_VERTEX, 0)));
+            rtcUpdateGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0);
+        }
+        rtcCommitGeometry(geom);
+    }
+    // Not a dynamic scene: Embree builds every geometry's hierarchy and the
+    // top level again at this commit (see the constructor).
+    rtcCommitScene(impl_->scene);
+    throwOnDeviceError(impl_->device, "rebuilding the scene");
 }
 
 void* TraceScene::embreeScene() const { return impl_->scene; }

@@ -57,6 +57,11 @@ public:
     // deforming meshes refit their hierarchy. Not thread-safe: no ray may be
     // in flight. `posed` has the objects of the scene this tracer was built from.
     void update(const Scene& posed, std::span<const int> changed);
+    // Every object of a still scene's tracer set to `posed` (the same objects,
+    // meshes with the same vertex counts) and every hierarchy built again
+    // from nothing, in the memory the tracer already holds: the per-frame
+    // rebuild of a renderer that keeps one Embree scene. Not thread-safe.
+    void rebuild(const Scene& posed);
 
     // Nearest hit in [ray.tNear, ray.tFar]. Thread-safe.
     TraceHit intersect(const Ray& ray) const;

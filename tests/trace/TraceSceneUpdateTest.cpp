@@ -81,6 +81,42 @@ TEST(TraceSceneUpdate, RigidMeshInstanceFollowsItsKeys) {
     }
 }
 
+TEST(TraceSceneUpdate, RebuildingAStillSceneMatchesAFreshBuild) {
+    // The bench's opponent "Embree rebuilt every frame": one still scene kept,
+    // its objects set to each new pose and every hierarchy built again.
+    for (const char* name : {"cloth", "orbit"}) {
+        const Scene scene = *makeBuiltinScene(name);
+        Scene posed = scene;
+        TraceOptions low;
+        low.stillSceneQuality = EmbreeBuildQuality::Low;
+        TraceScene tracer(stillCopy(posed), low);
+        for (float time : {0.7f, 2.2f}) {
+            poseScene(scene, time, posed);
+            tracer.rebuild(stillCopy(posed));
+            expectSameAnswers(posed, tracer, std::string(name) + " rebuilt at " + std::to_string(time) + " s");
+        }
+    }
+}
+
+TEST(TraceSceneUpdate, RebuildingRefusesAnimatedTracersAndOtherTopologies) {
+    const Scene cloth = *makeBuiltinScene("cloth");
+    TraceScene animated(cloth);
+    EXPECT_THROW(animated.rebuild(stillCopy(cloth)), RuntimeError) << "its objects move by update()";
+    TraceScene still(stillCopy(cloth));
+    Scene fewer = stillCopy(cloth);
+    fewer.objects.pop_back();
+    EXPECT_THROW(still.rebuild(fewer), RuntimeError);
+    Scene otherMesh = stillCopy(cloth);
+    for (SceneObject& object : otherMesh.objects)
+        if (auto* mesh = std::get_if<MeshShape>(&object.shape)) {
+            auto smaller = std::make_shared<TriangleMesh>(*mesh->mesh);
+            smaller->positions.pop_back();
+            mesh->mesh = smaller;
+            break;
+        }
+    EXPECT_THROW(still.rebuild(otherMesh), RuntimeError);
+}
+
 TEST(TraceSceneUpdate, MovingAnObjectTheSceneDoesNotAnimateIsAnError) {
     const Scene scene = *makeBuiltinScene("room-moving");
     TraceScene tracer(scene);
