@@ -6,10 +6,6 @@
 // operation of the scalar code, lane by lane, so each lane's result is bit
 // for bit the scalar one (-ffp-contract=off keeps a * b + c from becoming a
 // fused multiply-add; cmake/Warnings.cmake).
-//
-// Used only inside functions that are always inlined: passed by value
-// between functions compiled for different targets, 32-byte vectors would
-// change the calling convention.
 
 namespace raycache {
 
@@ -19,17 +15,16 @@ using LaneMask = decltype(DoubleLanes{} < DoubleLanes{});
 
 inline constexpr int kDoubleLanes = 4;
 
-// GCC notes that returning a 32-byte vector without AVX changes the ABI;
-// these helpers are always inlined, so no call ever passes one.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpsabi"
+// The helpers work in place, through references: a 32-byte vector passed
+// or returned by value changes the calling convention of a function compiled
+// without AVX (the baseline clones), which clang refuses even for a function
+// that is always inlined.
 
-// std::max(a, b) lane by lane, with its rule: a unless a < b (so a NaN in a stays).
-[[gnu::always_inline]] inline DoubleLanes laneMax(DoubleLanes a, DoubleLanes b) { return a < b ? b : a; }
-// std::min(a, b) lane by lane: a unless b < a.
-[[gnu::always_inline]] inline DoubleLanes laneMin(DoubleLanes a, DoubleLanes b) { return b < a ? b : a; }
-// std::isfinite lane by lane: v - v is 0 for finite v, NaN for infinities and NaN.
-[[gnu::always_inline]] inline LaneMask laneFinite(DoubleLanes v) { return (v - v) == 0.0; }
-#pragma GCC diagnostic pop
+// a = std::max(a, b) lane by lane, with its rule: a unless a < b (so a NaN in a stays).
+[[gnu::always_inline]] inline void keepMax(DoubleLanes& a, const DoubleLanes& b) { a = a < b ? b : a; }
+// a = std::min(a, b) lane by lane: a unless b < a.
+[[gnu::always_inline]] inline void keepMin(DoubleLanes& a, const DoubleLanes& b) { a = b < a ? b : a; }
+// Which lanes of v are finite (std::isfinite): v - v is 0 for finite v, NaN for infinities and NaN.
+[[gnu::always_inline]] inline void markFinite(const DoubleLanes& v, LaneMask& finite) { finite = (v - v) == 0.0; }
 
 }  // namespace raycache

@@ -10,12 +10,6 @@
 #include "core/DoubleLanes.h"
 #include "core/Errors.h"
 
-// GCC notes that 32-byte vectors change the calling convention of functions
-// compiled without AVX (the default clones, reported at the end of the
-// file). Vectors here are passed only to functions that are always inlined
-// (core/DoubleLanes.h), so no call passes one.
-#pragma GCC diagnostic ignored "-Wpsabi"
-
 namespace raycache {
 
 namespace {
@@ -212,12 +206,12 @@ void FrustumGrid::binPrimitives(std::uint32_t first, std::uint32_t count, Primit
         x[k] = px * frame.right.x + py * frame.right.y + pz * frame.right.z;
         y[k] = px * frame.up.x + py * frame.up.y + pz * frame.up.z;
         z[k] = px * frame.forward.x + py * frame.forward.y + pz * frame.forward.z;
-        loX = laneMin(loX, x[k]);
-        loY = laneMin(loY, y[k]);
-        loZ = laneMin(loZ, z[k]);
-        hiX = laneMax(hiX, x[k]);
-        hiY = laneMax(hiY, y[k]);
-        hiZ = laneMax(hiZ, z[k]);
+        keepMin(loX, x[k]);
+        keepMin(loY, y[k]);
+        keepMin(loZ, z[k]);
+        keepMax(hiX, x[k]);
+        keepMax(hiY, y[k]);
+        keepMax(hiZ, z[k]);
     }
     const FrameBox& zone = spec_.nearZone;
     const LaneMask nearZone = frame.perspective()
@@ -225,7 +219,9 @@ void FrustumGrid::binPrimitives(std::uint32_t first, std::uint32_t count, Primit
                                         (loY - m <= zone.hi.y) & (zone.lo.y <= hiY + m) & (loZ - m <= zone.hi.z) &
                                         (zone.lo.z <= hiZ + m)
                                   : LaneMask{};
-    const DoubleLanes zA = laneMax(loZ - m, zLo_ + DoubleLanes{}), zB = laneMin(hiZ + m, zHi_ + DoubleLanes{});
+    DoubleLanes zA = loZ - m, zB = hiZ + m;
+    keepMax(zA, zLo_ + DoubleLanes{});
+    keepMin(zB, zHi_ + DoubleLanes{});
     const LaneMask clipped = frame.perspective() ? loZ < zLo_ : LaneMask{};
     DoubleLanes sLo, sHi, tLo, tHi;
     if (frame.perspective()) {
@@ -238,10 +234,10 @@ void FrustumGrid::binPrimitives(std::uint32_t first, std::uint32_t count, Primit
             // Moving the point by m moves its projection by at most m (1 + |u|) / z.
             const DoubleLanes mu = m * (1.0 + (u < 0.0 ? -u : u)) * inverseZ;
             const DoubleLanes mv = m * (1.0 + (v < 0.0 ? -v : v)) * inverseZ;
-            sLo = laneMin(sLo, u - mu);
-            sHi = laneMax(sHi, u + mu);
-            tLo = laneMin(tLo, v - mv);
-            tHi = laneMax(tHi, v + mv);
+            keepMin(sLo, u - mu);
+            keepMax(sHi, u + mu);
+            keepMin(tLo, v - mv);
+            keepMax(tHi, v + mv);
         }
     } else {
         sLo = loX - m;
@@ -440,24 +436,26 @@ namespace {
 // lanes where it is not empty (a lane with dz = 0: whether its oz is in
 // [lo, hi]). A product where a quotient would do: a traversal clips its rays
 // four times, and the ulp the product moves a bound is far inside the margin.
-[[gnu::always_inline]] inline LaneMask clipDepthLanes(DoubleLanes oz, DoubleLanes dz, DoubleLanes inverseDz, double lo,
-                                                      double hi, DoubleLanes& ta, DoubleLanes& tb) {
+[[gnu::always_inline]] inline void clipDepthLanes(const DoubleLanes& oz, const DoubleLanes& dz,
+                                                  const DoubleLanes& inverseDz, double lo, double hi, DoubleLanes& ta,
+                                                  DoubleLanes& tb, LaneMask& nonEmpty) {
     const LaneMask flat = dz == 0.0;
     const DoubleLanes t1 = (lo - oz) * inverseDz, t2 = (hi - oz) * inverseDz;
     const LaneMask swapped = t1 > t2;
-    const DoubleLanes a = laneMax(ta, swapped ? t2 : t1), b = laneMin(tb, swapped ? t1 : t2);
+    DoubleLanes a = ta, b = tb;
+    keepMax(a, swapped ? t2 : t1);
+    keepMin(b, swapped ? t1 : t2);
     const LaneMask flatInside = (oz >= lo) & (oz <= hi) & (ta <= tb);
-    const LaneMask nonEmpty = flat ? flatInside : (a <= b);
+    nonEmpty = flat ? flatInside : (a <= b);
     ta = flat ? ta : a;
     tb = flat ? tb : b;
-    return nonEmpty;
 }
 
 // Whether each of kDoubleLanes points lies in the box widened by `margin`.
-[[gnu::always_inline]] inline LaneMask insideBoxLanes(DoubleLanes x, DoubleLanes y, DoubleLanes z, const FrameBox& box,
-                                                      double margin) {
-    return (x >= box.lo.x - margin) & (x <= box.hi.x + margin) & (y >= box.lo.y - margin) &
-           (y <= box.hi.y + margin) & (z >= box.lo.z - margin) & (z <= box.hi.z + margin);
+[[gnu::always_inline]] inline void insideBoxLanes(const DoubleLanes& x, const DoubleLanes& y, const DoubleLanes& z,
+                                                  const FrameBox& box, double margin, LaneMask& inside) {
+    inside = (x >= box.lo.x - margin) & (x <= box.hi.x + margin) & (y >= box.lo.y - margin) &
+             (y <= box.hi.y + margin) & (z >= box.lo.z - margin) & (z <= box.hi.z + margin);
 }
 
 }  // namespace
@@ -495,31 +493,43 @@ void FrustumGrid::generalTraversals(std::span<const Ray> rays, Traversal* out, C
     LaneMask open = ~LaneMask{}, refused = LaneMask{}, nearPart = LaneMask{};
     DoubleLanes ta = tNear, tb = tFar;
     // Outside the depth range of all geometry there is nothing to meet.
-    if (geometryZLo_ > geometryZHi_)
+    LaneMask clipped;
+    if (geometryZLo_ > geometryZHi_) {
         open = LaneMask{};
-    else
-        open &= clipDepthLanes(oz, dz, inverseDz, geometryZLo_, geometryZHi_, ta, tb);
+    } else {
+        clipDepthLanes(oz, dz, inverseDz, geometryZLo_, geometryZHi_, ta, tb, clipped);
+        open &= clipped;
+    }
+    LaneMask finiteA, finiteB;
     if (frame.perspective() && geometryZLo_ < spec_.zNear) {
         DoubleLanes na = ta, nb = tb;
-        const LaneMask crosses = open & clipDepthLanes(oz, dz, inverseDz, -kInfinity, spec_.zNear, na, nb);
-        const LaneMask inside = laneFinite(na) & laneFinite(nb) &
-                                insideBoxLanes(ox + na * dx, oy + na * dy, oz + na * dz, spec_.nearZone, spec_.margin) &
-                                insideBoxLanes(ox + nb * dx, oy + nb * dy, oz + nb * dz, spec_.nearZone, spec_.margin);
+        clipDepthLanes(oz, dz, inverseDz, -kInfinity, spec_.zNear, na, nb, clipped);
+        const LaneMask crosses = open & clipped;
+        LaneMask insideA, insideB;
+        markFinite(na, finiteA);
+        markFinite(nb, finiteB);
+        insideBoxLanes(ox + na * dx, oy + na * dy, oz + na * dz, spec_.nearZone, spec_.margin, insideA);
+        insideBoxLanes(ox + nb * dx, oy + nb * dy, oz + nb * dz, spec_.nearZone, spec_.margin, insideB);
+        const LaneMask inside = finiteA & finiteB & insideA & insideB;
         refused |= crosses & ~inside;
         nearPart = crosses & inside;
         open &= ~refused;
     }
     if (zLo_ > zHi_) open = LaneMask{};
     DoubleLanes ga = ta, gb = tb;
-    open &= clipDepthLanes(oz, dz, inverseDz, zLo_, kInfinity, ga, gb);
+    clipDepthLanes(oz, dz, inverseDz, zLo_, kInfinity, ga, gb, clipped);
+    open &= clipped;
     // Geometry beyond the last slice (a light grid ends at the farthest shadow-ray origin).
     if (zHi_ < geometryZHi_) {
         DoubleLanes fa = ga, fb = gb;
-        const LaneMask beyond = open & clipDepthLanes(oz, dz, inverseDz, zHi_ + spec_.margin, kInfinity, fa, fb);
+        clipDepthLanes(oz, dz, inverseDz, zHi_ + spec_.margin, kInfinity, fa, fb, clipped);
+        const LaneMask beyond = open & clipped;
         refused |= beyond;
         open &= ~beyond;
     }
-    const LaneMask unbounded = open & ~(laneFinite(ga) & laneFinite(gb));
+    markFinite(ga, finiteA);
+    markFinite(gb, finiteB);
+    const LaneMask unbounded = open & ~(finiteA & finiteB);
     refused |= unbounded;
     open &= ~unbounded;
     const DoubleLanes ax = ox + ga * dx, ay = oy + ga * dy, az = oz + ga * dz;
@@ -803,10 +813,10 @@ void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std
         const DoubleLanes x = rx * frame.right.x + ry * frame.right.y + rz * frame.right.z;
         const DoubleLanes y = rx * frame.up.x + ry * frame.up.y + rz * frame.up.z;
         const DoubleLanes s = x / z, t = y / z;
-        sLo = laneMin(sLo, s);
-        sHi = laneMax(sHi, s);
-        tLo = laneMin(tLo, t);
-        tHi = laneMax(tHi, t);
+        keepMin(sLo, s);
+        keepMax(sHi, s);
+        keepMin(tLo, t);
+        keepMax(tHi, t);
     }
     PlanarRange planar = kNoPlanarRange;
     if (lanesPlanar)
