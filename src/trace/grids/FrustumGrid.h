@@ -194,10 +194,9 @@ private:
     static ApexColumn unpackCameraKey(std::uint64_t key);
     // The packets are compiled for AVX2 and for baseline x86-64, the CPU
     // choosing at load time (FrustumGrid.cpp). The attribute must be on the
-    // first declaration for clang.
-    // `lanesPlanar`: the union of the lanes' planar ranges in the grid part;
-    // null for rays from the apex (apexWalk), whose planar coordinates are
-    // their directions'.
+    // first declaration for clang. `lanesPlanar`: the union of the lanes'
+    // planar ranges in the grid part; null for rays from the apex
+    // (apexWalk), whose planar coordinates are their directions'.
     [[gnu::target_clones("arch=x86-64-v3", "default")]]
     void intersectPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& tr,
                          const PlanarRange* lanesPlanar, std::span<TraceHit> hits) const;
