@@ -96,15 +96,9 @@ int main(int argc, char** argv) {
         gridTotal.push_back(gridBuild.back() + gridPrimary.back() + gridShadow.back());
     };
     const auto runEmbree = [&] {
-        // One Embree scene kept over the rounds, as a renderer keeps it: made
-        // in the first round, rebuilt from nothing in its own memory after.
-        const auto start = Clock::now();
-        if (embreeKept)
-            embreeKept->rebuild(still);
-        else
-            embreeKept.emplace(still, lowOptions);
+        // One Embree scene kept over the rounds, as a renderer keeps it.
+        embreeBuild.push_back(rebuildOpponent(embreeKept, still, lowOptions));
         const TraceScene& embree = *embreeKept;
-        embreeBuild.push_back(millisecondsSince(start));
         embreePrimary.push_back(tracePrimary(embree, rays, parallel, false, nullptr));
         embreeShadow.push_back(traceShadows(embree, rays, parallel, false));
         embreeTotal.push_back(embreeBuild.back() + embreePrimary.back() + embreeShadow.back());

@@ -71,10 +71,7 @@ std::uint64_t triangleCount(const Scene& scene) {
 // models): the animation's own tracer, updated to `posed` here (`changed`:
 // the objects the pose moved), timed beside the rebuilds.
 // `rebuilt`: the model's Embree scenes rebuilt every frame, at quality
-// MEDIUM and LOW, kept from frame to frame as a renderer keeps one scene:
-// made in the first frame, every hierarchy built again from nothing in the
-// memory they hold afterwards (TraceScene::rebuild), both timed. Made anew
-// each frame instead, their build times grew long tails (fresh pages).
+// MEDIUM and LOW, kept from frame to frame (rebuildOpponent), both timed.
 FrameCosts measureFrame(const Scene& posed, const Camera& camera, int side, const Parallel& parallel,
                         const TraceScene& gridTracer, std::array<std::optional<TraceScene>, 2>& rebuilt,
                         TraceScene* updated = nullptr, std::span<const int> changed = {}) {
@@ -87,14 +84,9 @@ FrameCosts measureFrame(const Scene& posed, const Camera& camera, int side, cons
         TraceOptions options;
         options.stillSceneQuality = quality;
         std::optional<TraceScene>& kept = rebuilt[quality == EmbreeBuildQuality::Low ? 1 : 0];
-        auto start = Clock::now();
-        if (kept)
-            kept->rebuild(still);
-        else
-            kept.emplace(still, options);
-        const TraceScene& tracer = *kept;
         Costs c;
-        c.build = millisecondsSince(start);
+        c.build = rebuildOpponent(kept, still, options);
+        const TraceScene& tracer = *kept;
         std::vector<std::vector<TraceHit>> hits;
         c.primary = tracePrimary(tracer, rays, parallel, false, rays.shadow.empty() ? &hits : nullptr);
         // The shadow rays of the frame, from Embree's hits, shared by every tracer.

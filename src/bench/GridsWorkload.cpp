@@ -63,6 +63,15 @@ GridsFrameRays cameraRaysByTile(const Camera& camera, int side) {
     return rays;
 }
 
+double rebuildOpponent(std::optional<TraceScene>& kept, const Scene& still, const TraceOptions& options) {
+    const auto start = Clock::now();
+    if (kept)
+        kept->rebuild(still);
+    else
+        kept.emplace(still, options);
+    return millisecondsSince(start);
+}
+
 double tracePrimary(const TraceScene& tracer, const GridsFrameRays& rays, const Parallel& parallel, bool grids,
                     std::vector<std::vector<TraceHit>>* keepHits) {
     // The answers' memory is made before the clock starts: a renderer keeps

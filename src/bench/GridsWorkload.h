@@ -5,6 +5,7 @@
 // timed passes that trace them tile by tile, in parallel, through the grids
 // (TraceScene::intersectPrimary, occludedPrimaryShadows) or through
 // Embree's 16-wide coherent packets.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,13 @@ struct GridsFrameRays {
 GridsFrameRays cameraRaysByTile(const Camera& camera, int side);
 // The shadow rays of `hits` (per tile, for rays.primary) toward every light of `scene`.
 void addShadowRays(const Scene& scene, const std::vector<std::vector<TraceHit>>& hits, GridsFrameRays& rays);
+
+// Wall milliseconds to make Embree's rebuilt-every-frame opponent ready for
+// `still` (a scene without animation): made in `kept` the first time, and
+// afterwards every hierarchy built again from nothing in the memory it holds
+// (TraceScene::rebuild), as a renderer keeps one scene. Made anew each
+// frame, its build times grew long tails (fresh pages).
+double rebuildOpponent(std::optional<TraceScene>& kept, const Scene& still, const TraceOptions& options);
 
 // Wall milliseconds to trace every tile's camera rays (grids: through the
 // tracer's grids; otherwise Embree's packets); `keepHits`, if set, gets the hits.

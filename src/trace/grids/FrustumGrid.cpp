@@ -188,8 +188,8 @@ inline FrustumGrid::CellRange FrustumGrid::cellRangeOf(double sLo, double sHi, d
 void FrustumGrid::binPrimitives(std::uint32_t first, std::uint32_t count, PrimitiveFilter filter) {
     const GridFrame& frame = spec_.frame;
     const double m = spec_.margin;
-    // The corners in frame coordinates, as GridFrame::toFrame; lanes past
-    // `count` repeat the first primitive, their results unused.
+    // The corners in frame coordinates; lanes past `count` repeat the first
+    // primitive, their results unused.
     DoubleLanes x[3], y[3], z[3];
     for (std::uint32_t l = 0; l < static_cast<std::uint32_t>(kDoubleLanes); ++l) {
         const GridPrimitives::TriangleCoordinates& c = primitives_->triangleCoordinates(first + (l < count ? l : 0));
@@ -201,10 +201,7 @@ void FrustumGrid::binPrimitives(std::uint32_t first, std::uint32_t count, Primit
     }
     DoubleLanes loX = kInfinity + DoubleLanes{}, loY = loX, loZ = loX, hiX = -loX, hiY = hiX, hiZ = hiX;
     for (int k = 0; k < 3; ++k) {
-        const DoubleLanes px = x[k] - frame.apex.x, py = y[k] - frame.apex.y, pz = z[k] - frame.apex.z;
-        x[k] = px * frame.right.x + py * frame.right.y + pz * frame.right.z;
-        y[k] = px * frame.up.x + py * frame.up.y + pz * frame.up.z;
-        z[k] = px * frame.forward.x + py * frame.forward.y + pz * frame.forward.z;
+        frame.toFrame(x[k], y[k], z[k]);
         keepMin(loX, x[k]);
         keepMin(loY, y[k]);
         keepMin(loZ, z[k]);
@@ -467,26 +464,20 @@ void FrustumGrid::generalTraversals(std::span<const Ray> rays, Traversal* out, C
     const std::size_t n = std::min(rays.size(), static_cast<std::size_t>(kDoubleLanes));
     const GridFrame& frame = spec_.frame;
     // Lanes past n repeat the first ray; their results are not written.
-    DoubleLanes rox, roy, roz, rdx, rdy, rdz, tNear, tFar;
+    DoubleLanes ox, oy, oz, dx, dy, dz, tNear, tFar;
     for (std::size_t l = 0; l < static_cast<std::size_t>(kDoubleLanes); ++l) {
         const Ray& ray = rays[l < n ? l : 0];
-        rox[l] = ray.origin.x;
-        roy[l] = ray.origin.y;
-        roz[l] = ray.origin.z;
-        rdx[l] = ray.direction.x;
-        rdy[l] = ray.direction.y;
-        rdz[l] = ray.direction.z;
+        ox[l] = ray.origin.x;
+        oy[l] = ray.origin.y;
+        oz[l] = ray.origin.z;
+        dx[l] = ray.direction.x;
+        dy[l] = ray.direction.y;
+        dz[l] = ray.direction.z;
         tNear[l] = ray.tNear;
         tFar[l] = ray.tFar;
     }
-    // Frame coordinates, as GridFrame::toFrame and directionToFrame.
-    const DoubleLanes px = rox - frame.apex.x, py = roy - frame.apex.y, pz = roz - frame.apex.z;
-    const DoubleLanes ox = px * frame.right.x + py * frame.right.y + pz * frame.right.z;
-    const DoubleLanes oy = px * frame.up.x + py * frame.up.y + pz * frame.up.z;
-    const DoubleLanes oz = px * frame.forward.x + py * frame.forward.y + pz * frame.forward.z;
-    const DoubleLanes dx = rdx * frame.right.x + rdy * frame.right.y + rdz * frame.right.z;
-    const DoubleLanes dy = rdx * frame.up.x + rdy * frame.up.y + rdz * frame.up.z;
-    const DoubleLanes dz = rdx * frame.forward.x + rdy * frame.forward.y + rdz * frame.forward.z;
+    frame.toFrame(ox, oy, oz);
+    frame.directionToFrame(dx, dy, dz);
     const DoubleLanes inverseDz = 1.0 / dz;
     // Lanes still to decide; lanes found not covered; lanes crossing the near zone.
     LaneMask open = ~LaneMask{}, refused = LaneMask{}, nearPart = LaneMask{};
@@ -713,7 +704,7 @@ void FrustumGrid::intersectBatch(std::span<const Ray> rays, std::span<TraceHit> 
     thread_local std::vector<Traversal> traversals;
     PacketGatherer<PacketKey> gatherer;
     const auto trace = [&](std::span<const std::uint32_t> packet, const PacketKey&) {
-        PlanarRange planar = kNoPlanarRange;
+        PlanarRange planar;
         for (const std::uint32_t ray : packet) planar.add(traversals[ray].planar);
         intersectPacket(rays, packet, traversals[packet[0]], &planar, hits);
     };
@@ -793,31 +784,33 @@ void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std
         rayDirectionY[l] = ray.direction.y;
         rayDirectionZ[l] = ray.direction.z;
     }
-    // The lanes' directions in frame coordinates (GridFrame::directionToFrame),
-    // four lanes a vector; for rays from the apex their planar coordinates
+    // The lanes' directions in frame coordinates, four lanes a vector; for rays from the apex their planar coordinates
     // too, the same all along them. Padding lanes repeat lane 0.
     static_assert(kLanes % kDoubleLanes == 0);
     const GridFrame& frame = spec_.frame;
     DoubleLanes sLo = kInfinity + DoubleLanes{}, sHi = -sLo, tLo = sLo, tHi = sHi;
     for (std::size_t l = 0; l < kLanes; l += kDoubleLanes) {
-        DoubleLanes rx, ry, rz;
+        DoubleLanes x, y, z;
         for (int k = 0; k < kDoubleLanes; ++k) {
-            rx[k] = rayDirectionX[l + static_cast<std::size_t>(k)];
-            ry[k] = rayDirectionY[l + static_cast<std::size_t>(k)];
-            rz[k] = rayDirectionZ[l + static_cast<std::size_t>(k)];
+            x[k] = rayDirectionX[l + static_cast<std::size_t>(k)];
+            y[k] = rayDirectionY[l + static_cast<std::size_t>(k)];
+            z[k] = rayDirectionZ[l + static_cast<std::size_t>(k)];
         }
-        const DoubleLanes z = rx * frame.forward.x + ry * frame.forward.y + rz * frame.forward.z;
+        if (lanesPlanar) {
+            DoubleLanes frameZ;
+            frame.directionZToFrame(x, y, z, frameZ);
+            __builtin_memcpy(directionZ + l, &frameZ, sizeof frameZ);
+            continue;
+        }
+        frame.directionToFrame(x, y, z);
         __builtin_memcpy(directionZ + l, &z, sizeof z);
-        if (lanesPlanar) continue;
-        const DoubleLanes x = rx * frame.right.x + ry * frame.right.y + rz * frame.right.z;
-        const DoubleLanes y = rx * frame.up.x + ry * frame.up.y + rz * frame.up.z;
         const DoubleLanes s = x / z, t = y / z;
         keepMin(sLo, s);
         keepMax(sHi, s);
         keepMin(tLo, t);
         keepMax(tHi, t);
     }
-    PlanarRange planar = kNoPlanarRange;
+    PlanarRange planar;
     if (lanesPlanar)
         planar = *lanesPlanar;
     else

@@ -113,9 +113,11 @@ public:
     const FrustumGridSpec& spec() const { return spec_; }
 
 private:
-    // A range of planar grid coordinates (s, t: x/z and y/z, or x and y).
+    // A range of planar grid coordinates (s, t: x/z and y/z, or x and y);
+    // empty until something is added.
     struct PlanarRange {
-        double sLo = 0.0, sHi = -1.0, tLo = 0.0, tHi = -1.0;
+        double sLo = std::numeric_limits<double>::infinity(), sHi = -std::numeric_limits<double>::infinity();
+        double tLo = std::numeric_limits<double>::infinity(), tHi = -std::numeric_limits<double>::infinity();
         void add(const PlanarRange& other) {
             sLo = std::min(sLo, other.sLo);
             sHi = std::max(sHi, other.sHi);
@@ -123,10 +125,6 @@ private:
             tHi = std::max(tHi, other.tHi);
         }
     };
-    static constexpr PlanarRange kNoPlanarRange{std::numeric_limits<double>::infinity(),
-                                                -std::numeric_limits<double>::infinity(),
-                                                std::numeric_limits<double>::infinity(),
-                                                -std::numeric_limits<double>::infinity()};
     struct CellRange {
         int i0, i1, j0, j1, k0, k1;  // inclusive; i1 < i0 when the primitive has no cell
     };

@@ -14,6 +14,7 @@
 // below the margins the binning adds.
 #include <cmath>
 
+#include "core/DoubleLanes.h"
 #include "core/Vec3.h"
 
 namespace raycache {
@@ -40,6 +41,27 @@ struct GridFrame {
     Point3d directionToFrame(const Vec3& d) const {
         return {d.x * right.x + d.y * right.y + d.z * right.z, d.x * up.x + d.y * up.y + d.z * up.z,
                 d.x * forward.x + d.y * forward.y + d.z * forward.z};
+    }
+    // The same two for kDoubleLanes points or directions at once (world
+    // coordinates in, frame coordinates out, in place), with the same
+    // operations in the same order: each lane's result is the scalar one's
+    // bits. directionZToFrame: the depth alone.
+    [[gnu::always_inline]] void toFrame(DoubleLanes& x, DoubleLanes& y, DoubleLanes& z) const {
+        x -= apex.x;
+        y -= apex.y;
+        z -= apex.z;
+        directionToFrame(x, y, z);
+    }
+    [[gnu::always_inline]] void directionToFrame(DoubleLanes& x, DoubleLanes& y, DoubleLanes& z) const {
+        const DoubleLanes fx = x * right.x + y * right.y + z * right.z;
+        const DoubleLanes fy = x * up.x + y * up.y + z * up.z;
+        z = x * forward.x + y * forward.y + z * forward.z;
+        x = fx;
+        y = fy;
+    }
+    [[gnu::always_inline]] void directionZToFrame(const DoubleLanes& x, const DoubleLanes& y, const DoubleLanes& z,
+                                                  DoubleLanes& frameZ) const {
+        frameZ = x * forward.x + y * forward.y + z * forward.z;
     }
 };
 
