@@ -80,7 +80,7 @@ int main(int argc, char** argv) {
     const TraceScene grids(scene, gridOptions);  // its Embree BVH answers only refused rays: not timed
     TraceOptions lowOptions;
     lowOptions.stillSceneQuality = EmbreeBuildQuality::Low;
-    std::vector<double> gridBuild, gridPrimary, gridShadow, gridTotal, embreeBuild, embreePrimary, embreeShadow,
+    std::vector<double> gridBuild, gridCameraBuild, gridLightBuild, gridPrimary, gridShadow, gridTotal, embreeBuild, embreePrimary, embreeShadow,
         embreeTotal;
     // Embree's opponent is built from the scene without its animation, as in
     // `bench grids`: every object still, every hierarchy built at LOW.
@@ -91,6 +91,8 @@ int main(int argc, char** argv) {
         const auto start = Clock::now();
         grids.prepareFrame(scene, camera, size, size, parallel);
         gridBuild.push_back(millisecondsSince(start));
+        gridCameraBuild.push_back(grids.frameStats().build.primaryBuildMs);
+        gridLightBuild.push_back(grids.frameStats().build.shadowBuildMs);
         gridPrimary.push_back(tracePrimary(grids, rays, parallel, true, nullptr));
         gridShadow.push_back(traceShadows(grids, rays, parallel, true));
         gridTotal.push_back(gridBuild.back() + gridPrimary.back() + gridShadow.back());
@@ -121,6 +123,8 @@ int main(int argc, char** argv) {
                 static_cast<unsigned long long>(stats.shadowRefused));
     std::printf("grids\n");
     report("build", gridBuild);
+    report("  camera grid", gridCameraBuild);
+    report("  light grids", gridLightBuild);
     report("primary", gridPrimary);
     report("shadow", gridShadow);
     report("total", gridTotal);

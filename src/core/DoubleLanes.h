@@ -15,6 +15,11 @@ using LaneMask = decltype(DoubleLanes{} < DoubleLanes{});
 
 inline constexpr int kDoubleLanes = 4;
 
+// Four ints, one per lane of a DoubleLanes (a cell index per lane):
+// __builtin_convertvector turns a DoubleLanes into them, truncating as
+// static_cast<int> does, and a LaneMask into lanes of 0 or -1.
+using IntLanes = int __attribute__((vector_size(16)));
+
 // The helpers work in place, through references: a 32-byte vector passed
 // or returned by value changes the calling convention of a function compiled
 // without AVX (the baseline clones), which clang refuses even for a function

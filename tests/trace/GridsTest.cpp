@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <random>
 #include <string>
@@ -185,6 +186,19 @@ TEST(GridAxis, CellIsTheLastBoundaryReachedOnEveryAxis) {
             for (const double z : {1.0, 4.0})
                 for (const int hint : {-1, 0, cell, c.count - 1, c.count + 3})
                     ASSERT_EQ(axis.cellOfRatio(v * z, z, hint), cell) << "value " << v << ", hint " << hint;
+        }
+        // Four values at a time (the binning's cellsOf): each lane the cell of
+        // its value, the lanes mixed so they take different steps.
+        values.insert(values.end(), {std::nan(""), -1e300, 1e300, -std::numeric_limits<double>::infinity(),
+                                     std::numeric_limits<double>::infinity()});
+        std::shuffle(values.begin(), values.end(), random);
+        for (std::size_t at = 0; at + kDoubleLanes <= values.size(); at += kDoubleLanes) {
+            const DoubleLanes lanes{values[at], values[at + 1], values[at + 2], values[at + 3]};
+            IntLanes cells;
+            axis.cellsOf(lanes, cells);
+            for (int l = 0; l < kDoubleLanes; ++l)
+                ASSERT_EQ(cells[l], cellBySearch(axis, values[at + static_cast<std::size_t>(l)]))
+                    << "lane " << l << ", value " << values[at + static_cast<std::size_t>(l)];
         }
         // The external oracle: angular cells are evenly spaced in atan.
         if (c.angular)

@@ -166,6 +166,14 @@ float roundedOutward(double value, double direction) {
     return static_cast<float>(value + direction * (std::fabs(value) * 0x1p-22 + 1e-30));
 }
 
+using FloatLanes = float __attribute__((vector_size(16)));
+
+// The same for kDoubleLanes values.
+[[gnu::always_inline]] inline void roundedOutward(const DoubleLanes& value, double direction, FloatLanes& rounded) {
+    const DoubleLanes magnitude = value < 0.0 ? -value : value;
+    rounded = __builtin_convertvector(value + direction * (magnitude * 0x1p-22 + 1e-30), FloatLanes);
+}
+
 }  // namespace
 
 inline FrustumGrid::CellRange FrustumGrid::cellRangeOf(double sLo, double sHi, double tLo, double tHi, double zA, double zB,
@@ -185,7 +193,8 @@ inline FrustumGrid::CellRange FrustumGrid::cellRangeOf(double sLo, double sHi, d
 // triangles, the same operations as binPrimitive's lane by lane. A lane that
 // is a sphere or must be clipped takes binPrimitive itself.
 [[gnu::target_clones("arch=x86-64-v3", "default")]]
-void FrustumGrid::binPrimitives(std::uint32_t first, std::uint32_t count, PrimitiveFilter filter) {
+void FrustumGrid::binPrimitives(std::uint32_t first, std::uint32_t count, PrimitiveFilter filter, std::uint64_t& pairs,
+                                std::uint32_t& binned) {
     const GridFrame& frame = spec_.frame;
     const double m = spec_.margin;
     // The corners in frame coordinates; lanes past `count` repeat the first
@@ -243,6 +252,23 @@ void FrustumGrid::binPrimitives(std::uint32_t first, std::uint32_t count, Primit
     }
     const LaneMask outside = (zA > zB) | (sHi < sAxis_.lower()) | (sLo > sAxis_.upper()) | (tHi < tAxis_.lower()) |
                              (tLo > tAxis_.upper());
+    // cellRangeOf for the four lanes: its clamps, rounding and cells, lane by lane the same.
+    keepMax(sLo, sAxis_.lower() + DoubleLanes{});
+    keepMin(sHi, sAxis_.upper() + DoubleLanes{});
+    keepMax(tLo, tAxis_.lower() + DoubleLanes{});
+    keepMin(tHi, tAxis_.upper() + DoubleLanes{});
+    FloatLanes boxSLo, boxSHi, boxTLo, boxTHi;
+    roundedOutward(sLo, -1.0, boxSLo);
+    roundedOutward(sHi, 1.0, boxSHi);
+    roundedOutward(tLo, -1.0, boxTLo);
+    roundedOutward(tHi, 1.0, boxTHi);
+    IntLanes i0, i1, j0, j1, k0, k1;
+    sAxis_.cellsOf(sLo, i0);
+    sAxis_.cellsOf(sHi, i1);
+    tAxis_.cellsOf(tLo, j0);
+    tAxis_.cellsOf(tHi, j1);
+    depthAxis_.cellsOf(zA, k0);
+    depthAxis_.cellsOf(zB, k1);
     for (std::uint32_t l = 0; l < count; ++l) {
         const std::uint32_t p = first + l;
         CellRange& range = ranges_[p];
@@ -253,9 +279,19 @@ void FrustumGrid::binPrimitives(std::uint32_t first, std::uint32_t count, Primit
             range = binPrimitive(p, inNearZone, boxes_[p]);
         } else {
             inNearZone = nearZone[l] != 0;
-            range = outside[l] != 0 ? kNoCells : cellRangeOf(sLo[l], sHi[l], tLo[l], tHi[l], zA[l], zB[l], boxes_[p]);
+            if (outside[l] != 0) {
+                range = kNoCells;
+            } else {
+                range = {i0[l], i1[l], j0[l], j1[l], k0[l], k1[l]};
+                boxes_[p] = {boxSLo[l], boxSHi[l], boxTLo[l], boxTHi[l]};
+            }
         }
         nearFlags_[p] = inNearZone ? 1 : 0;
+        if (range.i1 >= range.i0) {
+            pairs += static_cast<std::uint64_t>(range.i1 - range.i0 + 1) * (range.j1 - range.j0 + 1) *
+                     (range.k1 - range.k0 + 1);
+            ++binned;
+        }
     }
 }
 
@@ -347,23 +383,27 @@ void FrustumGrid::build(const FrustumGridSpec& spec, const GridPrimitives& primi
     ranges_.resize(count);
     boxes_.resize(count);
     nearFlags_.resize(count);
+    // Per block: its pairs and its primitives with cells.
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> blockPairs(static_cast<std::size_t>(blocks));
     parallel.forEachIndex(blocks, [&](int b, int) {
         auto [begin, end] = blockRange(b);
+        // Counted here, stored once: neighbouring blocks' entries share a cache line.
+        std::uint64_t pairsHere = 0;
+        std::uint32_t binnedHere = 0;
         // Four primitives at a time (kBinBlock is a multiple of four).
         for (std::uint32_t p = begin; p < end; p += kDoubleLanes)
-            binPrimitives(p, std::min<std::uint32_t>(kDoubleLanes, end - p), filter);
+            binPrimitives(p, std::min<std::uint32_t>(kDoubleLanes, end - p), filter, pairsHere, binnedHere);
+        blockPairs[static_cast<std::size_t>(b)] = {pairsHere, binnedHere};
     });
     std::uint64_t pairs = 0;
-    for (std::uint32_t p = 0; p < count; ++p) {
-        const CellRange& r = ranges_[p];
-        if (r.i1 < r.i0) continue;
-        pairs += static_cast<std::uint64_t>(r.i1 - r.i0 + 1) * (r.j1 - r.j0 + 1) * (r.k1 - r.k0 + 1);
-        ++stats_.primitivesBinned;
+    for (const auto& [blockPairsHere, binnedHere] : blockPairs) {
+        pairs += blockPairsHere;
+        stats_.primitivesBinned += binnedHere;
     }
     stats_.pairs = pairs;
     nearZone_.clear();
-    for (std::uint32_t p = 0; p < count; ++p)
-        if (nearFlags_[p]) nearZone_.push_back(p);
+    for (auto at = nearFlags_.begin(); (at = std::find(at, nearFlags_.end(), 1)) != nearFlags_.end(); ++at)
+        nearZone_.push_back(static_cast<std::uint32_t>(at - nearFlags_.begin()));
     stats_.nearZone = nearZone_.size();
 
     // 3. The (cell, primitive) pairs sorted by cell, each cell's primitives

@@ -209,7 +209,8 @@ private:
     // arithmetic four at a time (core/DoubleLanes.h). Compiled for AVX2 and
     // baseline x86-64.
     [[gnu::target_clones("arch=x86-64-v3", "default")]]
-    void binPrimitives(std::uint32_t first, std::uint32_t count, PrimitiveFilter filter);
+    void binPrimitives(std::uint32_t first, std::uint32_t count, PrimitiveFilter filter, std::uint64_t& pairs,
+                       std::uint32_t& binned);
     // Index of cell (i, j) of depth slice k in cellLists_. A column's slices
     // lie next to one another: a ray walks one column front to back.
     std::size_t flatCell(int k, int j, int i) const {

@@ -14,6 +14,7 @@ void GridAxis::setUniform(double lo, double hi, int count) {
     bounds_.back() = hi;
     estimateOrigin_ = lo;
     estimateScale_ = 1.0 / step;
+    step_ = step;
 }
 
 void GridAxis::setAngular(double angleLo, double angleHi, int count) {

@@ -14,6 +14,8 @@
 // an atan per ray: a cheap estimate of the cell, then the boundaries decide.
 #include <vector>
 
+#include "core/DoubleLanes.h"
+
 namespace raycache {
 
 class GridAxis {
@@ -37,6 +39,46 @@ public:
         while (i > 0 && value < bounds[i]) --i;
         return i;
     }
+    // cellOf for kDoubleLanes values at once, lane by lane the same cell.
+    // A uniform axis computes the boundaries next to the estimate as
+    // setUniform does (the same bits); the estimate is within one cell of
+    // the value's, so one step settles it. An angular axis reads them, and
+    // steps while any lane still needs a step (rarely more than one).
+    [[gnu::always_inline]] void cellsOf(const DoubleLanes& value, IntLanes& cells) const {
+        DoubleLanes estimate = value;
+        if (angular_) approximateAtan(estimate);
+        estimate = (estimate - estimateOrigin_) * estimateScale_;
+        // As cellOf: a NaN estimate gives cell 0.
+        estimate = estimate > 0.0 ? estimate : DoubleLanes{};
+        estimate = estimate < lastCell_ ? estimate : lastCell_ + DoubleLanes{};
+        cells = __builtin_convertvector(estimate, IntLanes);
+        const IntLanes last = count_ - 1 + IntLanes{};
+        if (!angular_) {
+            const DoubleLanes index = __builtin_convertvector(cells, DoubleLanes);
+            const DoubleLanes here = estimateOrigin_ + index * step_;
+            DoubleLanes next = estimateOrigin_ + (index + 1.0) * step_;
+            next = index < lastCell_ ? next : bounds_.back() + DoubleLanes{};
+            const IntLanes up = (cells < last) & __builtin_convertvector(value >= next, IntLanes);
+            const IntLanes down = (cells > 0) & __builtin_convertvector(value < here, IntLanes);
+            cells = cells - up + down;  // masks are -1 where they hold
+            return;
+        }
+        const double* bounds = bounds_.data();
+        for (;;) {
+            // cells <= count_ - 1, so cells + 1 indexes bounds_ (count_ + 1 entries).
+            const DoubleLanes next{bounds[cells[0] + 1], bounds[cells[1] + 1], bounds[cells[2] + 1],
+                                   bounds[cells[3] + 1]};
+            const IntLanes up = (cells < last) & __builtin_convertvector(value >= next, IntLanes);
+            if (!anyLane(up)) break;
+            cells -= up;
+        }
+        for (;;) {
+            const DoubleLanes here{bounds[cells[0]], bounds[cells[1]], bounds[cells[2]], bounds[cells[3]]};
+            const IntLanes down = (cells > 0) & __builtin_convertvector(value < here, IntLanes);
+            if (!anyLane(down)) break;
+            cells += down;
+        }
+    }
     // The cell of numerator / denominator (denominator > 0), found from
     // `hint` (a neighbour's cell: camera rays come row by row, mostly in the
     // column of the ray before) by comparing products with the boundaries,
@@ -59,12 +101,23 @@ private:
         if (x >= -1.0 && x <= 1.0) return x / (1.0 + 0.28086 * x * x);
         return (x > 0.0 ? kHalfPi : -kHalfPi) - x / (x * x + 0.28086);
     }
+    // The same for kDoubleLanes values, in place.
+    [[gnu::always_inline]] static void approximateAtan(DoubleLanes& x) {
+        constexpr double kHalfPi = 1.5707963267948966;
+        const DoubleLanes inner = x / (1.0 + 0.28086 * x * x);
+        const DoubleLanes outer = (x > 0.0 ? kHalfPi + DoubleLanes{} : -kHalfPi + DoubleLanes{}) - x / (x * x + 0.28086);
+        x = ((x >= -1.0) & (x <= 1.0)) ? inner : outer;
+    }
+    [[gnu::always_inline]] static bool anyLane(const IntLanes& mask) {
+        return (mask[0] | mask[1] | mask[2] | mask[3]) != 0;
+    }
 
     std::vector<double> bounds_{0.0, 1.0};
     int count_ = 1;
     double lastCell_ = 0.0;  // count_ - 1, converted once
     bool angular_ = false;
     double estimateOrigin_ = 0.0, estimateScale_ = 1.0;
+    double step_ = 1.0;  // a uniform axis's boundaries: estimateOrigin_ + i step_, the last one exact
 };
 
 }  // namespace raycache
