@@ -252,23 +252,35 @@ void FrustumGrid::binPrimitives(std::uint32_t first, std::uint32_t count, Primit
     }
     const LaneMask outside = (zA > zB) | (sHi < sAxis_.lower()) | (sLo > sAxis_.upper()) | (tHi < tAxis_.lower()) |
                              (tLo > tAxis_.upper());
+    // The lanes whose cells come from the vectors below (the others are
+    // filtered out, outside, or binned by binPrimitive). A light's face grid
+    // admits few primitives: when no lane needs them, the cells are skipped.
+    const auto fromVectors = [&](std::uint32_t l) {
+        const std::uint32_t p = first + l;
+        return filter.admits(p) && !primitives_->sphere(p) && !(clipped[l] != 0 && !(zA[l] > zB[l])) &&
+               outside[l] == 0;
+    };
+    bool anyFromVectors = false;
+    for (std::uint32_t l = 0; l < count; ++l) anyFromVectors |= fromVectors(l);
     // cellRangeOf for the four lanes: its clamps, rounding and cells, lane by lane the same.
-    keepMax(sLo, sAxis_.lower() + DoubleLanes{});
-    keepMin(sHi, sAxis_.upper() + DoubleLanes{});
-    keepMax(tLo, tAxis_.lower() + DoubleLanes{});
-    keepMin(tHi, tAxis_.upper() + DoubleLanes{});
-    FloatLanes boxSLo, boxSHi, boxTLo, boxTHi;
-    roundedOutward(sLo, -1.0, boxSLo);
-    roundedOutward(sHi, 1.0, boxSHi);
-    roundedOutward(tLo, -1.0, boxTLo);
-    roundedOutward(tHi, 1.0, boxTHi);
-    IntLanes i0, i1, j0, j1, k0, k1;
-    sAxis_.cellsOf(sLo, i0);
-    sAxis_.cellsOf(sHi, i1);
-    tAxis_.cellsOf(tLo, j0);
-    tAxis_.cellsOf(tHi, j1);
-    depthAxis_.cellsOf(zA, k0);
-    depthAxis_.cellsOf(zB, k1);
+    FloatLanes boxSLo{}, boxSHi{}, boxTLo{}, boxTHi{};
+    IntLanes i0{}, i1{}, j0{}, j1{}, k0{}, k1{};
+    if (anyFromVectors) {
+        keepMax(sLo, sAxis_.lower() + DoubleLanes{});
+        keepMin(sHi, sAxis_.upper() + DoubleLanes{});
+        keepMax(tLo, tAxis_.lower() + DoubleLanes{});
+        keepMin(tHi, tAxis_.upper() + DoubleLanes{});
+        roundedOutward(sLo, -1.0, boxSLo);
+        roundedOutward(sHi, 1.0, boxSHi);
+        roundedOutward(tLo, -1.0, boxTLo);
+        roundedOutward(tHi, 1.0, boxTHi);
+        sAxis_.cellsOf(sLo, i0);
+        sAxis_.cellsOf(sHi, i1);
+        tAxis_.cellsOf(tLo, j0);
+        tAxis_.cellsOf(tHi, j1);
+        depthAxis_.cellsOf(zA, k0);
+        depthAxis_.cellsOf(zB, k1);
+    }
     for (std::uint32_t l = 0; l < count; ++l) {
         const std::uint32_t p = first + l;
         CellRange& range = ranges_[p];
