@@ -80,8 +80,8 @@ int main(int argc, char** argv) {
     const TraceScene grids(scene, gridOptions);  // its Embree BVH answers only refused rays: not timed
     TraceOptions lowOptions;
     lowOptions.stillSceneQuality = EmbreeBuildQuality::Low;
-    std::vector<double> gridBuild, gridCameraBuild, gridLightBuild, gridPrimary, gridShadow, gridTotal, embreeBuild, embreePrimary, embreeShadow,
-        embreeTotal;
+    std::vector<double> gridBuild, gridCameraBuild, gridLightBuild, gridPrimary, gridShadow, gridTotal, embreeBuild,
+        embreePrimary, embreeShadow, embreeTotal;
     // Embree's opponent is built from the scene without its animation, as in
     // `bench grids`: every object still, every hierarchy built at LOW.
     Scene still = scene;

@@ -252,16 +252,21 @@ void FrustumGrid::binPrimitives(std::uint32_t first, std::uint32_t count, Primit
     }
     const LaneMask outside = (zA > zB) | (sHi < sAxis_.lower()) | (sLo > sAxis_.upper()) | (tHi < tAxis_.lower()) |
                              (tLo > tAxis_.upper());
-    // The lanes whose cells come from the vectors below (the others are
-    // filtered out, outside, or binned by binPrimitive). A light's face grid
-    // admits few primitives: when no lane needs them, the cells are skipped.
-    const auto fromVectors = [&](std::uint32_t l) {
-        const std::uint32_t p = first + l;
-        return filter.admits(p) && !primitives_->sphere(p) && !(clipped[l] != 0 && !(zA[l] > zB[l])) &&
-               outside[l] == 0;
-    };
+    // How each lane is binned: not at all (filtered out, or outside the
+    // grid), by binPrimitive (a sphere, or a triangle to clip), or from the
+    // vectors below. A light's face grid admits few primitives: when no lane
+    // takes its cells from the vectors, they are not computed.
+    enum class LaneBinning : unsigned char { FilteredOut, Scalar, Outside, FromVectors };
+    LaneBinning binning[kDoubleLanes] = {};
     bool anyFromVectors = false;
-    for (std::uint32_t l = 0; l < count; ++l) anyFromVectors |= fromVectors(l);
+    for (std::uint32_t l = 0; l < count; ++l) {
+        const std::uint32_t p = first + l;
+        if (!filter.admits(p)) binning[l] = LaneBinning::FilteredOut;
+        else if (primitives_->sphere(p) || (clipped[l] != 0 && !(zA[l] > zB[l]))) binning[l] = LaneBinning::Scalar;
+        else if (outside[l] != 0) binning[l] = LaneBinning::Outside;
+        else binning[l] = LaneBinning::FromVectors;
+        anyFromVectors |= binning[l] == LaneBinning::FromVectors;
+    }
     // cellRangeOf for the four lanes: its clamps, rounding and cells, lane by lane the same.
     FloatLanes boxSLo{}, boxSHi{}, boxTLo{}, boxTHi{};
     IntLanes i0{}, i1{}, j0{}, j1{}, k0{}, k1{};
@@ -285,18 +290,22 @@ void FrustumGrid::binPrimitives(std::uint32_t first, std::uint32_t count, Primit
         const std::uint32_t p = first + l;
         CellRange& range = ranges_[p];
         bool inNearZone = false;
-        if (!filter.admits(p)) {
-            range = kNoCells;
-        } else if (primitives_->sphere(p) || (clipped[l] != 0 && !(zA[l] > zB[l]))) {
-            range = binPrimitive(p, inNearZone, boxes_[p]);
-        } else {
-            inNearZone = nearZone[l] != 0;
-            if (outside[l] != 0) {
+        switch (binning[l]) {
+            case LaneBinning::FilteredOut:
                 range = kNoCells;
-            } else {
+                break;
+            case LaneBinning::Scalar:
+                range = binPrimitive(p, inNearZone, boxes_[p]);
+                break;
+            case LaneBinning::Outside:
+                inNearZone = nearZone[l] != 0;
+                range = kNoCells;
+                break;
+            case LaneBinning::FromVectors:
+                inNearZone = nearZone[l] != 0;
                 range = {i0[l], i1[l], j0[l], j1[l], k0[l], k1[l]};
                 boxes_[p] = {boxSLo[l], boxSHi[l], boxTLo[l], boxTHi[l]};
-            }
+                break;
         }
         nearFlags_[p] = inNearZone ? 1 : 0;
         if (range.i1 >= range.i0) {

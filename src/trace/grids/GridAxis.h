@@ -105,7 +105,8 @@ private:
     [[gnu::always_inline]] static void approximateAtan(DoubleLanes& x) {
         constexpr double kHalfPi = 1.5707963267948966;
         const DoubleLanes inner = x / (1.0 + 0.28086 * x * x);
-        const DoubleLanes outer = (x > 0.0 ? kHalfPi + DoubleLanes{} : -kHalfPi + DoubleLanes{}) - x / (x * x + 0.28086);
+        const DoubleLanes outer =
+            (x > 0.0 ? kHalfPi + DoubleLanes{} : -kHalfPi + DoubleLanes{}) - x / (x * x + 0.28086);
         x = ((x >= -1.0) & (x <= 1.0)) ? inner : outer;
     }
     [[gnu::always_inline]] static bool anyLane(const IntLanes& mask) {
