@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake ninja-build pkg-config git
+  build-essential cmake ninja-build pkg-config git ccache
   libembree-dev libtbb-dev libassimp-dev nlohmann-json3-dev libcli11-dev
   libstb-dev libtinyexr-dev
   libgtest-dev libgmock-dev
