@@ -192,7 +192,7 @@ inline FrustumGrid::CellRange FrustumGrid::cellRangeOf(double sLo, double sHi, d
 // corners, bounds and projections are one vector per quantity for four
 // triangles, the same operations as binPrimitive's lane by lane. A lane that
 // is a sphere or must be clipped takes binPrimitive itself.
-[[gnu::target_clones("arch=x86-64-v3", "default")]]
+RAYCACHE_LANE_CLONES
 void FrustumGrid::binPrimitives(std::uint32_t first, std::uint32_t count, PrimitiveFilter filter, std::uint64_t& pairs,
                                 std::uint32_t& binned) {
     const GridFrame& frame = spec_.frame;
@@ -520,7 +520,7 @@ namespace {
 // Cloned for AVX2 and baseline x86-64, as the packets: each quantity of the
 // lanes' rays is one DoubleLanes, so the clips and tests below are one AVX2
 // instruction for four rays. Only the cells' boundary searches run lane by lane.
-[[gnu::target_clones("arch=x86-64-v3", "default")]]
+RAYCACHE_LANE_CLONES
 void FrustumGrid::generalTraversals(std::span<const Ray> rays, Traversal* out, ColumnHint& hint) const {
     const std::size_t n = std::min(rays.size(), static_cast<std::size_t>(kDoubleLanes));
     const GridFrame& frame = spec_.frame;
@@ -819,7 +819,7 @@ void FrustumGrid::intersectBatch(std::span<const Ray> rays, std::span<TraceHit> 
 // -ffp-contract=off (cmake/Warnings.cmake) keeps them from becoming FMAs.
 // An AVX-512 clone measured no faster (docs/performance.md). walkCells is
 // always inlined so the lane loops are compiled inside each clone.
-[[gnu::target_clones("arch=x86-64-v3", "default")]]
+RAYCACHE_LANE_CLONES
 void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& tr,
                                   const PlanarRange* lanesPlanar, std::span<TraceHit> hits) const {
     const std::size_t n = lanes.size();
@@ -1029,7 +1029,7 @@ void FrustumGrid::occludedBatch(std::span<const Ray> rays, std::span<unsigned ch
 }
 
 // Cloned for AVX2 and baseline x86-64, as intersectPacket.
-[[gnu::target_clones("arch=x86-64-v3", "default")]]
+RAYCACHE_LANE_CLONES
 void FrustumGrid::occludedPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& walk,
                                  std::span<unsigned char> blocked) const {
     const std::size_t n = lanes.size();

@@ -19,6 +19,7 @@
 #include <span>
 #include <vector>
 
+#include "core/LaneClones.h"
 #include "core/Parallel.h"
 #include "core/Ray.h"
 #include "trace/TraceHit.h"
@@ -180,7 +181,7 @@ private:
     // out[0..]: each quantity of the lanes is one vector (core/DoubleLanes.h),
     // so four rays cost about what one did in scalar code. `hint` is updated
     // to the last covered ray's column. Compiled for AVX2 and baseline x86-64.
-    [[gnu::target_clones("arch=x86-64-v3", "default")]]
+    RAYCACHE_LANE_CLONES
     void generalTraversals(std::span<const Ray> rays, Traversal* out, ColumnHint& hint) const;
     Traversal generalTraversal(const Ray& ray, ColumnHint hint) const {
         Traversal tr;
@@ -195,12 +196,12 @@ private:
     // first declaration for clang. `lanesPlanar`: the union of the lanes'
     // planar ranges in the grid part; null for rays from the apex
     // (apexWalk), whose planar coordinates are their directions'.
-    [[gnu::target_clones("arch=x86-64-v3", "default")]]
+    RAYCACHE_LANE_CLONES
     void intersectPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& tr,
                          const PlanarRange* lanesPlanar, std::span<TraceHit> hits) const;
     // `walk`: the union of the lanes' traversals (same columns, every slice
     // any of them visits, the union of their planar ranges).
-    [[gnu::target_clones("arch=x86-64-v3", "default")]]
+    RAYCACHE_LANE_CLONES
     void occludedPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& walk,
                         std::span<unsigned char> blocked) const;
     CellRange binPrimitive(std::uint32_t primitive, bool& inNearZone, PlanarBox& box) const;
@@ -208,7 +209,7 @@ private:
     // (count <= kDoubleLanes), as binPrimitive gives them, the triangles'
     // arithmetic four at a time (core/DoubleLanes.h). Compiled for AVX2 and
     // baseline x86-64.
-    [[gnu::target_clones("arch=x86-64-v3", "default")]]
+    RAYCACHE_LANE_CLONES
     void binPrimitives(std::uint32_t first, std::uint32_t count, PrimitiveFilter filter, std::uint64_t& pairs,
                        std::uint32_t& binned);
     // Index of cell (i, j) of depth slice k in cellLists_. A column's slices

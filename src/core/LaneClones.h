@@ -1,0 +1,13 @@
+#pragma once
+// The grids' lane loops are compiled twice, for AVX2 (x86-64-v3) and for
+// baseline x86-64, and the CPU picks one when the program loads. Both must
+// give the same bits (cmake/Warnings.cmake keeps FMAs out). A machine with
+// AVX2 only ever runs the first, so a build with RAYCACHE_BASELINE_LANES
+// (the CMake option of that name; the asan preset sets it) compiles the
+// baseline one alone: the test suite then runs each clone in one of its
+// builds. The attribute must be on a function's first declaration (clang).
+#if defined(RAYCACHE_BASELINE_LANES)
+#define RAYCACHE_LANE_CLONES
+#else
+#define RAYCACHE_LANE_CLONES [[gnu::target_clones("arch=x86-64-v3", "default")]]
+#endif
