@@ -95,18 +95,18 @@ public:
     }
 
 private:
-    // Within 0.005 rad of atan: only the estimate depends on it, never the cell.
+    // Within 0.005 rad of atan: only the estimate depends on it, never the
+    // cell. x / (1 + k x²) inside [-1, 1], ±π/2 - x / (x² + k) outside.
+    static constexpr double kHalfPi = 1.5707963267948966, kAtanEstimate = 0.28086;
     static double approximateAtan(double x) {
-        constexpr double kHalfPi = 1.5707963267948966;
-        if (x >= -1.0 && x <= 1.0) return x / (1.0 + 0.28086 * x * x);
-        return (x > 0.0 ? kHalfPi : -kHalfPi) - x / (x * x + 0.28086);
+        if (x >= -1.0 && x <= 1.0) return x / (1.0 + kAtanEstimate * x * x);
+        return (x > 0.0 ? kHalfPi : -kHalfPi) - x / (x * x + kAtanEstimate);
     }
     // The same for kDoubleLanes values, in place.
     [[gnu::always_inline]] static void approximateAtan(DoubleLanes& x) {
-        constexpr double kHalfPi = 1.5707963267948966;
-        const DoubleLanes inner = x / (1.0 + 0.28086 * x * x);
+        const DoubleLanes inner = x / (1.0 + kAtanEstimate * x * x);
         const DoubleLanes outer =
-            (x > 0.0 ? kHalfPi + DoubleLanes{} : -kHalfPi + DoubleLanes{}) - x / (x * x + 0.28086);
+            (x > 0.0 ? kHalfPi + DoubleLanes{} : -kHalfPi + DoubleLanes{}) - x / (x * x + kAtanEstimate);
         x = ((x >= -1.0) & (x <= 1.0)) ? inner : outer;
     }
     [[gnu::always_inline]] static bool anyLane(const IntLanes& mask) {
