@@ -6,8 +6,12 @@
 // (the CMake option of that name; the asan preset sets it) compiles the
 // baseline one alone: the test suite then runs each clone in one of its
 // builds. The attribute must be on a function's first declaration (clang).
+// RAYCACHE_WIDE_LANE_CLONES is the same for sixteen-float lanes
+// (core/FloatLanes.h), which AVX-512 (x86-64-v4) computes in one instruction.
 #if defined(RAYCACHE_BASELINE_LANES)
 #define RAYCACHE_LANE_CLONES
+#define RAYCACHE_WIDE_LANE_CLONES
 #else
 #define RAYCACHE_LANE_CLONES [[gnu::target_clones("arch=x86-64-v3", "default")]]
+#define RAYCACHE_WIDE_LANE_CLONES [[gnu::target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")]]
 #endif

@@ -13,6 +13,7 @@
 
 #include "core/Errors.h"
 #include "trace/SphereIntersection.h"
+#include "trace/SphereLanes.h"
 
 namespace raycache {
 
@@ -38,17 +39,39 @@ void sphereBounds(const RTCBoundsFunctionArguments* args) {
     args->bounds_o->upper_z = sphere->center.z + sphere->radius;
 }
 
+// A packet's rays as sphereRoots16 reads them (RTCRayN with N = 16 is an
+// array of sixteen floats per field).
+RayLanePointers rayLanes(RTCRayN* ray) {
+    constexpr unsigned N = 16;
+    return {&RTCRayN_org_x(ray, N, 0), &RTCRayN_org_y(ray, N, 0), &RTCRayN_org_z(ray, N, 0),
+            &RTCRayN_dir_x(ray, N, 0), &RTCRayN_dir_y(ray, N, 0), &RTCRayN_dir_z(ray, N, 0),
+            &RTCRayN_tnear(ray, N, 0), &RTCRayN_tfar(ray, N, 0)};
+}
+
+// The sphere's root for every valid lane of the call: sixteen lanes in one
+// vector pass (trace/SphereLanes.h), any other width lane by lane; both
+// give the same bits. A lane with no root gets a negative value.
+void sphereRoots(const Sphere& sphere, RTCRayN* ray, unsigned N, const int* valid, float* t) {
+    if (N == 16) {
+        sphereRoots16(sphere, rayLanes(ray), valid, t);
+        return;
+    }
+    for (unsigned i = 0; i < N; ++i)
+        t[i] = valid[i] ? sphereRoot(sphere, RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i),
+                                     RTCRayN_org_z(ray, N, i), RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i),
+                                     RTCRayN_dir_z(ray, N, i), RTCRayN_tnear(ray, N, i), RTCRayN_tfar(ray, N, i))
+                        : -1.0f;
+}
+
 void sphereIntersect(const RTCIntersectFunctionNArguments* args) {
     const auto* sphere = static_cast<const Sphere*>(args->geometryUserPtr);
     RTCRayHitN* rayhit = args->rayhit;
     RTCRayN* ray = RTCRayHitN_RayN(rayhit, args->N);
     RTCHitN* hit = RTCRayHitN_HitN(rayhit, args->N);
+    alignas(64) float roots[16];
+    sphereRoots(*sphere, ray, args->N, args->valid, roots);
     for (unsigned i = 0; i < args->N; ++i) {
-        if (!args->valid[i]) continue;
-        const float t = sphereRoot(*sphere, RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i),
-                                   RTCRayN_org_z(ray, args->N, i), RTCRayN_dir_x(ray, args->N, i),
-                                   RTCRayN_dir_y(ray, args->N, i), RTCRayN_dir_z(ray, args->N, i),
-                                   RTCRayN_tnear(ray, args->N, i), RTCRayN_tfar(ray, args->N, i));
+        const float t = roots[i];
         if (!(t >= 0.0f)) continue;
         RTCRayN_tfar(ray, args->N, i) = t;
         // Geometric normal (unnormalized), as Embree reports for its own primitives.
@@ -66,14 +89,10 @@ void sphereIntersect(const RTCIntersectFunctionNArguments* args) {
 void sphereOccluded(const RTCOccludedFunctionNArguments* args) {
     const auto* sphere = static_cast<const Sphere*>(args->geometryUserPtr);
     RTCRayN* ray = args->ray;
-    for (unsigned i = 0; i < args->N; ++i) {
-        if (!args->valid[i]) continue;
-        const float t = sphereRoot(*sphere, RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i),
-                                   RTCRayN_org_z(ray, args->N, i), RTCRayN_dir_x(ray, args->N, i),
-                                   RTCRayN_dir_y(ray, args->N, i), RTCRayN_dir_z(ray, args->N, i),
-                                   RTCRayN_tnear(ray, args->N, i), RTCRayN_tfar(ray, args->N, i));
-        if (t >= 0.0f) RTCRayN_tfar(ray, args->N, i) = -std::numeric_limits<float>::infinity();
-    }
+    alignas(64) float roots[16];
+    sphereRoots(*sphere, ray, args->N, args->valid, roots);
+    for (unsigned i = 0; i < args->N; ++i)
+        if (roots[i] >= 0.0f) RTCRayN_tfar(ray, args->N, i) = -std::numeric_limits<float>::infinity();
 }
 
 RTCGeometry makeSphereGeometry(RTCDevice device, const Sphere& sphere) {

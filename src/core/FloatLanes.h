@@ -1,0 +1,35 @@
+#pragma once
+// Sixteen floats computed together: the width of Embree's ray packets on
+// this project's machines (trace/TraceScene.cpp) and of the tile kernel's
+// hit batches. GCC's generic vectors: one AVX-512 instruction per operation
+// in a function compiled for x86-64-v4, two AVX2 ones for x86-64-v3, four
+// SSE2 ones otherwise. Every operation is the IEEE operation of the scalar
+// code, lane by lane (-ffp-contract=off keeps a * b + c from becoming a fused
+// multiply-add; cmake/Warnings.cmake), so each lane's result is bit for bit
+// the scalar one on every target.
+//
+// The helpers work in place, through references, for the reason
+// core/DoubleLanes.h gives (a 64-byte vector passed by value changes the
+// calling convention of the baseline clones).
+
+namespace raycache {
+
+inline constexpr int kFloatLanes = 16;
+using FloatLanes = float __attribute__((vector_size(64)));
+// A comparison's result: all bits set in the lanes where it holds, 0 elsewhere.
+using FloatMask = decltype(FloatLanes{} < FloatLanes{});
+
+[[gnu::always_inline]] inline void loadLanes(const float* from, FloatLanes& to) {
+    __builtin_memcpy(&to, from, sizeof to);
+}
+[[gnu::always_inline]] inline void storeLanes(const FloatLanes& from, float* to) {
+    __builtin_memcpy(to, &from, sizeof from);
+}
+// r = std::sqrt(a) lane by lane (IEEE square root, correctly rounded). GCC
+// makes it one vector instruction only where errno is not set by sqrt: the
+// files that use it are compiled with -fno-math-errno (src/CMakeLists.txt).
+[[gnu::always_inline]] inline void sqrtLanes(const FloatLanes& a, FloatLanes& r) {
+    for (int k = 0; k < kFloatLanes; ++k) r[k] = __builtin_sqrtf(a[k]);
+}
+
+}  // namespace raycache
