@@ -25,6 +25,14 @@ using FloatMask = decltype(FloatLanes{} < FloatLanes{});
 [[gnu::always_inline]] inline void storeLanes(const FloatLanes& from, float* to) {
     __builtin_memcpy(to, &from, sizeof from);
 }
+// r = std::fabs(a) lane by lane: the sign bit cleared.
+[[gnu::always_inline]] inline void absLanes(const FloatLanes& a, FloatLanes& r) {
+    using Bits = unsigned __attribute__((vector_size(64)));
+    Bits bits;
+    __builtin_memcpy(&bits, &a, sizeof bits);
+    bits &= 0x7fffffffu;
+    __builtin_memcpy(&r, &bits, sizeof r);
+}
 // r = std::sqrt(a) lane by lane (IEEE square root, correctly rounded). GCC
 // makes it one vector instruction only where errno is not set by sqrt: the
 // files that use it are compiled with -fno-math-errno (src/CMakeLists.txt).

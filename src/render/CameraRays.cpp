@@ -3,7 +3,38 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/FloatLanes.h"
+#include "core/LaneClones.h"
+
 namespace raycache {
+
+namespace {
+
+struct CameraFrame {
+    Vec3 origin, forward, right, up;
+    float invWidth, invHeight;
+};
+
+// CameraRays::ray's steps for sixteen pixels of one row. GCC resolves a
+// function's clones in the file that defines them: rowOfRays calls this.
+RAYCACHE_WIDE_LANE_CLONES
+void rowLanes(const CameraFrame& c, int x0, int y, int count, Ray* out) {
+    FloatLanes x;
+    for (int k = 0; k < kFloatLanes; ++k) x[k] = static_cast<float>(x0 + k);
+    const FloatLanes sx = 2.0f * (x + 0.5f) * c.invWidth - 1.0f;
+    const float sy = 1.0f - 2.0f * (static_cast<float>(y) + 0.5f) * c.invHeight;
+    // normalize(forward + right * sx + up * sy), in Vec3's order of operations.
+    const FloatLanes dx = c.forward.x + c.right.x * sx + c.up.x * sy;
+    const FloatLanes dy = c.forward.y + c.right.y * sx + c.up.y * sy;
+    const FloatLanes dz = c.forward.z + c.right.z * sx + c.up.z * sy;
+    FloatLanes length;
+    sqrtLanes(dx * dx + dy * dy + dz * dz, length);
+    const FloatLanes inverse = 1.0f / length;
+    const FloatLanes nx = dx * inverse, ny = dy * inverse, nz = dz * inverse;
+    for (int k = 0; k < count; ++k) out[k] = Ray{c.origin, {nx[k], ny[k], nz[k]}};
+}
+
+}  // namespace
 
 CameraRays::CameraRays(const Camera& camera, int width, int height)
     : origin_(camera.position),
@@ -17,6 +48,10 @@ CameraRays::CameraRays(const Camera& camera, int width, int height)
     right_ = right * (tanHalf * aspect);
     up_ = up * tanHalf;
     pixelSpread_ = tanHalf;
+}
+
+void CameraRays::rowOfRays(int x0, int y, int count, Ray* out) const {
+    rowLanes({origin_, forward_, right_, up_, invWidth_, invHeight_}, x0, y, count, out);
 }
 
 }  // namespace raycache

@@ -22,6 +22,10 @@ public:
         return Ray{origin_, normalize(forward_ + right_ * sx + up_ * sy)};
     }
 
+    // out[k] = ray(x0 + k, y) for k < count (count <= 16), sixteen at a
+    // time (core/FloatLanes.h): the same bits as ray().
+    void rowOfRays(int x0, int y, int count, Ray* out) const;
+
     // The angle between the rays of neighbouring pixels at the image's
     // centre (radians): where a pixel's cone starts (render/RayCone.h).
     float pixelSpread() const { return 2.0f * pixelSpread_ * invHeight_; }

@@ -7,6 +7,8 @@
 
 #include "core/Errors.h"
 #include "core/Optics.h"
+#include "render/HitLanes.h"
+#include "render/SpecularPower.h"
 
 namespace raycache {
 
@@ -65,6 +67,10 @@ int LocalShading::shadowQueries(const SurfacePoint& sp, ShadowQuery* out) const 
     return count;
 }
 
+int LocalShading::shadowQueriesOf16(const SurfacePoint* surfaces, int count, ShadowQuery* out, int* firstQuery) const {
+    return shadowQueries16(scene_.lights, spotCosines_, surfaces, count, out, firstQuery);
+}
+
 Rgb LocalShading::directLight(const Material& material, const Rgb& albedo, const SurfacePoint& sp,
                               const Vec3& toViewer, std::span<const ShadowQuery> queries,
                               std::span<const unsigned char> occluded) const {
@@ -76,7 +82,7 @@ Rgb LocalShading::directLight(const Material& material, const Rgb& albedo, const
         Rgb lit = albedo * dot(sp.normal, toLight);
         if (!material.specular.isBlack()) {
             const float nDotH = std::max(0.0f, dot(sp.normal, normalize(toLight + toViewer)));
-            lit += material.specular * std::pow(nDotH, material.shininess);
+            lit += material.specular * specularPower(nDotH, material.shininess);
         }
         color += lit * scene_.lights[static_cast<std::size_t>(query.lightIndex)].intensity * query.strength;
     }
@@ -106,7 +112,7 @@ Rgb LocalShading::highlights(const Material& material, const SurfacePoint& sp, c
     for (const ShadowQuery& query : queries) {
         if (!(litMask >> query.lightIndex & 1u)) continue;
         const float nDotH = std::max(0.0f, dot(sp.normal, normalize(query.ray.direction + toViewer)));
-        color += material.specular * std::pow(nDotH, material.shininess) *
+        color += material.specular * specularPower(nDotH, material.shininess) *
                  scene_.lights[static_cast<std::size_t>(query.lightIndex)].intensity * query.strength;
     }
     return color;

@@ -20,6 +20,12 @@ struct ShadowQuery {
     float strength;   // spot-cone factor, 1 for other lights
 };
 
+// A spot light's cone: the cosines of its half-angle and of the angle where
+// its falloff starts.
+struct SpotCone {
+    float outer, inner;
+};
+
 class LocalShading {
 public:
     // Throws InputError if the scene has more than kMaxLights lights.
@@ -47,14 +53,16 @@ public:
     Rgb highlights(const Material& material, const SurfacePoint& sp, const Vec3& toViewer,
                    std::span<const ShadowQuery> queries, std::uint64_t litMask) const;
 
+    // shadowQueries for surfaces[0..count), count <= 16, sixteen at a time
+    // (render/HitLanes.h), the same queries bit for bit: surface k's from
+    // out[firstQuery[k]] to out[firstQuery[k + 1]]. Returns how many.
+    int shadowQueriesOf16(const SurfacePoint* surfaces, int count, ShadowQuery* out, int* firstQuery) const;
+
     const Scene& scene() const { return scene_; }
 
 private:
-    struct SpotCosines {
-        float outer, inner;  // cos of the cone angle, and of the angle where the falloff starts
-    };
     const Scene& scene_;
-    std::vector<SpotCosines> spotCosines_;  // per light
+    std::vector<SpotCone> spotCosines_;  // per light
 };
 
 // Offset that lifts a spawned ray's origin off the surface it leaves, scaled

@@ -5,7 +5,9 @@
 #include <limits>
 #include <optional>
 
+#include "core/FloatLanes.h"
 #include "core/Optics.h"
+#include "render/HitLanes.h"
 
 namespace raycache {
 
@@ -66,7 +68,12 @@ void TileKernel::renderCameraTile(const CameraRays& cameraRays, const TileRange&
         s.hits.resize(n);
         std::size_t i = 0;
         for (int y = tile.y0; y < tile.y1; ++y)
-            for (int x = tile.x0; x < tile.x1; ++x) s.rays[i++] = cameraRays.ray(x, y);
+            for (int x = tile.x0; x < tile.x1;) {
+                const int count = std::min(kFloatLanes, tile.x1 - x);
+                cameraRays.rowOfRays(x, y, count, s.rays.data() + i);
+                x += count;
+                i += static_cast<std::size_t>(count);
+            }
         tracer_.intersectPrimary(std::span(s.rays.data(), n), std::span(s.hits.data(), n));
         s.counts.primary += n;
         const RayCone pixel{0.0f, cameraRays.pixelSpread()};
@@ -281,13 +288,39 @@ void TileKernel::computeSurfaces(TileScratch& s) const {
     const std::size_t n = s.vertices.size();
     s.surfaces.resize(n);
     s.albedo.resize(n);
+    // Hits on untextured spheres, sixteen at a time (render/HitLanes.h);
+    // the rest one by one. Both give surfacePointAt's bits.
+    SphereHitLanes lanes;
+    std::array<std::size_t, kFloatLanes> laneVertex;
+    std::array<SurfacePoint, kFloatLanes> laneSurface;
+    int filled = 0;
+    const auto flush = [&] {
+        sphereSurfaces16(lanes, filled, laneSurface.data());
+        for (int k = 0; k < filled; ++k) s.surfaces[laneVertex[static_cast<std::size_t>(k)]] = laneSurface[static_cast<std::size_t>(k)];
+        filled = 0;
+    };
     for (std::size_t i = 0; i < n; ++i) {
         const TileScratch::PathVertex& v = s.vertices[i];
         const SceneObject& object = scene_.objects[static_cast<std::size_t>(v.hit.objectId)];
         const Material& material = object.material;
+        const Sphere* sphere = std::get_if<Sphere>(&object.shape);
+        if (sphere && !material.diffuseTexture) {
+            const auto k = static_cast<std::size_t>(filled);
+            lanes.originX[k] = v.ray.origin.x, lanes.originY[k] = v.ray.origin.y, lanes.originZ[k] = v.ray.origin.z;
+            lanes.directionX[k] = v.ray.direction.x, lanes.directionY[k] = v.ray.direction.y;
+            lanes.directionZ[k] = v.ray.direction.z;
+            lanes.t[k] = v.hit.t;
+            lanes.centerX[k] = sphere->center.x, lanes.centerY[k] = sphere->center.y, lanes.centerZ[k] = sphere->center.z;
+            lanes.radius[k] = sphere->radius;
+            laneVertex[k] = i;
+            s.albedo[i] = material.diffuse;
+            if (++filled == kFloatLanes) flush();
+            continue;
+        }
         s.surfaces[i] = surfacePointAt(object, v.ray, v.hit, material.diffuseTexture.has_value());
         s.albedo[i] = material.albedo(s.surfaces[i].u, s.surfaces[i].v);
     }
+    if (filled > 0) flush();
 }
 
 void TileKernel::traceShadowRays(TileScratch& s, bool coherent) const {
@@ -297,9 +330,15 @@ void TileKernel::traceShadowRays(TileScratch& s, bool coherent) const {
     s.firstQuery.resize(n + 1);
     s.queries.resize(n * lights);
     std::size_t count = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-        s.firstQuery[i] = static_cast<int>(count);
-        count += static_cast<std::size_t>(shading_.shadowQueries(s.surfaces[i], s.queries.data() + count));
+    // Sixteen surfaces at a time (render/HitLanes.h).
+    std::array<int, kFloatLanes + 1> first;
+    for (std::size_t base = 0; base < n; base += kFloatLanes) {
+        const int lanes = static_cast<int>(std::min<std::size_t>(kFloatLanes, n - base));
+        const int written = shading_.shadowQueriesOf16(s.surfaces.data() + base, lanes, s.queries.data() + count,
+                                                       first.data());
+        for (int k = 0; k < lanes; ++k)
+            s.firstQuery[base + static_cast<std::size_t>(k)] = static_cast<int>(count) + first[static_cast<std::size_t>(k)];
+        count += static_cast<std::size_t>(written);
     }
     s.firstQuery[n] = static_cast<int>(count);
     s.rays.resize(count);

@@ -1,0 +1,36 @@
+#pragma once
+// The tile kernel's per-hit arithmetic sixteen hits at a time
+// (core/FloatLanes.h): the surface at a sphere hit, and the shadow queries
+// of a batch of surfaces. Each lane's result is bit for bit what the scalar
+// code gives (render/SurfacePoint.h, LocalShading::shadowQueries): the same
+// IEEE operations in the same order, on every target (AVX-512, AVX2,
+// baseline x86-64; tests/render/HitLanesTest.cpp). The kernel keeps its
+// records in arrays of structures; the lanes gather from and scatter to them.
+#include <cstdint>
+#include <span>
+
+#include "render/LocalShading.h"
+#include "render/SurfacePoint.h"
+
+namespace raycache {
+
+// Up to sixteen sphere hits, one per lane: the ray, its distance, the sphere.
+struct SphereHitLanes {
+    alignas(64) float originX[16], originY[16], originZ[16];
+    alignas(64) float directionX[16], directionY[16], directionZ[16];
+    alignas(64) float t[16];
+    alignas(64) float centerX[16], centerY[16], centerZ[16], radius[16];
+};
+
+// out[k] = surfacePointAt(sphere k, ray k, hit at t k, needUv = false) for
+// k < count (texture coordinates 0).
+void sphereSurfaces16(const SphereHitLanes& hits, int count, SurfacePoint* out);
+
+// The shadow queries of surfaces[0..count) (count <= 16) as
+// LocalShading::shadowQueries writes them, surface after surface: the
+// queries of surface k go to out from firstQuery[k] on, firstQuery[k + 1]
+// past them. `spot` holds each light's cone (used for spot lights). Returns the number of queries written.
+int shadowQueries16(std::span<const Light> lights, std::span<const SpotCone> spot, const SurfacePoint* surfaces,
+                    int count, ShadowQuery* out, int* firstQuery);
+
+}  // namespace raycache
