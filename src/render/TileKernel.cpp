@@ -345,15 +345,18 @@ void TileKernel::traceShadowRays(TileScratch& s, bool coherent) const {
     s.occluded.resize(count);
     for (std::size_t q = 0; q < count; ++q) s.rays[q] = s.queries[q].ray;
     // Shadow rays of camera hits start close together and head for the same
-    // lights: packets, or the light grids. Those of later bounces scatter.
+    // lights: packets, or the light grids. Those of later bounces start
+    // farther apart but still head for the same lights: packets too, each
+    // light's rays together, in the order their hits were spawned.
     if (coherent) {
         s.shadowLights.resize(count);
         for (std::size_t q = 0; q < count; ++q) s.shadowLights[q] = s.queries[q].lightIndex;
         tracer_.occludedPrimaryShadows(std::span(s.rays.data(), count), std::span(s.shadowLights.data(), count),
                                        std::span(s.occluded.data(), count));
-    }
-    else {
-        tracer_.occludedIncoherent(std::span(s.rays.data(), count), std::span(s.occluded.data(), count));
+    } else if (lights <= 1) {
+        tracer_.occludedCoherent(std::span(s.rays.data(), count), std::span(s.occluded.data(), count));
+    } else {
+        traceShadowRaysByLight(s, count);
     }
     s.counts.shadow += count;
     if (s.trackTrees)
@@ -370,6 +373,25 @@ void TileKernel::traceShadowRays(TileScratch& s, bool coherent) const {
                                     s.queries[static_cast<std::size_t>(q)].lightIndex,
                                     !s.occluded[static_cast<std::size_t>(q)]);
         }
+}
+
+void TileKernel::traceShadowRaysByLight(TileScratch& s, std::size_t count) const {
+    // A counting sort by light keeps each light's rays in spawn order.
+    const std::size_t lights = scene_.lights.size();
+    s.lightStart.assign(lights + 1, 0);
+    for (std::size_t q = 0; q < count; ++q) ++s.lightStart[static_cast<std::size_t>(s.queries[q].lightIndex) + 1];
+    for (std::size_t l = 0; l < lights; ++l) s.lightStart[l + 1] += s.lightStart[l];
+    s.byLight.resize(count);
+    s.byLightRays.resize(count);
+    s.byLightOccluded.resize(count);
+    for (std::size_t q = 0; q < count; ++q) {
+        const int slot = s.lightStart[static_cast<std::size_t>(s.queries[q].lightIndex)]++;
+        s.byLight[static_cast<std::size_t>(slot)] = static_cast<int>(q);
+        s.byLightRays[static_cast<std::size_t>(slot)] = s.rays[q];
+    }
+    tracer_.occludedCoherent(std::span(s.byLightRays.data(), count), std::span(s.byLightOccluded.data(), count));
+    for (std::size_t slot = 0; slot < count; ++slot)
+        s.occluded[static_cast<std::size_t>(s.byLight[slot])] = s.byLightOccluded[slot];
 }
 
 void TileKernel::shadeDirect(TileScratch& s) const {

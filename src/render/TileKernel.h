@@ -142,6 +142,10 @@ private:
     std::vector<TraceHit> hits;
     std::vector<unsigned char> occluded;
     std::vector<int> shadowLights;  // the light of each shadow ray, for the light grids
+    // Later bounces' shadow rays put in light order (TileKernel::traceShadowRaysByLight).
+    std::vector<int> lightStart, byLight;
+    std::vector<Ray> byLightRays;
+    std::vector<unsigned char> byLightOccluded;
     std::vector<LeavingRay> leaving;
     std::vector<RayCache::Query> cacheQueries;
     std::vector<Rgb> cachedColors;
@@ -235,6 +239,8 @@ private:
     void reshadeDirect(TileScratch& s) const;
     void computeSurfaces(TileScratch& s) const;
     void traceShadowRays(TileScratch& s, bool coherent) const;
+    // Shadow rays of several lights as packets, each light's rays together.
+    void traceShadowRaysByLight(TileScratch& s, std::size_t count) const;
     void shadeDirect(TileScratch& s) const;
     void spawnSecondaryRays(TileScratch& s, bool useCache) const;
     void lookupReuse(TileScratch& s, CacheWorker& cache) const;
