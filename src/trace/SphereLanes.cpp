@@ -44,7 +44,8 @@ void solveLanes(const Sphere& sphere, const RayLanePointers& rays, const int* ac
     for (int lane = 0; lane < kFloatLanes; ++lane) live[lane] = active[lane] != 0 ? -1 : 0;
     const FloatMask hits = live & ~(disc < 0.0f);
     const FloatLanes none = FloatLanes{} - 1.0f;
-    const FloatLanes root = (t0 >= tnear) & (t0 <= tfar) ? t0 : ((t1 >= tnear) & (t1 <= tfar) ? t1 : none);
+    const FloatMask t0Inside = (t0 >= tnear) & (t0 <= tfar), t1Inside = (t1 >= tnear) & (t1 <= tfar);
+    const FloatLanes root = t0Inside ? t0 : (t1Inside ? t1 : none);
     storeLanes(hits ? root : none, t);
 }
 
