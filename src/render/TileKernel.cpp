@@ -396,19 +396,50 @@ void TileKernel::traceShadowRaysByLight(TileScratch& s, std::size_t count) const
 
 void TileKernel::shadeDirect(TileScratch& s) const {
     StageTimer timer(settings_.stageTimes, s.stages.directShading);
-    for (std::size_t i = 0; i < s.vertices.size(); ++i) {
-        const TileScratch::PathVertex& v = s.vertices[i];
-        const Material& material = scene_.objects[static_cast<std::size_t>(v.hit.objectId)].material;
-        const auto first = static_cast<std::size_t>(s.firstQuery[i]);
-        const auto count = static_cast<std::size_t>(s.firstQuery[i + 1]) - first;
-        s.nodes[static_cast<std::size_t>(v.node)].direct =
-            shading_.directLight(material, s.albedo[i], s.surfaces[i], -v.ray.direction,
-                                 std::span(s.queries.data() + first, count),
-                                 std::span(s.occluded.data() + first, count));
-        if (s.recordFirstHits && v.depth == 1)
-            s.rootViewIndependent[static_cast<std::size_t>(v.node)] = shading_.viewIndependentLight(
-                material, s.albedo[i], s.surfaces[i], std::span(s.queries.data() + first, count),
-                std::span(s.occluded.data() + first, count), s.rootLitMask[static_cast<std::size_t>(v.node)]);
+    const std::size_t n = s.vertices.size();
+    if (s.recordFirstHits) {
+        // The Render Cache's samples also keep the light split in two: one by one.
+        for (std::size_t i = 0; i < n; ++i) {
+            const TileScratch::PathVertex& v = s.vertices[i];
+            const Material& material = scene_.objects[static_cast<std::size_t>(v.hit.objectId)].material;
+            const auto first = static_cast<std::size_t>(s.firstQuery[i]);
+            const auto count = static_cast<std::size_t>(s.firstQuery[i + 1]) - first;
+            s.nodes[static_cast<std::size_t>(v.node)].direct =
+                shading_.directLight(material, s.albedo[i], s.surfaces[i], -v.ray.direction,
+                                     std::span(s.queries.data() + first, count),
+                                     std::span(s.occluded.data() + first, count));
+            if (v.depth == 1)
+                s.rootViewIndependent[static_cast<std::size_t>(v.node)] = shading_.viewIndependentLight(
+                    material, s.albedo[i], s.surfaces[i], std::span(s.queries.data() + first, count),
+                    std::span(s.occluded.data() + first, count), s.rootLitMask[static_cast<std::size_t>(v.node)]);
+        }
+        return;
+    }
+    // Sixteen hits at a time (render/HitLanes.h), LocalShading::directLight's bits.
+    ShadingLanes lanes;
+    std::array<Rgb, kFloatLanes> colors;
+    for (std::size_t base = 0; base < n; base += kFloatLanes) {
+        const int count = static_cast<int>(std::min<std::size_t>(kFloatLanes, n - base));
+        for (int k = 0; k < count; ++k) {
+            const std::size_t i = base + static_cast<std::size_t>(k);
+            const TileScratch::PathVertex& v = s.vertices[i];
+            const Material& material = scene_.objects[static_cast<std::size_t>(v.hit.objectId)].material;
+            const SurfacePoint& sp = s.surfaces[i];
+            lanes.normalX[k] = sp.normal.x, lanes.normalY[k] = sp.normal.y, lanes.normalZ[k] = sp.normal.z;
+            lanes.toViewerX[k] = -v.ray.direction.x, lanes.toViewerY[k] = -v.ray.direction.y;
+            lanes.toViewerZ[k] = -v.ray.direction.z;
+            lanes.albedoR[k] = s.albedo[i].r, lanes.albedoG[k] = s.albedo[i].g, lanes.albedoB[k] = s.albedo[i].b;
+            lanes.ambientR[k] = material.ambient.r, lanes.ambientG[k] = material.ambient.g;
+            lanes.ambientB[k] = material.ambient.b;
+            lanes.specularR[k] = material.specular.r, lanes.specularG[k] = material.specular.g;
+            lanes.specularB[k] = material.specular.b;
+            lanes.shininess[k] = material.shininess;
+        }
+        directLight16(lanes, count, s.queries.data(), s.firstQuery.data() + base, s.occluded.data(), scene_.lights,
+                      colors.data());
+        for (int k = 0; k < count; ++k)
+            s.nodes[static_cast<std::size_t>(s.vertices[base + static_cast<std::size_t>(k)].node)].direct =
+                colors[static_cast<std::size_t>(k)];
     }
 }
 
