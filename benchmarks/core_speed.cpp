@@ -8,7 +8,12 @@
 //    ray per hit and light as packets, no shading and no secondary rays;
 //  - "ideal": raycache with every caching object's secondary rays answered
 //    for free (RayCacheSettings::ideal), the frame no cache can beat.
-// Usage: core_speed [--size 1024] [--rounds 15] [--scenes grid-32,behind-32,reflective-32]
+// Then, per scene, one more ideal frame with stage timing: each stage's CPU
+// time per shaded hit beside the floor's (its wall time times the threads,
+// per camera hit).
+// Scenes are built-in names or scene files, e.g. the real-mesh scene
+// benchmarks/scenes/bunny-mirror.json (the Stanford bunny and a chrome ball).
+// Usage: core_speed [--size 1024] [--rounds 15] [--scenes grid-32,behind-32,reflective-32,benchmarks/scenes/bunny-mirror.json]
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <vector>
@@ -18,6 +23,7 @@
 #include "render/CameraRays.h"
 #include "render/RenderSession.h"
 #include "scene/BuiltinScenes.h"
+#include "scene/SceneLoader.h"
 #include "trace/BaselineWhitted.h"
 
 using namespace raycache;
@@ -25,14 +31,16 @@ using namespace raycache;
 namespace {
 
 // Camera rays and one shadow ray per hit and light, as packets per tile.
-std::uint64_t renderFloor(const Scene& scene, const TraceScene& tracer, const Parallel& parallel, int size) {
+// Returns the rays traced; `cameraHits`, when given, gets the camera rays that hit.
+std::uint64_t renderFloor(const Scene& scene, const TraceScene& tracer, const Parallel& parallel, int size,
+                          std::uint64_t* cameraHits = nullptr) {
     const CameraRays cameraRays(scene.camera, size, size);
     constexpr int kTile = 16;
     struct Scratch {
         std::vector<Ray> rays, shadowRays;
         std::vector<TraceHit> hits;
         std::vector<unsigned char> occluded;
-        std::uint64_t rays_traced = 0;
+        std::uint64_t rays_traced = 0, hits_found = 0;
     };
     std::vector<Scratch> scratch(static_cast<std::size_t>(parallel.threadCount()));
     parallel.forEachTile(size, size, kTile, [&](const TileRange& tile, int worker) {
@@ -45,6 +53,7 @@ std::uint64_t renderFloor(const Scene& scene, const TraceScene& tracer, const Pa
         s.shadowRays.clear();
         for (std::size_t i = 0; i < s.rays.size(); ++i) {
             if (!s.hits[i].hit()) continue;
+            ++s.hits_found;
             const Vec3 p = s.rays[i].origin + s.rays[i].direction * (s.hits[i].t * 0.9999f);
             for (const Light& light : scene.lights) {
                 if (light.type == LightType::Directional) {
@@ -60,12 +69,32 @@ std::uint64_t renderFloor(const Scene& scene, const TraceScene& tracer, const Pa
         tracer.occludedCoherent(s.shadowRays, s.occluded);
         s.rays_traced += s.rays.size() + s.shadowRays.size();
     });
-    std::uint64_t total = 0;
+    std::uint64_t total = 0, hits = 0;
     for (Scratch& s : scratch) {
+        hits += s.hits_found;
+        s.hits_found = 0;
         total += s.rays_traced;
         s.rays_traced = 0;
     }
+    if (cameraHits) *cameraHits = hits;
     return total;
+}
+
+// The ideal frame's stages, CPU ns per shaded hit, beside the floor's ns per camera hit.
+void printStages(const std::string& name, RenderSession& idealTimed, const Scene& scene, Image& film,
+                 double floorMs, std::uint64_t floorHits, int threads) {
+    idealTimed.render(scene.camera, film);  // the first frame also touches the cubes' memory
+    const FrameStats stats = idealTimed.render(scene.camera, film);
+    if (!stats.stages) return;
+    const StageTimes& s = *stats.stages;
+    std::printf("| %s | ideal frame's stages, ns per hit (%llu hits) | first hits %.1f, surfaces %.1f, shadow rays "
+                "%.1f, direct %.1f, secondary rays %.1f, lookups %.1f, resolve %.1f, compose %.1f; all %.1f |"
+                " floor %.1f ns per camera hit |\n",
+                name.c_str(), static_cast<unsigned long long>(s.hitsShaded), s.nsPerHit(s.firstHits),
+                s.nsPerHit(s.surfaces), s.nsPerHit(s.shadowRays), s.nsPerHit(s.directShading),
+                s.nsPerHit(s.secondaryRays), s.nsPerHit(s.reuseLookups), s.nsPerHit(s.resolve),
+                s.nsPerHit(s.compose), s.nsPerHit(s.total() - s.cacheFrameEnd),
+                floorHits == 0 ? 0.0 : floorMs * 1e6 * threads / static_cast<double>(floorHits));
 }
 
 }  // namespace
@@ -79,16 +108,18 @@ int main(int argc, char** argv) {
     app.add_option("--warmup", warmup, "Untimed frames per variant first")->capture_default_str();
     app.add_option("--max-depth", maxDepth, "Longest ray path")->capture_default_str();
     app.add_option("--threads", threads, "Worker threads, 0 = all")->capture_default_str();
-    app.add_option("--scenes", scenes, "Built-in scenes")->delimiter(',');
+    app.add_option("--scenes", scenes, "Built-in scenes or scene files (.json)")->delimiter(',');
     CLI11_PARSE(app, argc, argv);
 
     const Parallel parallel(threads);
     std::printf("| scene | variant | ms/frame median | min-max | Mrays/s | rays/frame | vs plain loop |\n");
     std::printf("| --- | --- | --- | --- | --- | --- | --- |\n");
     for (const std::string& name : scenes) {
-        const auto scene = makeBuiltinScene(name);
-        if (!scene) {
-            std::fprintf(stderr, "error: unknown scene %s\n", name.c_str());
+        std::optional<Scene> scene;
+        try {
+            scene = loadScene(name);
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "error: %s\n", e.what());
             return 2;
         }
         RenderSettings settings;
@@ -117,6 +148,12 @@ int main(int argc, char** argv) {
                         static_cast<unsigned long long>(t.work), results[0].median() / t.median());
         std::printf("| %s | ideal frame / floor | %.2fx | | | | |\n", name.c_str(),
                     results[3].median() / results[4].median());
+        RenderSettings stagedSettings = idealSettings;
+        stagedSettings.stageTimes = true;
+        RenderSession idealStaged(*scene, stagedSettings, tracer, parallel);
+        std::uint64_t floorHits = 0;
+        renderFloor(*scene, tracer, parallel, size, &floorHits);
+        printStages(name, idealStaged, *scene, film, results[4].median(), floorHits, parallel.threadCount());
         std::fflush(stdout);
     }
     return 0;

@@ -91,14 +91,19 @@ std::string formatFrameLine(const FrameResult& r, int frameCount) {
              << "), pairs " << g->build.primaryPairs << " + " << g->build.shadowPairs << ", rays answered "
              << g->primaryAnswered << " primary, " << g->shadowAnswered << " shadow; refused (to Embree) "
              << g->primaryRefused << " primary, " << g->shadowRefused << " shadow";
-    if (const auto& s = r.stats.stages)
-        line << "  stages cpu ms: first hits " << formatFixed(s->firstHits, 1) << ", surfaces "
-             << formatFixed(s->surfaces, 1) << ", shadow rays " << formatFixed(s->shadowRays, 1) << ", direct "
-             << formatFixed(s->directShading, 1) << ", secondary rays " << formatFixed(s->secondaryRays, 1)
-             << ", lookups " << formatFixed(s->reuseLookups, 1) << ", trace " << formatFixed(s->traceSecondary, 1)
-             << ", resolve " << formatFixed(s->resolve, 1) << ", compose " << formatFixed(s->compose, 1)
-             << (s->visibleFill > 0.0 ? ", visible fill " + formatFixed(s->visibleFill, 1) : std::string())
+    if (const auto& s = r.stats.stages) {
+        // CPU ms, and ns per shaded hit in brackets: comparable across image sizes and scenes.
+        const auto stage = [&](const char* name, double ms) {
+            return std::string(name) + " " + formatFixed(ms, 1) + " (" + formatFixed(s->nsPerHit(ms), 1) + ")";
+        };
+        line << "  stages cpu ms (ns per hit; " << s->hitsShaded << " hits): " << stage("first hits", s->firstHits)
+             << ", " << stage("surfaces", s->surfaces) << ", " << stage("shadow rays", s->shadowRays) << ", "
+             << stage("direct", s->directShading) << ", " << stage("secondary rays", s->secondaryRays) << ", "
+             << stage("lookups", s->reuseLookups) << ", " << stage("trace", s->traceSecondary) << ", "
+             << stage("resolve", s->resolve) << ", " << stage("compose", s->compose)
+             << (s->visibleFill > 0.0 ? ", " + stage("visible fill", s->visibleFill) : std::string())
              << ", cache frame end (wall) " << formatFixed(s->cacheFrameEnd, 1);
+    }
     return line.str();
 }
 

@@ -69,7 +69,7 @@ nlohmann::json stagesJson(const StageTimes& s) {
             {"secondary_rays_cpu_ms", s.secondaryRays}, {"reuse_lookups_cpu_ms", s.reuseLookups},
             {"trace_secondary_cpu_ms", s.traceSecondary}, {"resolve_cpu_ms", s.resolve},
             {"compose_cpu_ms", s.compose},          {"visible_fill_cpu_ms", s.visibleFill},
-            {"cache_frame_end_ms", s.cacheFrameEnd}};
+            {"cache_frame_end_ms", s.cacheFrameEnd}, {"hits_shaded", s.hitsShaded}};
 }
 
 nlohmann::json clusterJson(const ClusterStats& c) {

@@ -35,6 +35,14 @@ struct StageTimes {
     double compose = 0.0;         // colours written to the film
     double visibleFill = 0.0;     // cubes filled from the surfaces the camera saw (visibility rays, stores)
     double cacheFrameEnd = 0.0;   // wall time: pre-fill and the merge of queued stores
+    // Surface points the kernel shaded (every wave's hits): the unit of the
+    // stages' ns-per-hit figures.
+    std::uint64_t hitsShaded = 0;
+
+    // A stage's CPU time per shaded hit, ns (0 when nothing was shaded).
+    double nsPerHit(double milliseconds) const {
+        return hitsShaded == 0 ? 0.0 : milliseconds * 1e6 / static_cast<double>(hitsShaded);
+    }
 
     double total() const {
         return firstHits + surfaces + shadowRays + directShading + secondaryRays + reuseLookups + traceSecondary +
@@ -52,6 +60,7 @@ struct StageTimes {
         compose += o.compose;
         visibleFill += o.visibleFill;
         cacheFrameEnd += o.cacheFrameEnd;
+        hitsShaded += o.hitsShaded;
         return *this;
     }
 };

@@ -253,6 +253,7 @@ void TileKernel::runWaves(TileScratch& s, CacheWorker* cache, FirstWave firstWav
     bool first = true;
     while (!s.vertices.empty()) {
         const auto start = Clock::now();
+        s.stages.hitsShaded += s.vertices.size();
         if (!(first && firstWave == FirstWave::Surfaces)) computeSurfaces(s);
         if (first && firstWave == FirstWave::Reshade) {
             reshadeDirect(s);

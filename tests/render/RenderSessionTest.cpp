@@ -6,6 +6,7 @@
 
 #include "core/Parallel.h"
 #include "render/CacheFrame.h"
+#include "render/CameraRays.h"
 #include "render/FrameRenderer.h"
 #include "render/RenderSession.h"
 #include "render/TileKernel.h"
@@ -109,4 +110,31 @@ TEST(CacheFrame, AFrameLeftUnfinishedStillAppliesItsStoresAndLeavesTheCacheReady
     CacheFrame inactive(nullptr, 2);
     EXPECT_EQ(inactive.worker(0), nullptr);
     EXPECT_FALSE(inactive.finish(kernel, Parallel(1), rays).has_value());
+}
+
+// The stage timer's hit count (the unit of `--stage-times`' ns per hit)
+// against the tracer's own answer: with one ray per path, the hits shaded
+// are the camera rays that hit something.
+TEST(RenderSession, StageTimesCountTheCameraRaysThatHit) {
+    const auto scene = makeBuiltinScene("grid-8");
+    ASSERT_TRUE(scene.has_value());
+    RenderSettings settings = smallSettings(CacheTechnique::None);
+    settings.maxDepth = 1;
+    settings.stageTimes = true;
+    RenderSession session(*scene, settings);
+    Image film;
+    const FrameStats stats = session.render(scene->camera, film);
+    ASSERT_TRUE(stats.stages.has_value());
+    const TraceScene tracer(*scene);
+    const CameraRays rays(scene->camera, settings.width, settings.height);
+    std::uint64_t hits = 0;
+    for (int y = 0; y < settings.height; ++y)
+        for (int x = 0; x < settings.width; ++x) hits += tracer.intersect(rays.ray(x, y)).hit() ? 1 : 0;
+    EXPECT_GT(hits, 0u);
+    EXPECT_LT(hits, static_cast<std::uint64_t>(settings.width * settings.height));  // some pixels see the sky
+    EXPECT_EQ(stats.stages->hitsShaded, hits);
+    // With mirrors reflecting (the default depth), later bounces' hits count too.
+    settings.maxDepth = 5;
+    RenderSession deeper(*scene, settings);
+    EXPECT_GT(deeper.render(scene->camera, film).stages->hitsShaded, hits);
 }
