@@ -49,6 +49,109 @@ void sphereSurfaceLanes(const SphereHitLanes& hits, int count, SurfacePoint* out
     }
 }
 
+// Lanes that are set where the ints are non-zero.
+[[gnu::always_inline]] inline void maskOf(const int* flags, FloatMask& mask) {
+    for (int k = 0; k < kFloatLanes; ++k) mask[k] = flags[k] != 0 ? -1 : 0;
+}
+
+RAYCACHE_WIDE_LANE_CLONES
+void meshSurfaceLanes(const MeshHitLanes& h, int count, SurfacePoint* out) {
+    FloatLanes ox, oy, oz, dx, dy, dz, t, u, v;
+    loadLanes(h.originX, ox);
+    loadLanes(h.originY, oy);
+    loadLanes(h.originZ, oz);
+    loadLanes(h.directionX, dx);
+    loadLanes(h.directionY, dy);
+    loadLanes(h.directionZ, dz);
+    loadLanes(h.t, t);
+    loadLanes(h.u, u);
+    loadLanes(h.v, v);
+    const FloatLanes px = ox + dx * t, py = oy + dy * t, pz = oz + dz * t;
+    const FloatLanes w = 1.0f - u - v;
+    // The interpolated vertex normal, unit where it has a length (meshSurface).
+    FloatMask hasShadingNormal;
+    maskOf(h.hasNormals, hasShadingNormal);
+    FloatLanes sx, sy, sz;
+    {
+        FloatLanes a, b, c;
+        loadLanes(h.normal0X, a);
+        loadLanes(h.normal1X, b);
+        loadLanes(h.normal2X, c);
+        sx = a * w + b * u + c * v;
+        loadLanes(h.normal0Y, a);
+        loadLanes(h.normal1Y, b);
+        loadLanes(h.normal2Y, c);
+        sy = a * w + b * u + c * v;
+        loadLanes(h.normal0Z, a);
+        loadLanes(h.normal1Z, b);
+        loadLanes(h.normal2Z, c);
+        sz = a * w + b * u + c * v;
+    }
+    FloatLanes length;
+    sqrtLanes(sx * sx + sy * sy + sz * sz, length);
+    hasShadingNormal &= length > 0.0f;
+    const FloatLanes inverseLength = 1.0f / length;
+    sx = sx * inverseLength, sy = sy * inverseLength, sz = sz * inverseLength;
+    // The geometric normal, on the shading normal's side (triangleNormal).
+    FloatLanes gx, gy, gz;
+    {
+        FloatLanes x0, y0, z0, ax, ay, az, bx, by, bz;
+        loadLanes(h.corner0X, x0);
+        loadLanes(h.corner0Y, y0);
+        loadLanes(h.corner0Z, z0);
+        loadLanes(h.corner1X, ax);
+        loadLanes(h.corner1Y, ay);
+        loadLanes(h.corner1Z, az);
+        loadLanes(h.corner2X, bx);
+        loadLanes(h.corner2Y, by);
+        loadLanes(h.corner2Z, bz);
+        ax = ax - x0, ay = ay - y0, az = az - z0;
+        bx = bx - x0, by = by - y0, bz = bz - z0;
+        gx = ay * bz - az * by;
+        gy = az * bx - ax * bz;
+        gz = ax * by - ay * bx;
+        FloatLanes gl;
+        sqrtLanes(gx * gx + gy * gy + gz * gz, gl);
+        const FloatLanes inverse = 1.0f / gl;
+        gx = gx * inverse, gy = gy * inverse, gz = gz * inverse;
+    }
+    const FloatMask flip = hasShadingNormal & (gx * sx + gy * sy + gz * sz < 0.0f);
+    gx = flip ? -gx : gx;
+    gy = flip ? -gy : gy;
+    gz = flip ? -gz : gz;
+    FloatLanes nx = hasShadingNormal ? sx : gx, ny = hasShadingNormal ? sy : gy, nz = hasShadingNormal ? sz : gz;
+    // Texture coordinates, where the mesh has them.
+    FloatLanes tu, tv;
+    {
+        FloatLanes a, b, c;
+        loadLanes(h.uv0U, a);
+        loadLanes(h.uv1U, b);
+        loadLanes(h.uv2U, c);
+        tu = a * w + b * u + c * v;
+        loadLanes(h.uv0V, a);
+        loadLanes(h.uv1V, b);
+        loadLanes(h.uv2V, c);
+        tv = a * w + b * u + c * v;
+        FloatMask hasUvs;
+        maskOf(h.hasUvs, hasUvs);
+        tu = hasUvs ? tu : FloatLanes{};
+        tv = hasUvs ? tv : FloatLanes{};
+    }
+    // Turned toward the ray (faceToward).
+    const FloatMask front = dx * gx + dy * gy + dz * gz < 0.0f;
+    nx = front ? nx : -nx, ny = front ? ny : -ny, nz = front ? nz : -nz;
+    gx = front ? gx : -gx, gy = front ? gy : -gy, gz = front ? gz : -gz;
+    for (int k = 0; k < count; ++k) {
+        SurfacePoint& sp = out[k];
+        sp.position = {px[k], py[k], pz[k]};
+        sp.normal = {nx[k], ny[k], nz[k]};
+        sp.geometricNormal = {gx[k], gy[k], gz[k]};
+        sp.u = tu[k];
+        sp.v = tv[k];
+        sp.frontFace = laneSet(front, k);
+    }
+}
+
 // smoothstep(edge0, edge1, x) of LocalShading, lane by lane.
 [[gnu::always_inline]] inline void smoothstepLanes(float edge0, float edge1, const FloatLanes& x, FloatLanes& out) {
     if (edge1 <= edge0) {
@@ -233,6 +336,8 @@ void directLight16(const ShadingLanes& surfaces, int count, const ShadowQuery* q
                    const unsigned char* occluded, std::span<const Light> lights, Rgb* out) {
     directLightLanes(surfaces, count, queries, firstQuery, occluded, lights, out);
 }
+
+void meshSurfaces16(const MeshHitLanes& hits, int count, SurfacePoint* out) { meshSurfaceLanes(hits, count, out); }
 
 void sphereSurfaces16(const SphereHitLanes& hits, int count, SurfacePoint* out) {
     sphereSurfaceLanes(hits, count, out);

@@ -26,6 +26,26 @@ struct SphereHitLanes {
 // k < count (texture coordinates 0).
 void sphereSurfaces16(const SphereHitLanes& hits, int count, SurfacePoint* out);
 
+// Up to sixteen triangle-mesh hits, one per lane: the ray, the hit's
+// distance and barycentrics, the triangle's corners, and its vertex normals
+// and texture coordinates where the mesh has them.
+struct MeshHitLanes {
+    alignas(64) float originX[16], originY[16], originZ[16];
+    alignas(64) float directionX[16], directionY[16], directionZ[16];
+    alignas(64) float t[16], u[16], v[16];
+    alignas(64) float corner0X[16], corner0Y[16], corner0Z[16];
+    alignas(64) float corner1X[16], corner1Y[16], corner1Z[16];
+    alignas(64) float corner2X[16], corner2Y[16], corner2Z[16];
+    alignas(64) float normal0X[16], normal0Y[16], normal0Z[16];
+    alignas(64) float normal1X[16], normal1Y[16], normal1Z[16];
+    alignas(64) float normal2X[16], normal2Y[16], normal2Z[16];
+    alignas(64) float uv0U[16], uv0V[16], uv1U[16], uv1V[16], uv2U[16], uv2V[16];
+    alignas(64) int hasNormals[16], hasUvs[16];  // non-zero: the mesh has them (else those lanes are ignored)
+};
+
+// out[k] = surfacePointAt(the mesh, ray k, hit k, needUv = true) for k < count.
+void meshSurfaces16(const MeshHitLanes& hits, int count, SurfacePoint* out);
+
 // The shadow queries of surfaces[0..count) (count <= 16) as
 // LocalShading::shadowQueries writes them, surface after surface: the
 // queries of surface k go to out from firstQuery[k] on, firstQuery[k + 1]

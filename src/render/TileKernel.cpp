@@ -284,44 +284,117 @@ void TileKernel::reshadeDirect(TileScratch& s) const {
     }
 }
 
+namespace {
+
+// Gathers the hits of one wave into sixteen-lane batches of one kind (sphere
+// or mesh) and computes each batch's surfaces in one call when it is full.
+template <class Lanes>
+class SurfaceBatch {
+public:
+    explicit SurfaceBatch(void (*compute)(const Lanes&, int, SurfacePoint*)) : compute_(compute) {}
+    // Lane storage for the next hit, which will be vertex `vertex` of the wave.
+    Lanes& lanes() { return lanes_; }
+    int next() const { return filled_; }
+    template <class Sink>
+    void add(std::size_t vertex, Sink& surfaces) {
+        vertex_[static_cast<std::size_t>(filled_)] = vertex;
+        if (++filled_ == kFloatLanes) flush(surfaces);
+    }
+    template <class Sink>
+    void flush(Sink& surfaces) {
+        if (filled_ == 0) return;
+        compute_(lanes_, filled_, out_.data());
+        for (int k = 0; k < filled_; ++k)
+            surfaces[vertex_[static_cast<std::size_t>(k)]] = out_[static_cast<std::size_t>(k)];
+        filled_ = 0;
+    }
+
+private:
+    void (*compute_)(const Lanes&, int, SurfacePoint*);
+    Lanes lanes_;
+    std::array<std::size_t, kFloatLanes> vertex_;
+    std::array<SurfacePoint, kFloatLanes> out_;
+    int filled_ = 0;
+};
+
+template <class Lanes>
+void setRay(Lanes& lanes, std::size_t k, const Ray& ray, float t) {
+    lanes.originX[k] = ray.origin.x, lanes.originY[k] = ray.origin.y, lanes.originZ[k] = ray.origin.z;
+    lanes.directionX[k] = ray.direction.x, lanes.directionY[k] = ray.direction.y;
+    lanes.directionZ[k] = ray.direction.z;
+    lanes.t[k] = t;
+}
+
+void setMeshHit(MeshHitLanes& lanes, std::size_t k, const TriangleMesh& mesh, const TraceHit& hit) {
+    const auto& tri = mesh.triangles[static_cast<std::size_t>(hit.primitiveId)];
+    lanes.u[k] = hit.u;
+    lanes.v[k] = hit.v;
+    const Vec3 &p0 = mesh.positions[tri[0]], &p1 = mesh.positions[tri[1]], &p2 = mesh.positions[tri[2]];
+    lanes.corner0X[k] = p0.x, lanes.corner0Y[k] = p0.y, lanes.corner0Z[k] = p0.z;
+    lanes.corner1X[k] = p1.x, lanes.corner1Y[k] = p1.y, lanes.corner1Z[k] = p1.z;
+    lanes.corner2X[k] = p2.x, lanes.corner2Y[k] = p2.y, lanes.corner2Z[k] = p2.z;
+    lanes.hasNormals[k] = mesh.normals.empty() ? 0 : 1;
+    if (!mesh.normals.empty()) {
+        const Vec3 &n0 = mesh.normals[tri[0]], &n1 = mesh.normals[tri[1]], &n2 = mesh.normals[tri[2]];
+        lanes.normal0X[k] = n0.x, lanes.normal0Y[k] = n0.y, lanes.normal0Z[k] = n0.z;
+        lanes.normal1X[k] = n1.x, lanes.normal1Y[k] = n1.y, lanes.normal1Z[k] = n1.z;
+        lanes.normal2X[k] = n2.x, lanes.normal2Y[k] = n2.y, lanes.normal2Z[k] = n2.z;
+    } else {
+        lanes.normal0X[k] = lanes.normal0Y[k] = lanes.normal0Z[k] = 0.0f;
+        lanes.normal1X[k] = lanes.normal1Y[k] = lanes.normal1Z[k] = 0.0f;
+        lanes.normal2X[k] = lanes.normal2Y[k] = lanes.normal2Z[k] = 0.0f;
+    }
+    lanes.hasUvs[k] = mesh.uvs.empty() ? 0 : 1;
+    if (!mesh.uvs.empty()) {
+        lanes.uv0U[k] = mesh.uvs[tri[0]][0], lanes.uv0V[k] = mesh.uvs[tri[0]][1];
+        lanes.uv1U[k] = mesh.uvs[tri[1]][0], lanes.uv1V[k] = mesh.uvs[tri[1]][1];
+        lanes.uv2U[k] = mesh.uvs[tri[2]][0], lanes.uv2V[k] = mesh.uvs[tri[2]][1];
+    } else {
+        lanes.uv0U[k] = lanes.uv0V[k] = lanes.uv1U[k] = lanes.uv1V[k] = lanes.uv2U[k] = lanes.uv2V[k] = 0.0f;
+    }
+}
+
+}  // namespace
+
 void TileKernel::computeSurfaces(TileScratch& s) const {
     StageTimer timer(settings_.stageTimes, s.stages.surfaces);
     const std::size_t n = s.vertices.size();
     s.surfaces.resize(n);
     s.albedo.resize(n);
-    // Hits on untextured spheres, sixteen at a time (render/HitLanes.h);
-    // the rest one by one. Both give surfacePointAt's bits.
-    SphereHitLanes lanes;
-    std::array<std::size_t, kFloatLanes> laneVertex;
-    std::array<SurfacePoint, kFloatLanes> laneSurface;
-    int filled = 0;
-    const auto flush = [&] {
-        sphereSurfaces16(lanes, filled, laneSurface.data());
-        for (int k = 0; k < filled; ++k) s.surfaces[laneVertex[static_cast<std::size_t>(k)]] = laneSurface[static_cast<std::size_t>(k)];
-        filled = 0;
-    };
+    // Sphere and mesh hits in sixteen-lane batches (render/HitLanes.h), each
+    // lane surfacePointAt's bits; textured spheres (whose texture
+    // coordinates need trigonometry) one by one.
+    SurfaceBatch<SphereHitLanes> spheres(sphereSurfaces16);
+    SurfaceBatch<MeshHitLanes> meshes(meshSurfaces16);
     for (std::size_t i = 0; i < n; ++i) {
         const TileScratch::PathVertex& v = s.vertices[i];
         const SceneObject& object = scene_.objects[static_cast<std::size_t>(v.hit.objectId)];
         const Material& material = object.material;
-        const Sphere* sphere = std::get_if<Sphere>(&object.shape);
-        if (sphere && !material.diffuseTexture) {
-            const auto k = static_cast<std::size_t>(filled);
-            lanes.originX[k] = v.ray.origin.x, lanes.originY[k] = v.ray.origin.y, lanes.originZ[k] = v.ray.origin.z;
-            lanes.directionX[k] = v.ray.direction.x, lanes.directionY[k] = v.ray.direction.y;
-            lanes.directionZ[k] = v.ray.direction.z;
-            lanes.t[k] = v.hit.t;
+        if (const Sphere* sphere = std::get_if<Sphere>(&object.shape)) {
+            if (material.diffuseTexture) {
+                s.surfaces[i] = surfacePointAt(object, v.ray, v.hit, true);
+                continue;
+            }
+            SphereHitLanes& lanes = spheres.lanes();
+            const auto k = static_cast<std::size_t>(spheres.next());
+            setRay(lanes, k, v.ray, v.hit.t);
             lanes.centerX[k] = sphere->center.x, lanes.centerY[k] = sphere->center.y, lanes.centerZ[k] = sphere->center.z;
             lanes.radius[k] = sphere->radius;
-            laneVertex[k] = i;
-            s.albedo[i] = material.diffuse;
-            if (++filled == kFloatLanes) flush();
-            continue;
+            spheres.add(i, s.surfaces);
+        } else {
+            const auto k = static_cast<std::size_t>(meshes.next());
+            setRay(meshes.lanes(), k, v.ray, v.hit.t);
+            setMeshHit(meshes.lanes(), k, *std::get<MeshShape>(object.shape).mesh, v.hit);
+            meshes.add(i, s.surfaces);
         }
-        s.surfaces[i] = surfacePointAt(object, v.ray, v.hit, material.diffuseTexture.has_value());
+    }
+    spheres.flush(s.surfaces);
+    meshes.flush(s.surfaces);
+    // The albedo once every surface (and its texture coordinates) is known.
+    for (std::size_t i = 0; i < n; ++i) {
+        const Material& material = scene_.objects[static_cast<std::size_t>(s.vertices[i].hit.objectId)].material;
         s.albedo[i] = material.albedo(s.surfaces[i].u, s.surfaces[i].v);
     }
-    if (filled > 0) flush();
 }
 
 void TileKernel::traceShadowRays(TileScratch& s, bool coherent) const {

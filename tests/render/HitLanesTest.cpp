@@ -258,3 +258,81 @@ TEST(HitLanes, DirectLightEqualsScalarForEveryLightKindAndMaterial) {
     EXPECT_GT(litSeen, 5000);  // lights reached and lit the surfaces: not a vacuous comparison
     EXPECT_GT(partial, 500);   // and spot strengths below 1 occurred
 }
+
+TEST(HitLanes, MeshSurfacesEqualSurfacePointAt) {
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<float> coord(-10.0f, 10.0f), bary(0.0f, 1.0f);
+    // Three meshes: vertex normals and uvs; neither; normals that cancel
+    // (zero length when interpolated) or point against the winding.
+    std::vector<SceneObject> objects(3);
+    for (std::size_t m = 0; m < objects.size(); ++m) {
+        auto mesh = std::make_shared<TriangleMesh>();
+        for (int i = 0; i < 60; ++i) {
+            mesh->positions.push_back({coord(rng), coord(rng), coord(rng)});
+            if (m == 0) {
+                mesh->normals.push_back(randomUnit(rng));
+                mesh->uvs.push_back({bary(rng) * 4.0f, bary(rng) * 4.0f});
+            }
+            if (m == 2) mesh->normals.push_back(i % 3 == 0 ? Vec3{} : (i % 2 == 0 ? Vec3{0, 1, 0} : Vec3{0, -1, 0}));
+        }
+        for (std::uint32_t i = 0; i + 2 < 60; i += 3) mesh->triangles.push_back({i, i + 1, i + 2});
+        objects[m].shape = MeshShape{mesh};
+    }
+    int back = 0;
+    for (int round = 0; round < 1500; ++round) {
+        const int count = 1 + round % 16;
+        MeshHitLanes lanes;
+        std::vector<Ray> rays(16);
+        std::vector<TraceHit> hits(16);
+        std::vector<std::size_t> which(16);
+        for (int k = 0; k < count; ++k) {
+            const auto i = static_cast<std::size_t>(k);
+            which[i] = static_cast<std::size_t>((round + k) % 3);
+            const TriangleMesh& mesh = *std::get<MeshShape>(objects[which[i]].shape).mesh;
+            float u = bary(rng), v = bary(rng);
+            if (u + v > 1.0f) u = 1.0f - u, v = 1.0f - v;
+            hits[i] = TraceHit{std::fabs(coord(rng)), static_cast<int>(which[i]),
+                               static_cast<int>(rng() % mesh.triangles.size()), u, v};
+            rays[i] = Ray{{coord(rng), coord(rng), coord(rng)}, randomUnit(rng)};
+            lanes.originX[k] = rays[i].origin.x, lanes.originY[k] = rays[i].origin.y, lanes.originZ[k] = rays[i].origin.z;
+            lanes.directionX[k] = rays[i].direction.x, lanes.directionY[k] = rays[i].direction.y;
+            lanes.directionZ[k] = rays[i].direction.z;
+            lanes.t[k] = hits[i].t, lanes.u[k] = u, lanes.v[k] = v;
+            const auto& tri = mesh.triangles[static_cast<std::size_t>(hits[i].primitiveId)];
+            const Vec3 &p0 = mesh.positions[tri[0]], &p1 = mesh.positions[tri[1]], &p2 = mesh.positions[tri[2]];
+            lanes.corner0X[k] = p0.x, lanes.corner0Y[k] = p0.y, lanes.corner0Z[k] = p0.z;
+            lanes.corner1X[k] = p1.x, lanes.corner1Y[k] = p1.y, lanes.corner1Z[k] = p1.z;
+            lanes.corner2X[k] = p2.x, lanes.corner2Y[k] = p2.y, lanes.corner2Z[k] = p2.z;
+            lanes.hasNormals[k] = mesh.normals.empty() ? 0 : 1;
+            const Vec3 none{};
+            const Vec3& n0 = mesh.normals.empty() ? none : mesh.normals[tri[0]];
+            const Vec3& n1 = mesh.normals.empty() ? none : mesh.normals[tri[1]];
+            const Vec3& n2 = mesh.normals.empty() ? none : mesh.normals[tri[2]];
+            lanes.normal0X[k] = n0.x, lanes.normal0Y[k] = n0.y, lanes.normal0Z[k] = n0.z;
+            lanes.normal1X[k] = n1.x, lanes.normal1Y[k] = n1.y, lanes.normal1Z[k] = n1.z;
+            lanes.normal2X[k] = n2.x, lanes.normal2Y[k] = n2.y, lanes.normal2Z[k] = n2.z;
+            lanes.hasUvs[k] = mesh.uvs.empty() ? 0 : 1;
+            const std::array<float, 2> zero{0.0f, 0.0f};
+            const auto& t0 = mesh.uvs.empty() ? zero : mesh.uvs[tri[0]];
+            const auto& t1 = mesh.uvs.empty() ? zero : mesh.uvs[tri[1]];
+            const auto& t2 = mesh.uvs.empty() ? zero : mesh.uvs[tri[2]];
+            lanes.uv0U[k] = t0[0], lanes.uv0V[k] = t0[1], lanes.uv1U[k] = t1[0], lanes.uv1V[k] = t1[1];
+            lanes.uv2U[k] = t2[0], lanes.uv2V[k] = t2[1];
+        }
+        SurfacePoint out[16];
+        meshSurfaces16(lanes, count, out);
+        for (int k = 0; k < count; ++k) {
+            const auto i = static_cast<std::size_t>(k);
+            const SurfacePoint expected = surfacePointAt(objects[which[i]], rays[i], hits[i], true);
+            expectSameBits(out[k].position, expected.position, "position", k);
+            expectSameBits(out[k].normal, expected.normal, "normal", k);
+            expectSameBits(out[k].geometricNormal, expected.geometricNormal, "geometric normal", k);
+            EXPECT_EQ(bits(out[k].u), bits(expected.u)) << "lane " << k;
+            EXPECT_EQ(bits(out[k].v), bits(expected.v)) << "lane " << k;
+            EXPECT_EQ(out[k].frontFace, expected.frontFace) << "lane " << k;
+            back += expected.frontFace ? 0 : 1;
+        }
+        if (HasFailure()) return;
+    }
+    EXPECT_GT(back, 1000);  // both sides of triangles were seen
+}
