@@ -152,6 +152,50 @@ void meshSurfaceLanes(const MeshHitLanes& h, int count, SurfacePoint* out) {
     }
 }
 
+// surfaceOffset (render/LocalShading.h): 1e-4 * max(|x|, |y|, |z|, 1), in
+// std::max's order of comparisons.
+[[gnu::always_inline]] inline void surfaceOffsetLanes(const FloatLanes& px, const FloatLanes& py,
+                                                      const FloatLanes& pz, FloatLanes& offset) {
+    FloatLanes ax, ay, az;
+    absLanes(px, ax);
+    absLanes(py, ay);
+    absLanes(pz, az);
+    FloatLanes extent = ax;
+    extent = extent < ay ? ay : extent;
+    extent = extent < az ? az : extent;
+    extent = extent < 1.0f ? FloatLanes{} + 1.0f : extent;
+    offset = 1e-4f * extent;
+}
+
+RAYCACHE_WIDE_LANE_CLONES
+void reflectedRayLanes(const ReflectionLanes& in, int count, Ray* out) {
+    FloatLanes px, py, pz, nx, ny, nz, gx, gy, gz, dx, dy, dz;
+    loadLanes(in.positionX, px);
+    loadLanes(in.positionY, py);
+    loadLanes(in.positionZ, pz);
+    loadLanes(in.normalX, nx);
+    loadLanes(in.normalY, ny);
+    loadLanes(in.normalZ, nz);
+    loadLanes(in.geometricX, gx);
+    loadLanes(in.geometricY, gy);
+    loadLanes(in.geometricZ, gz);
+    loadLanes(in.directionX, dx);
+    loadLanes(in.directionY, dy);
+    loadLanes(in.directionZ, dz);
+    FloatLanes offset;
+    surfaceOffsetLanes(px, py, pz, offset);
+    const FloatLanes ox = px + gx * offset, oy = py + gy * offset, oz = pz + gz * offset;
+    // reflect (core/Optics.h): i + n * (2 cos), cos = -dot(i, n); then normalize.
+    const FloatLanes cosine = -(dx * nx + dy * ny + dz * nz);
+    const FloatLanes twice = 2.0f * cosine;
+    const FloatLanes rx = dx + nx * twice, ry = dy + ny * twice, rz = dz + nz * twice;
+    FloatLanes length;
+    sqrtLanes(rx * rx + ry * ry + rz * rz, length);
+    const FloatLanes inverse = 1.0f / length;
+    const FloatLanes ux = rx * inverse, uy = ry * inverse, uz = rz * inverse;
+    for (int k = 0; k < count; ++k) out[k] = Ray{{ox[k], oy[k], oz[k]}, {ux[k], uy[k], uz[k]}};
+}
+
 // smoothstep(edge0, edge1, x) of LocalShading, lane by lane.
 [[gnu::always_inline]] inline void smoothstepLanes(float edge0, float edge1, const FloatLanes& x, FloatLanes& out) {
     if (edge1 <= edge0) {
@@ -174,16 +218,8 @@ int shadowQueryLanes(std::span<const Light> lights, std::span<const SpotCone> sp
         nx[k] = sp.normal.x, ny[k] = sp.normal.y, nz[k] = sp.normal.z;
         gx[k] = sp.geometricNormal.x, gy[k] = sp.geometricNormal.y, gz[k] = sp.geometricNormal.z;
     }
-    // surfaceOffset: 1e-4 * max(|x|, |y|, |z|, 1), std::max's order of comparisons.
-    FloatLanes ax, ay, az;
-    absLanes(px, ax);
-    absLanes(py, ay);
-    absLanes(pz, az);
-    FloatLanes extent = ax;
-    extent = extent < ay ? ay : extent;
-    extent = extent < az ? az : extent;
-    extent = extent < 1.0f ? FloatLanes{} + 1.0f : extent;
-    const FloatLanes offset = 1e-4f * extent;
+    FloatLanes offset;
+    surfaceOffsetLanes(px, py, pz, offset);
     const FloatLanes qx = px + gx * offset, qy = py + gy * offset, qz = pz + gz * offset;
     // Per light: the direction, distance and strength, and which lanes it reaches.
     constexpr int kLights = static_cast<int>(kMaxLights);
@@ -338,6 +374,10 @@ void directLight16(const ShadingLanes& surfaces, int count, const ShadowQuery* q
 }
 
 void meshSurfaces16(const MeshHitLanes& hits, int count, SurfacePoint* out) { meshSurfaceLanes(hits, count, out); }
+
+void reflectedRays16(const ReflectionLanes& surfaces, int count, Ray* out) {
+    reflectedRayLanes(surfaces, count, out);
+}
 
 void sphereSurfaces16(const SphereHitLanes& hits, int count, SurfacePoint* out) {
     sphereSurfaceLanes(hits, count, out);

@@ -539,7 +539,40 @@ void TileKernel::spawnSecondaryRays(TileScratch& s, bool useCache) const {
             added.tracked = parentTracked;
         }
     };
-    for (std::size_t i = 0; i < s.vertices.size(); ++i) {
+    // The mirror-reflected ray of every hit that may spawn one, sixteen at a
+    // time (render/HitLanes.h), before the rays are emitted in order below.
+    const std::size_t n = s.vertices.size();
+    s.reflected.resize(n);
+    {
+        ReflectionLanes lanes;
+        std::array<std::size_t, kFloatLanes> laneVertex;
+        std::array<Ray, kFloatLanes> rays;
+        int filled = 0;
+        const auto flush = [&] {
+            reflectedRays16(lanes, filled, rays.data());
+            for (int k = 0; k < filled; ++k)
+                s.reflected[laneVertex[static_cast<std::size_t>(k)]] = rays[static_cast<std::size_t>(k)];
+            filled = 0;
+        };
+        for (std::size_t i = 0; i < n; ++i) {
+            const TileScratch::PathVertex& v = s.vertices[i];
+            if (v.depth >= settings_.maxDepth) continue;
+            const Material& material = scene_.objects[static_cast<std::size_t>(v.hit.objectId)].material;
+            if (!material.reflects() && !material.refracts()) continue;
+            const SurfacePoint& sp = s.surfaces[i];
+            const auto k = static_cast<std::size_t>(filled);
+            lanes.positionX[k] = sp.position.x, lanes.positionY[k] = sp.position.y, lanes.positionZ[k] = sp.position.z;
+            lanes.normalX[k] = sp.normal.x, lanes.normalY[k] = sp.normal.y, lanes.normalZ[k] = sp.normal.z;
+            lanes.geometricX[k] = sp.geometricNormal.x, lanes.geometricY[k] = sp.geometricNormal.y;
+            lanes.geometricZ[k] = sp.geometricNormal.z;
+            lanes.directionX[k] = v.ray.direction.x, lanes.directionY[k] = v.ray.direction.y;
+            lanes.directionZ[k] = v.ray.direction.z;
+            laneVertex[k] = i;
+            if (++filled == kFloatLanes) flush();
+        }
+        if (filled > 0) flush();
+    }
+    for (std::size_t i = 0; i < n; ++i) {
         const TileScratch::PathVertex& v = s.vertices[i];
         if (v.depth >= settings_.maxDepth) continue;
         const Material& material = scene_.objects[static_cast<std::size_t>(v.hit.objectId)].material;
@@ -564,8 +597,7 @@ void TileKernel::spawnSecondaryRays(TileScratch& s, bool useCache) const {
         // first, so the refracted colour is added first, as Whitted's sum has it.
         if (reflectWeight > 0.0f && v.pathWeight * reflectWeight >= settings_.minWeight)
             // Reflection off the outside leaves the object; inside, it stays in.
-            emit(v, Ray{sp.position + sp.geometricNormal * offset, normalize(reflect(v.ray.direction, sp.normal))}, cone,
-                 TileScratch::Kind::Reflection, reflectWeight, sp.frontFace);
+            emit(v, s.reflected[i], cone, TileScratch::Kind::Reflection, reflectWeight, sp.frontFace);
         if (refracted)
             // A refracted ray that exits the object leaves it for the scene;
             // one that enters still has the inside to cross.

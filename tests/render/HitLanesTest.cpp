@@ -11,6 +11,7 @@
 #include <random>
 #include <vector>
 
+#include "core/Optics.h"
 #include "render/CameraRays.h"
 #include "render/HitLanes.h"
 #include "render/LocalShading.h"
@@ -335,4 +336,41 @@ TEST(HitLanes, MeshSurfacesEqualSurfacePointAt) {
         if (HasFailure()) return;
     }
     EXPECT_GT(back, 1000);  // both sides of triangles were seen
+}
+
+TEST(HitLanes, ReflectedRaysEqualTheScalarRule) {
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<float> coord(-300.0f, 300.0f);
+    for (int round = 0; round < 2000; ++round) {
+        const int count = 1 + round % 16;
+        ReflectionLanes lanes;
+        SurfacePoint surfaces[16];
+        Vec3 incident[16];
+        for (int k = 0; k < count; ++k) {
+            const float scale = k % 3 == 0 ? 0.003f : 1.0f;  // below 1 the offset's floor decides
+            surfaces[k].position = Vec3{coord(rng), coord(rng), coord(rng)} * scale;
+            surfaces[k].geometricNormal = randomUnit(rng);
+            surfaces[k].normal = normalize(surfaces[k].geometricNormal + randomUnit(rng) * 0.2f);
+            incident[k] = randomUnit(rng);
+            lanes.positionX[k] = surfaces[k].position.x, lanes.positionY[k] = surfaces[k].position.y;
+            lanes.positionZ[k] = surfaces[k].position.z;
+            lanes.normalX[k] = surfaces[k].normal.x, lanes.normalY[k] = surfaces[k].normal.y;
+            lanes.normalZ[k] = surfaces[k].normal.z;
+            lanes.geometricX[k] = surfaces[k].geometricNormal.x, lanes.geometricY[k] = surfaces[k].geometricNormal.y;
+            lanes.geometricZ[k] = surfaces[k].geometricNormal.z;
+            lanes.directionX[k] = incident[k].x, lanes.directionY[k] = incident[k].y, lanes.directionZ[k] = incident[k].z;
+        }
+        Ray out[16];
+        reflectedRays16(lanes, count, out);
+        for (int k = 0; k < count; ++k) {
+            const SurfacePoint& sp = surfaces[k];
+            const Ray expected{sp.position + sp.geometricNormal * surfaceOffset(sp.position),
+                               normalize(reflect(incident[k], sp.normal))};
+            expectSameBits(out[k].origin, expected.origin, "origin", k);
+            expectSameBits(out[k].direction, expected.direction, "direction", k);
+            EXPECT_EQ(bits(out[k].tNear), bits(expected.tNear));
+            EXPECT_EQ(bits(out[k].tFar), bits(expected.tFar));
+        }
+        if (HasFailure()) return;
+    }
 }
