@@ -3,10 +3,7 @@
 #include "core/FloatLanes.h"
 #include "core/LaneClones.h"
 
-#include <algorithm>
 #include <limits>
-
-#include "render/SpecularPower.h"
 
 namespace raycache {
 
@@ -167,35 +164,6 @@ void meshSurfaceLanes(const MeshHitLanes& h, int count, SurfacePoint* out) {
     offset = 1e-4f * extent;
 }
 
-RAYCACHE_WIDE_LANE_CLONES
-void reflectedRayLanes(const ReflectionLanes& in, int count, Ray* out) {
-    FloatLanes px, py, pz, nx, ny, nz, gx, gy, gz, dx, dy, dz;
-    loadLanes(in.positionX, px);
-    loadLanes(in.positionY, py);
-    loadLanes(in.positionZ, pz);
-    loadLanes(in.normalX, nx);
-    loadLanes(in.normalY, ny);
-    loadLanes(in.normalZ, nz);
-    loadLanes(in.geometricX, gx);
-    loadLanes(in.geometricY, gy);
-    loadLanes(in.geometricZ, gz);
-    loadLanes(in.directionX, dx);
-    loadLanes(in.directionY, dy);
-    loadLanes(in.directionZ, dz);
-    FloatLanes offset;
-    surfaceOffsetLanes(px, py, pz, offset);
-    const FloatLanes ox = px + gx * offset, oy = py + gy * offset, oz = pz + gz * offset;
-    // reflect (core/Optics.h): i + n * (2 cos), cos = -dot(i, n); then normalize.
-    const FloatLanes cosine = -(dx * nx + dy * ny + dz * nz);
-    const FloatLanes twice = 2.0f * cosine;
-    const FloatLanes rx = dx + nx * twice, ry = dy + ny * twice, rz = dz + nz * twice;
-    FloatLanes length;
-    sqrtLanes(rx * rx + ry * ry + rz * rz, length);
-    const FloatLanes inverse = 1.0f / length;
-    const FloatLanes ux = rx * inverse, uy = ry * inverse, uz = rz * inverse;
-    for (int k = 0; k < count; ++k) out[k] = Ray{{ox[k], oy[k], oz[k]}, {ux[k], uy[k], uz[k]}};
-}
-
 // smoothstep(edge0, edge1, x) of LocalShading, lane by lane.
 [[gnu::always_inline]] inline void smoothstepLanes(float edge0, float edge1, const FloatLanes& x, FloatLanes& out) {
     if (edge1 <= edge0) {
@@ -271,113 +239,9 @@ int shadowQueryLanes(std::span<const Light> lights, std::span<const SpotCone> sp
     return written;
 }
 
-// specularPower (render/SpecularPower.h) lane by lane, for whole exponents:
-// every lane multiplies in the scalar loop's order.
-[[gnu::always_inline]] inline void wholePowerLanes(const FloatLanes& x, const FloatLanes& shininess,
-                                                   FloatLanes& result) {
-    using IntLanes = int __attribute__((vector_size(64)));
-    IntLanes exponent = __builtin_convertvector(shininess, IntLanes);
-    FloatLanes base = x;
-    result = FloatLanes{} + 1.0f;
-    while (true) {
-        const IntLanes odd = (exponent & 1) != 0;
-        result = odd ? result * base : result;
-        exponent >>= 1;
-        const IntLanes more = exponent != 0;
-        bool any = false;
-        for (int k = 0; k < kFloatLanes; ++k) any |= more[k] != 0;
-        if (!any) return;
-        base = more ? base * base : base;
-    }
-}
-
-RAYCACHE_WIDE_LANE_CLONES
-void directLightLanes(const ShadingLanes& in, int count, const ShadowQuery* queries, const int* firstQuery,
-                      const unsigned char* occluded, std::span<const Light> lights, Rgb* out) {
-    FloatLanes nx, ny, nz, vx, vy, vz, ar, ag, ab, sr, sg, sb, shininess;
-    loadLanes(in.normalX, nx);
-    loadLanes(in.normalY, ny);
-    loadLanes(in.normalZ, nz);
-    loadLanes(in.toViewerX, vx);
-    loadLanes(in.toViewerY, vy);
-    loadLanes(in.toViewerZ, vz);
-    loadLanes(in.albedoR, ar);
-    loadLanes(in.albedoG, ag);
-    loadLanes(in.albedoB, ab);
-    loadLanes(in.specularR, sr);
-    loadLanes(in.specularG, sg);
-    loadLanes(in.specularB, sb);
-    loadLanes(in.shininess, shininess);
-    FloatLanes cr, cg, cb;
-    {
-        FloatLanes mr, mg, mb;
-        loadLanes(in.ambientR, mr);
-        loadLanes(in.ambientG, mg);
-        loadLanes(in.ambientB, mb);
-        cr = mr * ar, cg = mg * ag, cb = mb * ab;  // material.ambient * albedo
-    }
-    // !material.specular.isBlack(), and which lanes' exponents are whole.
-    const FloatMask specular = ~((sr == 0.0f) & (sg == 0.0f) & (sb == 0.0f));
-    FloatMask whole;
-    int most = 0;
-    for (int k = 0; k < kFloatLanes; ++k) {
-        whole[k] = isWholeShininess(shininess[k]) ? -1 : 0;
-        if (k < count) most = std::max(most, firstQuery[k + 1] - firstQuery[k]);
-    }
-    bool allWhole = true;
-    for (int k = 0; k < count; ++k) allWhole &= whole[k] != 0;
-    const FloatLanes wholeShininess = whole ? shininess : FloatLanes{};
-    // The j-th query of every lane together; queries in the scalar order.
-    for (int j = 0; j < most; ++j) {
-        FloatLanes lx{}, ly{}, lz{}, ir{}, ig{}, ib{}, strength{};
-        FloatMask lit{};
-        for (int k = 0; k < count; ++k) {
-            const int q = firstQuery[k] + j;
-            if (q >= firstQuery[k + 1] || occluded[q]) continue;
-            const ShadowQuery& query = queries[q];
-            lit[k] = -1;
-            lx[k] = query.ray.direction.x, ly[k] = query.ray.direction.y, lz[k] = query.ray.direction.z;
-            const Rgb& intensity = lights[static_cast<std::size_t>(query.lightIndex)].intensity;
-            ir[k] = intensity.r, ig[k] = intensity.g, ib[k] = intensity.b;
-            strength[k] = query.strength;
-        }
-        const FloatLanes cosine = nx * lx + ny * ly + nz * lz;
-        FloatLanes lr = ar * cosine, lg = ag * cosine, lb = ab * cosine;
-        // The highlight: max(0, dot(n, normalize(toLight + toViewer)))^shininess.
-        const FloatLanes hx = lx + vx, hy = ly + vy, hz = lz + vz;
-        FloatLanes length;
-        sqrtLanes(hx * hx + hy * hy + hz * hz, length);
-        const FloatLanes inverse = 1.0f / length;
-        const FloatLanes nDotHRaw = nx * (hx * inverse) + ny * (hy * inverse) + nz * (hz * inverse);
-        const FloatLanes nDotH = 0.0f < nDotHRaw ? nDotHRaw : FloatLanes{};  // std::max(0.0f, x)
-        FloatLanes power;
-        wholePowerLanes(nDotH, wholeShininess, power);
-        if (!allWhole)
-            for (int k = 0; k < count; ++k)
-                if (!whole[k] && lit[k] && specular[k]) power[k] = specularPower(nDotH[k], shininess[k]);
-        const FloatMask highlight = lit & specular;
-        lr = highlight ? lr + sr * power : lr;
-        lg = highlight ? lg + sg * power : lg;
-        lb = highlight ? lb + sb * power : lb;
-        cr = lit ? cr + lr * ir * strength : cr;
-        cg = lit ? cg + lg * ig * strength : cg;
-        cb = lit ? cb + lb * ib * strength : cb;
-    }
-    for (int k = 0; k < count; ++k) out[k] = Rgb{cr[k], cg[k], cb[k]};
-}
-
 }  // namespace
 
-void directLight16(const ShadingLanes& surfaces, int count, const ShadowQuery* queries, const int* firstQuery,
-                   const unsigned char* occluded, std::span<const Light> lights, Rgb* out) {
-    directLightLanes(surfaces, count, queries, firstQuery, occluded, lights, out);
-}
-
 void meshSurfaces16(const MeshHitLanes& hits, int count, SurfacePoint* out) { meshSurfaceLanes(hits, count, out); }
-
-void reflectedRays16(const ReflectionLanes& surfaces, int count, Ray* out) {
-    reflectedRayLanes(surfaces, count, out);
-}
 
 void sphereSurfaces16(const SphereHitLanes& hits, int count, SurfacePoint* out) {
     sphereSurfaceLanes(hits, count, out);

@@ -53,33 +53,4 @@ void meshSurfaces16(const MeshHitLanes& hits, int count, SurfacePoint* out);
 int shadowQueries16(std::span<const Light> lights, std::span<const SpotCone> spot, const SurfacePoint* surfaces,
                     int count, ShadowQuery* out, int* firstQuery);
 
-// Up to sixteen surface points and the rays that reached them, one per lane.
-struct ReflectionLanes {
-    alignas(64) float positionX[16], positionY[16], positionZ[16];
-    alignas(64) float normalX[16], normalY[16], normalZ[16];           // shading normal
-    alignas(64) float geometricX[16], geometricY[16], geometricZ[16];  // geometric normal
-    alignas(64) float directionX[16], directionY[16], directionZ[16];  // the incident ray's
-};
-
-// out[k] = the mirror-reflected ray the tile kernel spawns at surface k < count:
-// Ray{position + geometricNormal * surfaceOffset(position),
-//     normalize(reflect(direction, normal))}, bit for bit.
-void reflectedRays16(const ReflectionLanes& surfaces, int count, Ray* out);
-
-// What Blinn-Phong needs of up to sixteen surface points, one per lane.
-struct ShadingLanes {
-    alignas(64) float normalX[16], normalY[16], normalZ[16];        // shading normal, unit
-    alignas(64) float toViewerX[16], toViewerY[16], toViewerZ[16];  // -ray direction
-    alignas(64) float albedoR[16], albedoG[16], albedoB[16];
-    alignas(64) float ambientR[16], ambientG[16], ambientB[16];     // the material's
-    alignas(64) float specularR[16], specularG[16], specularB[16];  // the material's
-    alignas(64) float shininess[16];
-};
-
-// out[k] = LocalShading::directLight for surface k < count (count <= 16),
-// bit for bit: its shadow queries are queries[firstQuery[k] ..
-// firstQuery[k + 1]), answered by occluded[] at the same indices.
-void directLight16(const ShadingLanes& surfaces, int count, const ShadowQuery* queries, const int* firstQuery,
-                   const unsigned char* occluded, std::span<const Light> lights, Rgb* out);
-
 }  // namespace raycache

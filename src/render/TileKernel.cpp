@@ -470,50 +470,21 @@ void TileKernel::traceShadowRaysByLight(TileScratch& s, std::size_t count) const
 
 void TileKernel::shadeDirect(TileScratch& s) const {
     StageTimer timer(settings_.stageTimes, s.stages.directShading);
-    const std::size_t n = s.vertices.size();
-    if (s.recordFirstHits) {
-        // The Render Cache's samples also keep the light split in two: one by one.
-        for (std::size_t i = 0; i < n; ++i) {
-            const TileScratch::PathVertex& v = s.vertices[i];
-            const Material& material = scene_.objects[static_cast<std::size_t>(v.hit.objectId)].material;
-            const auto first = static_cast<std::size_t>(s.firstQuery[i]);
-            const auto count = static_cast<std::size_t>(s.firstQuery[i + 1]) - first;
-            s.nodes[static_cast<std::size_t>(v.node)].direct =
-                shading_.directLight(material, s.albedo[i], s.surfaces[i], -v.ray.direction,
-                                     std::span(s.queries.data() + first, count),
-                                     std::span(s.occluded.data() + first, count));
-            if (v.depth == 1)
-                s.rootViewIndependent[static_cast<std::size_t>(v.node)] = shading_.viewIndependentLight(
-                    material, s.albedo[i], s.surfaces[i], std::span(s.queries.data() + first, count),
-                    std::span(s.occluded.data() + first, count), s.rootLitMask[static_cast<std::size_t>(v.node)]);
-        }
-        return;
-    }
-    // Sixteen hits at a time (render/HitLanes.h), LocalShading::directLight's bits.
-    ShadingLanes lanes;
-    std::array<Rgb, kFloatLanes> colors;
-    for (std::size_t base = 0; base < n; base += kFloatLanes) {
-        const int count = static_cast<int>(std::min<std::size_t>(kFloatLanes, n - base));
-        for (int k = 0; k < count; ++k) {
-            const std::size_t i = base + static_cast<std::size_t>(k);
-            const TileScratch::PathVertex& v = s.vertices[i];
-            const Material& material = scene_.objects[static_cast<std::size_t>(v.hit.objectId)].material;
-            const SurfacePoint& sp = s.surfaces[i];
-            lanes.normalX[k] = sp.normal.x, lanes.normalY[k] = sp.normal.y, lanes.normalZ[k] = sp.normal.z;
-            lanes.toViewerX[k] = -v.ray.direction.x, lanes.toViewerY[k] = -v.ray.direction.y;
-            lanes.toViewerZ[k] = -v.ray.direction.z;
-            lanes.albedoR[k] = s.albedo[i].r, lanes.albedoG[k] = s.albedo[i].g, lanes.albedoB[k] = s.albedo[i].b;
-            lanes.ambientR[k] = material.ambient.r, lanes.ambientG[k] = material.ambient.g;
-            lanes.ambientB[k] = material.ambient.b;
-            lanes.specularR[k] = material.specular.r, lanes.specularG[k] = material.specular.g;
-            lanes.specularB[k] = material.specular.b;
-            lanes.shininess[k] = material.shininess;
-        }
-        directLight16(lanes, count, s.queries.data(), s.firstQuery.data() + base, s.occluded.data(), scene_.lights,
-                      colors.data());
-        for (int k = 0; k < count; ++k)
-            s.nodes[static_cast<std::size_t>(s.vertices[base + static_cast<std::size_t>(k)].node)].direct =
-                colors[static_cast<std::size_t>(k)];
+    // One hit at a time: gathering sixteen hits' records into lanes cost
+    // more than the lanes saved (docs/log/2026-11-26-core-lanes.md).
+    for (std::size_t i = 0; i < s.vertices.size(); ++i) {
+        const TileScratch::PathVertex& v = s.vertices[i];
+        const Material& material = scene_.objects[static_cast<std::size_t>(v.hit.objectId)].material;
+        const auto first = static_cast<std::size_t>(s.firstQuery[i]);
+        const auto count = static_cast<std::size_t>(s.firstQuery[i + 1]) - first;
+        s.nodes[static_cast<std::size_t>(v.node)].direct =
+            shading_.directLight(material, s.albedo[i], s.surfaces[i], -v.ray.direction,
+                                 std::span(s.queries.data() + first, count),
+                                 std::span(s.occluded.data() + first, count));
+        if (s.recordFirstHits && v.depth == 1)
+            s.rootViewIndependent[static_cast<std::size_t>(v.node)] = shading_.viewIndependentLight(
+                material, s.albedo[i], s.surfaces[i], std::span(s.queries.data() + first, count),
+                std::span(s.occluded.data() + first, count), s.rootLitMask[static_cast<std::size_t>(v.node)]);
     }
 }
 
@@ -539,39 +510,10 @@ void TileKernel::spawnSecondaryRays(TileScratch& s, bool useCache) const {
             added.tracked = parentTracked;
         }
     };
-    // The mirror-reflected ray of every hit that may spawn one, sixteen at a
-    // time (render/HitLanes.h), before the rays are emitted in order below.
+    // One hit at a time: reflected rays computed sixteen at a time, gathered
+    // from and scattered back to the wave's records, cost more than this
+    // (docs/log/2026-11-26-core-lanes.md).
     const std::size_t n = s.vertices.size();
-    s.reflected.resize(n);
-    {
-        ReflectionLanes lanes;
-        std::array<std::size_t, kFloatLanes> laneVertex;
-        std::array<Ray, kFloatLanes> rays;
-        int filled = 0;
-        const auto flush = [&] {
-            reflectedRays16(lanes, filled, rays.data());
-            for (int k = 0; k < filled; ++k)
-                s.reflected[laneVertex[static_cast<std::size_t>(k)]] = rays[static_cast<std::size_t>(k)];
-            filled = 0;
-        };
-        for (std::size_t i = 0; i < n; ++i) {
-            const TileScratch::PathVertex& v = s.vertices[i];
-            if (v.depth >= settings_.maxDepth) continue;
-            const Material& material = scene_.objects[static_cast<std::size_t>(v.hit.objectId)].material;
-            if (!material.reflects() && !material.refracts()) continue;
-            const SurfacePoint& sp = s.surfaces[i];
-            const auto k = static_cast<std::size_t>(filled);
-            lanes.positionX[k] = sp.position.x, lanes.positionY[k] = sp.position.y, lanes.positionZ[k] = sp.position.z;
-            lanes.normalX[k] = sp.normal.x, lanes.normalY[k] = sp.normal.y, lanes.normalZ[k] = sp.normal.z;
-            lanes.geometricX[k] = sp.geometricNormal.x, lanes.geometricY[k] = sp.geometricNormal.y;
-            lanes.geometricZ[k] = sp.geometricNormal.z;
-            lanes.directionX[k] = v.ray.direction.x, lanes.directionY[k] = v.ray.direction.y;
-            lanes.directionZ[k] = v.ray.direction.z;
-            laneVertex[k] = i;
-            if (++filled == kFloatLanes) flush();
-        }
-        if (filled > 0) flush();
-    }
     for (std::size_t i = 0; i < n; ++i) {
         const TileScratch::PathVertex& v = s.vertices[i];
         if (v.depth >= settings_.maxDepth) continue;
@@ -597,7 +539,8 @@ void TileKernel::spawnSecondaryRays(TileScratch& s, bool useCache) const {
         // first, so the refracted colour is added first, as Whitted's sum has it.
         if (reflectWeight > 0.0f && v.pathWeight * reflectWeight >= settings_.minWeight)
             // Reflection off the outside leaves the object; inside, it stays in.
-            emit(v, s.reflected[i], cone, TileScratch::Kind::Reflection, reflectWeight, sp.frontFace);
+            emit(v, Ray{sp.position + sp.geometricNormal * offset, normalize(reflect(v.ray.direction, sp.normal))}, cone,
+                 TileScratch::Kind::Reflection, reflectWeight, sp.frontFace);
         if (refracted)
             // A refracted ray that exits the object leaves it for the scene;
             // one that enters still has the inside to cross.

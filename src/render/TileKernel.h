@@ -153,7 +153,6 @@ private:
     std::vector<int> storeTexels;
     std::vector<int> answerTexels;
     std::vector<PendingRay> pending;
-    std::vector<Ray> reflected;  // per hit of the wave: its mirror-reflected ray (spawnSecondaryRays)
     // When the cache tracks dependencies (animated scenes): per node, where
     // its ray tree reached (cache/RayTreeBounds.h), gathered up like colours.
     bool trackTrees = false;

@@ -11,7 +11,6 @@
 #include <random>
 #include <vector>
 
-#include "core/Optics.h"
 #include "render/CameraRays.h"
 #include "render/HitLanes.h"
 #include "render/LocalShading.h"
@@ -180,86 +179,6 @@ TEST(HitLanes, CameraRowsEqualSingleCameraRays) {
         }
 }
 
-TEST(HitLanes, DirectLightEqualsScalarForEveryLightKindAndMaterial) {
-    Scene scene;
-    Light point;
-    point.position = {3.0f, 9.0f, -2.0f};
-    point.intensity = Rgb{0.9f, 0.8f, 0.7f};
-    Light directional;
-    directional.type = LightType::Directional;
-    directional.direction = normalize(Vec3{0.3f, -1.0f, 0.2f});
-    Light spot;
-    spot.type = LightType::Spot;
-    spot.position = {-4.0f, 6.0f, 1.0f};
-    spot.direction = normalize(Vec3{0.5f, -1.0f, 0.0f});
-    spot.coneAngleDeg = 70.0f;
-    spot.falloffAngleDeg = 30.0f;
-    spot.intensity = Rgb{0.85f, 0.6f, 0.45f};  // with a strength below 1, the order of the products shows
-    scene.lights = {point, directional, spot};
-    const LocalShading shading(scene);
-
-    // Matte, glossy with whole and fractional exponents, a zero exponent.
-    std::vector<Material> materials(4);
-    materials[1].specular = Rgb{0.5f, 0.4f, 0.3f};
-    materials[1].shininess = 32.0f;
-    materials[2].specular = Rgb{0.2f};
-    materials[2].shininess = 7.5f;
-    materials[3].specular = Rgb{0.0f, 0.3f, 0.0f};
-    materials[3].shininess = 0.0f;
-    materials[3].ambient = Rgb{0.3f, 0.2f, 0.1f};
-
-    std::mt19937 rng(9);
-    std::uniform_real_distribution<float> coord(-20.0f, 20.0f), unit(0.0f, 1.0f);
-    int litSeen = 0, partial = 0;
-    for (int round = 0; round < 1500; ++round) {
-        const int count = 1 + round % 16;
-        SurfacePoint surfaces[16];
-        Vec3 toViewer[16];
-        Rgb albedo[16];
-        const Material* material[16];
-        ShadingLanes lanes;
-        for (int k = 0; k < count; ++k) {
-            surfaces[k].position = {coord(rng), coord(rng) * 0.2f, coord(rng)};
-            surfaces[k].geometricNormal = randomUnit(rng);
-            surfaces[k].normal = surfaces[k].geometricNormal;
-            toViewer[k] = randomUnit(rng);
-            albedo[k] = Rgb{unit(rng), unit(rng), unit(rng)};
-            material[k] = &materials[static_cast<std::size_t>((round + k) % 4)];
-            lanes.normalX[k] = surfaces[k].normal.x, lanes.normalY[k] = surfaces[k].normal.y;
-            lanes.normalZ[k] = surfaces[k].normal.z;
-            lanes.toViewerX[k] = toViewer[k].x, lanes.toViewerY[k] = toViewer[k].y, lanes.toViewerZ[k] = toViewer[k].z;
-            lanes.albedoR[k] = albedo[k].r, lanes.albedoG[k] = albedo[k].g, lanes.albedoB[k] = albedo[k].b;
-            lanes.ambientR[k] = material[k]->ambient.r, lanes.ambientG[k] = material[k]->ambient.g;
-            lanes.ambientB[k] = material[k]->ambient.b;
-            lanes.specularR[k] = material[k]->specular.r, lanes.specularG[k] = material[k]->specular.g;
-            lanes.specularB[k] = material[k]->specular.b;
-            lanes.shininess[k] = material[k]->shininess;
-        }
-        ShadowQuery queries[16 * 3];
-        int first[17];
-        const int written = shading.shadowQueriesOf16(surfaces, count, queries, first);
-        unsigned char occluded[16 * 3];
-        for (int q = 0; q < written; ++q) {
-            occluded[q] = (q * 7 + round) % 3 == 0 ? 1 : 0;
-            partial += queries[q].strength < 1.0f ? 1 : 0;
-        }
-        Rgb out[16];
-        directLight16(lanes, count, queries, first, occluded, scene.lights, out);
-        for (int k = 0; k < count; ++k) {
-            const auto n = static_cast<std::size_t>(first[k + 1] - first[k]);
-            const Rgb expected = shading.directLight(*material[k], albedo[k], surfaces[k], toViewer[k],
-                                                     std::span(queries + first[k], n), std::span(occluded + first[k], n));
-            EXPECT_EQ(bits(out[k].r), bits(expected.r)) << "lane " << k << " round " << round;
-            EXPECT_EQ(bits(out[k].g), bits(expected.g)) << "lane " << k;
-            EXPECT_EQ(bits(out[k].b), bits(expected.b)) << "lane " << k;
-            for (std::size_t q = 0; q < n; ++q) litSeen += occluded[first[k] + static_cast<int>(q)] ? 0 : 1;
-        }
-        if (HasFailure()) return;
-    }
-    EXPECT_GT(litSeen, 5000);  // lights reached and lit the surfaces: not a vacuous comparison
-    EXPECT_GT(partial, 500);   // and spot strengths below 1 occurred
-}
-
 TEST(HitLanes, MeshSurfacesEqualSurfacePointAt) {
     std::mt19937 rng(21);
     std::uniform_real_distribution<float> coord(-10.0f, 10.0f), bary(0.0f, 1.0f);
@@ -336,41 +255,4 @@ TEST(HitLanes, MeshSurfacesEqualSurfacePointAt) {
         if (HasFailure()) return;
     }
     EXPECT_GT(back, 1000);  // both sides of triangles were seen
-}
-
-TEST(HitLanes, ReflectedRaysEqualTheScalarRule) {
-    std::mt19937 rng(17);
-    std::uniform_real_distribution<float> coord(-300.0f, 300.0f);
-    for (int round = 0; round < 2000; ++round) {
-        const int count = 1 + round % 16;
-        ReflectionLanes lanes;
-        SurfacePoint surfaces[16];
-        Vec3 incident[16];
-        for (int k = 0; k < count; ++k) {
-            const float scale = k % 3 == 0 ? 0.003f : 1.0f;  // below 1 the offset's floor decides
-            surfaces[k].position = Vec3{coord(rng), coord(rng), coord(rng)} * scale;
-            surfaces[k].geometricNormal = randomUnit(rng);
-            surfaces[k].normal = normalize(surfaces[k].geometricNormal + randomUnit(rng) * 0.2f);
-            incident[k] = randomUnit(rng);
-            lanes.positionX[k] = surfaces[k].position.x, lanes.positionY[k] = surfaces[k].position.y;
-            lanes.positionZ[k] = surfaces[k].position.z;
-            lanes.normalX[k] = surfaces[k].normal.x, lanes.normalY[k] = surfaces[k].normal.y;
-            lanes.normalZ[k] = surfaces[k].normal.z;
-            lanes.geometricX[k] = surfaces[k].geometricNormal.x, lanes.geometricY[k] = surfaces[k].geometricNormal.y;
-            lanes.geometricZ[k] = surfaces[k].geometricNormal.z;
-            lanes.directionX[k] = incident[k].x, lanes.directionY[k] = incident[k].y, lanes.directionZ[k] = incident[k].z;
-        }
-        Ray out[16];
-        reflectedRays16(lanes, count, out);
-        for (int k = 0; k < count; ++k) {
-            const SurfacePoint& sp = surfaces[k];
-            const Ray expected{sp.position + sp.geometricNormal * surfaceOffset(sp.position),
-                               normalize(reflect(incident[k], sp.normal))};
-            expectSameBits(out[k].origin, expected.origin, "origin", k);
-            expectSameBits(out[k].direction, expected.direction, "direction", k);
-            EXPECT_EQ(bits(out[k].tNear), bits(expected.tNear));
-            EXPECT_EQ(bits(out[k].tFar), bits(expected.tFar));
-        }
-        if (HasFailure()) return;
-    }
 }
