@@ -5,7 +5,8 @@ find_package(TBB REQUIRED)
 find_package(assimp REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
 find_package(CLI11 REQUIRED)
-find_package(tinyexr REQUIRED)
+# OpenEXR 3.1 (libopenexr-dev): OpenEXR::OpenEXR, the C++ library, and OpenEXR::OpenEXRCore, its C core.
+find_package(OpenEXR 3.1 REQUIRED)
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
 # Headless OpenGL through EGL (Mesa llvmpipe without a GPU): cube-addressing oracle, later the raster G-buffer.
 pkg_check_modules(EPOXY REQUIRED IMPORTED_TARGET epoxy)

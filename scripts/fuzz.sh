@@ -29,9 +29,9 @@ cmake --build --preset fuzz
 
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
-# Debian's Assimp and tinyexr leak inside themselves on some malformed files
-# (a PLY with a garbled element line; an EXR attribute of unknown type): not
-# our code, and not fixable from our wrappers. Every other leak still fails.
+# Debian's Assimp leaks inside itself on some malformed files (a PLY with a
+# garbled element line): not our code, and not fixable from our wrapper.
+# Every other leak still fails.
 export LSAN_OPTIONS="suppressions=$PWD/tests/fuzz/lsan-suppressions.txt"
 # Inputs per target in the fixed run: 10-60 s each on the 2-core machine.
 declare -A fixedRuns=([scene_file]=100000 [mesh_loader]=6000 [image_loader]=100000 [render_command]=20000)

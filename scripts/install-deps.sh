@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config git ccache
   libembree-dev libtbb-dev libassimp-dev nlohmann-json3-dev libcli11-dev
-  libstb-dev libtinyexr-dev
+  libstb-dev libopenexr-dev
   libgtest-dev libgmock-dev
   libegl-dev libgl1-mesa-dri libegl-mesa0 libepoxy-dev
   libglfw3-dev libimgui-dev xvfb xauth

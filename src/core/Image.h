@@ -1,6 +1,7 @@
 #pragma once
 // A width x height grid of linear float RGB pixels, row-major, row 0 at the top.
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include "core/Rgb.h"
@@ -12,6 +13,10 @@ public:
     Image() = default;
     Image(int width, int height) : width_(width), height_(height),
         pixels_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height)) {}
+    // Takes over `pixels`, which must hold width * height of them, row-major
+    // (a decoder that grows its pixels as it reads need not copy them).
+    Image(int width, int height, std::vector<Rgb> pixels)
+        : width_(width), height_(height), pixels_(std::move(pixels)) {}
 
     int width() const { return width_; }
     int height() const { return height_; }

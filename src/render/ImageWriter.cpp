@@ -1,13 +1,16 @@
 #include "render/ImageWriter.h"
 
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
 #include <stb_image_write.h>
-#include <tinyexr.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstddef>
-#include <cstring>
+#include <exception>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -40,47 +43,31 @@ std::string savePng(const Image& image, const std::filesystem::path& file) {
     return {};
 }
 
-// Returns an error message, empty on success. Uses the full tinyexr API rather
-// than SaveEXR, which leaks on failure and skips compression for small images.
+// Returns an error message, empty on success. Float channels R, G, B, ZIP
+// compressed (blocks of 16 scanlines): the pixel values written are the
+// image's, bit for bit.
 std::string saveExr(const Image& image, const std::filesystem::path& file) {
-    const std::size_t count = image.pixels().size();
-    // EXR stores channels separately, in alphabetical order: B, G, R.
-    std::vector<float> planes[3];
-    for (auto& plane : planes) plane.reserve(count);
-    for (const Rgb& px : image.pixels()) {
-        planes[0].push_back(px.b);
-        planes[1].push_back(px.g);
-        planes[2].push_back(px.r);
+    try {
+        Imf::Header header(image.width(), image.height());
+        header.compression() = Imf::ZIP_COMPRESSION;
+        for (const char* name : {"R", "G", "B"}) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+        // Our pixels are interleaved RGB; a slice reads one component of each.
+        const char* base = reinterpret_cast<const char*>(image.pixels().data());
+        const std::size_t row = sizeof(Rgb) * static_cast<std::size_t>(image.width());
+        Imf::FrameBuffer frame;
+        frame.insert("R", Imf::Slice(Imf::FLOAT, const_cast<char*>(base + offsetof(Rgb, r)), sizeof(Rgb), row));
+        frame.insert("G", Imf::Slice(Imf::FLOAT, const_cast<char*>(base + offsetof(Rgb, g)), sizeof(Rgb), row));
+        frame.insert("B", Imf::Slice(Imf::FLOAT, const_cast<char*>(base + offsetof(Rgb, b)), sizeof(Rgb), row));
+        // The file is complete once `out` is destroyed (it writes the offsets
+        // of its blocks then), before writeFileAtomically renames it.
+        Imf::OutputFile out(file.c_str(), header);
+        out.setFrameBuffer(frame);
+        out.writePixels(image.height());
+    } catch (const std::exception& e) {
+        // OpenEXR reports failures by throwing (Iex::BaseExc, a std::exception).
+        return e.what();
     }
-    float* planePtrs[3] = {planes[0].data(), planes[1].data(), planes[2].data()};
-
-    EXRImage exrImage;
-    InitEXRImage(&exrImage);
-    exrImage.num_channels = 3;
-    exrImage.images = reinterpret_cast<unsigned char**>(planePtrs);
-    exrImage.width = image.width();
-    exrImage.height = image.height();
-
-    EXRChannelInfo channels[3]{};
-    int pixelTypes[3] = {TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT};
-    const char* names[3] = {"B", "G", "R"};
-    for (int c = 0; c < 3; ++c) std::strcpy(channels[c].name, names[c]);
-
-    EXRHeader header;
-    InitEXRHeader(&header);
-    header.num_channels = 3;
-    header.channels = channels;
-    header.pixel_types = pixelTypes;
-    header.requested_pixel_types = pixelTypes;  // float in, float out: bit-exact
-    header.compression_type = TINYEXR_COMPRESSIONTYPE_ZIP;
-
-    const char* err = nullptr;
-    const int code = SaveEXRImageToFile(&exrImage, &header, file.c_str(), &err);
-    if (code == TINYEXR_SUCCESS) return {};
-    std::string message = err ? err : "tinyexr error code " + std::to_string(code);
-    if (err) FreeEXRErrorMessage(err);
-    while (!message.empty() && std::isspace(static_cast<unsigned char>(message.back()))) message.pop_back();
-    return message;
+    return {};
 }
 
 }  // namespace

@@ -7,8 +7,9 @@
 namespace raycache {
 
 // PNG, JPEG, BMP and TGA are taken as 8-bit sRGB and converted to linear;
-// Radiance .hdr and OpenEXR .exr are already linear. Alpha is dropped. The
-// format is chosen by the (case-insensitive) extension. Throws InputError
+// Radiance .hdr and OpenEXR .exr are already linear (which EXR files are read,
+// and how: scene/ExrImageReader.h). Alpha is dropped. The format is chosen by
+// the (case-insensitive) extension. Throws InputError
 // naming the file if it is missing, unreadable, corrupt, of an unsupported
 // format, empty, larger than maxImageSide per side, or holds non-finite values.
 Image loadImageFile(const std::filesystem::path& path);

@@ -1,16 +1,21 @@
 #include "scene/MeshLoader.h"
 
+#include <assimp/BaseImporter.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
 #include <assimp/Importer.hpp>
+#include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <fstream>
 #include <limits>
+#include <set>
 #include <span>
 #include <sstream>
 #include <string>
 #include <system_error>
+#include <vector>
 
 #include "core/Errors.h"
 #include "scene/AssimpLogCapture.h"
@@ -33,9 +38,68 @@ std::string readText(const std::filesystem::path& path) {
     return std::move(text).str();
 }
 
+// For a binary glTF (a file starting with "glTF", whatever its name): the
+// first chunk, of the 12-byte header's file, that claims more bytes than
+// follow it; empty if none does. Assimp 5.2 allocates what the JSON chunk
+// claims before reading it (4 GiB for a mutated 800-byte file, found by
+// fuzzing, docs/testing.md finding 15).
+std::string glbChunkBeyondTheEnd(const std::filesystem::path& path, std::uintmax_t fileBytes) {
+    std::ifstream in(path, std::ios::binary);
+    char magic[4] = {};
+    if (!in.read(magic, sizeof magic) || std::string(magic, 4) != "glTF") return {};
+    for (std::uintmax_t at = 12; at + 8 <= fileBytes;) {
+        std::uint32_t length = 0;  // little-endian, as the machines we build on
+        in.seekg(static_cast<std::streamoff>(at));
+        if (!in.read(reinterpret_cast<char*>(&length), sizeof length)) return {};
+        if (length > fileBytes - at - 8)
+            return "GLB chunk at byte " + std::to_string(at) + " claims " + std::to_string(length) +
+                   " bytes, more than the " + std::to_string(fileBytes - at - 8) + " left in the file";
+        at += 8 + length;
+    }
+    return {};
+}
+
+// Assimp's choice of reader, as Importer::ReadFile makes it: the one reader
+// that claims the file's extension, or the first of several whose look at
+// the content accepts it. Without one, ReadFile would guess the format from
+// the content alone, past the checks above that go by the extension (a
+// mutated file named .gltf went to the OBJ reader, which freed memory twice;
+// a damaged PLY header to the PLY reader, which looped forever:
+// docs/testing.md findings 14, 16). Empty if a reader is found, else why not.
+std::string noReaderForTheExtension(const Assimp::Importer& importer, const std::filesystem::path& path) {
+    std::string name = path.filename().string();
+    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+    std::vector<Assimp::BaseImporter*> claimants;
+    for (std::size_t i = 0; i < importer.GetImporterCount(); ++i) {
+        std::set<std::string> extensions;
+        importer.GetImporter(i)->GetExtensionList(extensions);
+        for (const std::string& extension : extensions)
+            if (name.size() > extension.size() + 1 && name.ends_with("." + extension)) {
+                claimants.push_back(importer.GetImporter(i));
+                break;
+            }
+    }
+    if (claimants.empty())
+        return "no reader in Assimp takes the extension '" + path.extension().string() + "'";
+    if (claimants.size() == 1) return {};
+    for (Assimp::BaseImporter* reader : claimants)
+        if (reader->CanRead(path.string(), importer.GetIOHandler(), true)) return {};
+    return "not a " + path.extension().string() + " file: Assimp's readers for it refuse its content";
+}
+
 std::span<const aiMesh* const> meshesOf(const aiScene& scene) {
     if (!scene.mMeshes) return {};
     return {scene.mMeshes, scene.mNumMeshes};
+}
+
+// "face F of mesh M has no vertices" for the first such face, else empty.
+std::string faceWithoutVertices(const aiScene& scene) {
+    const auto meshes = meshesOf(scene);
+    for (std::size_t m = 0; m < meshes.size(); ++m)
+        for (unsigned f = 0; meshes[m]->mFaces && f < meshes[m]->mNumFaces; ++f)
+            if (meshes[m]->mFaces[f].mNumIndices == 0)
+                return "face " + std::to_string(f) + " of mesh " + std::to_string(m) + " has no vertices";
+    return {};
 }
 
 }  // namespace
@@ -54,14 +118,24 @@ TriangleMesh loadMeshFile(const std::filesystem::path& path) {
             throw InputError(InputLocation{.file = path.string(), .line = problem->line, .column = problem->column},
                              problem->message);
     }
+    if (const std::string chunk = ec ? std::string() : glbChunkBeyondTheEnd(path, bytes); !chunk.empty())
+        fail(path, chunk);
 
     // PreTransformVertices bakes the node hierarchy into the vertices, so the
     // meshes can simply be concatenated. Assimp's default logger is silent.
     Assimp::Importer importer;
+    if (const std::string why = noReaderForTheExtension(importer, path); !why.empty()) fail(path, why);
     const AssimpLogCapture log;
-    const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
-                           aiProcess_PreTransformVertices | aiProcess_ValidateDataStructure | aiProcess_FindInvalidData;
-    const aiScene* scene = importer.ReadFile(path.string(), flags);
+    // The file is read and validated first, and post-processed only once its
+    // faces are looked at: Assimp 5.2's triangulation asserts (aborting the
+    // process) on a face without vertices, which its PLY reader makes of a
+    // corrupt binary body (found by fuzzing, docs/testing.md finding 11).
+    const aiScene* scene = importer.ReadFile(path.string(), aiProcess_ValidateDataStructure);
+    if (!scene) fail(path, std::string("Assimp cannot read it: ") + importer.GetErrorString());
+    if (const std::string problem = faceWithoutVertices(*scene); !problem.empty()) fail(path, problem);
+    scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                         aiProcess_GenSmoothNormals | aiProcess_PreTransformVertices |
+                                         aiProcess_FindInvalidData);
     if (!scene) fail(path, std::string("Assimp cannot read it: ") + importer.GetErrorString());
     if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) fail(path, "mesh file is incomplete");
     // A file Assimp had to repair (dropping faces, ignoring normals) is refused:

@@ -1,5 +1,5 @@
 // libFuzzer target: texture and environment images through loadImageFile (stb
-// for PNG/JPEG/BMP/TGA/HDR, tinyexr for EXR, with our size and finiteness
+// for PNG/JPEG/BMP/TGA/HDR, OpenEXR for EXR, with our size and finiteness
 // checks). The first byte picks the extension, which picks the decoder; the
 // rest is the file. Bad input must end in InputError; anything else is a finding.
 #include <array>
@@ -13,9 +13,8 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
     if (size < 1) return 0;
-    // EXR is back since the loader refuses, before tinyexr decodes, the files
-    // tinyexr crashed or read out of bounds on (tiled, PIZ, integer channels;
-    // docs/testing.md findings 3, 8, 9).
+    // EXR seeds (exr_*) cover scanline and tiled files, multi-part, and most
+    // compressions; tests/fuzz/make_exr_seeds.cpp writes them.
     static constexpr std::array<const char*, 6> kExtensions = {".png", ".jpg", ".bmp", ".tga", ".hdr", ".exr"};
     const std::string name = std::string("image") + kExtensions[data[0] % kExtensions.size()];
     const raycache::FuzzScratchDir& dir = raycache::fuzzScratchDir();

@@ -1,11 +1,17 @@
 #include "render/ImageWriter.h"
 
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "TempDir.h"
 #include "core/ColorSpace.h"
@@ -90,7 +96,7 @@ TEST(ImageWriter, ExrRoundTripIsBitExact) {
 }
 
 TEST(ImageWriter, LargerExrRoundTripIsBitExact) {
-    // Large enough for tinyexr to compress several scanline blocks.
+    // Large enough for several ZIP blocks of 16 scanlines.
     TempDir dir;
     const auto path = dir.path() / "big.exr";
     Image original(67, 41);
@@ -102,6 +108,37 @@ TEST(ImageWriter, LargerExrRoundTripIsBitExact) {
     const Image back = loadImageFile(path);
     ASSERT_EQ(back.width(), original.width());
     ASSERT_EQ(back.height(), original.height());
+    EXPECT_EQ(back.pixels(), original.pixels());
+}
+
+// What other programs see: float R, G, B over the whole image, ZIP-compressed
+// scanlines, read back by OpenEXR itself with the values written.
+TEST(ImageWriter, ExrIsFloatRgbZipScanlines) {
+    TempDir dir;
+    const auto path = dir.path() / "out.exr";
+    const Image original = testImage();
+    writeImage(original, path);
+    Imf::InputFile file(path.c_str());
+    const Imf::Header& header = file.header();
+    EXPECT_EQ(header.compression(), Imf::ZIP_COMPRESSION);
+    EXPECT_FALSE(header.hasTileDescription());
+    EXPECT_EQ(header.dataWindow(), Imath::Box2i({0, 0}, {original.width() - 1, original.height() - 1}));
+    EXPECT_EQ(header.displayWindow(), header.dataWindow());
+    std::vector<std::string> names;
+    for (auto c = header.channels().begin(); c != header.channels().end(); ++c) {
+        names.emplace_back(c.name());
+        EXPECT_EQ(c.channel().type, Imf::FLOAT) << c.name();
+    }
+    EXPECT_EQ(names, (std::vector<std::string>{"B", "G", "R"}));
+    Image back(original.width(), original.height());
+    char* base = reinterpret_cast<char*>(back.pixels().data());
+    const std::size_t row = sizeof(Rgb) * static_cast<std::size_t>(back.width());
+    Imf::FrameBuffer frame;
+    frame.insert("R", Imf::Slice(Imf::FLOAT, base + offsetof(Rgb, r), sizeof(Rgb), row));
+    frame.insert("G", Imf::Slice(Imf::FLOAT, base + offsetof(Rgb, g), sizeof(Rgb), row));
+    frame.insert("B", Imf::Slice(Imf::FLOAT, base + offsetof(Rgb, b), sizeof(Rgb), row));
+    file.setFrameBuffer(frame);
+    file.readPixels(0, back.height() - 1);
     EXPECT_EQ(back.pixels(), original.pixels());
 }
 

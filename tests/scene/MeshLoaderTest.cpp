@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "core/Errors.h"
@@ -262,6 +263,57 @@ TEST(MeshLoader, DamagedPlyHeaderIsOneErrorNotAHang) {
     expectRejected(path, "no end_header", 3, 1);
     expectRejected(writeMesh("format.ply", "ply\nformat text 1.0\nend_header\n"), "expected \"format", 2, 1);
     expectRejected(writeMesh("magic.ply", "plyx\nformat ascii 1.0\nend_header\n"), "starts with a line \"ply\"", 1, 1);
+}
+
+// Found by fuzzing (docs/testing.md, findings 14 and 16): when the readers
+// for a file's extension refuse it, Assimp guesses the format from the
+// content, past our checks by extension: a damaged PLY header named .gltf
+// hung in its PLY reader, an OBJ-like text named .gltf made its OBJ reader
+// free memory twice. Now the extension decides: no reader for it, one error.
+TEST(MeshLoader, FileTheExtensionsReadersRefuseIsOneErrorNotAGuess) {
+    const auto findings = std::filesystem::path(RAYCACHE_TEST_DATA_DIR).parent_path() / "fuzz" / "findings";
+    expectRejected(findings / "assimp-ply-hang-named-gltf.gltf", "not a .gltf file");
+    expectRejected(findings / "assimp-double-free-obj-guessed-from-gltf.gltf", "not a .gltf file");
+    std::ifstream in(meshDir / "fuzz-ply-damaged-header.ply", std::ios::binary);
+    const std::string damaged((std::istreambuf_iterator<char>(in)), {});
+    expectRejected(writeMesh("damaged.glb", damaged), "not a .glb file");
+    expectRejected(writeMesh("damaged.xyz", damaged), "no reader in Assimp takes the extension '.xyz'");
+    std::ifstream pyramid(meshDir / "pyramid.ply", std::ios::binary);
+    const std::string good((std::istreambuf_iterator<char>(pyramid)), {});
+    expectRejected(writeMesh("pyramid.gltf", good), "not a .gltf file");
+    EXPECT_EQ(loadMeshFile(writeMesh("pyramid.PLY", good)).triangles.size(), 6u);
+}
+
+// Found by fuzzing (docs/testing.md, finding 15): a GLB whose JSON chunk
+// claims 4 GiB; Assimp allocated that before reading. A chunk claiming more
+// than the file holds is refused first.
+TEST(MeshLoader, GlbChunkBeyondTheFileIsOneError) {
+    const auto finding = std::filesystem::path(RAYCACHE_TEST_DATA_DIR).parent_path() / "fuzz" / "findings" /
+                         "assimp-glb-chunk-claiming-4-gib.glb";
+    expectRejected(finding, "GLB chunk at byte 12 claims 4294966606 bytes, more than the 797 left in the file");
+    std::ifstream in(meshDir / "tetrahedron.glb", std::ios::binary);
+    std::string glb((std::istreambuf_iterator<char>(in)), {});
+    EXPECT_GT(loadMeshFile(writeMesh("good.glb", glb)).triangles.size(), 0u);
+    glb[12] = static_cast<char>(glb[12] + 1);  // the JSON chunk one byte longer than it is
+    EXPECT_THROW(loadMeshFile(writeMesh("long.glb", glb)), InputError);
+    glb.resize(glb.size() - 1);  // and the last chunk one byte short
+    glb[12] = static_cast<char>(glb[12] - 1);
+    expectRejected(writeMesh("short.glb", glb), "left in the file");
+}
+
+// Found by fuzzing PLY bodies (docs/testing.md, finding 11): Assimp 5.2's
+// triangulation asserts, aborting the process, on a face without vertices,
+// which its PLY reader makes of a corrupt binary body (four here) and of a
+// face list of length 0. The faces are looked at before post-processing.
+TEST(MeshLoader, PlyFaceWithoutVerticesIsOneErrorNotAnAbort) {
+    const auto finding = std::filesystem::path(RAYCACHE_TEST_DATA_DIR).parent_path() / "fuzz" / "findings" /
+                         "assimp-abort-ply-faces-without-vertices.ply";
+    expectRejected(finding, "face 0 of mesh 0 has no vertices");
+    const std::string head =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
+    expectRejected(writeMesh("empty-face.ply", head + "3 0 1 2\n0\n"), "face 1 of mesh 0 has no vertices");
+    EXPECT_EQ(loadMeshFile(writeMesh("good.ply", head + "3 0 1 2\n3 0 2 1\n")).triangles.size(), 2u);
 }
 
 }  // namespace raycache

@@ -4,12 +4,13 @@ linear values, made without OpenEXR or tinyexr, straight from the file layout
 in the OpenEXR specification ("OpenEXR File Layout", openexr.com): magic and
 version, the required header attributes, a line offset table and one
 uncompressed scanline block per row, channels in alphabetical order (B, G, R),
-little-endian. ImageLoaderTest reads them through tinyexr, so the EXR reader
+little-endian. ImageLoaderTest reads them through OpenEXR, so the EXR reader
 is checked against a writer that is not our own. Run from this directory:
     python3 make_known_exr.py
 known-half-typed.exr is known-half.exr with the optional "type" attribute
-("scanlineimage"), which ImageLoaderTest edits to check the loader's own
-reading of it. The files were checked with `exrheader` (Debian package openexr 3.1.5).
+("scanlineimage"), which ImageLoaderTest edits to check that a contradictory
+or unknown type is one error.
+The files were checked with `exrheader` (Debian package openexr 3.1.5).
 """
 import struct
 
