@@ -10,6 +10,7 @@
 #include "app/RenderCommand.h"
 #include "app/ScenesCommand.h"
 #include "app/ViewCommand.h"
+#include "bench/BuildInfo.h"
 #include "bench/ProgressBar.h"
 #include "cluster/ClusterRuntime.h"
 #include "core/Errors.h"
@@ -152,6 +153,10 @@ int run(int argc, char** argv, const raycache::ClusterRuntime& cluster) {
 
     CLI::App app{"raycache: real-time Whitted ray tracing with per-object ray caching"};
     app.require_subcommand(1);
+    app.set_version_flag(
+        "--version", [] { return raycache::formatBuildInfo(raycache::currentBuildInfo()); },
+        "Print the version, git commit, build type and compiler, the Embree, oneTBB, Assimp and OpenEXR versions "
+        "and the lane code's instruction set, then exit");
 
     raycache::RenderCommandOptions render;
     CLI::App* renderCmd = app.add_subcommand(
@@ -238,6 +243,8 @@ int run(int argc, char** argv, const raycache::ClusterRuntime& cluster) {
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e, out, err);
     } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e, out, err);
+    } catch (const CLI::CallForVersion& e) {
         return app.exit(e, out, err);
     } catch (const CLI::ParseError& e) {
         err << "error: " << e.what() << " (see --help)\n";

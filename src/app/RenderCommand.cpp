@@ -10,6 +10,8 @@
 #include "app/OutputDirectory.h"
 #include "bench/SampleSummary.h"
 #include "app/FrameReport.h"
+#include "bench/BuildInfo.h"
+#include "bench/ResultsJson.h"
 #include "core/AtomicFile.h"
 #include "core/Parallel.h"
 #include "core/Errors.h"
@@ -192,6 +194,7 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out, co
         << formatFixed(summary.max, 1) << ") over " << frames << " frames\n";
     if (!options.statsPath.empty()) {
         const nlohmann::json stats = {
+            {"version", toJson(currentBuildInfo())},
             {"scene", scene.name},
             {"width", settings.width},
             {"height", settings.height},

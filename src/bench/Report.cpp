@@ -41,9 +41,10 @@ std::string reportMarkdown(const ReportInput& in) {
     env.addRow({"CPU", e.cpuModel + " (" + std::to_string(e.hardwareThreads) + " hardware threads, " +
                            std::to_string(e.workerThreads) + " used)"});
     env.addRow({"OS", e.os});
-    env.addRow({"build", e.buildType + ", " + e.compiler});
-    env.addRow({"raycache", e.raycacheVersion + ", commit " + e.gitCommit});
-    env.addRow({"libraries", "Embree " + e.embreeVersion + ", oneTBB " + e.tbbVersion});
+    env.addRow({"build", e.build.buildType + ", " + e.build.compiler + "; lanes " + e.build.lanes});
+    env.addRow({"raycache", e.build.raycacheVersion + ", commit " + e.build.gitCommit});
+    env.addRow({"libraries", "Embree " + e.build.embreeVersion + ", oneTBB " + e.build.tbbVersion + ", Assimp " +
+                                 e.build.assimpVersion + ", OpenEXR " + e.build.openExrVersion});
     env.addRow({"started", e.startedAt + ", load average " + e.loadAverage + " (1, 5, 15 min) on " +
                                std::to_string(e.hardwareThreads) + " hardware threads"});
     if (!in.loadAverageAfter.empty())

@@ -7,13 +7,19 @@
 
 namespace raycache {
 
+nlohmann::json toJson(const BuildInfo& b) {
+    return {{"raycache", b.raycacheVersion}, {"git_commit", b.gitCommit},
+            {"build_type", b.buildType},     {"compiler", b.compiler},
+            {"embree", b.embreeVersion},     {"tbb", b.tbbVersion},
+            {"assimp", b.assimpVersion},     {"openexr", b.openExrVersion},
+            {"lanes", b.lanes},              {"baseline_lanes_build", b.baselineLanesBuild}};
+}
+
 nlohmann::json toJson(const RunEnvironment& e) {
     return {{"cpu_model", e.cpuModel},           {"hardware_threads", e.hardwareThreads},
             {"worker_threads", e.workerThreads}, {"os", e.os},
-            {"build_type", e.buildType},         {"compiler", e.compiler},
-            {"git_commit", e.gitCommit},         {"raycache_version", e.raycacheVersion},
-            {"embree_version", e.embreeVersion}, {"tbb_version", e.tbbVersion},
-            {"started_at", e.startedAt},         {"load_average_at_start", e.loadAverage}};
+            {"version", toJson(e.build)},        {"started_at", e.startedAt},
+            {"load_average_at_start", e.loadAverage}};
 }
 
 nlohmann::json toJson(const VariantTimes& t) {

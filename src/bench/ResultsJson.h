@@ -11,6 +11,9 @@
 
 namespace raycache {
 
+// The "version" object, the same in results.json and `raycache render --stats`.
+nlohmann::json toJson(const BuildInfo& build);
+// The machine and its load, with the build as "version".
 nlohmann::json toJson(const RunEnvironment& environment);
 // Every timed and warm-up frame in ms, with median, min, max and the median frame rate.
 nlohmann::json toJson(const VariantTimes& times);

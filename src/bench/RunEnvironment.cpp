@@ -8,19 +8,6 @@
 #include <fstream>
 #include <thread>
 
-#include "core/Parallel.h"
-#include "trace/EmbreeVersion.h"
-
-// Generated at every build by cmake/GitCommit.cmake; the other two are
-// defined for this file by src/CMakeLists.txt.
-#include "GitCommit.h"
-#ifndef RAYCACHE_BUILD_TYPE
-#define RAYCACHE_BUILD_TYPE "unknown"
-#endif
-#ifndef RAYCACHE_VERSION
-#define RAYCACHE_VERSION "unknown"
-#endif
-
 namespace raycache {
 
 namespace {
@@ -48,16 +35,6 @@ std::string loadAverage() {
     return buffer;
 }
 
-std::string compilerName() {
-#if defined(__clang__)
-    return std::string("clang ") + __clang_version__;
-#elif defined(__GNUC__)
-    return std::string("g++ ") + __VERSION__;
-#else
-    return "unknown";
-#endif
-}
-
 std::string utcNow() {
     const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
     std::tm tm{};
@@ -76,12 +53,7 @@ RunEnvironment currentRunEnvironment(int workerThreads) {
     e.workerThreads = workerThreads;
     utsname u{};
     if (uname(&u) == 0) e.os = std::string(u.sysname) + " " + u.release + " " + u.machine;
-    e.buildType = RAYCACHE_BUILD_TYPE;
-    e.compiler = compilerName();
-    e.gitCommit = RAYCACHE_GIT_COMMIT;
-    e.raycacheVersion = RAYCACHE_VERSION;
-    e.embreeVersion = embreeVersion();
-    e.tbbVersion = Parallel::libraryVersion();
+    e.build = currentBuildInfo();
     e.startedAt = utcNow();
     e.loadAverage = loadAverage();
     return e;

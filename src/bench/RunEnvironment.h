@@ -3,6 +3,8 @@
 // versions, recorded beside every result so figures can be compared honestly.
 #include <string>
 
+#include "bench/BuildInfo.h"
+
 namespace raycache {
 
 struct RunEnvironment {
@@ -10,12 +12,7 @@ struct RunEnvironment {
     int hardwareThreads = 0;  // std::thread::hardware_concurrency
     int workerThreads = 0;    // threads the renderer used
     std::string os;           // uname: system, release, machine
-    std::string buildType;    // CMAKE_BUILD_TYPE
-    std::string compiler;     // compiler name and version
-    std::string gitCommit;    // commit at configure time, "unknown" outside a git checkout
-    std::string raycacheVersion;
-    std::string embreeVersion;
-    std::string tbbVersion;
+    BuildInfo build;          // what ran: version, commit, build, libraries, lanes
     std::string startedAt;    // UTC, ISO 8601
     std::string loadAverage;  // /proc/loadavg's 1, 5, 15 minute figures at the start: how busy the machine was
 };

@@ -5,6 +5,9 @@
 #include <array>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
 #include <string>
 
 #include "ShellRun.h"
@@ -20,6 +23,14 @@ using raycache::test::RunResult;
 // Runs the raycache binary with `args` (already shell-quoted where needed).
 RunResult runRaycache(const std::string& args, const fs::path& dir) {
     return raycache::test::runShell(std::string(RAYCACHE_BINARY) + " " + args, dir / "stderr.txt");
+}
+
+// The value of the line "<key>: <value>" of `text`, empty if there is none.
+std::string lineValue(const std::string& text, const std::string& key) {
+    std::istringstream lines(text);
+    for (std::string line; std::getline(lines, line);)
+        if (line.rfind(key + ": ", 0) == 0) return line.substr(key.size() + 2);
+    return {};
 }
 
 class Cli : public ::testing::Test {
@@ -80,6 +91,42 @@ TEST_F(Cli, HelpWorksForEveryCommand) {
         EXPECT_EQ(r.exitCode, 0) << args;
         EXPECT_NE(r.out.find("Usage"), std::string::npos) << args;
     }
+    EXPECT_NE(runRaycache("--help", dir_).out.find("--version"), std::string::npos);
+}
+
+TEST_F(Cli, VersionPrintsTheBuildWithoutASubcommand) {
+    const RunResult r = runRaycache("--version", dir_);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    EXPECT_EQ(r.out.rfind("raycache ", 0), 0u) << r.out;
+    // Twelve hex digits, "-dirty" when built with uncommitted changes;
+    // "unknown" only outside a git checkout.
+    EXPECT_TRUE(std::regex_match(lineValue(r.out, "commit"), std::regex("[0-9a-f]{12}(-dirty)?|unknown"))) << r.out;
+    EXPECT_TRUE(std::regex_match(lineValue(r.out, "Embree"), std::regex("3\\.[0-9]+\\.[0-9]+"))) << r.out;
+    for (const char* key : {"build", "oneTBB", "Assimp", "OpenEXR", "lanes"})
+        EXPECT_NE(lineValue(r.out, key), "") << key << " in " << r.out;
+    EXPECT_TRUE(std::regex_search(lineValue(r.out, "lanes"), std::regex("^x86-64"))) << r.out;
+}
+
+// One place gathers the build facts: the statistics say what --version says.
+TEST_F(Cli, StatsCarryTheVersionThatVersionPrints) {
+    const std::string version = runRaycache("--version", dir_).out;
+    const fs::path stats = dir_ / "stats.json";
+    const RunResult r = runRaycache("render --scene behind-0 --width 8 --height 8 --frames 1 --stats " + stats.string(),
+                                    dir_);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::ifstream in(stats);
+    const nlohmann::json v = nlohmann::json::parse(in).at("version");
+    EXPECT_EQ("raycache " + v.at("raycache").get<std::string>(), version.substr(0, version.find('\n')));
+    EXPECT_EQ(v.at("git_commit"), lineValue(version, "commit"));
+    EXPECT_EQ(v.at("build_type").get<std::string>() + ", " + v.at("compiler").get<std::string>(),
+              lineValue(version, "build"));
+    EXPECT_EQ(v.at("embree"), lineValue(version, "Embree"));
+    EXPECT_EQ(v.at("tbb"), lineValue(version, "oneTBB"));
+    EXPECT_EQ(v.at("assimp"), lineValue(version, "Assimp"));
+    EXPECT_EQ(v.at("openexr"), lineValue(version, "OpenEXR"));
+    EXPECT_EQ(v.at("lanes"), lineValue(version, "lanes"));
+    EXPECT_TRUE(v.at("baseline_lanes_build").is_boolean());
 }
 
 TEST_F(Cli, RenderWritesTheLastFrameAndPrintsTimings) {
