@@ -12,25 +12,46 @@ namespace {
 // Lane k of `mask` as a bool.
 [[gnu::always_inline]] inline bool laneSet(const FloatMask& mask, int k) { return mask[k] != 0; }
 
+// The rays' directions and their hit points origin + direction * t
+// (surfacePointAt's position), from sphere or mesh hit lanes.
+template <class HitLanes>
+[[gnu::always_inline]] inline void hitPointLanes(const HitLanes& h, FloatLanes& dx, FloatLanes& dy, FloatLanes& dz,
+                                                 FloatLanes& px, FloatLanes& py, FloatLanes& pz) {
+    FloatLanes ox, oy, oz, t;
+    loadLanes(h.originX, ox);
+    loadLanes(h.originY, oy);
+    loadLanes(h.originZ, oz);
+    loadLanes(h.directionX, dx);
+    loadLanes(h.directionY, dy);
+    loadLanes(h.directionZ, dz);
+    loadLanes(h.t, t);
+    px = ox + dx * t, py = oy + dy * t, pz = oz + dz * t;
+}
+
+// a * w + b * u + c * v lane by lane, from three arrays of sixteen: a
+// triangle's vertex attribute at barycentrics (u, v), in meshSurface's order.
+[[gnu::always_inline]] inline void interpolateLanes(const float* a, const float* b, const float* c,
+                                                    const FloatLanes& w, const FloatLanes& u, const FloatLanes& v,
+                                                    FloatLanes& out) {
+    FloatLanes la, lb, lc;
+    loadLanes(a, la);
+    loadLanes(b, lb);
+    loadLanes(c, lc);
+    out = la * w + lb * u + lc * v;
+}
+
 // GCC resolves a function's clones in the file that defines them: the
 // exported functions below call these.
 RAYCACHE_WIDE_LANE_CLONES
 void sphereSurfaceLanes(const SphereHitLanes& hits, int count, SurfacePoint* out) {
-    FloatLanes ox, oy, oz, dx, dy, dz, t, cx, cy, cz, radius;
-    loadLanes(hits.originX, ox);
-    loadLanes(hits.originY, oy);
-    loadLanes(hits.originZ, oz);
-    loadLanes(hits.directionX, dx);
-    loadLanes(hits.directionY, dy);
-    loadLanes(hits.directionZ, dz);
-    loadLanes(hits.t, t);
+    FloatLanes dx, dy, dz, px, py, pz, cx, cy, cz, radius;
+    hitPointLanes(hits, dx, dy, dz, px, py, pz);
     loadLanes(hits.centerX, cx);
     loadLanes(hits.centerY, cy);
     loadLanes(hits.centerZ, cz);
     loadLanes(hits.radius, radius);
-    // surfacePointAt's steps: position = origin + direction * t; normal =
-    // (position - centre) * (1 / radius); turned toward the ray.
-    const FloatLanes px = ox + dx * t, py = oy + dy * t, pz = oz + dz * t;
+    // surfacePointAt's steps: normal = (position - centre) * (1 / radius);
+    // turned toward the ray.
     const FloatLanes inverseRadius = 1.0f / radius;
     FloatLanes nx = (px - cx) * inverseRadius, ny = (py - cy) * inverseRadius, nz = (pz - cz) * inverseRadius;
     const FloatMask front = dx * nx + dy * ny + dz * nz < 0.0f;
@@ -53,37 +74,18 @@ void sphereSurfaceLanes(const SphereHitLanes& hits, int count, SurfacePoint* out
 
 RAYCACHE_WIDE_LANE_CLONES
 void meshSurfaceLanes(const MeshHitLanes& h, int count, SurfacePoint* out) {
-    FloatLanes ox, oy, oz, dx, dy, dz, t, u, v;
-    loadLanes(h.originX, ox);
-    loadLanes(h.originY, oy);
-    loadLanes(h.originZ, oz);
-    loadLanes(h.directionX, dx);
-    loadLanes(h.directionY, dy);
-    loadLanes(h.directionZ, dz);
-    loadLanes(h.t, t);
+    FloatLanes dx, dy, dz, px, py, pz, u, v;
+    hitPointLanes(h, dx, dy, dz, px, py, pz);
     loadLanes(h.u, u);
     loadLanes(h.v, v);
-    const FloatLanes px = ox + dx * t, py = oy + dy * t, pz = oz + dz * t;
     const FloatLanes w = 1.0f - u - v;
     // The interpolated vertex normal, unit where it has a length (meshSurface).
     FloatMask hasShadingNormal;
     maskOf(h.hasNormals, hasShadingNormal);
     FloatLanes sx, sy, sz;
-    {
-        FloatLanes a, b, c;
-        loadLanes(h.normal0X, a);
-        loadLanes(h.normal1X, b);
-        loadLanes(h.normal2X, c);
-        sx = a * w + b * u + c * v;
-        loadLanes(h.normal0Y, a);
-        loadLanes(h.normal1Y, b);
-        loadLanes(h.normal2Y, c);
-        sy = a * w + b * u + c * v;
-        loadLanes(h.normal0Z, a);
-        loadLanes(h.normal1Z, b);
-        loadLanes(h.normal2Z, c);
-        sz = a * w + b * u + c * v;
-    }
+    interpolateLanes(h.normal0X, h.normal1X, h.normal2X, w, u, v, sx);
+    interpolateLanes(h.normal0Y, h.normal1Y, h.normal2Y, w, u, v, sy);
+    interpolateLanes(h.normal0Z, h.normal1Z, h.normal2Z, w, u, v, sz);
     FloatLanes length;
     sqrtLanes(sx * sx + sy * sy + sz * sz, length);
     hasShadingNormal &= length > 0.0f;
@@ -119,21 +121,12 @@ void meshSurfaceLanes(const MeshHitLanes& h, int count, SurfacePoint* out) {
     FloatLanes nx = hasShadingNormal ? sx : gx, ny = hasShadingNormal ? sy : gy, nz = hasShadingNormal ? sz : gz;
     // Texture coordinates, where the mesh has them.
     FloatLanes tu, tv;
-    {
-        FloatLanes a, b, c;
-        loadLanes(h.uv0U, a);
-        loadLanes(h.uv1U, b);
-        loadLanes(h.uv2U, c);
-        tu = a * w + b * u + c * v;
-        loadLanes(h.uv0V, a);
-        loadLanes(h.uv1V, b);
-        loadLanes(h.uv2V, c);
-        tv = a * w + b * u + c * v;
-        FloatMask hasUvs;
-        maskOf(h.hasUvs, hasUvs);
-        tu = hasUvs ? tu : FloatLanes{};
-        tv = hasUvs ? tv : FloatLanes{};
-    }
+    interpolateLanes(h.uv0U, h.uv1U, h.uv2U, w, u, v, tu);
+    interpolateLanes(h.uv0V, h.uv1V, h.uv2V, w, u, v, tv);
+    FloatMask hasUvs;
+    maskOf(h.hasUvs, hasUvs);
+    tu = hasUvs ? tu : FloatLanes{};
+    tv = hasUvs ? tv : FloatLanes{};
     // Turned toward the ray (faceToward).
     const FloatMask front = dx * gx + dy * gy + dz * gz < 0.0f;
     nx = front ? nx : -nx, ny = front ? ny : -ny, nz = front ? nz : -nz;

@@ -7,13 +7,10 @@
 
 namespace raycache {
 
-inline bool isWholeShininess(float shininess) {
-    return shininess >= 0.0f && shininess <= 65535.0f &&
-           static_cast<float>(static_cast<int>(shininess)) == shininess;
-}
-
 inline float specularPower(float x, float shininess) {
-    if (!isWholeShininess(shininess)) return std::pow(x, shininess);
+    const bool whole = shininess >= 0.0f && shininess <= 65535.0f &&
+                       static_cast<float>(static_cast<int>(shininess)) == shininess;
+    if (!whole) return std::pow(x, shininess);
     auto exponent = static_cast<unsigned>(shininess);
     float result = 1.0f, base = x;
     while (exponent != 0) {

@@ -292,16 +292,15 @@ template <class Lanes>
 class SurfaceBatch {
 public:
     explicit SurfaceBatch(void (*compute)(const Lanes&, int, SurfacePoint*)) : compute_(compute) {}
-    // Lane storage for the next hit, which will be vertex `vertex` of the wave.
+    // The lanes, and the lane the next hit goes to; add() then says which
+    // vertex of the wave filled it.
     Lanes& lanes() { return lanes_; }
     int next() const { return filled_; }
-    template <class Sink>
-    void add(std::size_t vertex, Sink& surfaces) {
+    void add(std::size_t vertex, std::vector<SurfacePoint>& surfaces) {
         vertex_[static_cast<std::size_t>(filled_)] = vertex;
         if (++filled_ == kFloatLanes) flush(surfaces);
     }
-    template <class Sink>
-    void flush(Sink& surfaces) {
+    void flush(std::vector<SurfacePoint>& surfaces) {
         if (filled_ == 0) return;
         compute_(lanes_, filled_, out_.data());
         for (int k = 0; k < filled_; ++k)
