@@ -122,6 +122,7 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "error: %s\n", e.what());
             return 2;
         }
+        for (const std::string& note : scene->notes) std::fprintf(stderr, "note: %s\n", note.c_str());
         RenderSettings settings;
         settings.width = settings.height = size;
         settings.maxDepth = maxDepth;

@@ -257,9 +257,9 @@ int run(int argc, char** argv, const raycache::ClusterRuntime& cluster) {
     }
 
     try {
-        if (renderCmd->parsed()) raycache::runRenderCommand(render, out, group);
-        else if (cacheViewCmd->parsed()) raycache::runCacheViewCommand(cacheView, std::cout);
-        else if (viewCmd->parsed()) raycache::runViewCommand(view, std::cout);
+        if (renderCmd->parsed()) raycache::runRenderCommand(render, out, err, group);
+        else if (cacheViewCmd->parsed()) raycache::runCacheViewCommand(cacheView, std::cout, std::cerr);
+        else if (viewCmd->parsed()) raycache::runViewCommand(view, std::cout, std::cerr);
         else if (diffCmd->parsed()) raycache::runDiffCommand(diff, std::cout);
         else if (benchCmd->parsed()) {
             bench.interactive = raycache::ProgressBar::stdoutIsTerminal();

@@ -45,7 +45,7 @@ int cachedObjectId(const Scene& scene, const RayCacheSettings& settings, const s
 
 }  // namespace
 
-void runCacheViewCommand(const CacheViewCommandOptions& options, std::ostream& out) {
+void runCacheViewCommand(const CacheViewCommandOptions& options, std::ostream& out, std::ostream& notes) {
     validateRenderJobOptions(options.job);
     if (options.out.empty()) throw InputError("--out is required: the image to write the cube's cross to");
     if (options.object.empty()) throw InputError("--object is required: the name of a caching object");
@@ -53,6 +53,7 @@ void runCacheViewCommand(const CacheViewCommandOptions& options, std::ostream& o
         throw InputError("--show must be color or depth (got '" + options.show + "')");
 
     const RenderJob job = prepareRenderJob(options.job);
+    for (const std::string& note : job.scene.notes) notes << "note: " << note << "\n";
     const int objectId = cachedObjectId(job.scene, job.settings.cache, options.object);
     createParentDirectories(options.out);
     checkWritableImagePath(options.out);

@@ -19,7 +19,8 @@ struct CacheViewCommandOptions {
 // Runs the command, printing one progress line per frame and, at the end, the
 // cube's invalid texels and memory to `out`. Throws InputError (before
 // rendering) for bad options, scene input, an unknown object or one without a
-// cache, and RuntimeError when rendering or writing fails.
-void runCacheViewCommand(const CacheViewCommandOptions& options, std::ostream& out);
+// cache, and RuntimeError when rendering or writing fails. What loading the
+// scene repaired goes to `notes`, one "note: …" line each.
+void runCacheViewCommand(const CacheViewCommandOptions& options, std::ostream& out, std::ostream& notes);
 
 }  // namespace raycache

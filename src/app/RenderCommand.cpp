@@ -89,7 +89,8 @@ nlohmann::json raysJson(const RayCounts& r) {
 
 }  // namespace
 
-void runRenderCommand(const RenderCommandOptions& options, std::ostream& out, const ProcessGroup& group) {
+void runRenderCommand(const RenderCommandOptions& options, std::ostream& out, std::ostream& notes,
+                      const ProcessGroup& group) {
     std::optional<FramePathPattern> outPatternOrNone;
     std::optional<RenderJob> preparedJob;
     bool wholeFrames = false;
@@ -120,6 +121,8 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out, co
     const Scene& scene = job.scene;
     const RenderSettings& settings = job.settings;
     const int frames = job.frames;
+    if (group.isRoot())
+        for (const std::string& note : scene.notes) notes << "note: " << note << "\n";
 
     out << "scene " << scene.name << ": " << scene.objects.size() << " objects, " << scene.lights.size()
         << " lights, " << settings.width << "x" << settings.height << ", " << frames << " frames\n";

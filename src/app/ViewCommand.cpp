@@ -12,7 +12,7 @@
 
 namespace raycache {
 
-void runViewCommand(const ViewCommandOptions& options, std::ostream& out) {
+void runViewCommand(const ViewCommandOptions& options, std::ostream& out, std::ostream& notes) {
     validateRenderJobOptions(options.job);
     if (!options.screenshotPath.empty()) checkWritableImagePath(options.screenshotPath);
     if (options.warmupFrames < 0) throw InputError("--warmup must be >= 0");
@@ -21,6 +21,7 @@ void runViewCommand(const ViewCommandOptions& options, std::ostream& out) {
     if (options.job.cacheIdeal) throw InputError("--cache-ideal is a benchmark switch; the viewer does not take it");
 
     RenderJob job = prepareRenderJob(options.job);
+    for (const std::string& note : job.scene.notes) notes << "note: " << note << "\n";
     // An interactive frame must not stall for seconds while improved CDCT
     // fills whole cubes (1.5 M rays per 512² cube): spread it, about half
     // an uncached frame's rays a frame (docs/viewer.md).

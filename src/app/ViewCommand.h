@@ -23,6 +23,7 @@ struct ViewCommandOptions {
 // Checks every option (InputError) before opening a window, then runs the
 // viewer: interactive without --frames, scripted with it. Throws
 // RuntimeError when no window can be opened (no display) or rendering fails.
-void runViewCommand(const ViewCommandOptions& options, std::ostream& out);
+// What loading the scene repaired goes to `notes`, one "note: …" line each.
+void runViewCommand(const ViewCommandOptions& options, std::ostream& out, std::ostream& notes);
 
 }  // namespace raycache

@@ -20,11 +20,18 @@ public:
 
     // Warnings and errors logged so far, in order, except those known to be
     // harmless for a mesh we only take geometry from (unreferenced vertices,
-    // a missing material library).
+    // an undefined OBJ material, a camera's field of view) and those that
+    // only become part of the note (missingMaterialFiles).
     const std::vector<std::string>& problems() const { return problems_; }
+
+    // Material files (OBJ mtllib) Assimp could not find, each once, in the
+    // order met. Nothing is lost: raycache takes materials from the scene
+    // file, so the object's material is used; the loader notes it.
+    const std::vector<std::string>& missingMaterialFiles() const { return missingMaterialFiles_; }
 
 private:
     std::vector<std::string> problems_;
+    std::vector<std::string> missingMaterialFiles_;
 };
 
 }  // namespace raycache

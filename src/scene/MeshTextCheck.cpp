@@ -76,8 +76,20 @@ MeshTextProblem problem(const Line& line, const Token& token, std::string messag
     return {line.number, token.column, std::move(message)};
 }
 
-std::string quoted(std::string_view s) {
-    return "\"" + std::string(s.substr(0, 40)) + "\"";
+// At most `bytes` of the file's text, control characters shown as '?': it
+// ends up in one line on a terminal.
+std::string quoted(std::string_view s, std::size_t bytes = 40) {
+    std::string text(s.substr(0, bytes));
+    for (char& c : text)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    return "\"" + text + "\"";
+}
+
+// A whole header line for a note: up to 60 bytes, trailing blanks left
+// out, "..." where it is cut.
+std::string quotedLine(std::string_view line) {
+    line = line.substr(0, line.find_last_not_of(" \t") + 1);
+    return line.size() > 60 ? quoted(line, 57).insert(58, "...") : quoted(line, 60);
 }
 
 // Statements Assimp accepts but that carry no triangle data we read
@@ -240,9 +252,21 @@ std::optional<MeshTextProblem> checkOffText(std::string_view text) {
     return std::nullopt;
 }
 
-std::optional<MeshTextProblem> checkPlyHeader(std::string_view text) {
+std::optional<MeshTextProblem> checkPlyHeader(std::string_view text, std::string* ignoredLines) {
     int lineNumber = 0;
     std::size_t start = 0;
+    bool ascii = false;
+    // Element lines of an ASCII body, one per element, as the header announces them.
+    std::uint64_t announcedLines = 0;
+    std::string announced;  // "vertex 437645, face 871414"
+    // A line without a keyword, not yet known to be harmless. Assimp skips
+    // such a line, and it does no harm outside an element's properties (a
+    // Blender 2.47 exporter wrote one before the first element); among
+    // them it ends the property list early, and the body is then misread.
+    int unknownLine = 0;
+    std::string unknownKeyword;
+    int ignoredCount = 0;
+    std::string firstIgnored;
     while (start < text.size()) {
         std::size_t end = text.find('\n', start);
         if (end == std::string_view::npos) end = text.size();
@@ -251,18 +275,62 @@ std::optional<MeshTextProblem> checkPlyHeader(std::string_view text) {
         ++lineNumber;
         const std::size_t wordEnd = line.find_first_of(" \t");
         const std::string_view keyword = line.substr(0, wordEnd);
-        const auto at = [&](std::string message) { return MeshTextProblem{lineNumber, 1, std::move(message)}; };
+        const auto at = [&](int number, std::string message) { return MeshTextProblem{number, 1, std::move(message)}; };
+        const auto unknown = [&](int number, std::string_view word) {
+            return at(number, "unknown PLY header line " + quoted(word) +
+                                  " (expected comment, obj_info, element, property or end_header)");
+        };
         if (lineNumber == 1) {
-            if (line != "ply") return at("a PLY file starts with a line \"ply\"");
+            if (line != "ply") return at(lineNumber, "a PLY file starts with a line \"ply\"");
         } else if (lineNumber == 2) {
             const bool known = line.starts_with("format ascii ") || line.starts_with("format binary_little_endian ") ||
                                line.starts_with("format binary_big_endian ");
-            if (!known) return at("expected \"format ascii|binary_little_endian|binary_big_endian 1.0\"");
+            if (!known) return at(lineNumber, "expected \"format ascii|binary_little_endian|binary_big_endian 1.0\"");
+            ascii = line.starts_with("format ascii ");
         } else if (keyword == "end_header") {
+            if (ascii) {
+                std::uint64_t bodyLines = 0;
+                for (std::size_t p = end + 1; p < text.size() && bodyLines < announcedLines;) {
+                    const std::size_t next = std::min(text.find('\n', p), text.size());
+                    if (text.substr(p, next - p).find_first_not_of(" \t\r") != std::string_view::npos) ++bodyLines;
+                    p = next + 1;
+                }
+                // Assimp reads a truncated ASCII body without a word, making
+                // up the missing elements (faces of vertex 0).
+                if (bodyLines < announcedLines)
+                    return at(lineNumber, "the header announces " + std::to_string(announcedLines) +
+                                              " lines of data (" + announced + "), the file has " +
+                                              std::to_string(bodyLines));
+            }
+            if (ignoredLines && ignoredCount > 0)
+                *ignoredLines = ignoredCount == 1 ? "ignored PLY header line " + firstIgnored
+                                                  : "ignored " + std::to_string(ignoredCount) +
+                                                        " PLY header lines, the first line " + firstIgnored;
             return std::nullopt;
-        } else if (keyword != "comment" && keyword != "obj_info" && keyword != "element" && keyword != "property") {
-            return at("unknown PLY header line " + quoted(keyword) +
-                      " (expected comment, obj_info, element, property or end_header)");
+        } else if (keyword == "element") {
+            // "element <name> <count>"
+            std::vector<std::string_view> words;
+            for (std::size_t p = 0; p < line.size();) {
+                const std::size_t b = line.find_first_not_of(" \t", p);
+                if (b == std::string_view::npos) break;
+                const std::size_t e = std::min(line.find_first_of(" \t", b), line.size());
+                words.push_back(line.substr(b, e - b));
+                p = e;
+            }
+            const std::optional<std::int64_t> count = words.size() == 3 ? integer(words[2]) : std::nullopt;
+            if (!count || *count < 0) return at(lineNumber, "expected \"element <name> <count>\"");
+            announcedLines += static_cast<std::uint64_t>(*count);
+            announced += (announced.empty() ? "" : ", ") + std::string(words[1]) + " " + std::to_string(*count);
+            unknownLine = 0;  // it came before this element's properties: harmless
+        } else if (keyword == "property") {
+            if (unknownLine > 0) return unknown(unknownLine, unknownKeyword);
+        } else if (keyword != "comment" && keyword != "obj_info") {
+            if (unknownLine == 0) {
+                unknownLine = lineNumber;
+                unknownKeyword = std::string(keyword);
+            }
+            if (ignoredCount++ == 0)
+                firstIgnored = std::to_string(lineNumber) + " without a keyword (" + quotedLine(line) + ")";
         }
         start = end + 1;
     }
@@ -282,11 +350,12 @@ bool strictlyCheckedText(const std::filesystem::path& path) {
     return ext == ".obj" || ext == ".off" || ext == ".ply";
 }
 
-std::optional<MeshTextProblem> checkMeshText(const std::filesystem::path& path, std::string_view text) {
+std::optional<MeshTextProblem> checkMeshText(const std::filesystem::path& path, std::string_view text,
+                                             std::string* accepted) {
     const std::string ext = lowerExtension(path);
     if (ext == ".obj") return checkObjText(text);
     if (ext == ".off") return checkOffText(text);
-    if (ext == ".ply") return checkPlyHeader(text);
+    if (ext == ".ply") return checkPlyHeader(text, accepted);
     return std::nullopt;
 }
 

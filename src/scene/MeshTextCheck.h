@@ -27,17 +27,25 @@ std::optional<MeshTextProblem> checkObjText(std::string_view text);
 // vertices, vertex indices out of range, anything after the last face.
 std::optional<MeshTextProblem> checkOffText(std::string_view text);
 
-// The first problem of a PLY header (ASCII or binary files; the body is not
-// read): a first line other than "ply", a missing or unknown format line,
-// header lines other than comment, obj_info, element and property, and no
-// end_header. Assimp loops forever on a header whose end_header is damaged
-// (found by fuzzing, tests/fuzz/findings/assimp-ply-hang.ply).
-std::optional<MeshTextProblem> checkPlyHeader(std::string_view text);
+// The first problem of a PLY header: a first line other than "ply", a
+// missing or unknown format line, a malformed element line, a line without
+// a PLY keyword among an element's properties, no end_header, and, in an
+// ASCII file, fewer lines of data than the elements announced (Assimp would
+// make up the rest). Assimp loops forever on a header whose end_header is
+// damaged (found by fuzzing, tests/fuzz/findings/assimp-ply-hang.ply).
+// A line without a keyword elsewhere (Blender 2.47 wrote one after the
+// format line) is harmless: Assimp skips it. It is accepted, and when
+// `ignoredLines` is given it receives what was ignored
+// ("ignored PLY header line 3 without a keyword (...)"), else empty.
+std::optional<MeshTextProblem> checkPlyHeader(std::string_view text, std::string* ignoredLines = nullptr);
 
 // Whether the extension names a format checked here (.obj, .off, .ply, any case).
 bool strictlyCheckedText(const std::filesystem::path& path);
 
-// Dispatches on the extension (.obj, .off, .ply, any case); other formats: nullopt.
-std::optional<MeshTextProblem> checkMeshText(const std::filesystem::path& path, std::string_view text);
+// Dispatches on the extension (.obj, .off, .ply, any case); other formats:
+// nullopt. `accepted`, when given, receives what a check let pass though odd
+// (checkPlyHeader's ignored lines), else empty.
+std::optional<MeshTextProblem> checkMeshText(const std::filesystem::path& path, std::string_view text,
+                                             std::string* accepted = nullptr);
 
 }  // namespace raycache

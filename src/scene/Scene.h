@@ -28,6 +28,10 @@ struct Scene {
     SceneAnimation animation;  // objects and lights that move; empty for a still scene
     float fps = 30.0f;         // frame index / fps = the time a frame shows
     SceneRenderDefaults render;  // what the scene file asks for; command-line options win
+    // What loading repaired or ignored, one line per file that needed it
+    // ("<mesh file>: dropped 108 degenerate triangles of 871414"), in the
+    // order the files were read; the commands print each as "note: …".
+    std::vector<std::string> notes;
 };
 
 }  // namespace raycache

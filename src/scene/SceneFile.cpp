@@ -264,6 +264,7 @@ public:
         if (const Node n = child(r, "materials")) materials(n);
         objects(required(r, "objects"), scene);
         poseScene(scene, 0.0f, scene);  // a still render shows time 0
+        scene.notes = std::move(notes_);
         return scene;
     }
 
@@ -479,15 +480,17 @@ private:
         const fs::path file = referencedFile(n, "mesh");
         std::shared_ptr<const TriangleMesh>& cached = meshFiles_[fileKey(file)];
         if (!cached) {
-            TriangleMesh mesh;
+            LoadedMesh loaded;
             try {
-                mesh = loadMeshFile(file);
+                loaded = loadMeshFile(file);
             } catch (const InputError& e) {
                 fail(n, "cannot load mesh " + quote(n->get<std::string>()) + ": " + e.what());
             }
-            if (const std::string problem = validateMesh(mesh); !problem.empty())
+            if (const std::string problem = validateMesh(loaded.mesh); !problem.empty())
                 fail(n, "mesh " + quote(n->get<std::string>()) + " is unusable: " + problem);
-            cached = std::make_shared<const TriangleMesh>(std::move(mesh));
+            // Once per file, however often the scene uses it.
+            if (!loaded.note.empty()) notes_.push_back(std::move(loaded.note));
+            cached = std::make_shared<const TriangleMesh>(std::move(loaded.mesh));
         }
         return cached;
     }
@@ -987,6 +990,7 @@ private:
     }
 
     double framesReach_ = 0.0;  // farthest vertex of the last object's mesh frames from the origin
+    std::vector<std::string> notes_;  // Scene::notes, as the files are loaded
     std::string fileLabel_;
     fs::path baseDir_;
     const JsonPositions& positions_;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "scene/VertexNormals.h"
+
 namespace raycache {
 
 namespace {
@@ -22,19 +24,6 @@ bool sameShape(const std::variant<Sphere, MeshShape>& a, const std::variant<Sphe
     return ma.positions == mb.positions;
 }
 
-// Area-weighted vertex normals: a deformed mesh's stored normals no longer fit it.
-void recomputeNormals(TriangleMesh& mesh) {
-    std::fill(mesh.normals.begin(), mesh.normals.end(), Vec3{0.0f, 0.0f, 0.0f});
-    for (const auto& t : mesh.triangles) {
-        const Vec3 n = cross(mesh.positions[t[1]] - mesh.positions[t[0]], mesh.positions[t[2]] - mesh.positions[t[0]]);
-        for (std::uint32_t v : t) mesh.normals[v] += n;
-    }
-    for (Vec3& n : mesh.normals) {
-        const float l = length(n);
-        n = l > 0.0f ? n * (1.0f / l) : Vec3{0.0f, 1.0f, 0.0f};
-    }
-}
-
 }  // namespace
 
 std::variant<Sphere, MeshShape> posedShape(const ObjectAnimation& animation, float time, const Transform& placement) {
@@ -48,7 +37,8 @@ std::variant<Sphere, MeshShape> posedShape(const ObjectAnimation& animation, flo
     auto mesh = std::make_shared<TriangleMesh>(rest);
     if (animation.deformation) {
         animation.deformation->positionsAt(time, mesh->positions);
-        if (!mesh->normals.empty()) recomputeNormals(*mesh);
+        // A deformed mesh's stored normals no longer fit it.
+        if (!mesh->normals.empty()) mesh->normals = areaWeightedNormals(*mesh);
     }
     for (Vec3& p : mesh->positions) p = placement.applyToPoint(p);
     for (Vec3& n : mesh->normals) {

@@ -15,6 +15,16 @@ TriangleMesh transformed(const TriangleMesh& mesh, const Transform& t) {
     return out;
 }
 
+std::string indexOutOfRange(const TriangleMesh& mesh) {
+    const auto count = static_cast<std::uint32_t>(mesh.positions.size());
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+        for (std::uint32_t idx : mesh.triangles[i])
+            if (idx >= count)
+                return "triangle " + std::to_string(i) + " uses vertex " + std::to_string(idx) + " but the mesh has " +
+                       std::to_string(count) + " vertices";
+    return {};
+}
+
 std::string validateMesh(const TriangleMesh& mesh) {
     if (mesh.triangles.empty()) return "mesh has no triangles";
     if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size())
@@ -27,12 +37,7 @@ std::string validateMesh(const TriangleMesh& mesh) {
         if (!isFinite(p)) return "mesh has a non-finite vertex position";
     for (const Vec3& n : mesh.normals)
         if (!isFinite(n)) return "mesh has a non-finite normal";
-    const auto count = static_cast<std::uint32_t>(mesh.positions.size());
-    for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
-        for (std::uint32_t idx : mesh.triangles[i])
-            if (idx >= count)
-                return "triangle " + std::to_string(i) + " uses vertex " + std::to_string(idx) +
-                       " but the mesh has " + std::to_string(count) + " vertices";
+    if (std::string problem = indexOutOfRange(mesh); !problem.empty()) return problem;
     // Degenerate triangles among others are harmless (never hit); a mesh of
     // nothing else is invisible, which is never what was meant.
     const auto hasArea = [&](const std::array<std::uint32_t, 3>& t) {

@@ -21,6 +21,10 @@ struct TriangleMesh {
 // The mesh with every vertex and normal mapped through `t`.
 TriangleMesh transformed(const TriangleMesh& mesh, const Transform& t);
 
+// "triangle T uses vertex V but the mesh has N vertices" for the first
+// such triangle, else empty.
+std::string indexOutOfRange(const TriangleMesh& mesh);
+
 // Empty string if the mesh is usable, otherwise what is wrong with it
 // (no triangles, index out of range, non-finite values, array size mismatch,
 // only degenerate triangles).

@@ -271,6 +271,19 @@ TEST_F(Cli, RenderNotesWhatTheCacheBudgetLowered) {
         << r.out;
 }
 
+// A mesh whose trouble spoils only an attribute loads; what was repaired is
+// one "note:" line on stderr per file, however many objects use it.
+TEST_F(Cli, RenderNotesARepairedMeshOnceOnStderr) {
+    std::ofstream(dir_ / "mixed.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 1 2\n";
+    std::ofstream(dir_ / "scene.json") << R"({"objects": [{"name": "a", "shape": "mesh", "file": "mixed.obj"},
+                          {"name": "b", "shape": "mesh", "file": "mixed.obj", "transform": {"translate": [2, 0, 0]}}]})";
+    const RunResult r =
+        runRaycache("render --scene " + (dir_ / "scene.json").string() + " --width 16 --height 16", dir_);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err, "note: " + (dir_ / "mixed.obj").string() + ": dropped 1 degenerate triangle of 2\n");
+    EXPECT_EQ(r.out.find("note:"), std::string::npos) << r.out;
+}
+
 TEST_F(Cli, CacheViewWritesTheCubeCross) {
     const fs::path out = dir_ / "cross.png";
     const RunResult r = runRaycache(

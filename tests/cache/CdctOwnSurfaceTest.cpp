@@ -93,7 +93,7 @@ TEST(CdctOwnSurface, MirrorsSeenFromTheCentreAreTracedAndTheImageComesCloser) {
 // mirror, in `bowl`'s place: its spout, handle and lid reflect its body.
 TEST(CdctOwnSurface, MirrorTeapotCloserToUncachedThanCct) {
     Scene scene = *makeBuiltinScene("bowl");
-    const TriangleMesh teapot = loadMeshFile(std::string(RAYCACHE_TEST_DATA_DIR) + "/meshes/teapot.obj");
+    const TriangleMesh teapot = loadMeshFile(std::string(RAYCACHE_TEST_DATA_DIR) + "/meshes/teapot.obj").mesh;
     Box3 box;
     for (const Vec3& p : teapot.positions) box.add(p);
     const Vec3 centre = (box.lo + box.hi) * 0.5f;

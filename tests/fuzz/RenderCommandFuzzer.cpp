@@ -87,7 +87,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
 
     std::ostringstream progress;
     try {
-        raycache::runRenderCommand(options, progress);
+        raycache::runRenderCommand(options, progress, progress);
     } catch (const raycache::InputError&) {
         // The documented answer to bad options (exit status 2 in the CLI).
     } catch (const raycache::RuntimeError&) {

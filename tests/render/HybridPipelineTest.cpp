@@ -326,21 +326,21 @@ TEST(HybridPipeline, RenderCommandSelectsPipeline) {
     options.job.frames = 1;
     options.job.pipeline = "hybrid";
     options.job.gbuffer = "packets";
-    std::ostringstream out;
-    runRenderCommand(options, out);
+    std::ostringstream out, notes;
+    runRenderCommand(options, out, notes);
     EXPECT_NE(out.str().find("pipeline: hybrid, G-buffer by primary-ray packets"), std::string::npos) << out.str();
     EXPECT_NE(out.str().find("phases ms: raster"), std::string::npos) << out.str();
 
     options.job.pipeline = "ray";
     std::ostringstream rayOut;
-    runRenderCommand(options, rayOut);
+    runRenderCommand(options, rayOut, notes);
     EXPECT_NE(rayOut.str().find("pipeline: ray"), std::string::npos) << rayOut.str();
     EXPECT_EQ(rayOut.str().find("phases"), std::string::npos) << rayOut.str();
 
     options.job.pipeline = "raster";
     std::ostringstream badOut;
-    EXPECT_THROW(runRenderCommand(options, badOut), InputError);
+    EXPECT_THROW(runRenderCommand(options, badOut, notes), InputError);
     options.job.pipeline = "hybrid";
     options.job.gbuffer = "vulkan";
-    EXPECT_THROW(runRenderCommand(options, badOut), InputError);
+    EXPECT_THROW(runRenderCommand(options, badOut, notes), InputError);
 }

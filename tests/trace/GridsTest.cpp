@@ -289,7 +289,7 @@ TEST(Grids, EveryBuiltinSceneAgreesWithEmbree) {
 
 TEST(Grids, NpmBunnyAndTeapot) {
     for (const char* name : {"bunny", "teapot"}) {
-        TriangleMesh mesh = loadMeshFile(std::string(RAYCACHE_TEST_DATA_DIR) + "/meshes/" + name + ".obj");
+        TriangleMesh mesh = loadMeshFile(std::string(RAYCACHE_TEST_DATA_DIR) + "/meshes/" + name + ".obj").mesh;
         Scene s;
         s.objects.push_back(meshObject(name, std::move(mesh)));
         s.objects.push_back(meshObject("floor", scaled(makePlane(), 40.0f, {0, -4.0f, 0})));
