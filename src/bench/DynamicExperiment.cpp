@@ -25,8 +25,8 @@ using Clock = std::chrono::steady_clock;
 
 constexpr const char* kScenes[] = {"room-moving", "orbit", "cloth", "light-sweep"};
 
-int imageSide(BenchSize size) { return size == BenchSize::Tiny ? 48 : size == BenchSize::Quick ? 512 : 1024; }
-int frameCount(BenchSize size) { return size == BenchSize::Tiny ? 3 : size == BenchSize::Quick ? 24 : 60; }
+int dynamicImageSide(BenchSize size) { return size == BenchSize::Tiny ? 48 : size == BenchSize::Quick ? 512 : 1024; }
+int dynamicFrameCount(BenchSize size) { return size == BenchSize::Tiny ? 3 : size == BenchSize::Quick ? 24 : 60; }
 // The oracle traces every valid texel again after each change. It runs
 // twice: as the frames are timed (their image size, the scenes' own cubes:
 // what the goal counts), and coarse (a 256² image, 64² faces), where
@@ -38,7 +38,7 @@ struct OracleProtocol {
     int resolution;  // 0: the scenes' own
 };
 std::array<OracleProtocol, 2> oracleProtocols(BenchSize size) {
-    return {OracleProtocol{"as timed", imageSide(size), 0},
+    return {OracleProtocol{"as timed", dynamicImageSide(size), 0},
             OracleProtocol{"coarse", size == BenchSize::Tiny ? 32 : 256, 64}};
 }
 int oracleChanges(BenchSize size) { return size == BenchSize::Tiny ? 1 : 5; }
@@ -72,13 +72,13 @@ public:
         return "Dynamic scenes: CCT with per-block invalidation against uncached, along the built-in animations";
     }
     double estimatedWork(const BenchSettings& settings) const override {
-        const double mp = std::pow(imageSide(settings.size), 2) / 1e6;
-        return std::size(kScenes) * frameCount(settings.size) * 3.0 * mp;
+        const double mp = std::pow(dynamicImageSide(settings.size), 2) / 1e6;
+        return std::size(kScenes) * dynamicFrameCount(settings.size) * 3.0 * mp;
     }
 
     ExperimentOutput run(ExperimentContext& context) const override {
         const BenchSize size = context.settings.size;
-        const int side = imageSide(size), frames = frameCount(size);
+        const int side = dynamicImageSide(size), frames = dynamicFrameCount(size);
         std::vector<SceneRun> runs;
         for (const char* name : kScenes) {
             context.progress.step("dynamic: " + std::string(name));

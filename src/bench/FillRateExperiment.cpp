@@ -26,7 +26,7 @@ constexpr int kMultiResolutionFaces = 512;
 constexpr int kMultiResolutionLevels = 4;
 constexpr float kErrorBounds[] = {0.25f, 1.0f};
 
-int imageSide(BenchSize size) {
+int fillRateImageSide(BenchSize size) {
     return size == BenchSize::Tiny ? 48 : 1024;
 }
 
@@ -37,12 +37,12 @@ public:
         return "Figure 5.9: invalid texels before each frame, camera moving around one caching sphere";
     }
     double estimatedWork(const BenchSettings& settings) const override {
-        const double mp = std::pow(imageSide(settings.size), 2) / 1e6;
+        const double mp = std::pow(fillRateImageSide(settings.size), 2) / 1e6;
         return (5.0 + std::size(kErrorBounds)) * (kSteps + 1) * mp * 1.3;
     }
 
     ExperimentOutput run(ExperimentContext& context) const override {
-        const int side = imageSide(context.settings.size);
+        const int side = fillRateImageSide(context.settings.size);
         const double frameWork = static_cast<double>(side) * side / 1e6 * 1.3;
         std::optional<Scene> scene = makeBuiltinScene("behind-0");
         if (!scene) throw RuntimeError("built-in scene behind-0 is missing");

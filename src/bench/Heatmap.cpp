@@ -14,10 +14,6 @@ namespace raycache {
 
 namespace {
 
-float display(float linear) {
-    return linearToSrgb(std::clamp(linear, 0.0f, 1.0f));
-}
-
 Rgb toLinear(const Rgb& display) {
     return {srgbToLinear(display.r), srgbToLinear(display.g), srgbToLinear(display.b)};
 }
@@ -112,8 +108,8 @@ std::vector<float> pixelDifferences(const Image& a, const Image& b) {
     for (std::size_t i = 0; i < d.size(); ++i) {
         const Rgb& p = a.pixels()[i];
         const Rgb& q = b.pixels()[i];
-        d[i] = (std::fabs(display(p.r) - display(q.r)) + std::fabs(display(p.g) - display(q.g)) +
-                std::fabs(display(p.b) - display(q.b))) /
+        d[i] = (std::fabs(displayedValue(p.r) - displayedValue(q.r)) + std::fabs(displayedValue(p.g) - displayedValue(q.g)) +
+                std::fabs(displayedValue(p.b) - displayedValue(q.b))) /
                3.0f;
     }
     return d;

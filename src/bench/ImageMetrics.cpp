@@ -11,8 +11,6 @@ namespace raycache {
 
 namespace {
 
-float display(float linear) { return linearToSrgb(std::clamp(linear, 0.0f, 1.0f)); }
-
 template <typename Accumulate>
 void forEachChannelPair(const Image& a, const Image& b, Accumulate&& accumulate) {
     if (a.width() != b.width() || a.height() != b.height())
@@ -21,9 +19,9 @@ void forEachChannelPair(const Image& a, const Image& b, Accumulate&& accumulate)
     for (std::size_t i = 0; i < a.pixels().size(); ++i) {
         const Rgb& p = a.pixels()[i];
         const Rgb& q = b.pixels()[i];
-        accumulate(display(p.r) - display(q.r));
-        accumulate(display(p.g) - display(q.g));
-        accumulate(display(p.b) - display(q.b));
+        accumulate(displayedValue(p.r) - displayedValue(q.r));
+        accumulate(displayedValue(p.g) - displayedValue(q.g));
+        accumulate(displayedValue(p.b) - displayedValue(q.b));
     }
 }
 
@@ -57,8 +55,8 @@ double maskedPsnr(const Image& a, const Image& b, std::span<const unsigned char>
         const Rgb& p = a.pixels()[i];
         const Rgb& q = b.pixels()[i];
         for (const double d :
-             {static_cast<double>(display(p.r) - display(q.r)), static_cast<double>(display(p.g) - display(q.g)),
-              static_cast<double>(display(p.b) - display(q.b))})
+             {static_cast<double>(displayedValue(p.r) - displayedValue(q.r)), static_cast<double>(displayedValue(p.g) - displayedValue(q.g)),
+              static_cast<double>(displayedValue(p.b) - displayedValue(q.b))})
             sum += d * d;
         ++count;
     }

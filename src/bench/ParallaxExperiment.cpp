@@ -33,10 +33,10 @@ std::vector<CachedVariant> parallaxVariants() {
             {"cdct", "improved CDCT", CacheTechnique::Cdct}};
 }
 
-int imageSide(BenchSize size) {
+int parallaxImageSide(BenchSize size) {
     return size == BenchSize::Full ? 1024 : size == BenchSize::Quick ? 512 : 32;
 }
-int frameCount(BenchSize size) {
+int parallaxFrameCount(BenchSize size) {
     return size == BenchSize::Tiny ? 3 : 25;
 }
 
@@ -47,13 +47,13 @@ public:
         return "Figure 3.5: parallax, CCT vs CDCT vs uncached along a camera move (parallax scene)";
     }
     double estimatedWork(const BenchSettings& settings) const override {
-        const double mp = std::pow(imageSide(settings.size), 2) / 1e6;
-        return frameCount(settings.size) * mp * (1.0 + 1.5 * static_cast<double>(parallaxVariants().size()));
+        const double mp = std::pow(parallaxImageSide(settings.size), 2) / 1e6;
+        return parallaxFrameCount(settings.size) * mp * (1.0 + 1.5 * static_cast<double>(parallaxVariants().size()));
     }
 
     ExperimentOutput run(ExperimentContext& context) const override {
-        const int side = imageSide(context.settings.size);
-        const int frames = frameCount(context.settings.size);
+        const int side = parallaxImageSide(context.settings.size);
+        const int frames = parallaxFrameCount(context.settings.size);
         const double mp = static_cast<double>(side) * side / 1e6;
         std::optional<Scene> maybeScene = makeBuiltinScene("parallax");
         if (!maybeScene) throw RuntimeError("built-in scene parallax is missing");

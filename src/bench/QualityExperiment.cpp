@@ -59,7 +59,7 @@ std::vector<Protocol> fillProtocols() {
              "orbit fill, visible fill", true, kOrbitFillFrames, 1, kDefaultErrorBound, false, VisibleFill::Exact}};
 }
 
-int imageSide(BenchSize size) {
+int qualityImageSide(BenchSize size) {
     return size == BenchSize::Full ? 1024 : size == BenchSize::Quick ? 512 : 40;
 }
 
@@ -76,7 +76,7 @@ public:
         return "Figures 5.1, 5.4, 5.5: CCT image quality vs face resolution, far and close-up (room)";
     }
     double estimatedWork(const BenchSettings& settings) const override {
-        const double mp = std::pow(imageSide(settings.size), 2) / 1e6;
+        const double mp = std::pow(qualityImageSide(settings.size), 2) / 1e6;
         // Per view: the reference, then per resolution the same-view fill (2
         // frames) and every orbit protocol (fill frames + the measured one).
         const double orbitProtocols = static_cast<double>(fillProtocols().size()) - 1.0;
@@ -84,7 +84,7 @@ public:
     }
 
     ExperimentOutput run(ExperimentContext& context) const override {
-        const int side = imageSide(context.settings.size);
+        const int side = qualityImageSide(context.settings.size);
         const double frameWork = static_cast<double>(side) * side / 1e6 * 1.5;
         std::optional<Scene> maybeScene = makeBuiltinScene("room");
         if (!maybeScene) throw RuntimeError("built-in scene room is missing");

@@ -65,7 +65,7 @@ std::vector<int> imageSides(BenchSize size) {
     return {};
 }
 
-int frameCount(BenchSize size) {
+int renderCacheFrameCount(BenchSize size) {
     return size == BenchSize::Full ? 60 : size == BenchSize::Quick ? 30 : 4;
 }
 
@@ -218,13 +218,13 @@ public:
     double estimatedWork(const BenchSettings& settings) const override {
         double work = 0.0;
         for (int side : imageSides(settings.size))
-            work += frameCount(settings.size) * static_cast<double>(kScenes.size()) * std::pow(side, 2) / 1e6 * 2.5;
+            work += renderCacheFrameCount(settings.size) * static_cast<double>(kScenes.size()) * std::pow(side, 2) / 1e6 * 2.5;
         return work;
     }
 
     ExperimentOutput run(ExperimentContext& context) const override {
         const std::vector<int> sides = imageSides(context.settings.size);
-        const int frames = frameCount(context.settings.size);
+        const int frames = renderCacheFrameCount(context.settings.size);
         const std::vector<RcVariant> variants = rcVariants();
         const RenderCacheSettings rcDefaults;
         const LoadAverage loadBefore = currentLoadAverage();

@@ -18,7 +18,7 @@ std::vector<double> displayChannel(const Image& image, int channel) {
     for (std::size_t i = 0; i < out.size(); ++i) {
         const Rgb& p = image.pixels()[i];
         const float linear = channel == 0 ? p.r : channel == 1 ? p.g : p.b;
-        out[i] = linearToSrgb(std::clamp(linear, 0.0f, 1.0f));
+        out[i] = displayedValue(linear);
     }
     return out;
 }

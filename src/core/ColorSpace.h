@@ -18,6 +18,10 @@ inline float linearToSrgb(float linear) {
     return static_cast<float>(1.055 * std::pow(v, 1.0 / 2.4) - 0.055);
 }
 
+// A linear value as a display shows it, clamped to [0, 1] then sRGB-encoded:
+// what the image metrics (PSNR, SSIM, heat maps) compare.
+inline float displayedValue(float linear) { return linearToSrgb(std::clamp(linear, 0.0f, 1.0f)); }
+
 // The 8-bit sRGB code of a linear value, as PNG files and the viewer show it:
 // clamped to [0, 1], NaN as 0.
 inline unsigned char linearToSrgb8(float linear) {

@@ -37,6 +37,11 @@ private:
     InputLocation where_;
 };
 
+// A file whose content is wrong where no finer location (line, field) is known.
+[[noreturn]] inline void failFile(const std::string& file, const std::string& message) {
+    throw InputError(InputLocation{.file = file}, message);
+}
+
 class RuntimeError : public std::runtime_error {
 public:
     using std::runtime_error::runtime_error;

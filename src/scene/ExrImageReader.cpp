@@ -26,10 +26,6 @@
 namespace raycache {
 namespace {
 
-[[noreturn]] void fail(const std::filesystem::path& path, const std::string& message) {
-    throw InputError(InputLocation{.file = path.string()}, message);
-}
-
 // OpenEXR's messages may hold line breaks; our errors are one line.
 std::string oneLine(std::string text) {
     for (char& c : text)
@@ -100,18 +96,18 @@ ColourChannels chooseColour(const std::filesystem::path& path, const exr_attr_ch
     else if (channels.num_channels == 1)
         used = {&channels.entries[0], &channels.entries[0], &channels.entries[0]};
     else
-        fail(path, "OpenEXR image has the channels " + channelNames(channels) +
+        failFile(path.string(), "OpenEXR image has the channels " + channelNames(channels) +
                        ": expected R, G and B, or Y (or a single channel) for grey");
     for (const exr_attr_chlist_entry_t* c : used) {
         const std::string name = printableName(c->name.str);
         // Colour is never stored as integers; reading them as float would
         // make an id or a count look like radiance.
         if (c->pixel_type == EXR_PIXEL_UINT)
-            fail(path, "OpenEXR channel \"" + name +
+            failFile(path.string(), "OpenEXR channel \"" + name +
                            "\" holds 32-bit integers, which are not supported; save the image with half or float "
                            "channels only");
         if (c->x_sampling != 1 || c->y_sampling != 1)
-            fail(path, "OpenEXR channel \"" + name + "\" is subsampled (" + std::to_string(c->x_sampling) + "x" +
+            failFile(path.string(), "OpenEXR channel \"" + name + "\" is subsampled (" + std::to_string(c->x_sampling) + "x" +
                            std::to_string(c->y_sampling) + "), which is not supported; save it at full resolution");
     }
     return {used[0]->name.str, used[1]->name.str, used[2]->name.str};
@@ -181,12 +177,12 @@ ExrLayout readLayout(const std::filesystem::path& path) {
     // Strict mode would also refuse names of 32-255 bytes without the
     // long-names flag, which the C++ library reads; so any report refuses.
     if (started != EXR_ERR_SUCCESS || !coreMessage.empty())
-        fail(path, "cannot read OpenEXR header: " +
+        failFile(path.string(), "cannot read OpenEXR header: " +
                        oneLine(coreMessage.empty() ? exr_get_default_error_message(started) : coreMessage));
     const auto check = [&](exr_result_t result) {
         if (result == EXR_ERR_SUCCESS) return;
         if (coreMessage.empty()) coreMessage = exr_get_default_error_message(result);
-        fail(path, "cannot read OpenEXR header: " + oneLine(coreMessage));
+        failFile(path.string(), "cannot read OpenEXR header: " + oneLine(coreMessage));
     };
 
     int parts = 0;
@@ -194,8 +190,8 @@ ExrLayout readLayout(const std::filesystem::path& path) {
     exr_storage_t storage = EXR_STORAGE_LAST_TYPE;
     check(exr_get_storage(opened, 0, &storage));
     if (storage == EXR_STORAGE_DEEP_SCANLINE || storage == EXR_STORAGE_DEEP_TILED)
-        fail(path, "deep EXR is not supported, save the image flat");
-    if (storage != EXR_STORAGE_SCANLINE && storage != EXR_STORAGE_TILED) fail(path, "OpenEXR part of unknown type");
+        failFile(path.string(), "deep EXR is not supported, save the image flat");
+    if (storage != EXR_STORAGE_SCANLINE && storage != EXR_STORAGE_TILED) failFile(path.string(), "OpenEXR part of unknown type");
 
     exr_attr_box2i_t window{};
     check(exr_get_data_window(opened, 0, &window));
@@ -215,15 +211,15 @@ ExrLayout readLayout(const std::filesystem::path& path) {
     std::error_code sizeError;
     const std::uintmax_t fileBytes = std::filesystem::file_size(path, sizeError);
     if (!sizeError && chunks * 8 > fileBytes)
-        fail(path, "OpenEXR file of " + std::to_string(fileBytes) + " bytes is too short for the offsets of its " +
+        failFile(path.string(), "OpenEXR file of " + std::to_string(fileBytes) + " bytes is too short for the offsets of its " +
                        std::to_string(chunks) + " blocks: truncated or corrupt");
 
     if (!channelListsEndWhereTheySay(path, parts))
-        fail(path, "OpenEXR channel list does not end where its size says: corrupt");
+        failFile(path.string(), "OpenEXR channel list does not end where its size says: corrupt");
 
     const exr_attr_chlist_t* channels = nullptr;
     check(exr_get_channels(opened, 0, &channels));
-    if (!channels || channels->num_channels < 1) fail(path, "OpenEXR image has no channels");
+    if (!channels || channels->num_channels < 1) failFile(path.string(), "OpenEXR image has no channels");
     ExrLayout layout{.minX = window.min.x, .minY = window.min.y, .maxX = window.max.x, .maxY = window.max.y};
     layout.colour = chooseColour(path, *channels);
 
@@ -248,7 +244,7 @@ ExrLayout readLayout(const std::filesystem::path& path) {
         layout.bandRows = static_cast<int>(std::clamp<long long>(rows, 1, height));
     }
     if (blockBytes > maxExrBlockBytes)
-        fail(path, "OpenEXR blocks of " + std::to_string(blockBytes >> 20) + " MiB, more than the limit of " +
+        failFile(path.string(), "OpenEXR blocks of " + std::to_string(blockBytes >> 20) + " MiB, more than the limit of " +
                        std::to_string(maxExrBlockBytes >> 20) +
                        " MiB: corrupt, or save the image with smaller tiles or fewer channels");
     return layout;
@@ -266,7 +262,7 @@ Image decode(const std::filesystem::path& path, const ExrLayout& layout) {
     if (window.min.x != layout.minX || window.min.y != layout.minY || window.max.x != layout.maxX ||
         window.max.y != layout.maxY || !channels.findChannel(layout.colour.r) ||
         !channels.findChannel(layout.colour.g) || !channels.findChannel(layout.colour.b))
-        fail(path, "OpenEXR's two readings of the header differ: corrupt");
+        failFile(path.string(), "OpenEXR's two readings of the header differ: corrupt");
 
     const int width = layout.maxX - layout.minX + 1;
     const int height = layout.maxY - layout.minY + 1;
@@ -310,7 +306,7 @@ Image readExrImage(const std::filesystem::path& path) {
         throw;
     } catch (const std::exception& e) {
         // OpenEXR reports corrupt data by throwing (Iex::BaseExc, a std::exception).
-        fail(path, "cannot decode OpenEXR image: " + oneLine(e.what()));
+        failFile(path.string(), "cannot decode OpenEXR image: " + oneLine(e.what()));
     }
     checkImageFinite(path, image);
     return image;

@@ -32,10 +32,6 @@ ImageFormat formatOf(const std::filesystem::path& path) {
     return ImageFormat::Unsupported;
 }
 
-[[noreturn]] void fail(const std::filesystem::path& path, const std::string& message) {
-    throw InputError(InputLocation{.file = path.string()}, message);
-}
-
 struct StbFree {
     void operator()(void* p) const { stbi_image_free(p); }
 };
@@ -50,7 +46,7 @@ std::string stbReason() {
 void checkStbHeader(const std::filesystem::path& path) {
     int width = 0, height = 0, channels = 0;
     if (!stbi_info(path.c_str(), &width, &height, &channels))
-        fail(path, "cannot read image: " + stbReason());
+        failFile(path.string(), "cannot read image: " + stbReason());
     checkImageSize(path, width, height);
     // No format stb reads compresses pixels much better than deflate's
     // ~1032:1, so a header claiming far more pixels than that for its file's
@@ -61,17 +57,17 @@ void checkStbHeader(const std::filesystem::path& path) {
     const std::uintmax_t bytes = std::filesystem::file_size(path, error);
     const auto pixels = static_cast<std::uintmax_t>(width) * static_cast<std::uintmax_t>(height);
     if (!error && pixels > kMaxPixelsPerByte * bytes)
-        fail(path, "header claims " + std::to_string(width) + "x" + std::to_string(height) + " pixels in a file of " +
+        failFile(path.string(), "header claims " + std::to_string(width) + "x" + std::to_string(height) + " pixels in a file of " +
                        std::to_string(bytes) + " bytes: corrupt");
 }
 
 Image loadSrgb8(const std::filesystem::path& path) {
     checkStbHeader(path);
     // stb_image would silently tone-map HDR data to 8 bits; refuse instead.
-    if (stbi_is_hdr(path.c_str())) fail(path, "file holds Radiance HDR data; name it .hdr");
+    if (stbi_is_hdr(path.c_str())) failFile(path.string(), "file holds Radiance HDR data; name it .hdr");
     int width = 0, height = 0, channels = 0;
     std::unique_ptr<unsigned char, StbFree> data(stbi_load(path.c_str(), &width, &height, &channels, 3));
-    if (!data) fail(path, "cannot decode image: " + stbReason());
+    if (!data) failFile(path.string(), "cannot decode image: " + stbReason());
     checkImageSize(path, width, height);
 
     std::array<float, 256> toLinear{};
@@ -90,10 +86,10 @@ Image loadSrgb8(const std::filesystem::path& path) {
 Image loadRadianceHdr(const std::filesystem::path& path) {
     checkStbHeader(path);
     // stbi_loadf would accept 8-bit files too, guessing a gamma; only real HDR is linear.
-    if (!stbi_is_hdr(path.c_str())) fail(path, "not a Radiance HDR file");
+    if (!stbi_is_hdr(path.c_str())) failFile(path.string(), "not a Radiance HDR file");
     int width = 0, height = 0, channels = 0;
     std::unique_ptr<float, StbFree> data(stbi_loadf(path.c_str(), &width, &height, &channels, 3));
-    if (!data) fail(path, "cannot decode Radiance HDR image: " + stbReason());
+    if (!data) failFile(path.string(), "cannot decode Radiance HDR image: " + stbReason());
     checkImageSize(path, width, height);
 
     Image image(width, height);
@@ -111,11 +107,11 @@ Image loadRadianceHdr(const std::filesystem::path& path) {
 Image loadImageFile(const std::filesystem::path& path) {
     const ImageFormat format = formatOf(path);
     if (format == ImageFormat::Unsupported)
-        fail(path, "unsupported image format '" + path.extension().string() +
+        failFile(path.string(), "unsupported image format '" + path.extension().string() +
                        "' (expected .png, .jpg, .jpeg, .bmp, .tga, .hdr or .exr)");
     std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) fail(path, "image file not found");
-    if (!std::filesystem::is_regular_file(path, ec)) fail(path, "not a regular file");
+    if (!std::filesystem::exists(path, ec)) failFile(path.string(), "image file not found");
+    if (!std::filesystem::is_regular_file(path, ec)) failFile(path.string(), "not a regular file");
 
     switch (format) {
         case ImageFormat::Srgb8: return loadSrgb8(path);
@@ -123,7 +119,7 @@ Image loadImageFile(const std::filesystem::path& path) {
         case ImageFormat::OpenExr: return readExrImage(path);
         case ImageFormat::Unsupported: break;
     }
-    fail(path, "unsupported image format");
+    failFile(path.string(), "unsupported image format");
 }
 
 }  // namespace raycache

@@ -18,7 +18,8 @@ namespace {
 using raycache::test::lineCount;
 using raycache::test::RunResult;
 
-RunResult runRaycache(const std::string& args, const fs::path& dir) {
+// Its stderr goes to a file beside `dir`, so that `dir` holds only what raycache wrote.
+RunResult runRaycacheStderrBeside(const std::string& args, const fs::path& dir) {
     const fs::path errFile = dir.parent_path() / (dir.filename().string() + "-stderr.txt");
     RunResult result = raycache::test::runShell(std::string(RAYCACHE_BINARY) + " " + args, errFile);
     fs::remove(errFile);
@@ -55,20 +56,20 @@ protected:
 
 TEST_F(DiffBenchCli, DiffPrintsMetricsOfKnownImages) {
     // Black against half white: MSE 0.5 -> PSNR 10 log10(2) = 3.01 dB, MAE 0.5.
-    const RunResult r = runRaycache("diff " + path("black.png") + " " + path("half.png"), dir_);
+    const RunResult r = runRaycacheStderrBeside("diff " + path("black.png") + " " + path("half.png"), dir_);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find("MAE   0.500000"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("PSNR  3.01 dB"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("SSIM  "), std::string::npos) << r.out;
 
     // Identical: infinite PSNR, SSIM 1.
-    const RunResult same = runRaycache("diff " + path("white.png") + " " + path("white.png"), dir_);
+    const RunResult same = runRaycacheStderrBeside("diff " + path("white.png") + " " + path("white.png"), dir_);
     ASSERT_EQ(same.exitCode, 0) << same.err;
     EXPECT_NE(same.out.find("PSNR  inf (identical)"), std::string::npos) << same.out;
     EXPECT_NE(same.out.find("SSIM  1.00000"), std::string::npos) << same.out;
 
     // Black against white (constant): SSIM = C1 / (1 + C1) = 0.0001 / 1.0001.
-    const RunResult bw = runRaycache("diff " + path("black.png") + " " + path("white.png"), dir_);
+    const RunResult bw = runRaycacheStderrBeside("diff " + path("black.png") + " " + path("white.png"), dir_);
     ASSERT_EQ(bw.exitCode, 0) << bw.err;
     EXPECT_NE(bw.out.find("PSNR  0.00 dB"), std::string::npos) << bw.out;
     EXPECT_NE(bw.out.find("SSIM  0.00010"), std::string::npos) << bw.out;
@@ -77,7 +78,7 @@ TEST_F(DiffBenchCli, DiffPrintsMetricsOfKnownImages) {
 
 TEST_F(DiffBenchCli, DiffWritesAHeatmap) {
     const RunResult r =
-        runRaycache("diff " + path("black.png") + " " + path("half.png") + " --heatmap " + path("map.png"), dir_);
+        runRaycacheStderrBeside("diff " + path("black.png") + " " + path("half.png") + " --heatmap " + path("map.png"), dir_);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_TRUE(fs::exists(dir_ / "map.png"));
     EXPECT_EQ(fileCount(), inputs_ + 1);  // no temporary file left
@@ -96,7 +97,7 @@ TEST_F(DiffBenchCli, DiffBadInputIsOneLineExitTwoAndNoHeatmap) {
         "diff " + path("black.png") + " " + path("black.png") + " --no-such-flag",
     };
     for (const std::string& args : cases) {
-        const RunResult r = runRaycache(args, dir_);
+        const RunResult r = runRaycacheStderrBeside(args, dir_);
         EXPECT_EQ(r.exitCode, 2) << args;
         EXPECT_EQ(lineCount(r.err), 1) << args << "\n" << r.err;
         EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << args << "\n" << r.err;
@@ -105,7 +106,7 @@ TEST_F(DiffBenchCli, DiffBadInputIsOneLineExitTwoAndNoHeatmap) {
 }
 
 TEST_F(DiffBenchCli, BenchListsAndRejectsBadOptionsBeforeRunning) {
-    const RunResult list = runRaycache("bench --list", dir_);
+    const RunResult list = runRaycacheStderrBeside("bench --list", dir_);
     ASSERT_EQ(list.exitCode, 0) << list.err;
     EXPECT_EQ(lineCount(list.out), 9);
     for (const char* name :
@@ -116,7 +117,7 @@ TEST_F(DiffBenchCli, BenchListsAndRejectsBadOptionsBeforeRunning) {
     const std::string out = " --out " + (dir_ / "results").string();
     for (const std::string& args : {"bench no-such-experiment" + out, "bench table-5.1 --quick --full" + out,
                                     "bench" + out, "bench all --threads -1" + out}) {
-        const RunResult r = runRaycache(args, dir_);
+        const RunResult r = runRaycacheStderrBeside(args, dir_);
         EXPECT_EQ(r.exitCode, 2) << args;
         EXPECT_EQ(lineCount(r.err), 1) << args << "\n" << r.err;
         EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << args << "\n" << r.err;
@@ -126,7 +127,7 @@ TEST_F(DiffBenchCli, BenchListsAndRejectsBadOptionsBeforeRunning) {
 
 TEST_F(DiffBenchCli, BenchRunsOneExperimentWithPlainProgressLines) {
     // Not a terminal: plain lines, no carriage returns or escape codes.
-    const RunResult r = runRaycache("bench fill-rate --tiny --threads 2 --out " + (dir_ / "results").string(), dir_);
+    const RunResult r = runRaycacheStderrBeside("bench fill-rate --tiny --threads 2 --out " + (dir_ / "results").string(), dir_);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(r.out.find('\r'), std::string::npos);
     EXPECT_EQ(r.out.find('\033'), std::string::npos);
@@ -138,7 +139,7 @@ TEST_F(DiffBenchCli, BenchRunsOneExperimentWithPlainProgressLines) {
 
 TEST_F(DiffBenchCli, HelpForDiffAndBench) {
     for (const char* args : {"diff --help", "bench --help"}) {
-        const RunResult r = runRaycache(args, dir_);
+        const RunResult r = runRaycacheStderrBeside(args, dir_);
         EXPECT_EQ(r.exitCode, 0) << args;
         EXPECT_NE(r.out.find("Usage"), std::string::npos) << args;
     }
@@ -146,7 +147,7 @@ TEST_F(DiffBenchCli, HelpForDiffAndBench) {
 
 TEST_F(DiffBenchCli, BenchResultsDirectoryThatIsAFileIsARuntimeError) {
     std::ofstream(dir_ / "taken") << "not a directory";
-    const RunResult r = runRaycache("bench fill-rate --tiny --out " + (dir_ / "taken").string(), dir_);
+    const RunResult r = runRaycacheStderrBeside("bench fill-rate --tiny --out " + (dir_ / "taken").string(), dir_);
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_EQ(lineCount(r.err), 1) << r.err;
     EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << r.err;

@@ -4,6 +4,7 @@
 // bit-exact image comparison.
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -11,6 +12,9 @@
 #include "scene/Scene.h"
 
 namespace raycache::cdct_test {
+
+// The depth a CDCT texel holds for a ray that met nothing.
+inline constexpr float kInf = std::numeric_limits<float>::infinity();
 
 // One mirror sphere of radius 1 at the origin, cached with `technique`.
 inline Scene oneMirror(CacheTechnique technique, int resolution) {
@@ -22,6 +26,9 @@ inline Scene oneMirror(CacheTechnique technique, int resolution) {
     s.objects.push_back(SceneObject{"m", Sphere{{0, 0, 0}, 1}, mirror, {0, 0, 0}});
     return s;
 }
+
+// The same mirror cached with CCT.
+inline Scene oneCctMirror(int resolution) { return oneMirror(CacheTechnique::Cct, resolution); }
 
 // A uniformly random unit direction.
 inline Vec3 randomDirection(std::mt19937& rng) {

@@ -26,8 +26,6 @@ using namespace raycache::cdct_test;
 
 namespace {
 
-constexpr float kInf = std::numeric_limits<float>::infinity();
-
 Scene oneMirror(int resolution) { return cdct_test::oneMirror(CacheTechnique::Cdct, resolution); }
 
 // Goes through the pre-fill protocol as a renderer does: a frame asks for the

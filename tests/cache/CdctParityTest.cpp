@@ -26,9 +26,7 @@ using namespace raycache::cdct_test;
 
 namespace {
 
-constexpr float kInf = std::numeric_limits<float>::infinity();
-
-Scene oneMirror(int resolution = 16) { return cdct_test::oneMirror(CacheTechnique::CdctParity, resolution); }
+Scene oneParityMirror(int resolution = 16) { return cdct_test::oneMirror(CacheTechnique::CdctParity, resolution); }
 
 // Makes every texel valid: stores from the centre along each texel's centre
 // direction, with hit distance `depth` (infinity: a miss, stored at maxDepth).
@@ -57,7 +55,7 @@ bool allFinite(const Image& image) {
 }  // namespace
 
 TEST(Cdct, StoreAddressesByTheDirectionFromTheCentreToTheHitPoint) {
-    RayCache cache(oneMirror(), {});
+    RayCache cache(oneParityMirror(), {});
     const CachingCube& cube = cache.cube(0);
     auto workers = cache.makeWorkers(1);
     cache.beginFrame(workers);
@@ -100,7 +98,7 @@ TEST(Cdct, StoreAddressesByTheDirectionFromTheCentreToTheHitPoint) {
 }
 
 TEST(Cdct, SearchMeetingInvalidTexelsReturnsNothing) {
-    RayCache cache(oneMirror(), {});
+    RayCache cache(oneParityMirror(), {});
     auto workers = cache.makeWorkers(1);
     cache.beginFrame(workers);
     workers[0].beginBatch(0);
@@ -132,7 +130,7 @@ TEST(Cdct, SearchMeetingInvalidTexelsReturnsNothing) {
 TEST(Cdct, SearchFindsTheStoredSurface) {
     // Every texel holds a surface 5 units from the centre (a sphere around
     // the object); the search must return the texel where the ray meets it.
-    RayCache cache(oneMirror(64), {});
+    RayCache cache(oneParityMirror(64), {});
     fillCube(cache, 5.0f);
     const CachingCube& cube = cache.cube(0);
     auto workers = cache.makeWorkers(1);
@@ -160,7 +158,7 @@ TEST(Cdct, TinyEpsilonAndHugeMaxDepthStillTerminate) {
     settings.cdctEpsilonOverride = 1e-9f;  // below float resolution at these distances
     settings.cdctMaxDepthOverride = 1e5f;  // ceil(2 * 1e5 / 0.2) = 1e6 linear steps, the limit
     for (float depth : {kInf, 7.0f}) {
-        RayCache cache(oneMirror(), settings);
+        RayCache cache(oneParityMirror(), settings);
         fillCube(cache, depth);
         auto workers = cache.makeWorkers(1);
         cache.beginFrame(workers);

@@ -5,6 +5,7 @@
 // uncached render (the ground truth) and across thread counts.
 #include <gtest/gtest.h>
 
+#include "CdctFixtures.h"
 #include "PathRender.h"
 
 #include <cmath>
@@ -25,22 +26,8 @@ namespace {
 // committed a little below: the lowest of frames 2-4 was 30.30 dB.
 constexpr double kMultiMinPsnr = 29.8;
 
-Vec3 randomDirection(std::mt19937& rng) {
-    std::normal_distribution<float> g;
-    for (;;) {
-        const Vec3 d{g(rng), g(rng), g(rng)};
-        if (dot(d, d) > 1e-6f) return normalize(d);
-    }
-}
-
-Scene oneMirror(int resolution) {
-    Scene s;
-    Material mirror;
-    mirror.reflectivity = 0.8f;
-    mirror.cache = {CacheTechnique::Cct, resolution};
-    s.objects.push_back(SceneObject{"mirror", Sphere{Vec3{}, 1}, mirror, Vec3{}});
-    return s;
-}
+using cdct_test::oneCctMirror;
+using cdct_test::randomDirection;
 
 }  // namespace
 
@@ -129,8 +116,8 @@ TEST(MultiResolutionCube, CoarseAnswersEqualACubeOfThatSizeFedTheSameStores) {
     RayCacheSettings multi;
     multi.cubeLevels = 3;
     multi.levelErrorBound = 1.0f;
-    RayCache a(oneMirror(64), multi);
-    RayCache b(oneMirror(16), {});
+    RayCache a(oneCctMirror(64), multi);
+    RayCache b(oneCctMirror(16), {});
     auto wa = a.makeWorkers(1), wb = b.makeWorkers(1);
     std::mt19937 rng(3);
     a.beginFrame(wa);
@@ -183,7 +170,7 @@ TEST(MultiResolutionCube, ACoarseTexelDoesNotAnswerARayThatWouldSeeSomethingElse
     multi.cubeLevels = 4;
     multi.levelErrorBound = 1.0f;
     for (const float hitDistance : {1.0f, INFINITY}) {
-        RayCache cache(oneMirror(64), multi);
+        RayCache cache(oneCctMirror(64), multi);
         auto workers = cache.makeWorkers(1);
         const Vec3 stored = normalize(Vec3{1.0f, 0.02f, 0.03f});
         const Vec3 near = normalize(Vec3{1.0f, 0.05f, 0.03f});
@@ -209,7 +196,7 @@ TEST(MultiResolutionCube, ANarrowFootprintReadsOnlyTheFinestLevel) {
     RayCacheSettings multi;
     multi.cubeLevels = 4;
     multi.levelErrorBound = 1.0f;
-    RayCache cache(oneMirror(64), multi);
+    RayCache cache(oneCctMirror(64), multi);
     auto workers = cache.makeWorkers(1);
     const Vec3 stored = normalize(Vec3{1.0f, 0.02f, 0.03f});
     cache.beginFrame(workers);
@@ -246,12 +233,12 @@ TEST(MultiResolutionCube, SingleLevelSettingsAreRejectedOutsideTheirRange) {
     for (const int levels : {0, 9}) {
         RayCacheSettings s;
         s.cubeLevels = levels;
-        EXPECT_THROW(RayCache::validate(oneMirror(64), s), InputError) << levels;
+        EXPECT_THROW(RayCache::validate(oneCctMirror(64), s), InputError) << levels;
     }
     for (const float bound : {0.0f, -1.0f, std::nanf(""), INFINITY, 2000.0f}) {
         RayCacheSettings s;
         s.levelErrorBound = bound;
-        EXPECT_THROW(RayCache::validate(oneMirror(64), s), InputError) << bound;
+        EXPECT_THROW(RayCache::validate(oneCctMirror(64), s), InputError) << bound;
     }
 }
 

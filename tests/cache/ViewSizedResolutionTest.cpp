@@ -21,7 +21,7 @@ using namespace raycache;
 
 namespace {
 
-Scene oneMirror(int resolution) { return cdct_test::oneMirror(CacheTechnique::Cct, resolution); }
+using cdct_test::oneCctMirror;
 using cdct_test::randomDirection;
 
 ViewSizedResolution::LookupsByLevel lookupsAt(int level, std::uint64_t count) {
@@ -149,7 +149,7 @@ TEST(ViewSizedCube, WideFootprintsShrinkTheCubeAndNarrowOnesGrowIt) {
     RayCacheSettings settings;
     settings.resolutionFromView = true;
     settings.levelErrorBound = 1.0f;
-    RayCache cache(oneMirror(64), settings);
+    RayCache cache(oneCctMirror(64), settings);
     auto workers = cache.makeWorkers(1);
     const auto lookUp = [&](const Vec3& d, float spread, Rgb& color, int& storeTexel) {
         const RayCache::Query q{0, d * 1.001f, d, spread};
@@ -248,7 +248,7 @@ TEST(ViewSizedCube, ClearingStartsAgainAtTheFullResolution) {
     RayCacheSettings settings;
     settings.resolutionFromView = true;
     settings.levelErrorBound = 1.0f;
-    RayCache cache(oneMirror(64), settings);
+    RayCache cache(oneCctMirror(64), settings);
     auto workers = cache.makeWorkers(1);
     cache.beginFrame(workers);
     workers[0].beginBatch(0);

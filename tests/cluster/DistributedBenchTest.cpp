@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <mutex>
 #include <set>
@@ -26,6 +27,13 @@ std::set<std::filesystem::path> scratchDirectories() {
 // directory is gone.
 TEST(DistributedBench, EveryExperimentsResultsReachProcessZero) {
     TempDir dir;
+    // Scratch directories go under TMPDIR: a private one, so that tests
+    // running beside this one (ctest -j) cannot add or remove directories
+    // while it counts them. Each test case is a process of its own.
+    const std::filesystem::path privateTemp = dir.path() / "tmp";
+    std::filesystem::create_directories(privateTemp);
+    ASSERT_EQ(setenv("TMPDIR", privateTemp.c_str(), /*overwrite=*/1), 0);
+    ASSERT_EQ(std::filesystem::temp_directory_path(), privateTemp);
     const std::set<std::filesystem::path> scratchBefore = scratchDirectories();
     BenchCommandOptions options;
     options.experiments = {"table-5.3", "fill-rate", "quality"};

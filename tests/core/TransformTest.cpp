@@ -5,7 +5,7 @@
 using namespace raycache;
 
 namespace {
-void expectNear(const Vec3& a, const Vec3& b, float tol = 1e-5f) {
+void expectVec3Near(const Vec3& a, const Vec3& b, float tol = 1e-5f) {
     EXPECT_NEAR(a.x, b.x, tol);
     EXPECT_NEAR(a.y, b.y, tol);
     EXPECT_NEAR(a.z, b.z, tol);
@@ -23,10 +23,10 @@ TEST(Transform, TranslateRotateScaleCompose) {
     const Transform t = Transform::translate({1, 2, 3}) * Transform::rotate({0, 0, 1}, 90.0f) *
                         Transform::scale({2, 2, 2});
     // Scale first, then rotate x onto y, then translate.
-    expectNear(t.applyToPoint({1, 0, 0}), {1, 4, 3});
-    expectNear(t.applyToVector({1, 0, 0}), {0, 2, 0});
+    expectVec3Near(t.applyToPoint({1, 0, 0}), {1, 4, 3});
+    expectVec3Near(t.applyToVector({1, 0, 0}), {0, 2, 0});
     EXPECT_NEAR(t.determinant(), 8.0f, 1e-5f);
-    expectNear(t.translation(), {1, 2, 3});
+    expectVec3Near(t.translation(), {1, 2, 3});
 }
 
 TEST(Transform, NormalsUseInverseTranspose) {

@@ -5,35 +5,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <memory>
-#include <numbers>
 
-#include "core/Parallel.h"
-#include "render/FrameRenderer.h"
-#include "trace/TraceScene.h"
+#include "AnalyticScene.h"
 
 using namespace raycache;
+using namespace raycache::analytic;
 
 namespace {
-
-constexpr int kSize = 64;
-
-struct DVec {
-    double x, y, z;
-};
-DVec operator-(DVec a, DVec b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-DVec operator+(DVec a, DVec b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-DVec operator*(DVec a, double s) { return {a.x * s, a.y * s, a.z * s}; }
-double dot(DVec a, DVec b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-DVec unit(DVec a) { return a * (1.0 / std::sqrt(dot(a, a))); }
-
-// Camera at (0,0,5) looking down -z with a 40 degree vertical fov, square image.
-DVec pixelDirection(int x, int y) {
-    const double t = std::tan(20.0 * std::numbers::pi / 180.0);
-    const double sx = (2.0 * (x + 0.5) / kSize - 1.0) * t;
-    const double sy = (1.0 - 2.0 * (y + 0.5) / kSize) * t;
-    return unit({sx, sy, -1.0});
-}
 
 // Nearest positive hit of a ray from `o` on the unit sphere at the origin.
 bool hitUnitSphere(DVec o, DVec d, double& t) {
@@ -46,19 +24,8 @@ bool hitUnitSphere(DVec o, DVec d, double& t) {
 Scene unitSphereScene(const Material& material) {
     Scene s;
     s.objects.push_back(SceneObject{"ball", Sphere{{0, 0, 0}, 1.0f}, material, {0, 0, 0}});
-    s.camera = Camera{{0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 40.0f};
+    s.camera = analyticCamera();
     return s;
-}
-
-Image render(const Scene& scene) {
-    RenderSettings settings;
-    settings.width = settings.height = kSize;
-    const TraceScene tracer(scene);
-    const Parallel parallel(2);
-    const FrameRenderer renderer(scene, tracer, settings, parallel);
-    Image film;
-    renderer.render(scene.camera, film);
-    return film;
 }
 
 // Pixels whose ray passes within this distance of the silhouette are skipped:
@@ -81,7 +48,7 @@ TEST(AnalyticShading, LambertSphereUnderDirectionalLight) {
     sun.intensity = Rgb{1.0f};
     scene.lights.push_back(sun);
     scene.environment = Environment::constant(Rgb{0.25f, 0.5f, 0.75f});
-    const Image image = render(scene);
+    const Image image = renderAnalytic(scene);
 
     const DVec toLight = unit({1, 1, 1}), eye{0, 0, 5};
     int checked = 0;
@@ -124,7 +91,7 @@ TEST(AnalyticShading, MirrorSphereReflectsTheEnvironmentCube) {
         faces[static_cast<std::size_t>(f)] = img;
     }
     scene.environment = Environment::cubeFaces(faces);
-    const Image image = render(scene);
+    const Image image = renderAnalytic(scene);
 
     const DVec eye{0, 0, 5};
     int checked = 0;

@@ -17,12 +17,12 @@ using namespace raycache;
 
 namespace {
 
-constexpr int kSize = 128;
+constexpr int kReferenceSide = 128;
 // References were rendered by this renderer; the margin only absorbs
 // floating-point differences between compilers and optimization levels.
 constexpr double kMinPsnr = 45.0;
 
-Image renderFrame(const Scene& scene, int threads, int size = kSize) {
+Image renderFrame(const Scene& scene, int threads, int size = kReferenceSide) {
     RenderSettings settings;
     settings.width = size;
     settings.height = size;
