@@ -61,8 +61,9 @@ const std::string kJob = "--scene room --width 320 --height 180 --frames 6 --thr
 }  // namespace
 
 TEST_F(ViewCli, ScriptedRunShowsTheOfflineRenderOfTheSameCamera) {
-    if (!haveXvfbRun())
+    if (!haveXvfbRun()) {
         RAYCACHE_SKIP_OR_FAIL_IN_CI("xvfb-run is not installed (scripts/install-deps.sh installs xvfb)");
+    }
     const fs::path shot = dir_ / "view.png", offline = dir_ / "offline.png";
     const RunResult view = run(underXvfb("view " + kJob + " --hide-ui --screenshot " + shot.string()), dir_);
     ASSERT_EQ(view.exitCode, 0) << view.err << view.out;
@@ -90,8 +91,9 @@ TEST_F(ViewCli, ScriptedRunShowsTheOfflineRenderOfTheSameCamera) {
 }
 
 TEST_F(ViewCli, TheScreenshotIsTheWindowPanelIncluded) {
-    if (!haveXvfbRun())
+    if (!haveXvfbRun()) {
         RAYCACHE_SKIP_OR_FAIL_IN_CI("xvfb-run is not installed (scripts/install-deps.sh installs xvfb)");
+    }
     const fs::path withPanel = dir_ / "panel.png", withoutPanel = dir_ / "frame.png";
     ASSERT_EQ(run(underXvfb("view " + kJob + " --screenshot " + withPanel.string()), dir_).exitCode, 0);
     ASSERT_EQ(run(underXvfb("view " + kJob + " --hide-ui --screenshot " + withoutPanel.string()), dir_).exitCode, 0);
@@ -100,8 +102,9 @@ TEST_F(ViewCli, TheScreenshotIsTheWindowPanelIncluded) {
 }
 
 TEST_F(ViewCli, LevelOverlayTintsEachPixelByWhatTheCacheDidForIt) {
-    if (!haveXvfbRun())
+    if (!haveXvfbRun()) {
         RAYCACHE_SKIP_OR_FAIL_IN_CI("xvfb-run is not installed (scripts/install-deps.sh installs xvfb)");
+    }
     const fs::path plain = dir_ / "plain.png", tinted = dir_ / "levels.png";
     ASSERT_EQ(run(underXvfb("view " + kJob + " --hide-ui --screenshot " + plain.string()), dir_).exitCode, 0);
     const RunResult view =

@@ -392,8 +392,9 @@ protected:
         setenv("LIBGL_ALWAYS_SOFTWARE", "1", /*overwrite=*/0);
         std::string whyNot;
         gl_ = GlContext::create(whyNot);
-        if (!gl_)
+        if (!gl_) {
             RAYCACHE_SKIP_OR_FAIL_IN_CI("No headless OpenGL 3.3+ context through EGL, so no GL oracle: " << whyNot);
+        }
         if (gl_->renderer().find("llvmpipe") == std::string::npos) {
             GTEST_SKIP() << "The oracle is Mesa llvmpipe, but the context renders with '" << gl_->renderer() << "'";
         }

