@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "TempDir.h"
 #include "ShellRun.h"
 
 namespace raycache::test {
@@ -18,8 +19,7 @@ protected:
     explicit CliScratchTest(std::string prefix) : prefix_(std::move(prefix)) {}
 
     void SetUp() override {
-        dir_ = std::filesystem::temp_directory_path() /
-               (prefix_ + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        dir_ = ::raycache::scratchPathForThisTest(prefix_);
         std::filesystem::remove_all(dir_);
         std::filesystem::create_directories(dir_);
     }

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "TempDir.h"
 #include "ShellRun.h"
 #include "scene/ImageLoader.h"
 
@@ -36,8 +37,7 @@ std::string lineValue(const std::string& text, const std::string& key) {
 class Cli : public ::testing::Test {
 protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("raycache-cli-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        dir_ = raycache::scratchPathForThisTest("raycache-cli-");
         fs::remove_all(dir_);
         fs::create_directories(dir_);
     }

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <string>
 
+#include "TempDir.h"
 #include "ShellRun.h"
 #include "core/Image.h"
 #include "render/ImageWriter.h"
@@ -29,8 +30,7 @@ RunResult runRaycacheStderrBeside(const std::string& args, const fs::path& dir) 
 class DiffBenchCli : public ::testing::Test {
 protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("raycache-diffbench-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        dir_ = raycache::scratchPathForThisTest("raycache-diffbench-");
         fs::remove_all(dir_);
         fs::create_directories(dir_);
         raycache::Image black(8, 8), white(8, 8), half(8, 8), other(9, 8);

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <string>
 
+#include "TempDir.h"
 #include "CiRequirement.h"
 #include "ShellRun.h"
 #include "bench/ImageMetrics.h"
@@ -46,8 +47,7 @@ std::string underXvfb(const std::string& args) {
 class ViewCli : public ::testing::Test {
 protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("raycache-view-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        dir_ = raycache::scratchPathForThisTest("raycache-view-");
         fs::remove_all(dir_);
         fs::create_directories(dir_);
     }

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 
+#include "TempDir.h"
 #include "core/Errors.h"
 #include "scene/SceneFile.h"
 
@@ -30,7 +31,7 @@ TEST(SceneFileRobustness, MutatedExampleNeverCrashes) {
     const std::string original = readFile(source / "example.json");
     ASSERT_FALSE(original.empty());
     // Written next to the example so its relative mesh paths still resolve.
-    const fs::path dir = fs::temp_directory_path() / "raycache-scene-fuzz";
+    const fs::path dir = scratchPathForThisTest("raycache-scene-fuzz-");
     fs::remove_all(dir);
     fs::create_directories(dir);
     fs::copy(source / "meshes", dir / "meshes", fs::copy_options::recursive);
