@@ -56,8 +56,7 @@ nlohmann::json sceneUpdateJson(const SceneUpdateStats& u) {
 }
 
 nlohmann::json renderCacheJson(const RenderCacheStats& s) {
-    return {{"reproject_ms", s.reprojectMs}, {"reproject_bin_ms", s.reprojectBinMs},
-            {"reproject_resolve_ms", s.reprojectResolveMs}, {"maps_ms", s.mapsMs}, {"filter_ms", s.filterMs},
+    return {{"reproject_ms", s.reprojectMs}, {"maps_ms", s.mapsMs}, {"filter_ms", s.filterMs},
             {"reconstruction_ms", s.reconstructionMs()}, {"trace_ms", s.traceMs}, {"reshade_ms", s.reshadeMs},
             {"sample_generation_ms", s.sampleGenerationMs()}, {"pixels", s.pixels}, {"budget", s.budget},
             {"fresh", s.fresh}, {"predicted", s.predicted}, {"reprojected", s.reprojected},

@@ -171,8 +171,6 @@ nlohmann::json frameJson(int frame, const FrameRecord& r, std::int64_t mirrorPix
     j["ms"] = r.ms;
     j["reconstruction_ms"] = s.reconstructionMs();
     j["reproject_ms"] = s.reprojectMs;
-    j["reproject_bin_ms"] = s.reprojectBinMs;
-    j["reproject_resolve_ms"] = s.reprojectResolveMs;
     j["maps_ms"] = s.mapsMs;
     j["filter_ms"] = s.filterMs;
     j["sample_generation_ms"] = s.sampleGenerationMs();
@@ -688,8 +686,6 @@ private:
                      {{"ms", get([](const FrameRecord& x) { return x.ms; })},
                       {"reconstruction_ms", get([](const FrameRecord& x) { return x.rc.reconstructionMs(); })},
                       {"reproject_ms", get([](const FrameRecord& x) { return x.rc.reprojectMs; })},
-                      {"reproject_bin_ms", get([](const FrameRecord& x) { return x.rc.reprojectBinMs; })},
-                      {"reproject_resolve_ms", get([](const FrameRecord& x) { return x.rc.reprojectResolveMs; })},
                       {"maps_ms", get([](const FrameRecord& x) { return x.rc.mapsMs; })},
                       {"filter_ms", get([](const FrameRecord& x) { return x.rc.filterMs; })},
                       {"sample_generation_ms", get([](const FrameRecord& x) { return x.rc.sampleGenerationMs(); })},

@@ -16,14 +16,10 @@
 namespace raycache {
 
 // Whether the sample at pixel (x, y) of `image` (which must hold one; the
-// margin must be at least 1) is hidden by the rule above. `Keys`: a
-// PointImage, or what has its keyAt(x, y) for the 3x3 pixels around (x, y)
-// (reprojection's ResolvedTile, while the tile is in cache).
-template <typename Keys>
-bool hiddenByNearerNeighbours(const Keys& image, int x, int y, float threshold) {
+// margin must be at least 1) is hidden by the rule above.
+inline bool hiddenByNearerNeighbours(const PointImage& image, int x, int y, float threshold) {
     // Compared as packed keys: no float decoding, empty pixels never nearer.
-    const std::uint32_t nearerKey =
-        PointImage::nearerThan(PointImage::depthOf(image.keyAt(x, y)) * (1.0f - threshold));
+    const std::uint32_t nearerKey = PointImage::nearerThan(image.depthAt(x, y) * (1.0f - threshold));
     int nearer = 0, occupied = 0;
     for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {

@@ -3,9 +3,9 @@
 // pixel, the nearest, over the image plus a margin past each edge where
 // samples are kept though not shown. A pixel holds only its sample's depth:
 // the sample itself sits in the pixel's own slot of the sample pool
-// (pixelIndex), so the image needs no slot. The depth test that chooses
-// the samples runs in reproject()'s tile buffers; this image holds its
-// outcome for depth culling, holes and new samples, four bytes per pixel.
+// (pixelIndex), so the image needs no slot. Four bytes per pixel: the
+// depth test reads and writes the image once per sample, and its size is
+// what that costs.
 #include <bit>
 #include <cstdint>
 #include <limits>
@@ -26,6 +26,20 @@ public:
         return x >= -margin_ && y >= -margin_ && x < width_ + margin_ && y < height_ + margin_;
     }
 
+    // The depth test, for a caller that makes sure no other thread touches
+    // pixel (x, y) meanwhile (no atomic instruction, which cost more than
+    // the projection when every sample made one): `offered` (a key()) wins
+    // the pixel if it is smaller than the key the pixel holds. An equal key
+    // does not: the caller, who knows which samples the two are, breaks the
+    // tie. `held` gets the key the pixel held (emptyKey() if none). Returns
+    // whether the offer won.
+    bool offerUnshared(int x, int y, std::uint32_t offered, std::uint32_t& held) {
+        std::uint32_t& current = keys_[index(x, y)];
+        held = current;
+        if (offered >= held) return false;
+        current = offered;
+        return true;
+    }
     // Puts a sample at depth `depth` at pixel (x, y) unconditionally (a
     // freshly traced sample).
     void place(int x, int y, float depth) { keys_[index(x, y)] = key(depth); }

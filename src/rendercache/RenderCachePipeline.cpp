@@ -160,9 +160,7 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     scratch_.resize(static_cast<std::size_t>(parallel_.threadCount()));
     for (TileScratch& s : scratch_) s.beginFrame();
 
-    // Reprojection, and on each tile as it finishes (its keys still in
-    // cache): holes, depth culling (a still camera puts every sample back
-    // where it was traced: nothing to cull) and priorities.
+    // Reprojection.
     auto start = Clock::now();
     const ScreenProjection projection(camera, width, height);
     const std::vector<Vec3> origins = objectOrigins(scene_);
@@ -172,55 +170,54 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     const bool predicts = moved && rc.predictShare > 0.0f;
     const Camera next = predicts ? predictNextCamera(*previousCamera_, camera) : camera;
     const ScreenProjection nextProjection(next, width, height);
+    const ReprojectionCounts reprojected =
+        reproject(pool_, spare_, scene_, projection, rc.maxAge, image_, parallel_, reprojectionScratch_,
+                  predicts ? &nextProjection : nullptr, &nextPixel_);
+    std::swap(pool_, spare_);
+    stats.evicted = reprojected.evicted;
+    stats.lost = reprojected.lost;
+    stats.reprojectMs = millisecondsSince(start);
+
+    // Depth culling, holes, the priority and request maps.
+    start = Clock::now();
     std::vector<PixelState>& state = overlays_.state;
     state.resize(static_cast<std::size_t>(pixels));
     std::vector<float>& priority = priority_;
     priority.resize(static_cast<std::size_t>(pixels));  // every pixel written below
+    // One pass: holes, depth culling (a still camera puts every sample back
+    // where it was traced: nothing to cull) and priorities. Counts per row
+    // go to locals, written once (no false sharing).
     const bool cull = moved && rc.depthCullThreshold > 0.0f;
+    std::vector<std::int64_t> holesPerRow(static_cast<std::size_t>(height), 0);
+    std::vector<std::int64_t> culledPerRow(static_cast<std::size_t>(height), 0);
+    std::vector<std::int64_t> reprojectedPerRow(static_cast<std::size_t>(height), 0);
     const float agePriority = 0.5f / static_cast<float>(rc.maxAge);
-    // Counts per tile go to locals, added once per tile (sums: the same on
-    // any thread count).
-    std::atomic<std::int64_t> holesFound{0}, culledFound{0}, reprojectedFound{0};
-    const ResolvedTileVisitor classify = [&](const ResolvedTile& tile) {
-        const TileRange& r = tile.pixels();
-        std::int64_t tileHoles = 0, tileCulled = 0, tileReprojected = 0;
-        for (int y = std::max(0, r.y0); y < std::min(height, r.y1); ++y)
-            for (int x = std::max(0, r.x0); x < std::min(width, r.x1); ++x) {
-                const auto i = static_cast<std::size_t>(y * width + x);
-                if (tile.keyAt(x, y) == PointImage::emptyKey()) {
-                    state[i] = PixelState::Hole;
-                    priority[i] = 1.0f;
-                    ++tileHoles;
-                } else if (cull && hiddenByNearerNeighbours(tile, x, y, rc.depthCullThreshold)) {
-                    state[i] = PixelState::Culled;
-                    priority[i] = 1.0f;
-                    ++tileCulled;
-                } else {
-                    state[i] = PixelState::Reprojected;
-                    // `spare_` receives the winners (the pools swap below).
-                    priority[i] = agePriority * static_cast<float>(spare_.look[image_.pixelIndex(x, y)].age);
-                    ++tileReprojected;
-                }
+    parallel_.forEachIndex(height, [&](int y, int) {
+        std::int64_t rowHoles = 0, rowCulled = 0, rowReprojected = 0;
+        for (int x = 0; x < width; ++x) {
+            const auto i = static_cast<std::size_t>(y * width + x);
+            if (!image_.hasSample(x, y)) {
+                state[i] = PixelState::Hole;
+                priority[i] = 1.0f;
+                ++rowHoles;
+            } else if (cull && hiddenByNearerNeighbours(image_, x, y, rc.depthCullThreshold)) {
+                state[i] = PixelState::Culled;
+                priority[i] = 1.0f;
+                ++rowCulled;
+            } else {
+                state[i] = PixelState::Reprojected;
+                priority[i] = agePriority * static_cast<float>(pool_.look[image_.pixelIndex(x, y)].age);
+                ++rowReprojected;
             }
-        holesFound.fetch_add(tileHoles, std::memory_order_relaxed);
-        culledFound.fetch_add(tileCulled, std::memory_order_relaxed);
-        reprojectedFound.fetch_add(tileReprojected, std::memory_order_relaxed);
-    };
-    const ReprojectionCounts reprojected =
-        reproject(pool_, spare_, scene_, projection, rc.maxAge, image_, parallel_, reprojectionScratch_,
-                  predicts ? &nextProjection : nullptr, &nextPixel_, kReprojectionTileSide, classify);
-    std::swap(pool_, spare_);
-    stats.evicted = reprojected.evicted;
-    stats.lost = reprojected.lost;
-    stats.reprojectBinMs = reprojected.binMs;
-    stats.reprojectResolveMs = reprojected.resolveMs;
-    stats.reprojectMs = millisecondsSince(start);
-
-    // The priority and request maps.
-    start = Clock::now();
-    stats.culled = culledFound.load();
-    stats.reprojected = reprojectedFound.load();
-    const std::int64_t holes = holesFound.load() + stats.culled;
+        }
+        reprojectedPerRow[static_cast<std::size_t>(y)] = rowReprojected;
+        holesPerRow[static_cast<std::size_t>(y)] = rowHoles + rowCulled;
+        culledPerRow[static_cast<std::size_t>(y)] = rowCulled;
+    });
+    for (std::int64_t c : culledPerRow) stats.culled += c;
+    for (std::int64_t r : reprojectedPerRow) stats.reprojected += r;
+    std::int64_t holes = 0;
+    for (std::int64_t h : holesPerRow) holes += h;
     stats.holes = holes;
     stats.refreshedAll = !previousCamera_ || static_cast<double>(holes) > static_cast<double>(rc.refreshAllHoleShare) * pixels;
     const int budget = stats.refreshedAll ? pixels : chooseBudget(pixels);

@@ -8,10 +8,8 @@ namespace raycache {
 
 struct RenderCacheStats {
     // Reconstruction, wall milliseconds.
-    double reprojectMs = 0.0;  // aging, eviction, projection, depth test; per tile: depth culling, holes, priorities
-    double reprojectBinMs = 0.0;      // of which: projecting the samples and binning them by screen tile
-    double reprojectResolveMs = 0.0;  // of which: the tiles' depth tests, second chances, copies, culling, priorities
-    double mapsMs = 0.0;              // request maps, prediction maps
+    double reprojectMs = 0.0;  // aging, eviction, projection, depth test
+    double mapsMs = 0.0;       // depth culling, hole detection, priority and request maps, prediction maps
     double filterMs = 0.0;     // 3x3 filter, 7x7 prefilter, writing the image
     // Sample generation, wall milliseconds.
     double traceMs = 0.0;    // the requested pixels (this frame's camera and the predicted one)

@@ -15,21 +15,8 @@
 // As on the GPU, the winners are copied into a second pool at their pixel's
 // slot (SamplePool): the next frame, the image passes and new samples then
 // all go through the pool in pixel order.
-//
-// How: one pass projects every sample once and bins it by screen tile;
-// then each thread resolves whole tiles in a small buffer of packed 64-bit
-// keys (depth high, slot low) with a plain compare-min (no atomics, no
-// order dependence), gives the tile's losers their second chance there,
-// and copies the tile's winners into the other pool. The second chance
-// moves a sample one pixel and looks at its landing pixel's 8 neighbours,
-// so a tile is resolved with an apron of the samples landing around it:
-// the outcome is the same as over the whole image at once. The tile and a
-// one-pixel ring around it are then handed, still in cache, to the
-// caller's visitor (depth culling, holes and priorities read each pixel's
-// 3x3 neighbourhood): a pass over the whole image saved.
 #include <cmath>
 #include <cstdint>
-#include <functional>
 #include <limits>
 #include <vector>
 
@@ -46,72 +33,24 @@ struct ReprojectionCounts {
     std::int64_t moved = 0;    // of those, on a neighbour of the pixel they landed in
     std::int64_t lost = 0;     // behind a nearer sample, past the margin or behind the eye: freed
     std::int64_t evicted = 0;  // too old: freed
-    // Wall milliseconds of the two steps: projecting and binning the
-    // samples by tile; the tiles' depth tests, second chances, copies and
-    // the caller's visitor.
-    double binMs = 0.0, resolveMs = 0.0;
 };
 
-// Side of the screen tiles reprojection resolves one at a time: a tile's
-// z-buffer with its apron, (64 + 6)^2 eight-byte keys = 39 KB, stays in L2
-// (Walter et al. 2002 found z-buffering bound by L2 latency and cut
-// projection and z-buffering from 42 to 25 ms with a tiled z-buffer).
-constexpr int kReprojectionTileSide = 64;
-
-// The depth test's keys: the depth's bits (PointImage::key) above the
-// sample's slot, so that the minimum is the nearest sample and equal depths
-// go to the lower slot; the depth's sign bit (which no depth sets) marks a
-// second-chance offer.
-constexpr std::uint64_t kNoReprojectedSample = std::numeric_limits<std::uint64_t>::max();
-constexpr std::uint64_t kSecondChanceMark = std::uint64_t{1} << 63;
-
-// A tile whose depth test is finished, handed to reproject()'s caller on
-// the thread that resolved it while its keys are in cache.
-class ResolvedTile {
-public:
-    ResolvedTile(const std::uint64_t* keys, std::size_t rowLength, int firstX, int firstY, const TileRange& pixels)
-        : keys_(keys), rowLength_(rowLength), firstX_(firstX), firstY_(firstY), pixels_(pixels) {}
-    // The tile's pixels, in image coordinates: margin pixels are negative
-    // or past the image's edge.
-    const TileRange& pixels() const { return pixels_; }
-    // As PointImage::keyAt after reprojection, for the tile's pixels and a
-    // one-pixel ring around them (x in [x0 - 1, x1], y in [y0 - 1, y1]),
-    // pixels past the margin empty.
-    std::uint32_t keyAt(int x, int y) const {
-        const std::uint64_t key = keys_[static_cast<std::size_t>(y - firstY_) * rowLength_ +
-                                        static_cast<std::size_t>(x - firstX_)];
-        return key == kNoReprojectedSample ? PointImage::emptyKey()
-                                           : static_cast<std::uint32_t>((key & ~kSecondChanceMark) >> 32);
-    }
-
-private:
-    const std::uint64_t* keys_;
-    std::size_t rowLength_;
-    int firstX_, firstY_;  // the pixel of keys_[0]
-    TileRange pixels_;
-};
-using ResolvedTileVisitor = std::function<void(const ResolvedTile&)>;
-
-// Kept from frame to frame (fresh memory costs page faults): the samples
-// that landed, binned by screen tile, and each worker's tile z-buffer.
+// Kept from frame to frame (fresh memory costs page faults): per band of
+// rows, the samples that landed too far from it to be tested in parallel,
+// and the samples that lost the first round with where they landed (only
+// they get a second chance, so only they are visited again, and their
+// projection is not repeated). Keeping every sample's landing instead cost
+// more in writes than projecting the displaced losers again.
 struct ReprojectionScratch {
-    // A sample that landed: its packed key (depth bits high, source slot
-    // low: the minimum is the nearest sample, ties to the lower slot) and
-    // its continuous pixel position (the second chance needs the fraction).
     struct Landed {
-        std::uint64_t key;
-        float x, y;
+        std::uint32_t slot;  // in the source pool
+        float x, y;          // continuous pixel position
+        float depth;
     };
-    // Per (chunk of source slots, tile), chunk * tileCount() + tile: each
-    // chunk of the source pool bins its samples into its own lists, so the
-    // binning needs neither atomics nor a second pass, and a tile reads the
-    // lists of every chunk. A sample within three pixels of a tile's edge
-    // is also in the neighbouring tile's list (its apron).
-    std::vector<std::vector<Landed>> bins;
-    std::vector<std::vector<std::uint64_t>> tileKeys;  // per worker: one tile's z-buffer and apron
-    std::vector<std::int32_t> nextPixel;               // per slot of the source pool, see reproject()
-    int tilesX = 0, tilesY = 0;                        // of the last reproject()
-    int tileCount() const { return tilesX * tilesY; }
+    std::vector<std::vector<Landed>> far;     // per band
+    std::vector<std::vector<Landed>> losers;  // per band, then those of the offers made on one thread
+    std::vector<std::int32_t> nextPixel;      // per slot of the source pool, see reproject()
+    std::vector<std::uint32_t> winner;        // per pixel: the source slot holding it in the depth test
 };
 
 // Every object's origin, indexed like Scene::objects: a sample's position
@@ -173,16 +112,9 @@ inline std::int32_t imagePixelThrough(const SamplePool& pool, std::size_t slot, 
 // is resized to `to`'s pixel slots and gets, for each, imagePixelThrough()
 // `next` of the sample it now holds (-1 where it holds none): projected
 // in the same pass as through `projection`, not in another pass over the pool.
-// `tileSide` (>= 1) is the side of the screen tiles the depth test is
-// resolved in; the outcome does not depend on it (tests make it small to
-// put many samples on tile borders).
-// `onTile`, when set, is called once per tile, on any thread, after the
-// tile's winners are in `to` and its depths in `image` (its ring's are
-// only in the ResolvedTile until every tile is done).
 ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene& scene,
                              const ScreenProjection& projection, int maxAge, PointImage& image,
                              const Parallel& parallel, ReprojectionScratch& scratch,
-                             const ScreenProjection* next = nullptr, std::vector<std::int32_t>* nextPixel = nullptr,
-                             int tileSide = kReprojectionTileSide, const ResolvedTileVisitor& onTile = {});
+                             const ScreenProjection* next = nullptr, std::vector<std::int32_t>* nextPixel = nullptr);
 
 }  // namespace raycache

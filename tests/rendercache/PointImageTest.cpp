@@ -1,12 +1,47 @@
-// PointImage: place, clear, the margin, and keys that order as depths do.
+// PointImage: the depth test keeps the nearest offer whatever the order and
+// leaves ties to its caller; place, clear and the margin.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <limits>
 
 #include "rendercache/PointImage.h"
 
 using namespace raycache;
+
+TEST(PointImage, NearestOfferWinsInEveryOrderAndAnEqualDepthDoesNotDisplaceTheHolder) {
+    std::array<float, 5> depths{3.0f, 1.5f, 2.0f, 1.5f, 1.5000001f};
+    std::sort(depths.begin(), depths.end());
+    int permutations = 0;
+    do {
+        PointImage image;
+        image.reset(4, 3, 1);
+        int wins = 0;
+        for (float d : depths) {
+            std::uint32_t held;
+            const bool won = image.offerUnshared(2, 1, PointImage::key(d), held);
+            ASSERT_EQ(won, PointImage::key(d) < held);
+            wins += won ? 1 : 0;
+        }
+        ASSERT_TRUE(image.hasSample(2, 1));
+        ASSERT_EQ(image.depthAt(2, 1), 1.5f);
+        ASSERT_GE(wins, 1);
+        ++permutations;
+    } while (std::next_permutation(depths.begin(), depths.end()));
+    EXPECT_EQ(permutations, 60);  // 5! / 2! (two equal depths)
+    PointImage image;
+    image.reset(4, 3, 1);
+    std::uint32_t held;
+    EXPECT_TRUE(image.offerUnshared(0, 0, PointImage::key(2.0f), held));
+    EXPECT_EQ(held, PointImage::emptyKey());
+    EXPECT_FALSE(image.offerUnshared(0, 0, PointImage::key(2.0f), held)) << "a tie is the caller's to break";
+    EXPECT_EQ(held, PointImage::key(2.0f));
+    EXPECT_FALSE(image.offerUnshared(0, 0, PointImage::key(std::numeric_limits<float>::infinity()), held));
+    EXPECT_TRUE(image.offerUnshared(1, 0, PointImage::key(std::numeric_limits<float>::infinity()), held))
+        << "the background (infinitely far) wins an empty pixel";
+}
 
 TEST(PointImage, PlaceOverridesClearEmptiesAndCoversIncludesTheMargin) {
     PointImage image;
@@ -17,10 +52,12 @@ TEST(PointImage, PlaceOverridesClearEmptiesAndCoversIncludesTheMargin) {
     EXPECT_EQ(image.pixelCount(), 9u * 7u);
     EXPECT_FALSE(image.hasSample(0, 0));
     EXPECT_EQ(image.keyAt(0, 0), PointImage::emptyKey());
-    image.place(1, 1, 2.0f);
+    std::uint32_t held;
+    image.offerUnshared(1, 1, PointImage::key(2.0f), held);
     image.place(1, 1, 9.0f);  // farther, but placed unconditionally
     EXPECT_EQ(image.depthAt(1, 1), 9.0f);
-    EXPECT_LT(PointImage::key(2.0f), image.keyAt(1, 1)) << "nearer is a smaller key";
+    EXPECT_FALSE(image.offerUnshared(1, 1, PointImage::key(10.0f), held)) << "a farther offer loses to a placed sample";
+    EXPECT_EQ(image.depthAt(1, 1), 9.0f);
     image.clear(1, 1);
     EXPECT_FALSE(image.hasSample(1, 1));
     image.place(-2, -2, 1.0f);

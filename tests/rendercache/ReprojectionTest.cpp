@@ -7,8 +7,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <map>
-#include <mutex>
-#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -274,8 +272,8 @@ TEST(Reprojection, ThroughThePredictedCameraEveryPixelSlotKnowsWhereItsSampleWil
 
 namespace {
 
-// The rule of reproject() written plainly, one sample at a time over the
-// whole image, as the oracle for the tiled implementation: pixel -> (depth, slot)
+// The rule of reproject() written plainly, one sample at a time, as the
+// oracle for the banded, list-driven implementation: pixel -> (depth, slot)
 // of its winner, and whether it won on the second chance.
 struct OracleWinner {
     float depth;
@@ -335,13 +333,11 @@ std::map<std::pair<int, int>, OracleWinner> oracle(const SamplePool& pool, const
 
 }  // namespace
 
-// A tall image and samples that land far from the rows they sat in (in
-// other tiles than their neighbours in the pool), plus predicted samples
-// in the overflow: whatever the tile side (1 pixel: every second chance
-// crosses a tile border) and the thread count, the outcome is the plain
-// rule's, bit for bit; and each tile handed to the visitor shows, over
-// the tile and its one-pixel ring, the keys the image ends with.
-TEST(Reprojection, AnyTileSideAndThreadCountGiveThePlainRulesOutcome) {
+// A tall image (several bands of rows tested in parallel) and samples that
+// land far from the rows they sat in (moved more than half a band: tested
+// on one thread afterwards), plus predicted samples in the overflow:
+// whatever the path, the outcome is the plain rule's, on any thread count.
+TEST(Reprojection, BandsFarSamplesAndOverflowGiveThePlainRulesOutcome) {
     constexpr int kW = 6, kH = 160, kM = 2;
     const Scene scene = twoObjects();
     // 90 degrees vertically; at depth d, pixel row py is at height d (80 - py) / 80.
@@ -373,111 +369,29 @@ TEST(Reprojection, AnyTileSideAndThreadCountGiveThePlainRulesOutcome) {
     std::size_t moved = 0;
     for (const auto& [pixel, winner] : expected) moved += winner.moved ? 1 : 0;
     ASSERT_GT(moved, 10u) << "the second chance must be exercised";
-    for (int side : {1, 2, 3, 5, 16, 64})
-        for (int threads : {1, 2, 3}) {
-            image.reset(kW, kH, kM);
-            SamplePool to;
-            to.reset(pixelSlots, 64);
-            ReprojectionScratch scratch;
-            std::mutex mutex;
-            std::vector<std::tuple<int, int, std::uint32_t>> seen;  // pixel, key
-            std::int64_t tilePixels = 0;
-            int visited = 0;
-            const ResolvedTileVisitor record = [&](const ResolvedTile& tile) {
-                const TileRange& r = tile.pixels();
-                const std::lock_guard lock(mutex);
-                ++visited;
-                tilePixels += static_cast<std::int64_t>(r.x1 - r.x0) * (r.y1 - r.y0);
-                for (int y = r.y0 - 1; y <= r.y1; ++y)
-                    for (int x = r.x0 - 1; x <= r.x1; ++x) seen.emplace_back(x, y, tile.keyAt(x, y));
-            };
-            const ReprojectionCounts c = reproject(from, to, scene, projection, 3, image, Parallel(threads), scratch,
-                                                   nullptr, nullptr, side, record);
-            EXPECT_GT(scratch.tileCount(), 1) << side;
-            EXPECT_EQ(visited, scratch.tileCount()) << side;
-            EXPECT_EQ(tilePixels, static_cast<std::int64_t>(image.pixelCount())) << "the tiles cover image and margin";
-            for (const auto& [x, y, key] : seen)
-                ASSERT_EQ(key, image.covers(x, y) ? image.keyAt(x, y) : PointImage::emptyKey())
-                    << x << "," << y << ", side " << side << ", " << threads << " threads";
-            EXPECT_EQ(c.placed, static_cast<std::int64_t>(expected.size())) << threads << " threads, side " << side;
-            EXPECT_EQ(c.moved, static_cast<std::int64_t>(moved)) << threads << " threads, side " << side;
-            for (int y = -kM; y < kH + kM; ++y)
-                for (int x = -kM; x < kW + kM; ++x) {
-                    const auto e = expected.find({x, y});
-                    const std::size_t pixel = image.pixelIndex(x, y);
-                    if (e == expected.end()) {
-                        ASSERT_TRUE(to.empty(pixel)) << x << "," << y << ", " << threads << " threads, side " << side;
-                        ASSERT_FALSE(image.hasSample(x, y)) << x << "," << y;
-                        continue;
-                    }
-                    ASSERT_FALSE(to.empty(pixel)) << x << "," << y << ", " << threads << " threads, side " << side;
-                    ASSERT_EQ(to.point[pixel].position, from.point[e->second.slot].position)
-                        << x << "," << y << ", side " << side;
-                    ASSERT_EQ(image.depthAt(x, y), e->second.depth) << x << "," << y << ", side " << side;
+    for (int threads : {1, 2, 3}) {
+        image.reset(kW, kH, kM);
+        SamplePool to;
+        to.reset(pixelSlots, 64);
+        ReprojectionScratch scratch;
+        const ReprojectionCounts c = reproject(from, to, scene, projection, 3, image, Parallel(threads), scratch);
+        EXPECT_EQ(c.placed, static_cast<std::int64_t>(expected.size())) << threads << " threads";
+        EXPECT_EQ(c.moved, static_cast<std::int64_t>(moved));
+        std::size_t far = 0;
+        for (const auto& list : scratch.far) far += list.size();
+        EXPECT_GT(far, 20u) << "samples landing far from their band must be exercised";
+        EXPECT_GT(scratch.far.size(), 4u) << "several bands";
+        for (int y = -kM; y < kH + kM; ++y)
+            for (int x = -kM; x < kW + kM; ++x) {
+                const auto e = expected.find({x, y});
+                const std::size_t pixel = image.pixelIndex(x, y);
+                if (e == expected.end()) {
+                    ASSERT_TRUE(to.empty(pixel)) << x << "," << y << ", " << threads << " threads";
+                    continue;
                 }
-        }
-}
-
-// Samples on and around tile borders (tiles of 4 pixels: columns and rows
-// -1..2, 3..6, 7..10 of the 10 x 10 image and its 1-pixel margin), in the
-// margin, just past it and behind the eye: a loser moves into the
-// neighbouring tile's pixel, a loser in the margin moves into the image,
-// samples past the margin or behind the eye are lost, and the tiled test
-// agrees with the plain rule for every tile side.
-TEST(Reprojection, SamplesOnTileBordersAndOffScreenGiveThePlainRulesOutcome) {
-    const Scene scene = twoObjects();
-    const ScreenProjection projection(eyeCamera(), kSize, kSize);
-    Fixture f;
-    f.put(0, 0, at(2.5f, 5.5f, 3));    // wins (2, 5), the last column of the first tile
-    f.put(1, 0, at(2.9f, 5.5f, 4));    // loses (2, 5); nearest empty neighbour (3, 5), over the border
-    f.put(2, 0, at(6.5f, 6.5f, 2));    // wins (6, 6), a corner of the middle tile
-    f.put(3, 0, at(6.9f, 6.9f, 3));    // loses; nearest empty (7, 7), the diagonal tile ...
-    f.put(13, 0, at(7.5f, 6.5f, 2));   // ... since (7, 6) ...
-    f.put(14, 0, at(6.5f, 7.5f, 2));   // ... and (6, 7) are taken
-    f.put(4, 0, at(-0.5f, 3.5f, 2));   // wins (-1, 3) in the margin
-    f.put(5, 0, at(-0.2f, 3.5f, 3));   // loses; nearest empty (0, 3), in the image
-    f.put(6, 0, at(-1.5f, 4.5f, 2));   // past the margin: lost
-    f.put(7, 0, at(10.5f, 11.2f, 2));  // past the margin: lost
-    f.put(8, 0, Vec3{0, 0, 3});        // behind the eye: lost
-    f.put(9, 0, at(3.0f, 3.0f, 5));    // on the corner shared by four tiles
-    f.put(10, 0, at(3.0f, 3.0f, 5));   // the same point, a later slot: loses the tie, moves
-    f.put(11, 0, at(10.9f, 10.9f, 5)); // the last pixel of the margin
-    f.put(12, 0, at(10.8f, 10.8f, 6)); // loses it; only (9, 9), (10, 9) and (9, 10) can take it
-    const std::map<std::pair<int, int>, OracleWinner> expected =
-        oracle(f.pool, scene, projection, 32, [] {
-            PointImage shape;
-            shape.reset(kSize, kSize, kMargin);
-            return shape;
-        }());
-    ASSERT_EQ(expected.count({3, 5}), 1u);
-    EXPECT_EQ(expected.at({3, 5}).slot, kPixelSlots + 1);
-    ASSERT_EQ(expected.count({7, 7}), 1u);
-    EXPECT_EQ(expected.at({7, 7}).slot, kPixelSlots + 3);
-    ASSERT_EQ(expected.count({0, 3}), 1u);
-    EXPECT_EQ(expected.at({0, 3}).slot, kPixelSlots + 5);
-    for (int side : {1, 2, 3, 4, 5, 64})
-        for (int threads : {1, 2, 3}) {
-            PointImage image;
-            image.reset(kSize, kSize, kMargin);
-            SamplePool to;
-            to.reset(kPixelSlots, kOverflow);
-            ReprojectionScratch scratch;
-            const ReprojectionCounts c =
-                reproject(f.pool, to, scene, projection, 32, image, Parallel(threads), scratch, nullptr, nullptr, side);
-            EXPECT_EQ(c.placed, static_cast<std::int64_t>(expected.size())) << "side " << side;
-            EXPECT_EQ(c.lost, 15 - c.placed) << "side " << side;
-            EXPECT_GE(c.lost, 3) << "past the margin or behind the eye";
-            for (int y = -kMargin; y < kSize + kMargin; ++y)
-                for (int x = -kMargin; x < kSize + kMargin; ++x) {
-                    const auto e = expected.find({x, y});
-                    const std::size_t pixel = image.pixelIndex(x, y);
-                    if (e == expected.end()) {
-                        ASSERT_TRUE(to.empty(pixel)) << x << "," << y << ", side " << side;
-                        continue;
-                    }
-                    ASSERT_EQ(to.point[pixel].position, f.pool.point[e->second.slot].position)
-                        << x << "," << y << ", side " << side << ", " << threads << " threads";
-                    ASSERT_EQ(image.depthAt(x, y), e->second.depth) << x << "," << y << ", side " << side;
-                }
-        }
+                ASSERT_FALSE(to.empty(pixel)) << x << "," << y << ", " << threads << " threads";
+                ASSERT_EQ(to.point[pixel].position, from.point[e->second.slot].position) << x << "," << y;
+                ASSERT_EQ(image.depthAt(x, y), e->second.depth) << x << "," << y;
+            }
+    }
 }
