@@ -11,9 +11,11 @@
 #   FUZZ_FIXED=1 scripts/fuzz.sh    the test suite's run (scripts/test.sh): a
 #                                   fixed seed and a fixed number of inputs per
 #                                   target (about a minute each here), from the
-#                                   committed corpus only, so the run is the
-#                                   same on every machine and cannot turn red
-#                                   by chance
+#                                   committed corpus only, without address
+#                                   randomisation and without libFuzzer's
+#                                   comparison hints, so the run is the same
+#                                   on every run and every clone and cannot
+#                                   turn red by chance
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -27,36 +29,52 @@ scripts/install-deps.sh
 cmake --preset fuzz >/dev/null
 cmake --build --preset fuzz
 
-export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0"
-export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 # Debian's Assimp leaks inside itself on some malformed files (a PLY with a
 # garbled element line): not our code, and not fixable from our wrapper.
 # Every other leak still fails.
-export LSAN_OPTIONS="suppressions=$PWD/tests/fuzz/lsan-suppressions.txt"
+sanitizerOptions=(
+  ASAN_OPTIONS="detect_leaks=1:abort_on_error=0"
+  UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+  LSAN_OPTIONS="suppressions=../../../../tests/fuzz/lsan-suppressions.txt"
+)
 # Inputs per target in the fixed run: 10-100 s each on the quiet 2-core machine
 # (scene files: 2 200 inputs/s on a quiet machine, 270/s seen on a busy one).
 declare -A fixedRuns=([scene_file]=50000 [mesh_loader]=6000 [image_loader]=100000 [render_command]=20000)
 for target in "${targets[@]}"; do
-  binary="build/fuzz/tests/fuzz/fuzz_${target}"
-  corpus="build/fuzz/corpus/${target}"
+  # Each target runs inside its own working directory, build/fuzz/work/<target>,
+  # where it keeps its scratch files (tests/fuzz/FuzzScratchDir.h); every path
+  # below is relative to it.
+  work="build/fuzz/work/${target}"
+  binary="../../tests/fuzz/fuzz_${target}"
+  corpus="../../corpus/${target}"
   budget=(-max_total_time="$seconds" -timeout=10)
+  launch=(env "${sanitizerOptions[@]}")
   if [ -n "${FUZZ_FIXED:-}" ]; then
-    corpus="build/fuzz/fixed-corpus/${target}"
-    rm -rf "$corpus"
+    corpus="../../fixed-corpus/${target}"
+    rm -rf "${work:?}/${corpus}"
     # A generous per-input timeout: the machine may be busy with other builds.
-    budget=(-runs="${fixedRuns[$target]}" -seed=1 -timeout=30)
+    # libFuzzer learns from the values the code compares (-use_cmp,
+    # -use_memmem), pointers among them, whose values follow the environment,
+    # the command line and the clone's path: the fixed run does without.
+    # With that, the same environment, a relative command line and no address
+    # randomisation, the same seed gives the same inputs on every run and in
+    # every clone (checked: two clones at different paths, scene_file,
+    # mesh_loader and render_command, identical logs line for line).
+    budget=(-runs="${fixedRuns[$target]}" -seed=1 -timeout=30 -use_cmp=0 -use_memmem=0)
+    launch=(env -i PATH=/usr/bin:/bin "${sanitizerOptions[@]}" setarch "$(uname -m)" -R)
   fi
-  artifacts="build/fuzz/artifacts/${target}/"
+  artifacts="../../artifacts/${target}/"
   log="build/fuzz/logs/${target}.log"
-  mkdir -p "$corpus" "$artifacts" "$(dirname "$log")"
+  mkdir -p "$work" "${work}/${corpus}" "${work}/${artifacts}" "$(dirname "$log")"
   echo "fuzz: ${target}: ${budget[*]} (log ${log})"
   # -timeout: one input taking longer than 10 s is a finding (the CLI target
   # renders at most 12x12 pixels for 3 frames); -rss_limit_mb: so is 2 GiB.
-  if ! "$binary" "$corpus" "tests/fuzz/corpus/${target}" \
+  if ! (cd "$work" && "${launch[@]}" "$binary" "$corpus" "../../../../tests/fuzz/corpus/${target}" \
       "${budget[@]}" -rss_limit_mb=2048 -max_len=16384 \
-      -artifact_prefix="$artifacts" -print_final_stats=1 >"$log" 2>&1; then
+      -artifact_prefix="$artifacts" -print_final_stats=1) >"$log" 2>&1; then
     tail -n 60 "$log"
-    echo "fuzz: ${target} FAILED; the input is in ${artifacts}; reproduce with: ${binary} <that file>" >&2
+    echo "fuzz: ${target} FAILED; the input is in build/fuzz/artifacts/${target}/;" \
+      "reproduce with: build/fuzz/tests/fuzz/fuzz_${target} <that file>" >&2
     exit 1
   fi
   # The last status line says how many inputs ran and how fast.
