@@ -26,6 +26,7 @@ void DeferredShading::shade(const Camera& camera, const GBufferView& gbuffer, Im
     const int width = settings_.width, height = settings_.height;
     if (film.width() != width || film.height() != height) film = Image(width, height);
     if (!settings_.recordCacheLevels) levels = nullptr;
+    kernel_.prepareFrame();  // meshes that moved since the last frame
     if (levels && (levels->width() != width || levels->height() != height)) *levels = CacheLevelImage(width, height);
     const CameraRays cameraRays(camera, width, height);
     PhaseTimes& phases = stats.phases.emplace(stats.phases.value_or(PhaseTimes{}));

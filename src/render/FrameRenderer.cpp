@@ -52,7 +52,8 @@ FrameStats FrameRenderer::render(const Camera& camera, Image& film, CacheLevelIm
     if (film.width() != settings_.width || film.height() != settings_.height)
         film = Image(settings_.width, settings_.height);
     const CameraRays cameraRays(camera, settings_.width, settings_.height);
-    if (group_) return renderDistributed(cameraRays, film);  // never with the record (see the constructor)
+    if (group_) return renderDistributed(cameraRays, film);
+    kernel_.prepareFrame();  // meshes that moved since the last frame  // never with the record (see the constructor)
     if (!settings_.recordCacheLevels) levels = nullptr;
     if (levels && (levels->width() != settings_.width || levels->height() != settings_.height))
         *levels = CacheLevelImage(settings_.width, settings_.height);

@@ -91,29 +91,12 @@ void meshSurfaceLanes(const MeshHitLanes& h, int count, SurfacePoint* out) {
     hasShadingNormal &= length > 0.0f;
     const FloatLanes inverseLength = 1.0f / length;
     sx = sx * inverseLength, sy = sy * inverseLength, sz = sz * inverseLength;
-    // The geometric normal, on the shading normal's side (triangleNormal).
+    // The geometric normal (unitTriangleNormal, made once per pose), on the
+    // shading normal's side (triangleNormal).
     FloatLanes gx, gy, gz;
-    {
-        FloatLanes x0, y0, z0, ax, ay, az, bx, by, bz;
-        loadLanes(h.corner0X, x0);
-        loadLanes(h.corner0Y, y0);
-        loadLanes(h.corner0Z, z0);
-        loadLanes(h.corner1X, ax);
-        loadLanes(h.corner1Y, ay);
-        loadLanes(h.corner1Z, az);
-        loadLanes(h.corner2X, bx);
-        loadLanes(h.corner2Y, by);
-        loadLanes(h.corner2Z, bz);
-        ax = ax - x0, ay = ay - y0, az = az - z0;
-        bx = bx - x0, by = by - y0, bz = bz - z0;
-        gx = ay * bz - az * by;
-        gy = az * bx - ax * bz;
-        gz = ax * by - ay * bx;
-        FloatLanes gl;
-        sqrtLanes(gx * gx + gy * gy + gz * gz, gl);
-        const FloatLanes inverse = 1.0f / gl;
-        gx = gx * inverse, gy = gy * inverse, gz = gz * inverse;
-    }
+    loadLanes(h.geometricX, gx);
+    loadLanes(h.geometricY, gy);
+    loadLanes(h.geometricZ, gz);
     const FloatMask flip = hasShadingNormal & (gx * sx + gy * sy + gz * sz < 0.0f);
     gx = flip ? -gx : gx;
     gy = flip ? -gy : gy;

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "render/MeshShading.h"
+
 namespace raycache {
 
 namespace {
@@ -12,8 +14,7 @@ namespace {
 // normals are trusted for which side is outside.
 Vec3 triangleNormal(const TriangleMesh& mesh, int primitiveId, const Vec3& ns, bool hasShadingNormal) {
     const auto& tri = mesh.triangles[static_cast<std::size_t>(primitiveId)];
-    const Vec3& p0 = mesh.positions[tri[0]];
-    const Vec3 ng = normalize(cross(mesh.positions[tri[1]] - p0, mesh.positions[tri[2]] - p0));
+    const Vec3 ng = unitTriangleNormal(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
     return hasShadingNormal && dot(ng, ns) < 0.0f ? -ng : ng;
 }
 

@@ -49,7 +49,7 @@ void TileScratch::beginTile(std::size_t roots) {
 TileKernel::TileKernel(const Scene& scene, const TraceScene& tracer, const RenderSettings& settings,
                        const RayCache* cache)
     : scene_(scene), tracer_(tracer), settings_(settings), cache_(cache && !cache->empty() ? cache : nullptr),
-      shading_(scene), fill_(scene, tracer, cache_) {
+      shading_(scene), fill_(scene, tracer, cache_), meshShading_(scene) {
     // The cubes' techniques are fixed for the cache's life, so the objects
     // whose lookups test their own surface are known now (kernels are made
     // between frames, when no ray is in flight).
@@ -324,33 +324,21 @@ void setRay(Lanes& lanes, std::size_t k, const Ray& ray, float t) {
     lanes.t[k] = t;
 }
 
-void setMeshHit(MeshHitLanes& lanes, std::size_t k, const TriangleMesh& mesh, const TraceHit& hit) {
-    const auto& tri = mesh.triangles[static_cast<std::size_t>(hit.primitiveId)];
+// Lane k's triangle: from the mesh's shading records when they are made for
+// this mesh, else (a kernel not told of a move) from the mesh itself.
+void setMeshHit(MeshHitLanes& lanes, std::size_t k, const TriangleMesh& mesh, const MeshShadingRecords* records,
+                const TraceHit& hit) {
+    const auto triangle = static_cast<std::size_t>(hit.primitiveId);
     lanes.u[k] = hit.u;
     lanes.v[k] = hit.v;
-    const Vec3 &p0 = mesh.positions[tri[0]], &p1 = mesh.positions[tri[1]], &p2 = mesh.positions[tri[2]];
-    lanes.corner0X[k] = p0.x, lanes.corner0Y[k] = p0.y, lanes.corner0Z[k] = p0.z;
-    lanes.corner1X[k] = p1.x, lanes.corner1Y[k] = p1.y, lanes.corner1Z[k] = p1.z;
-    lanes.corner2X[k] = p2.x, lanes.corner2Y[k] = p2.y, lanes.corner2Z[k] = p2.z;
-    lanes.hasNormals[k] = mesh.normals.empty() ? 0 : 1;
-    if (!mesh.normals.empty()) {
-        const Vec3 &n0 = mesh.normals[tri[0]], &n1 = mesh.normals[tri[1]], &n2 = mesh.normals[tri[2]];
-        lanes.normal0X[k] = n0.x, lanes.normal0Y[k] = n0.y, lanes.normal0Z[k] = n0.z;
-        lanes.normal1X[k] = n1.x, lanes.normal1Y[k] = n1.y, lanes.normal1Z[k] = n1.z;
-        lanes.normal2X[k] = n2.x, lanes.normal2Y[k] = n2.y, lanes.normal2Z[k] = n2.z;
-    } else {
-        lanes.normal0X[k] = lanes.normal0Y[k] = lanes.normal0Z[k] = 0.0f;
-        lanes.normal1X[k] = lanes.normal1Y[k] = lanes.normal1Z[k] = 0.0f;
-        lanes.normal2X[k] = lanes.normal2Y[k] = lanes.normal2Z[k] = 0.0f;
+    if (records) {
+        setMeshTriangleLane(lanes, k, records->triangles[triangle], records->hasNormals,
+                            records->hasUvs ? &records->uvs[triangle] : nullptr);
+        return;
     }
-    lanes.hasUvs[k] = mesh.uvs.empty() ? 0 : 1;
-    if (!mesh.uvs.empty()) {
-        lanes.uv0U[k] = mesh.uvs[tri[0]][0], lanes.uv0V[k] = mesh.uvs[tri[0]][1];
-        lanes.uv1U[k] = mesh.uvs[tri[1]][0], lanes.uv1V[k] = mesh.uvs[tri[1]][1];
-        lanes.uv2U[k] = mesh.uvs[tri[2]][0], lanes.uv2V[k] = mesh.uvs[tri[2]][1];
-    } else {
-        lanes.uv0U[k] = lanes.uv0V[k] = lanes.uv1U[k] = lanes.uv1V[k] = lanes.uv2U[k] = lanes.uv2V[k] = 0.0f;
-    }
+    const TriangleUvRecord uv = uvRecordOf(mesh, triangle);
+    setMeshTriangleLane(lanes, k, shadingRecordOf(mesh, triangle), !mesh.normals.empty(),
+                        mesh.uvs.empty() ? nullptr : &uv);
 }
 
 }  // namespace
@@ -365,6 +353,15 @@ void TileKernel::computeSurfaces(TileScratch& s) const {
     // coordinates need trigonometry) one by one.
     SurfaceBatch<SphereHitLanes> spheres(sphereSurfaces16);
     SurfaceBatch<MeshHitLanes> meshes(meshSurfaces16);
+    // The wave's mesh hits land on triangles scattered over the mesh: ask
+    // for all their records first, so that the misses overlap.
+    for (std::size_t i = 0; i < n; ++i) {
+        const TraceHit& hit = s.vertices[i].hit;
+        const SceneObject& object = scene_.objects[static_cast<std::size_t>(hit.objectId)];
+        if (const MeshShape* shape = std::get_if<MeshShape>(&object.shape))
+            if (const MeshShadingRecords* records = meshShading_.recordsFor(hit.objectId, shape->mesh.get()))
+                __builtin_prefetch(&records->triangles[static_cast<std::size_t>(hit.primitiveId)], 0, 2);
+    }
     for (std::size_t i = 0; i < n; ++i) {
         const TileScratch::PathVertex& v = s.vertices[i];
         const SceneObject& object = scene_.objects[static_cast<std::size_t>(v.hit.objectId)];
@@ -383,7 +380,8 @@ void TileKernel::computeSurfaces(TileScratch& s) const {
         } else {
             const auto k = static_cast<std::size_t>(meshes.next());
             setRay(meshes.lanes(), k, v.ray, v.hit.t);
-            setMeshHit(meshes.lanes(), k, *std::get<MeshShape>(object.shape).mesh, v.hit);
+            const TriangleMesh* mesh = std::get<MeshShape>(object.shape).mesh.get();
+            setMeshHit(meshes.lanes(), k, *mesh, meshShading_.recordsFor(v.hit.objectId, mesh), v.hit);
             meshes.add(i, s.surfaces);
         }
     }

@@ -32,6 +32,7 @@
 #include "render/FrameStats.h"
 #include "render/GBuffer.h"
 #include "render/LocalShading.h"
+#include "render/MeshShading.h"
 #include "render/RayCone.h"
 #include "render/RenderSettings.h"
 #include "render/SurfacePoint.h"
@@ -232,6 +233,13 @@ public:
 
     const LocalShading& shading() const { return shading_; }
 
+    // Remakes the per-triangle shading records (render/MeshShading.h) of the
+    // meshes that moved since the last call. Call between frames, when no
+    // ray is in flight (const for the reason TraceScene::prepareFrame is).
+    // A kernel that is not told still renders the same image: it reads a
+    // moved mesh's triangles from the mesh, only slower.
+    void prepareFrame() const { meshShading_.refresh(scene_); }
+
 private:
     using FirstWave = TileScratch::FirstWave;
     // Shades the waves until no ray is left, the first as `first` says.
@@ -266,6 +274,7 @@ private:
     const RayCache* cache_;
     LocalShading shading_;
     VisibleSurfaceFill fill_;
+    mutable SceneMeshShading meshShading_;
 };
 
 }  // namespace raycache

@@ -138,6 +138,7 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     const int width = settings_.width, height = settings_.height;
     const int pixels = width * height;
     if (film.width() != width || film.height() != height) film = Image(width, height);
+    kernel_.prepareFrame();  // meshes that moved since the last frame
     const auto frameStart = Clock::now();
     RenderCacheStats stats;
     stats.pixels = pixels;

@@ -218,26 +218,11 @@ TEST(HitLanes, MeshSurfacesEqualSurfacePointAt) {
             lanes.directionX[k] = rays[i].direction.x, lanes.directionY[k] = rays[i].direction.y;
             lanes.directionZ[k] = rays[i].direction.z;
             lanes.t[k] = hits[i].t, lanes.u[k] = u, lanes.v[k] = v;
-            const auto& tri = mesh.triangles[static_cast<std::size_t>(hits[i].primitiveId)];
-            const Vec3 &p0 = mesh.positions[tri[0]], &p1 = mesh.positions[tri[1]], &p2 = mesh.positions[tri[2]];
-            lanes.corner0X[k] = p0.x, lanes.corner0Y[k] = p0.y, lanes.corner0Z[k] = p0.z;
-            lanes.corner1X[k] = p1.x, lanes.corner1Y[k] = p1.y, lanes.corner1Z[k] = p1.z;
-            lanes.corner2X[k] = p2.x, lanes.corner2Y[k] = p2.y, lanes.corner2Z[k] = p2.z;
-            lanes.hasNormals[k] = mesh.normals.empty() ? 0 : 1;
-            const Vec3 none{};
-            const Vec3& n0 = mesh.normals.empty() ? none : mesh.normals[tri[0]];
-            const Vec3& n1 = mesh.normals.empty() ? none : mesh.normals[tri[1]];
-            const Vec3& n2 = mesh.normals.empty() ? none : mesh.normals[tri[2]];
-            lanes.normal0X[k] = n0.x, lanes.normal0Y[k] = n0.y, lanes.normal0Z[k] = n0.z;
-            lanes.normal1X[k] = n1.x, lanes.normal1Y[k] = n1.y, lanes.normal1Z[k] = n1.z;
-            lanes.normal2X[k] = n2.x, lanes.normal2Y[k] = n2.y, lanes.normal2Z[k] = n2.z;
-            lanes.hasUvs[k] = mesh.uvs.empty() ? 0 : 1;
-            const std::array<float, 2> zero{0.0f, 0.0f};
-            const auto& t0 = mesh.uvs.empty() ? zero : mesh.uvs[tri[0]];
-            const auto& t1 = mesh.uvs.empty() ? zero : mesh.uvs[tri[1]];
-            const auto& t2 = mesh.uvs.empty() ? zero : mesh.uvs[tri[2]];
-            lanes.uv0U[k] = t0[0], lanes.uv0V[k] = t0[1], lanes.uv1U[k] = t1[0], lanes.uv1V[k] = t1[1];
-            lanes.uv2U[k] = t2[0], lanes.uv2V[k] = t2[1];
+            // Made from the mesh as the kernel's records are (render/MeshShading.h).
+            const auto triangle = static_cast<std::size_t>(hits[i].primitiveId);
+            const TriangleUvRecord uv = uvRecordOf(mesh, triangle);
+            setMeshTriangleLane(lanes, i, shadingRecordOf(mesh, triangle), !mesh.normals.empty(),
+                                mesh.uvs.empty() ? nullptr : &uv);
         }
         SurfacePoint out[16];
         meshSurfaces16(lanes, count, out);
