@@ -53,7 +53,7 @@ void runCacheViewCommand(const CacheViewCommandOptions& options, std::ostream& o
         throw InputError("--show must be color or depth (got '" + options.show + "')");
 
     const RenderJob job = prepareRenderJob(options.job);
-    for (const std::string& note : job.scene.notes) notes << "note: " << note << "\n";
+    printSceneNotes(job.scene, notes);
     const int objectId = cachedObjectId(job.scene, job.settings.cache, options.object);
     createParentDirectories(options.out);
     checkWritableImagePath(options.out);

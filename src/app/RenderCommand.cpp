@@ -121,8 +121,7 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out, st
     const Scene& scene = job.scene;
     const RenderSettings& settings = job.settings;
     const int frames = job.frames;
-    if (group.isRoot())
-        for (const std::string& note : scene.notes) notes << "note: " << note << "\n";
+    if (group.isRoot()) printSceneNotes(scene, notes);
 
     out << "scene " << scene.name << ": " << scene.objects.size() << " objects, " << scene.lights.size()
         << " lights, " << settings.width << "x" << settings.height << ", " << frames << " frames\n";

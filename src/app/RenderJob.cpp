@@ -156,4 +156,8 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     return job;
 }
 
+void printSceneNotes(const Scene& scene, std::ostream& out) {
+    for (const std::string& note : scene.notes) out << "note: " << note << "\n";
+}
+
 }  // namespace raycache

@@ -4,6 +4,7 @@
 // those commands share (scene, size, frames, path, threads, depth, caching).
 #include <cstdint>
 #include <optional>
+#include <ostream>
 #include <string>
 
 #include "render/FrameLoop.h"
@@ -77,5 +78,9 @@ void validateRenderJobOptions(const RenderJobOptions& options);
 // resolves the camera path, settings and frame count. Throws InputError for
 // bad options or scene input; renders nothing.
 RenderJob prepareRenderJob(const RenderJobOptions& options);
+
+// What loading repaired or left out of the scene (Scene::notes), one
+// "note: ..." line each.
+void printSceneNotes(const Scene& scene, std::ostream& out);
 
 }  // namespace raycache

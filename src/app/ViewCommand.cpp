@@ -21,7 +21,7 @@ void runViewCommand(const ViewCommandOptions& options, std::ostream& out, std::o
     if (options.job.cacheIdeal) throw InputError("--cache-ideal is a benchmark switch; the viewer does not take it");
 
     RenderJob job = prepareRenderJob(options.job);
-    for (const std::string& note : job.scene.notes) notes << "note: " << note << "\n";
+    printSceneNotes(job.scene, notes);
     // An interactive frame must not stall for seconds while improved CDCT
     // fills whole cubes (1.5 M rays per 512² cube): spread it, about half
     // an uncached frame's rays a frame (docs/viewer.md).
