@@ -370,4 +370,29 @@ TEST(MeshLoader, TruncatedAsciiPlyIsAnError) {
                    "the header announces 6 lines of data (vertex 4, face 2), the file has 5", 9, 1);
 }
 
+// Found by fuzzing (docs/testing.md, findings 17 and 18): Assimp's PLY line
+// reader ends a line at a NUL (or \r, \f) and then looks for the next \n past
+// its buffer; a binary PLY with control bytes in its property lines made it
+// free a bad pointer, an ASCII one with NULs in an element line hung it.
+// Control bytes in the header are refused, with their line and column.
+TEST(MeshLoader, PlyHeaderControlByteIsOneErrorNotACrashOrAHang) {
+    const auto findings = std::filesystem::path(RAYCACHE_TEST_DATA_DIR).parent_path() / "fuzz" / "findings";
+    expectRejected(findings / "assimp-bad-free-ply-garbage-property.ply", "control byte 0x1c in the PLY header", 8, 18);
+    expectRejected(findings / "assimp-ply-hang-nul-in-element-line.ply", "control byte 0x00 in the PLY header", 4, 9);
+}
+
+// A binary PLY shorter than its header announces: Assimp reads on past the
+// data, taking whatever its buffer holds there for geometry.
+TEST(MeshLoader, TruncatedBinaryPlyIsAnError) {
+    std::ifstream in(std::filesystem::path(RAYCACHE_TEST_DATA_DIR).parent_path() / "fuzz" / "corpus" / "mesh_loader" /
+                         "tetrahedron_binary_ply",
+                     std::ios::binary);
+    const std::string seed((std::istreambuf_iterator<char>(in)), {});
+    const std::string ply = seed.substr(1);  // the fuzzer's first byte picks the extension
+    EXPECT_EQ(loadMeshFile(writeMesh("whole.ply", ply)).mesh.triangles.size(), 4u);
+    expectRejected(writeMesh("cut.ply", ply.substr(0, ply.size() - 1)),
+                   "the header announces at least 148 bytes of binary data (vertex 4, face 4), the file has 147", 13,
+                   1);
+}
+
 }  // namespace raycache
