@@ -298,6 +298,10 @@ struct PlyElement {
     int line = 0;
     int column = 0;
     std::vector<PlyProperty> properties;
+    // In a "face" element, the lists Assimp reads as the vertex indices and
+    // the texture coordinates (the last of each name), else -1.
+    int vertexIndices = -1;
+    int textureCoordinates = -1;
 
     bool hasList() const {
         return std::any_of(properties.begin(), properties.end(), [](const PlyProperty& p) { return p.lengthType; });
@@ -377,6 +381,20 @@ std::int64_t binaryLength(std::string_view bytes, const PlyType& type, bool bigE
     return static_cast<std::int64_t>(value);
 }
 
+// Assimp reads a face's texture coordinates through its vertex indices,
+// the i-th value through index i / 2, past the indices when there are
+// fewer than half as many (and through a null pointer without any), so
+// they must come as a pair per vertex (or not at all).
+std::optional<std::string> textureCoordinatesNotPerVertex(const PlyElement& face, std::uint64_t index,
+                                                          std::int64_t vertexIndices, std::int64_t textureCoordinates) {
+    if (face.textureCoordinates < 0 || textureCoordinates == 0 || textureCoordinates == 2 * vertexIndices)
+        return std::nullopt;
+    return "face " + std::to_string(index) + "'s list " +
+           quoted(face.properties[static_cast<std::size_t>(face.textureCoordinates)].name) + " has " +
+           plural(static_cast<std::uint64_t>(textureCoordinates), "value") + " for its " +
+           std::to_string(vertexIndices) + " vertices (2 per vertex, or none)";
+}
+
 // Walks a binary body by the header's elements, reading each list's length
 // in the file's byte order, and refuses a body shorter than they announce:
 // Assimp reads on past the data, into whatever its 1 MiB buffer holds
@@ -418,7 +436,9 @@ std::optional<MeshTextProblem> checkPlyBinaryBody(std::string_view body, const s
         }
         for (std::uint64_t i = 0; i < count; ++i) {
             std::uint64_t restOfInstance = least;  // this instance's least bytes not yet read
-            for (const PlyProperty& property : element.properties) {
+            std::int64_t listLengths[2] = {0, 0};  // the face's vertex indices and texture coordinates
+            for (std::size_t p = 0; p < element.properties.size(); ++p) {
+                const PlyProperty& property = element.properties[p];
                 const auto fixedBytes =
                     static_cast<std::uint64_t>((property.lengthType ? property.lengthType : property.type)->bytes);
                 if (fixedBytes > size - offset) return tooShort(e, restOfInstance, count - i - 1);
@@ -436,11 +456,16 @@ std::optional<MeshTextProblem> checkPlyBinaryBody(std::string_view body, const s
                                                std::to_string(length) + ") at byte " + std::to_string(offset) +
                                                " of the binary data"};
                 offset += fixedBytes;
+                if (static_cast<int>(p) == element.vertexIndices) listLengths[0] = length;
+                if (static_cast<int>(p) == element.textureCoordinates) listLengths[1] = length;
                 const std::uint64_t items = saturatingMultiply(static_cast<std::uint64_t>(length),
                                                                static_cast<std::uint64_t>(property.type->bytes));
                 if (items > size - offset) return tooShort(e, saturatingAdd(items, restOfInstance), count - i - 1);
                 offset += items;
             }
+            if (auto problem = textureCoordinatesNotPerVertex(element, i, listLengths[0], listLengths[1]))
+                return MeshTextProblem{element.properties[static_cast<std::size_t>(element.textureCoordinates)].line, 1,
+                                       *problem + " at byte " + std::to_string(offset) + " of the binary data"};
         }
     }
     // Bytes after the last element are accepted: Assimp never reads them.
@@ -463,10 +488,10 @@ std::optional<MeshTextProblem> checkPlyAsciiBody(std::string_view text, std::siz
     std::size_t element = 0;
     std::uint64_t instance = 0;
     int lineNumber = endHeaderLine;
-    for (std::size_t p = bodyStart; p < text.size();) {
-        const std::size_t next = std::min(text.find('\n', p), text.size());
-        std::string_view line = text.substr(p, next - p);
-        p = next + 1;
+    for (std::size_t position = bodyStart; position < text.size();) {
+        const std::size_t next = std::min(text.find('\n', position), text.size());
+        std::string_view line = text.substr(position, next - position);
+        position = next + 1;
         ++lineNumber;
         if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
         if (const std::size_t control = firstControlByte(line); control != std::string_view::npos)
@@ -485,7 +510,10 @@ std::optional<MeshTextProblem> checkPlyAsciiBody(std::string_view text, std::siz
         const auto instanceName = [&] { return std::string(owner.name) + " " + std::to_string(index); };
         const std::vector<Token> words = plyWords(line);
         std::size_t word = 0;
-        for (const PlyProperty& property : owner.properties) {
+        std::int64_t listLengths[2] = {0, 0};  // the face's vertex indices and texture coordinates
+        int textureCoordinatesColumn = 1;
+        for (std::size_t p = 0; p < owner.properties.size(); ++p) {
+            const PlyProperty& property = owner.properties[p];
             if (!property.lengthType) {
                 ++word;
                 continue;
@@ -506,7 +534,14 @@ std::optional<MeshTextProblem> checkPlyAsciiBody(std::string_view text, std::siz
                                            plural(static_cast<std::uint64_t>(*length), "value") + ", its line has " +
                                            std::to_string(left) + " after the length"};
             word += static_cast<std::size_t>(*length);
+            if (static_cast<int>(p) == owner.vertexIndices) listLengths[0] = *length;
+            if (static_cast<int>(p) == owner.textureCoordinates) {
+                listLengths[1] = *length;
+                textureCoordinatesColumn = lengthWord.column;
+            }
         }
+        if (auto problem = textureCoordinatesNotPerVertex(owner, index, listLengths[0], listLengths[1]))
+            return MeshTextProblem{lineNumber, textureCoordinatesColumn, *problem};
     }
     // Assimp reads a truncated ASCII body without a word, making up the
     // missing elements (faces of vertex 0).
@@ -536,11 +571,17 @@ std::optional<MeshTextProblem> checkPlyHeader(std::string_view text, std::string
     const auto at = [&](int column, std::string message) {
         return MeshTextProblem{lineNumber, column, std::move(message)};
     };
-    // An element's count needs something to count (Assimp loops over
-    // empty instances, and allocates one record each for a non-vertex one).
-    const auto elementWithoutProperties = [&]() -> std::optional<MeshTextProblem> {
-        if (elements.empty() || !elements.back().properties.empty() || elements.back().count == 0) return std::nullopt;
+    // Checks of an element once its properties are known. Its count needs
+    // something to count (Assimp loops over empty instances, and allocates
+    // one record each for a non-vertex one).
+    const auto elementComplete = [&]() -> std::optional<MeshTextProblem> {
+        if (elements.empty()) return std::nullopt;
         const PlyElement& e = elements.back();
+        if (e.textureCoordinates >= 0 && e.vertexIndices < 0)
+            return MeshTextProblem{e.properties[static_cast<std::size_t>(e.textureCoordinates)].line, 1,
+                                   "a face's texcoord list needs its vertex_indices list (Assimp reads the one "
+                                   "through the other)"};
+        if (!e.properties.empty() || e.count == 0) return std::nullopt;
         return MeshTextProblem{e.line, e.column,
                                "element " + quoted(e.name) + " announces " +
                                    plural(static_cast<std::uint64_t>(e.count), "instance") + " but has no properties"};
@@ -575,7 +616,7 @@ std::optional<MeshTextProblem> checkPlyHeader(std::string_view text, std::string
                                                                : Format::kBigEndian;
         } else if (keyword == "end_header") {
             if (words.size() > 1) return at(words[1].column, "nothing may follow end_header on its line");
-            if (auto problem = elementWithoutProperties()) return problem;
+            if (auto problem = elementComplete()) return problem;
             const std::size_t bodyStart = std::min(end + 1, text.size());
             if (format == Format::kAscii) {
                 if (auto problem = checkPlyAsciiBody(text, bodyStart, lineNumber, elements)) return problem;
@@ -600,7 +641,7 @@ std::optional<MeshTextProblem> checkPlyHeader(std::string_view text, std::string
                                                         " PLY header lines, the first line " + firstIgnored;
             return std::nullopt;
         } else if (keyword == "element") {
-            if (auto problem = elementWithoutProperties()) return problem;
+            if (auto problem = elementComplete()) return problem;
             const std::optional<std::int64_t> count = words.size() == 3 ? integer(words[2].text) : std::nullopt;
             if (!count || *count < 0) return at(1, "expected \"element <name> <count>\"");
             if (!plainWord(words[1].text))
@@ -608,6 +649,16 @@ std::optional<MeshTextProblem> checkPlyHeader(std::string_view text, std::string
             // Assimp takes this one for a texture file's name and reads no count or properties.
             if (words[1].text == "TextureFile")
                 return at(words[1].column, "\"element TextureFile\" is not an element to Assimp");
+            // Assimp keeps the last triangle of each strip only.
+            if (words[1].text == "tristrips")
+                return at(words[1].column, "Assimp reads one triangle of each triangle strip: use \"element face\"");
+            // Assimp writes every vertex element into one array sized for the
+            // first, and every face element into another (heap overflows).
+            const auto earlier = std::find_if(elements.begin(), elements.end(),
+                                              [&](const PlyElement& e) { return e.name == words[1].text; });
+            if ((words[1].text == "vertex" || words[1].text == "face") && earlier != elements.end())
+                return at(words[1].column, "a second " + quoted(words[1].text) + " element (the first is on line " +
+                                               std::to_string(earlier->line) + "): Assimp writes both into one array");
             elements.push_back({words[1].text, *count, lineNumber, words[1].column, {}});
             interruptingLine = 0;
         } else if (keyword == "property") {
@@ -634,7 +685,13 @@ std::optional<MeshTextProblem> checkPlyHeader(std::string_view text, std::string
                               " (char, uchar, short, ushort, int, uint, float, double, or int8 to float64)");
             if (!plainWord(property.name))
                 return at(words.back().column, "property name " + quoted(property.name) + " is not a plain ASCII word");
-            elements.back().properties.push_back(property);
+            PlyElement& element = elements.back();
+            if (element.name == "face" && list) {
+                const int index = static_cast<int>(element.properties.size());
+                if (property.name == "vertex_indices" || property.name == "vertex_index") element.vertexIndices = index;
+                if (property.name == "texcoord") element.textureCoordinates = index;
+            }
+            element.properties.push_back(property);
         } else if (keyword == "comment" || keyword == "obj_info") {
             if (!elements.empty() && interruptingLine == 0) {
                 interruptingLine = lineNumber;

@@ -36,7 +36,11 @@ std::optional<MeshTextProblem> checkOffText(std::string_view text);
 // element (types: char uchar short ushort int uint float double int8 uint8
 // int16 uint16 int32 uint32 float32 float64, a list's length an integer
 // type), an element with a nonzero count has properties, and "end_header"
-// alone on its line. No header line holds a control byte other than tab
+// alone on its line. Assimp reads into memory it does not own, or misreads,
+// some headers of that grammar, refused too: a second "vertex" or "face"
+// element (written into the first one's array), "element tristrips" (one
+// triangle kept per strip), "element TextureFile", and a face's "texcoord"
+// list without a "vertex_indices" one (read through it). No header line holds a control byte other than tab
 // (and a line's trailing \r), comments included: Assimp's line reader ends
 // a line at NUL, \r or \f and then looks for the next \n past its buffer
 // (it hung and freed bad pointers on such headers, found by fuzzing,
@@ -50,7 +54,8 @@ std::optional<MeshTextProblem> checkOffText(std::string_view text);
 // keyword (...)"), else empty.
 // The body: an ASCII one must hold as many non-blank lines as the elements
 // announce (Assimp would make up the rest), each list length a count of
-// the values on its line, and no control byte to the end of the file. A
+// the values on its line, and no control byte to the end of the file. In
+// either kind, a face's texcoord list holds 2 values per vertex or none. A
 // binary one (either byte order) is walked by the declared properties,
 // list lengths read from the data: it must hold all the header announces
 // (Assimp would read on into its buffer), with no negative list length,

@@ -395,4 +395,33 @@ TEST(MeshLoader, TruncatedBinaryPlyIsAnError) {
                    1);
 }
 
+// Headers of the PLY grammar that Debian's Assimp 5.2.5 reads into memory
+// it does not own (found by reading its PLY reader; a release build aborted
+// in malloc or crashed on each): a second vertex element written into the
+// first one's array, a second face element likewise, and face texture
+// coordinates read through vertex indices that are not there.
+TEST(MeshLoader, PlyHeadersAssimpWouldOverflowAreOneError) {
+    const std::string start = "ply\nformat ascii 1.0\n";
+    const std::string vertices = "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+    const std::string faces = "element face 1\nproperty list uchar int vertex_indices\n";
+    const std::string data = "0 0 0\n1 0 0\n0 1 0\n";
+    expectRejected(writeMesh("two-vertex.ply", start + "element vertex 1\nproperty float x\n" + vertices + faces +
+                                                   "end_header\n0\n" + data + "3 0 1 2\n"),
+                   "a second \"vertex\" element (the first is on line 3)", 5, 9);
+    expectRejected(writeMesh("two-face.ply", start + vertices + faces + "element face 2\n" +
+                                                 "property list uchar int vertex_indices\nend_header\n" + data +
+                                                 "3 0 1 2\n3 0 1 2\n3 0 2 1\n"),
+                   "a second \"face\" element (the first is on line 7)", 9, 9);
+    const std::string textured = start + vertices + faces + "property list uchar float texcoord\nend_header\n" + data;
+    expectRejected(writeMesh("no-indices.ply", start + vertices +
+                                                   "element face 1\nproperty list uchar float texcoord\nend_header\n" +
+                                                   data + "6 0 0 1 0 0 1\n"),
+                   "a face's texcoord list needs its vertex_indices list", 8, 1);
+    expectRejected(writeMesh("long-uv.ply", textured + "3 0 1 2 8 0 0 1 0 0 1 1 1\n"),
+                   "face 0's list \"texcoord\" has 8 values for its 3 vertices", 14, 9);
+    const TriangleMesh mesh = loadMeshFile(writeMesh("uv.ply", textured + "3 0 1 2 6 0 0 1 0 0 1\n")).mesh;
+    EXPECT_EQ(mesh.triangles.size(), 1u);
+    EXPECT_EQ(mesh.uvs.size(), 3u);
+}
+
 }  // namespace raycache

@@ -292,6 +292,54 @@ TEST(MeshTextCheck, AsciiPlyListLongerThanItsLineIsRefused) {
     expectRefused(head, kEndHeaderLine, 1, "the header announces 4 lines of data (vertex 3, face 1), the file has 3");
 }
 
+// Assimp writes every vertex element into one array sized for the first,
+// and every face element into one face array: heap overflows (found by
+// reading its source; a release build aborted in malloc).
+TEST(MeshTextCheck, PlySecondVertexOrFaceElementIsRefused) {
+    expectRefused(asciiWithHeaderLines("element vertex 1\nproperty float x\n" + kTriangleElements), 5, 9,
+                  "a second \"vertex\" element (the first is on line 3): Assimp writes both into one array");
+    expectRefused(asciiWithHeaderLines(kTriangleElements + "element face 4\nproperty list uchar int vertex_indices\n"),
+                  9, 9, "a second \"face\" element (the first is on line 7)");
+}
+
+// Assimp 5.2 keeps one triangle of each strip (the last): 0 1 2 3 gave one
+// triangle, not two.
+TEST(MeshTextCheck, PlyTriangleStripsAreRefused) {
+    expectRefused(asciiWithHeaderLines("element vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                                       "element tristrips 1\nproperty list int int vertex_indices\n"),
+                  7, 9, "Assimp reads one triangle of each triangle strip: use \"element face\"");
+}
+
+// Assimp reads a face's i-th texture coordinate through its vertex index
+// i / 2: through a null pointer without vertex indices (a crash), past
+// them with fewer than half as many.
+TEST(MeshTextCheck, PlyFaceTextureCoordinatesArePairsPerVertex) {
+    const std::string vertices = "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+    const std::string face =
+        "element face 1\nproperty list uchar int vertex_indices\nproperty list uchar float texcoord\n";
+    const std::string head = "ply\nformat ascii 1.0\n" + vertices + face + "end_header\n0 0 0\n1 0 0\n0 1 0\n";
+    expectAccepted(head + "3 0 1 2 6 0 0 1 0 0 1\n", "a pair per vertex");
+    expectAccepted(head + "3 0 1 2 0\n", "none");
+    expectRefused(head + "3 0 1 2 8 0 0 1 0 0 1 1 1\n", 14, 9,
+                  "face 0's list \"texcoord\" has 8 values for its 3 vertices (2 per vertex, or none)");
+    expectRefused("ply\nformat ascii 1.0\n" + vertices +
+                      "element face 1\nproperty list uchar float texcoord\nend_header\n0 0 0\n1 0 0\n0 1 0\n6 0 0 1 0 "
+                      "0 1\n",
+                  8, 1, "a face's texcoord list needs its vertex_indices list");
+    // Binary: the triangle with 6 float texture coordinates after its indices.
+    std::string binary = binaryTriangle(false);
+    binary.replace(binary.find("end_header"), 0, "property list uchar float texcoord\n");
+    std::string pairs = binary;
+    put(pairs, 6, 1, false);
+    for (int i = 0; i < 6; ++i) put(pairs, 0x3f800000, 4, false);
+    expectAccepted(pairs, "binary, a pair per vertex");
+    std::string odd = binary;
+    put(odd, 5, 1, false);
+    for (int i = 0; i < 5; ++i) put(odd, 0x3f800000, 4, false);
+    expectRefused(odd, 9, 1,
+                  "face 0's list \"texcoord\" has 5 values for its 3 vertices (2 per vertex, or none) at byte 70");
+}
+
 // Every PLY file that loaded before these checks still passes: the test
 // data, the fuzzers' seeds, the Stanford dragon (ASCII) and the models of
 // Debian's assimp-testmodels that Assimp reads (ASCII, and a binary cube).
