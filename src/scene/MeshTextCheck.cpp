@@ -302,10 +302,9 @@ struct PlyElement {
     // the texture coordinates (the last of each name), else -1.
     int vertexIndices = -1;
     int textureCoordinates = -1;
+    int lastList = -1;  // the index of the last list property, else -1
 
-    bool hasList() const {
-        return std::any_of(properties.begin(), properties.end(), [](const PlyProperty& p) { return p.lengthType; });
-    }
+    bool hasList() const { return lastList >= 0; }
     // Bytes of one instance in a binary body with every list empty.
     std::uint64_t leastBinaryBytes() const {
         std::uint64_t bytes = 0;
@@ -512,7 +511,9 @@ std::optional<MeshTextProblem> checkPlyAsciiBody(std::string_view text, std::siz
         std::size_t word = 0;
         std::int64_t listLengths[2] = {0, 0};  // the face's vertex indices and texture coordinates
         int textureCoordinatesColumn = 1;
-        for (std::size_t p = 0; p < owner.properties.size(); ++p) {
+        // Up to the last list only: the scalars after it need no look, and a
+        // header of many of them must not cost that many steps per line.
+        for (std::size_t p = 0; p <= static_cast<std::size_t>(owner.lastList); ++p) {
             const PlyProperty& property = owner.properties[p];
             if (!property.lengthType) {
                 ++word;
@@ -558,6 +559,8 @@ std::optional<MeshTextProblem> checkPlyHeader(std::string_view text, std::string
     enum class Format { kAscii, kLittleEndian, kBigEndian };
     Format format = Format::kAscii;
     std::vector<PlyElement> elements;
+    int vertexElementLine = 0;  // where the vertex element was declared, else 0
+    int faceElementLine = 0;    // and the face element
     // The first line since the last element line that is not a property:
     // Assimp ends an element's property list at any such line (a comment
     // too), and skips the properties after it, so the body would be
@@ -654,11 +657,13 @@ std::optional<MeshTextProblem> checkPlyHeader(std::string_view text, std::string
                 return at(words[1].column, "Assimp reads one triangle of each triangle strip: use \"element face\"");
             // Assimp writes every vertex element into one array sized for the
             // first, and every face element into another (heap overflows).
-            const auto earlier = std::find_if(elements.begin(), elements.end(),
-                                              [&](const PlyElement& e) { return e.name == words[1].text; });
-            if ((words[1].text == "vertex" || words[1].text == "face") && earlier != elements.end())
-                return at(words[1].column, "a second " + quoted(words[1].text) + " element (the first is on line " +
-                                               std::to_string(earlier->line) + "): Assimp writes both into one array");
+            if (words[1].text == "vertex" || words[1].text == "face") {
+                int& first = words[1].text == "vertex" ? vertexElementLine : faceElementLine;
+                if (first > 0)
+                    return at(words[1].column, "a second " + quoted(words[1].text) + " element (the first is on line " +
+                                                   std::to_string(first) + "): Assimp writes both into one array");
+                first = lineNumber;
+            }
             elements.push_back({words[1].text, *count, lineNumber, words[1].column, {}});
             interruptingLine = 0;
         } else if (keyword == "property") {
@@ -686,6 +691,7 @@ std::optional<MeshTextProblem> checkPlyHeader(std::string_view text, std::string
             if (!plainWord(property.name))
                 return at(words.back().column, "property name " + quoted(property.name) + " is not a plain ASCII word");
             PlyElement& element = elements.back();
+            if (list) element.lastList = static_cast<int>(element.properties.size());
             if (element.name == "face" && list) {
                 const int index = static_cast<int>(element.properties.size());
                 if (property.name == "vertex_indices" || property.name == "vertex_index") element.vertexIndices = index;

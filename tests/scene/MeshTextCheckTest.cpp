@@ -300,6 +300,10 @@ TEST(MeshTextCheck, PlySecondVertexOrFaceElementIsRefused) {
                   "a second \"vertex\" element (the first is on line 3): Assimp writes both into one array");
     expectRefused(asciiWithHeaderLines(kTriangleElements + "element face 4\nproperty list uchar int vertex_indices\n"),
                   9, 9, "a second \"face\" element (the first is on line 7)");
+    // Other elements may come in any number, before or after them.
+    expectAccepted(asciiWithHeaderLines("element material 0\nproperty float red\n" + kTriangleElements +
+                                        "element edge 0\nproperty int vertex1\nelement edge 0\nproperty int vertex2\n"),
+                   "other elements");
 }
 
 // Assimp 5.2 keeps one triangle of each strip (the last): 0 1 2 3 gave one
