@@ -619,6 +619,10 @@ std::optional<MeshTextProblem> checkPlyHeader(std::string_view text, std::string
                                                                : Format::kBigEndian;
         } else if (keyword == "end_header") {
             if (words.size() > 1) return at(words[1].column, "nothing may follow end_header on its line");
+            // Assimp's header reader loops forever on an end_header line
+            // that ends the file (docs/testing.md finding 19).
+            if (end == text.size())
+                return at(words[0].column + 10, "the file ends after end_header, without a line break");
             if (auto problem = elementComplete()) return problem;
             const std::size_t bodyStart = std::min(end + 1, text.size());
             if (format == Format::kAscii) {

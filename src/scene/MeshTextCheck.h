@@ -36,7 +36,8 @@ std::optional<MeshTextProblem> checkOffText(std::string_view text);
 // element (types: char uchar short ushort int uint float double int8 uint8
 // int16 uint16 int32 uint32 float32 float64, a list's length an integer
 // type), an element with a nonzero count has properties, and "end_header"
-// alone on its line. Assimp reads into memory it does not own, or misreads,
+// alone on its line, ended by \n (Assimp loops forever at the end of the
+// file). Assimp reads into memory it does not own, or misreads,
 // some headers of that grammar, refused too: a second "vertex" or "face"
 // element (written into the first one's array), "element tristrips" (one
 // triangle kept per strip), "element TextureFile", and a face's "texcoord"

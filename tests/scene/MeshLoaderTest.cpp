@@ -288,6 +288,10 @@ TEST(MeshLoader, DamagedPlyHeaderIsOneErrorNotAHang) {
     expectRejected(path, "no end_header", 3, 1);
     expectRejected(writeMesh("format.ply", "ply\nformat text 1.0\nend_header\n"), "expected \"format", 2, 1);
     expectRejected(writeMesh("magic.ply", "plyx\nformat ascii 1.0\nend_header\n"), "starts with a line \"ply\"", 1, 1);
+    // Finding 19: an end_header line ending the file, without a line break.
+    const auto findings = std::filesystem::path(RAYCACHE_TEST_DATA_DIR).parent_path() / "fuzz" / "findings";
+    expectRejected(findings / "assimp-ply-hang-end-header-at-end-of-file.ply",
+                   "the file ends after end_header, without a line break", 5, 11);
 }
 
 // Found by fuzzing (docs/testing.md, findings 14 and 16): when the readers

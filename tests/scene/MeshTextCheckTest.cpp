@@ -162,6 +162,13 @@ TEST(MeshTextCheck, PlyFormatAndEndHeaderLinesAreExact) {
     expectRefused("ply\nformat ascii 1.0\nformat ascii 1.0\n" + elements, 3, 1, "a second format line");
     expectRefused("ply\nformat ascii 1.0\n" + kTriangleElements + "end_header x\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", 9, 12,
                   "nothing may follow end_header");
+    // Assimp's header reader looped forever on an end_header line without
+    // its line break at the end of the file (finding 19), even with no
+    // element to read.
+    expectRefused("ply\nformat ascii 1.0\ncot{0float z\nelemeproperty list uchar int vertex_indices\nend_header", 5, 11,
+                  "the file ends after end_header, without a line break");
+    expectRefused("ply\nformat binary_little_endian 1.0\nend_header\r", 3, 11, "without a line break");
+    expectAccepted("ply\nformat binary_little_endian 1.0\nend_header\n", "no elements");
 }
 
 TEST(MeshTextCheck, PlyElementWithACountAndNoPropertiesIsRefused) {
