@@ -288,6 +288,10 @@ TEST(MeshLoader, DamagedPlyHeaderIsOneErrorNotAHang) {
     expectRejected(path, "no end_header", 3, 1);
     expectRejected(writeMesh("format.ply", "ply\nformat text 1.0\nend_header\n"), "expected \"format", 2, 1);
     expectRejected(writeMesh("magic.ply", "plyx\nformat ascii 1.0\nend_header\n"), "starts with a line \"ply\"", 1, 1);
+    // Finding 19: an end_header line ending the file, without a line break.
+    const auto findings = std::filesystem::path(RAYCACHE_TEST_DATA_DIR).parent_path() / "fuzz" / "findings";
+    expectRejected(findings / "assimp-ply-hang-end-header-at-end-of-file.ply",
+                   "the file ends after end_header, without a line break", 5, 11);
 }
 
 // Found by fuzzing (docs/testing.md, findings 14 and 16): when the readers
@@ -368,6 +372,60 @@ TEST(MeshLoader, TruncatedAsciiPlyIsAnError) {
     EXPECT_EQ(loadMeshFile(writeMesh("whole.ply", head + "3 0 1 2\n3 1 3 2\n")).note, "");
     expectRejected(writeMesh("cut.ply", head + "3 0 1 2\n"),
                    "the header announces 6 lines of data (vertex 4, face 2), the file has 5", 9, 1);
+}
+
+// Found by fuzzing (docs/testing.md, findings 17 and 18): Assimp's PLY line
+// reader ends a line at a NUL (or \r, \f) and then looks for the next \n past
+// its buffer; a binary PLY with control bytes in its property lines made it
+// free a bad pointer, an ASCII one with NULs in an element line hung it.
+// Control bytes in the header are refused, with their line and column.
+TEST(MeshLoader, PlyHeaderControlByteIsOneErrorNotACrashOrAHang) {
+    const auto findings = std::filesystem::path(RAYCACHE_TEST_DATA_DIR).parent_path() / "fuzz" / "findings";
+    expectRejected(findings / "assimp-bad-free-ply-garbage-property.ply", "control byte 0x1c in the PLY header", 8, 18);
+    expectRejected(findings / "assimp-ply-hang-nul-in-element-line.ply", "control byte 0x00 in the PLY header", 4, 9);
+}
+
+// A binary PLY shorter than its header announces: Assimp reads on past the
+// data, taking whatever its buffer holds there for geometry.
+TEST(MeshLoader, TruncatedBinaryPlyIsAnError) {
+    std::ifstream in(std::filesystem::path(RAYCACHE_TEST_DATA_DIR).parent_path() / "fuzz" / "corpus" / "mesh_loader" /
+                         "tetrahedron_binary_ply",
+                     std::ios::binary);
+    const std::string seed((std::istreambuf_iterator<char>(in)), {});
+    const std::string ply = seed.substr(1);  // the fuzzer's first byte picks the extension
+    EXPECT_EQ(loadMeshFile(writeMesh("whole.ply", ply)).mesh.triangles.size(), 4u);
+    expectRejected(writeMesh("cut.ply", ply.substr(0, ply.size() - 1)),
+                   "the header announces at least 148 bytes of binary data (vertex 4, face 4), the file has 147", 13,
+                   1);
+}
+
+// Headers of the PLY grammar that Debian's Assimp 5.2.5 reads into memory
+// it does not own (found by reading its PLY reader; a release build aborted
+// in malloc or crashed on each): a second vertex element written into the
+// first one's array, a second face element likewise, and face texture
+// coordinates read through vertex indices that are not there.
+TEST(MeshLoader, PlyHeadersAssimpWouldOverflowAreOneError) {
+    const std::string start = "ply\nformat ascii 1.0\n";
+    const std::string vertices = "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+    const std::string faces = "element face 1\nproperty list uchar int vertex_indices\n";
+    const std::string data = "0 0 0\n1 0 0\n0 1 0\n";
+    expectRejected(writeMesh("two-vertex.ply", start + "element vertex 1\nproperty float x\n" + vertices + faces +
+                                                   "end_header\n0\n" + data + "3 0 1 2\n"),
+                   "a second \"vertex\" element (the first is on line 3)", 5, 9);
+    expectRejected(writeMesh("two-face.ply", start + vertices + faces + "element face 2\n" +
+                                                 "property list uchar int vertex_indices\nend_header\n" + data +
+                                                 "3 0 1 2\n3 0 1 2\n3 0 2 1\n"),
+                   "a second \"face\" element (the first is on line 7)", 9, 9);
+    const std::string textured = start + vertices + faces + "property list uchar float texcoord\nend_header\n" + data;
+    expectRejected(writeMesh("no-indices.ply", start + vertices +
+                                                   "element face 1\nproperty list uchar float texcoord\nend_header\n" +
+                                                   data + "6 0 0 1 0 0 1\n"),
+                   "a face's texcoord list needs its vertex_indices list", 8, 1);
+    expectRejected(writeMesh("long-uv.ply", textured + "3 0 1 2 8 0 0 1 0 0 1 1 1\n"),
+                   "face 0's list \"texcoord\" has 8 values for its 3 vertices", 14, 9);
+    const TriangleMesh mesh = loadMeshFile(writeMesh("uv.ply", textured + "3 0 1 2 6 0 0 1 0 0 1\n")).mesh;
+    EXPECT_EQ(mesh.triangles.size(), 1u);
+    EXPECT_EQ(mesh.uvs.size(), 3u);
 }
 
 }  // namespace raycache

@@ -105,6 +105,10 @@ TEST(RealMeshes, AssimpTestModelsThatAreBrokenAreStillRefused) {
         {"invalid/malformed.obj", "face refers to vertex 12 but the file has 8"},
         {"OFF/invalid.off", "the header promises 3 vertices and 4 faces"},
         {"PLY/points.ply", "no faces"},
+        // Binary, 69 bytes short of its 70051 vertices (Assimp read zeros on).
+        {"PLY/pond.0.ply", "the header announces 2171581 bytes of binary data (vertex 70051), the file has 2171512"},
+        // Its vertices declare a list the lines do not hold.
+        {"PLY/issue623.ply", "vertex 0 ends before the length of its list \"vertex_indices\""},
         {"glTF2/glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_00.gltf", "contains no triangles"},
     };
     for (const Case& c : cases) {
