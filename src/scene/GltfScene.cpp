@@ -138,8 +138,9 @@ struct LocalMesh {
 
 class GltfSceneBuilder {
 public:
-    GltfSceneBuilder(const fs::path& path, const GltfDocument& document, const aiScene& scene)
-        : path_(path), document_(document), ai_(scene) {}
+    GltfSceneBuilder(const fs::path& path, const GltfDocument& document, const aiScene& scene,
+                     const GltfSceneOverrides& overrides)
+        : path_(path), document_(document), ai_(scene), overrides_(overrides) {}
 
     Scene build() {
         Scene scene;
@@ -150,7 +151,7 @@ public:
         buildObjects(scene);
         const Box3 bounds = sceneBounds(scene);
         chooseCamera(scene, bounds);
-        buildLights(scene, bounds);
+        if (!overrides_.lights) buildLights(scene, bounds);
         noteWhatIsNotDrawn();
         scene.notes = std::move(notes_);
         return scene;
@@ -576,7 +577,7 @@ private:
                 note("uses its first camera, " + chosenName + "; ignored " + counted(others, "other", "others"));
         } else {
             scene.camera = cameraFramingBounds(bounds);
-            note("no camera in the file: a camera framed on the scene's bounds is used");
+            if (!overrides_.camera) note("no camera in the file: a camera framed on the scene's bounds is used");
         }
     }
 
@@ -732,6 +733,7 @@ private:
     fs::path path_;
     const GltfDocument& document_;
     const aiScene& ai_;
+    GltfSceneOverrides overrides_;
     std::vector<std::string> notes_;
     std::vector<PlacedNode> nodes_;
     std::unordered_map<std::string, std::size_t> nodeByName_;
@@ -757,7 +759,7 @@ bool isGltfPath(const fs::path& path) {
     return ext == ".gltf" || ext == ".glb";
 }
 
-Scene loadGltfScene(const fs::path& path) {
+Scene loadGltfScene(const fs::path& path, const GltfSceneOverrides& overrides) {
     const InputLocation where{.file = path.string()};
     std::error_code ec;
     const fs::file_status status = fs::status(path, ec);
@@ -784,7 +786,7 @@ Scene loadGltfScene(const fs::path& path) {
     // and lights are placed by it here. Normals are made by the mesh policy
     // (repairMesh), as for mesh files.
     const aiScene& scene = reader.postProcess(aiProcess_Triangulate);
-    return GltfSceneBuilder(path, document, scene).build();
+    return GltfSceneBuilder(path, document, scene, overrides).build();
 }
 
 }  // namespace raycache

@@ -475,6 +475,77 @@ TEST_F(GltfSceneTest, SceneLoaderTakesGltfFilesByTheirExtension) {
     EXPECT_FALSE(isGltfPath("a/b.json"));
 }
 
+// "include": a glTF scene inside our JSON, our keys changing it: the camera's
+// given keys, the lights replaced, the environment, an included object's
+// material, objects added after the file's.
+TEST_F(GltfSceneTest, IncludedInAJsonSceneOurKeysOverrideIt) {
+    GltfTestFile file;
+    const int red = file.addMaterial({{"name", "red"}, {"pbrMetallicRoughness", {{"baseColorFactor", {1, 0, 0, 1}}}}});
+    file.addNode({{"name", "floor"}, {"mesh", file.addMesh(makePlane(), red)}, {"scale", {8, 1, 8}}});
+    file.addNode({{"name", "ball"}, {"mesh", file.addMesh(uvSphere(1.0f), red)}, {"translation", {0, 1, 0}}});
+    file.addNode({{"name", "bulb"},
+                  {"translation", {0, 5, 0}},
+                  {"extensions",
+                   {{"KHR_lights_punctual", {{"light", file.addLight({{"type", "point"}, {"intensity", 10}})}}}}}});
+    file.write(path("model.glb.gltf"));
+    const Scene alone = loadGltfScene(path("model.glb.gltf"));
+
+    writeText(path("with.json"), R"({
+      "include": {"file": "model.glb.gltf", "materials": {"ball": "chrome"}},
+      "camera": {"fov": 30},
+      "environment": {"type": "color", "color": 0.2},
+      "lights": [{"type": "directional", "direction": [0, -1, 0], "intensity": 0.5}],
+      "materials": {"chrome": {"diffuse": 0.05, "kr": 0.9, "cache": {"technique": "cdct"}}},
+      "objects": [{"name": "extra", "shape": "sphere", "center": [3, 1, 0]}]
+    })");
+    const Scene scene = loadSceneFile(path("with.json"));
+    EXPECT_EQ(scene.name, "with");
+    ASSERT_EQ(scene.objects.size(), 3u);
+    EXPECT_EQ(scene.objects[0].name, "floor");
+    EXPECT_EQ(scene.objects[1].name, "ball");
+    EXPECT_EQ(scene.objects[2].name, "extra");
+    EXPECT_EQ(scene.objects[0].material.diffuse, alone.objects[0].material.diffuse);
+    EXPECT_EQ(scene.objects[1].material.reflectivity, 0.9f);
+    EXPECT_EQ(scene.objects[1].material.cache.technique, CacheTechnique::Cdct);
+    // The framed camera, with our field of view; no note about the camera, since ours is given.
+    EXPECT_EQ(scene.camera.position, alone.camera.position);
+    EXPECT_EQ(scene.camera.verticalFovDeg, 30.0f);
+    ASSERT_EQ(scene.lights.size(), 1u);
+    EXPECT_EQ(scene.lights[0].type, LightType::Directional);
+    EXPECT_EQ(scene.environment.lookup({0, 1, 0}), Rgb(0.2f));
+    EXPECT_TRUE(scene.notes.empty()) << allNotes(scene);
+    EXPECT_EQ(alone.notes.size(), 1u) << allNotes(alone);  // the file alone has no camera
+
+    // The same file without our keys is the file's scene.
+    writeText(path("bare.json"), R"({"include": "model.glb.gltf"})");
+    const Scene bare = loadSceneFile(path("bare.json"));
+    EXPECT_EQ(bare.objects.size(), 2u);
+    EXPECT_EQ(bare.lights.size(), 1u);
+    EXPECT_EQ(bare.notes, alone.notes);
+
+    const auto refusal = [&](const std::string& text) -> std::string {
+        writeText(path("bad.json"), text);
+        try {
+            (void)loadSceneFile(path("bad.json"));
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "loaded";
+    };
+    EXPECT_NE(refusal(R"({"include": "model.glb.gltf", "objects": [{"name": "ball", "shape": "box"}]})")
+                  .find("duplicate object name \"ball\" (also used by /include, an object of the included file)"),
+              std::string::npos);
+    EXPECT_NE(refusal(R"({"include": {"file": "model.glb.gltf", "materials": {"bal": {"kr": 1}}}})")
+                  .find("/include/materials/bal: the included file has no object \"bal\" (did you mean \"ball\"?)"),
+              std::string::npos);
+    EXPECT_NE(refusal(R"({"include": "with.json"})").find("the included file must be a glTF 2.0 scene"),
+              std::string::npos);
+    EXPECT_NE(refusal(R"({"include": "nothere.glb"})").find("included scene file not found"), std::string::npos);
+    writeText(path("broken.gltf"), "{]");
+    EXPECT_NE(refusal(R"({"include": "broken.gltf"})").find("/include: cannot load included scene \"broken.gltf\": "),
+              std::string::npos);
+}
+
 // The material rule's numbers (docs/scene-format.md, "Materials").
 TEST(PbrToBlinnPhong, FollowsTheDocumentedRule) {
     EXPECT_EQ(blinnPhongShininess(0.5f), 30.0f);   // alpha 0.25: 2 / 0.0625 - 2
