@@ -21,7 +21,7 @@ namespace {
 
 // The options every rendering command shares: what to render and how.
 void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
-    command.add_option("--scene", job.scene, "Built-in scene name (see `raycache scenes`) or scene .json file")
+    command.add_option("--scene", job.scene, "Built-in scene name (see `raycache scenes`), scene .json file, or glTF 2.0 scene (.gltf, .glb)")
         ->capture_default_str();
     command.add_option("--width", job.width, "Image width in pixels")->capture_default_str();
     command.add_option("--height", job.height, "Image height in pixels")->capture_default_str();
@@ -188,7 +188,7 @@ int run(int argc, char** argv, const raycache::ClusterRuntime& cluster) {
     view.job.height = 540;
     CLI::App* viewCmd = app.add_subcommand(
         "view", "Walk through a scene in a window; with --frames, play its camera path, print timings and exit");
-    viewCmd->add_option("scene-name", view.job.scene, "Built-in scene name or scene .json file (same as --scene)");
+    viewCmd->add_option("scene-name", view.job.scene, "Built-in scene name, scene .json file or glTF 2.0 scene (.gltf, .glb); same as --scene");
     addRenderJobOptions(*viewCmd, view.job);
     viewCmd->get_option("--width")->description("Window and film width in pixels");
     viewCmd->get_option("--height")->description("Window and film height in pixels");

@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <system_error>
@@ -18,6 +19,10 @@
 
 namespace raycache {
 namespace {
+
+// No format stb reads compresses pixels much better than deflate's ~1032:1,
+// so a header claiming far more pixels than that for its bytes is corrupt.
+constexpr std::uintmax_t kMaxPixelsPerByte = 1100;
 
 enum class ImageFormat { Srgb8, RadianceHdr, OpenExr, Unsupported };
 
@@ -48,17 +53,28 @@ void checkStbHeader(const std::filesystem::path& path) {
     if (!stbi_info(path.c_str(), &width, &height, &channels))
         failFile(path.string(), "cannot read image: " + stbReason());
     checkImageSize(path, width, height);
-    // No format stb reads compresses pixels much better than deflate's
-    // ~1032:1, so a header claiming far more pixels than that for its file's
-    // bytes is corrupt: reject it before stb allocates and clears it all
-    // (a 33-byte TGA claiming 16384x10752 took 14 s under ASan).
-    constexpr std::uintmax_t kMaxPixelsPerByte = 1100;
+    // Reject a corrupt header before stb allocates and clears it all (a
+    // 33-byte TGA claiming 16384x10752 took 14 s under ASan).
     std::error_code error;
     const std::uintmax_t bytes = std::filesystem::file_size(path, error);
     const auto pixels = static_cast<std::uintmax_t>(width) * static_cast<std::uintmax_t>(height);
     if (!error && pixels > kMaxPixelsPerByte * bytes)
         failFile(path.string(), "header claims " + std::to_string(width) + "x" + std::to_string(height) + " pixels in a file of " +
                        std::to_string(bytes) + " bytes: corrupt");
+}
+
+// 8-bit sRGB, 3 channels as stb_image returns them, to linear.
+Image linearFromSrgb8(const unsigned char* src, int width, int height) {
+    std::array<float, 256> toLinear{};
+    for (std::size_t i = 0; i < toLinear.size(); ++i)
+        toLinear[i] = srgbToLinear(static_cast<float>(i) / 255.0f);
+
+    Image image(width, height);
+    for (Rgb& px : image.pixels()) {
+        px = Rgb(toLinear[src[0]], toLinear[src[1]], toLinear[src[2]]);
+        src += 3;
+    }
+    return image;
 }
 
 Image loadSrgb8(const std::filesystem::path& path) {
@@ -69,18 +85,7 @@ Image loadSrgb8(const std::filesystem::path& path) {
     std::unique_ptr<unsigned char, StbFree> data(stbi_load(path.c_str(), &width, &height, &channels, 3));
     if (!data) failFile(path.string(), "cannot decode image: " + stbReason());
     checkImageSize(path, width, height);
-
-    std::array<float, 256> toLinear{};
-    for (std::size_t i = 0; i < toLinear.size(); ++i)
-        toLinear[i] = srgbToLinear(static_cast<float>(i) / 255.0f);
-
-    Image image(width, height);
-    const unsigned char* src = data.get();
-    for (Rgb& px : image.pixels()) {
-        px = Rgb(toLinear[src[0]], toLinear[src[1]], toLinear[src[2]]);
-        src += 3;
-    }
-    return image;
+    return linearFromSrgb8(data.get(), width, height);
 }
 
 Image loadRadianceHdr(const std::filesystem::path& path) {
@@ -103,6 +108,26 @@ Image loadRadianceHdr(const std::filesystem::path& path) {
 }
 
 }  // namespace
+
+Image decodeImageBytes(std::span<const unsigned char> bytes, const std::string& label) {
+    // stb takes an int length; images of 2 GiB are far beyond the size limit anyway.
+    if (bytes.empty() || bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+        failFile(label, "cannot read image: " + std::to_string(bytes.size()) + " bytes");
+    const auto length = static_cast<int>(bytes.size());
+    int width = 0, height = 0, channels = 0;
+    if (!stbi_info_from_memory(bytes.data(), length, &width, &height, &channels))
+        failFile(label, "cannot read image: " + stbReason());
+    checkImageSize(label, width, height);
+    const auto pixels = static_cast<std::uintmax_t>(width) * static_cast<std::uintmax_t>(height);
+    if (pixels > kMaxPixelsPerByte * bytes.size())
+        failFile(label, "header claims " + std::to_string(width) + "x" + std::to_string(height) +
+                            " pixels in " + std::to_string(bytes.size()) + " bytes: corrupt");
+    if (stbi_is_hdr_from_memory(bytes.data(), length)) failFile(label, "holds Radiance HDR data, not an 8-bit image");
+    std::unique_ptr<unsigned char, StbFree> data(stbi_load_from_memory(bytes.data(), length, &width, &height, &channels, 3));
+    if (!data) failFile(label, "cannot decode image: " + stbReason());
+    checkImageSize(label, width, height);
+    return linearFromSrgb8(data.get(), width, height);
+}
 
 Image loadImageFile(const std::filesystem::path& path) {
     const ImageFormat format = formatOf(path);

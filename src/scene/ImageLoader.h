@@ -1,6 +1,8 @@
 #pragma once
 // Reads textures and environment maps from disk into linear float RGB.
 #include <filesystem>
+#include <span>
+#include <string>
 
 #include "core/Image.h"
 
@@ -13,6 +15,13 @@ namespace raycache {
 // naming the file if it is missing, unreadable, corrupt, of an unsupported
 // format, empty, larger than maxImageSide per side, or holds non-finite values.
 Image loadImageFile(const std::filesystem::path& path);
+
+// An 8-bit image held in memory (a glTF file's embedded PNG or JPEG; BMP
+// and TGA too), told apart by its content, taken as sRGB and converted to
+// linear like loadImageFile's. `label` names the image in errors as a file
+// would be named ("scene.glb: image 0"). Throws InputError as loadImageFile
+// does; Radiance HDR data is refused (it would be tone-mapped silently).
+Image decodeImageBytes(std::span<const unsigned char> bytes, const std::string& label);
 
 // Largest accepted width or height; anything bigger is almost surely a corrupt
 // header, and would cost gigabytes.

@@ -23,6 +23,7 @@
 
 #include "core/Errors.h"
 #include "core/Transform.h"
+#include "scene/GltfScene.h"
 #include "scene/ImageLoader.h"
 #include "scene/JsonPositions.h"
 #include "scene/MeshGenerators.h"
@@ -229,12 +230,17 @@ public:
 
     Scene read(const json& root, const std::string& defaultName) {
         const Node r{&root, ""};
-        expectObject(r, {"name", "camera", "path", "frames", "fps", "environment", "lights", "materials", "objects",
-                         "pipeline", "accel", "renderCache", "cacheBudget"});
+        expectObject(r, {"name", "include", "camera", "path", "frames", "fps", "environment", "lights", "materials",
+                         "objects", "pipeline", "accel", "renderCache", "cacheBudget"});
         Scene scene;
+        // An included glTF scene is where the scene starts; every key below changes it.
+        const Node include = child(r, "include");
+        if (include)
+            scene = includedScene(include, {.camera = bool(child(r, "camera")), .lights = bool(child(r, "lights"))});
         scene.name = defaultName;
         if (const Node n = child(r, "name")) scene.name = nonEmptyString(n);
-        if (const Node n = child(r, "camera")) scene.camera = camera(n, Camera{});
+        // Keys the camera object leaves out keep the included (or default) camera's values.
+        if (const Node n = child(r, "camera")) scene.camera = camera(n, scene.camera);
 
         int pathFrames = 1;
         if (const Node n = child(r, "path")) {
@@ -262,7 +268,10 @@ public:
             }
         }
         if (const Node n = child(r, "materials")) materials(n);
-        objects(required(r, "objects"), scene);
+        if (include && include->is_object())
+            if (const Node n = child(include, "materials")) includedMaterials(n, scene);
+        // An included scene brings objects of its own; without one, the list is required.
+        if (const Node n = include ? child(r, "objects") : required(r, "objects")) objects(n, scene);
         poseScene(scene, 0.0f, scene);  // a still render shows time 0
         scene.notes = std::move(notes_);
         return scene;
@@ -513,6 +522,48 @@ private:
     }
 
     // ---- sections -------------------------------------------------------
+
+    // "include": a glTF 2.0 file (or {"file", "materials"}) read as a scene
+    // (scene/GltfScene.h), which the rest of the file changes. Its notes
+    // come first.
+    Scene includedScene(const Node& n, const GltfSceneOverrides& overrides) {
+        if (n->is_object()) expectObject(n, {"file", "materials"});
+        else if (!n->is_string()) failType(n, "a glTF file name or {\"file\", \"materials\"}");
+        const Node file = n->is_object() ? required(n, "file") : n;
+        const fs::path path = referencedFile(file, "included scene");
+        if (!isGltfPath(path))
+            fail(file, "the included file must be a glTF 2.0 scene (.gltf or .glb), got " +
+                           quote(file->get<std::string>()));
+        Scene scene;
+        try {
+            scene = loadGltfScene(path, overrides);
+        } catch (const InputError& e) {
+            fail(file, "cannot load included scene " + quote(file->get<std::string>()) + ": " + e.what());
+        }
+        notes_ = std::move(scene.notes);
+        scene.notes.clear();
+        includedObjects_ = scene.objects.size();
+        return scene;
+    }
+
+    // "include": {"materials": {"<object name>": material}}: materials of the
+    // included file's objects replaced by ours (a name or an inline material).
+    void includedMaterials(const Node& n, Scene& scene) {
+        if (!n->is_object()) failType(n, "an object mapping the included objects' names to materials");
+        std::vector<std::string_view> names;
+        for (std::size_t i = 0; i < includedObjects_; ++i) names.push_back(scene.objects[i].name);
+        for (const auto& item : n->items()) {
+            const Node m{&item.value(), appendJsonPointer(n.ptr, item.key())};
+            const auto at = std::find(names.begin(), names.end(), item.key());
+            if (at == names.end()) {
+                std::string hint = didYouMean(item.key(), names);
+                fail(m.ptr, "the included file has no object " + quote(item.key()) +
+                                (hint.empty() ? std::string() : " (" + hint + ")"),
+                     true);
+            }
+            scene.objects[static_cast<std::size_t>(at - names.begin())].material = objectMaterial(m);
+        }
+    }
 
     // A camera; members not given keep `defaults`.
     Camera camera(const Node& n, const Camera& defaults) const {
@@ -878,6 +929,7 @@ private:
 
     void objects(const Node& n, Scene& scene) {
         std::unordered_map<std::string, std::string> names;  // name -> pointer of its first use
+        for (const SceneObject& o : scene.objects) names.emplace(o.name, "/include, an object of the included file");
         for (const Node& o : elements(n, 0, kMaxObjects, "objects")) {
             expectObject(o, {"name", "shape", "center", "radius", "file", "transform", "material", "animation", "frames"});
             const Node shape = required(o, "shape");
@@ -989,6 +1041,7 @@ private:
         if (const std::string problem = validateMesh(mesh); !problem.empty()) fail(where, problem);
     }
 
+    std::size_t includedObjects_ = 0;  // the first objects of the scene, from "include"
     double framesReach_ = 0.0;  // farthest vertex of the last object's mesh frames from the origin
     std::vector<std::string> notes_;  // Scene::notes, as the files are loaded
     std::string fileLabel_;

@@ -4,6 +4,7 @@
 
 #include "core/Errors.h"
 #include "scene/BuiltinScenes.h"
+#include "scene/GltfScene.h"
 #include "scene/SceneFile.h"
 
 namespace raycache {
@@ -11,9 +12,11 @@ namespace raycache {
 Scene loadScene(const std::string& builtinNameOrPath) {
     if (auto builtin = makeBuiltinScene(builtinNameOrPath)) return std::move(*builtin);
     const std::filesystem::path path(builtinNameOrPath);
+    // The extension decides: a glTF 2.0 file is a whole scene, anything else our JSON.
+    if (isGltfPath(path)) return loadGltfScene(path);
     if (path.extension() == ".json" || std::filesystem::exists(path)) return loadSceneFile(path);
     throw InputError("unknown scene '" + builtinNameOrPath +
-                     "': not a built-in scene (see `raycache scenes`) and not a .json file");
+                     "': not a built-in scene (see `raycache scenes`) and not a .json, .gltf or .glb file");
 }
 
 }  // namespace raycache

@@ -5,8 +5,9 @@
 
 namespace raycache {
 
-// A built-in scene by name, or a JSON scene file by path. Throws InputError
-// naming the argument when it is neither.
+// A built-in scene by name, or a scene file by path: glTF 2.0 (.gltf, .glb,
+// any case: scene/GltfScene.h), else our JSON (scene/SceneFile.h). Throws
+// InputError naming the argument when it is neither.
 Scene loadScene(const std::string& builtinNameOrPath);
 
 }  // namespace raycache

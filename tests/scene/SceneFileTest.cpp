@@ -159,8 +159,8 @@ TEST_F(SceneFileTest, UnknownKeySuggestionIgnoresCase) {
 
 TEST_F(SceneFileTest, UnknownKeyWithoutCloseMatchListsValidKeys) {
     expectError("{@\"wibble\": 1, \"objects\": []}", "/wibble",
-                "unknown key \"wibble\" (valid keys: name, camera, path, frames, fps, environment, lights, materials, objects, "
-                "pipeline, accel, renderCache, cacheBudget)");
+                "unknown key \"wibble\" (valid keys: name, include, camera, path, frames, fps, environment, lights, "
+                "materials, objects, pipeline, accel, renderCache, cacheBudget)");
 }
 
 TEST_F(SceneFileTest, RenderCacheKeysAreReadAndChecked) {

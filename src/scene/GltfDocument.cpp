@@ -1,0 +1,167 @@
+#include "scene/GltfDocument.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <system_error>
+
+#include "core/Errors.h"
+#include "scene/MeshLimits.h"
+
+namespace raycache {
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+[[noreturn]] void fail(const fs::path& path, const std::string& message, int line = 0, int column = 0) {
+    throw InputError(InputLocation{.file = path.string(), .line = line, .column = column}, message);
+}
+
+std::string readBytes(const fs::path& path, std::uintmax_t offset, std::uintmax_t count) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail(path, "cannot open glTF file");
+    in.seekg(static_cast<std::streamoff>(offset));
+    std::string bytes(static_cast<std::size_t>(count), '\0');
+    in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    if (in.bad() || in.gcount() != static_cast<std::streamsize>(bytes.size())) fail(path, "cannot read glTF file");
+    return bytes;
+}
+
+std::uint32_t littleEndianWord(const std::string& bytes, std::size_t at) {
+    std::uint32_t word = 0;
+    for (int i = 3; i >= 0; --i) word = word << 8 | static_cast<unsigned char>(bytes[at + static_cast<std::size_t>(i)]);
+    return word;
+}
+
+// Binary glTF: the JSON chunk's text, or empty for a glTF 1.0 file (whose
+// content raycache does not read: version 1 is refused anyway).
+std::string glbJson(const fs::path& path, std::uintmax_t fileBytes, bool& version1) {
+    if (fileBytes < 20)
+        fail(path, "binary glTF file of " + std::to_string(fileBytes) + " bytes: too short for its header");
+    const std::string header = readBytes(path, 0, 20);
+    const std::uint32_t version = littleEndianWord(header, 4);
+    version1 = version == 1;
+    if (version1) return {};
+    if (version != 2) fail(path, "binary glTF version " + std::to_string(version) + " (expected 2)");
+    const std::uint32_t length = littleEndianWord(header, 12);
+    if (std::memcmp(header.data() + 16, "JSON", 4) != 0) fail(path, "binary glTF: the first chunk is not JSON");
+    if (length > fileBytes - 20)
+        fail(path, "binary glTF: the JSON chunk claims " + std::to_string(length) + " bytes, more than the " +
+                       std::to_string(fileBytes - 20) + " left in the file");
+    return readBytes(path, 20, length);
+}
+
+std::vector<std::string> stringsOf(const json& document, const char* key) {
+    std::vector<std::string> out;
+    const auto it = document.find(key);
+    if (it == document.end() || !it->is_array()) return out;
+    for (const json& v : *it)
+        if (v.is_string()) out.push_back(v.get<std::string>());
+    return out;
+}
+
+// Whether some KHR_texture_transform under `v` carries a "texCoord".
+bool transformSetsTexCoord(const json& v) {
+    if (v.is_object()) {
+        for (const auto& [key, value] : v.items()) {
+            if (key == "KHR_texture_transform" && value.is_object() && value.contains("texCoord")) return true;
+            if (transformSetsTexCoord(value)) return true;
+        }
+    } else if (v.is_array()) {
+        for (const json& e : v)
+            if (transformSetsTexCoord(e)) return true;
+    }
+    return false;
+}
+
+// Far deeper than any glTF (its own structure nests about 8 levels), low
+// enough that the recursive parsers (nlohmann's here, rapidjson's in
+// Assimp) cannot run out of stack on a file of nested brackets.
+constexpr int kMaxNesting = 256;
+
+// Whether arrays and objects nest deeper than kMaxNesting, outside strings.
+bool nestedTooDeep(const std::string& text) {
+    int depth = 0;
+    bool inString = false, escaped = false;
+    for (const char c : text) {
+        if (inString) {
+            if (escaped)
+                escaped = false;
+            else if (c == '\\')
+                escaped = true;
+            else if (c == '"')
+                inString = false;
+        } else if (c == '"') {
+            inString = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > kMaxNesting) return true;
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+    return false;
+}
+
+}  // namespace
+
+GltfDocument readGltfDocument(const fs::path& path) {
+    std::error_code ec;
+    const std::uintmax_t bytes = fs::file_size(path, ec);
+    if (ec) fail(path, "cannot read glTF file: " + ec.message());
+    if (bytes > kMaxMeshFileBytes)
+        fail(path, "glTF file is " + std::to_string(bytes) + " bytes, more than the limit of " +
+                       std::to_string(kMaxMeshFileBytes));
+    const bool binary = bytes >= 4 && readBytes(path, 0, 4) == "glTF";
+    bool version1 = false;
+    const std::string text = binary ? glbJson(path, bytes, version1) : readBytes(path, 0, bytes);
+    GltfDocument document;
+    if (version1) {
+        document.version = "1.0";
+        return document;
+    }
+
+    if (nestedTooDeep(text))
+        fail(path, "glTF JSON nested more than " + std::to_string(kMaxNesting) +
+                       " levels deep (arrays and objects inside each other)");
+    json root;
+    try {
+        root = json::parse(text);
+    } catch (const json::parse_error& e) {
+        // nlohmann says "[json.exception.parse_error.101] parse error at line L, column C: what".
+        std::string what = e.what();
+        if (const std::size_t at = what.find(": "); at != std::string::npos) what = what.substr(at + 2);
+        std::replace(what.begin(), what.end(), '\n', ' ');
+        int line = 0, column = 0;
+        if (!binary && e.byte > 0 && e.byte <= text.size()) {
+            line = 1;
+            std::size_t lineStart = 0;
+            for (std::size_t i = 0; i + 1 < e.byte; ++i)
+                if (text[i] == '\n') ++line, lineStart = i + 1;
+            column = static_cast<int>(e.byte - lineStart);
+        }
+        fail(path, "not valid glTF JSON: " + what, line, column);
+    }
+    if (!root.is_object()) fail(path, "not a glTF file: its JSON is not an object");
+    if (const auto asset = root.find("asset"); asset != root.end() && asset->is_object())
+        if (const auto version = asset->find("version"); version != asset->end() && version->is_string())
+            document.version = version->get<std::string>();
+    document.extensionsUsed = stringsOf(root, "extensionsUsed");
+    document.extensionsRequired = stringsOf(root, "extensionsRequired");
+    if (const auto scenes = root.find("scenes"); scenes != root.end() && scenes->is_array())
+        document.sceneCount = scenes->size();
+    if (const auto scene = root.find("scene"); scene != root.end() && scene->is_number_unsigned())
+        document.defaultScene = scene->get<std::size_t>();
+    if (const auto cameras = root.find("cameras"); cameras != root.end() && cameras->is_array())
+        for (const json& camera : *cameras)
+            document.orthographicCameras.push_back(camera.is_object() &&
+                                                   camera.value("type", json()) == "orthographic");
+    if (const auto materials = root.find("materials"); materials != root.end())
+        document.textureTransformSetsTexCoord = transformSetsTexCoord(*materials);
+    return document;
+}
+
+}  // namespace raycache

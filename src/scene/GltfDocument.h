@@ -1,0 +1,38 @@
+#pragma once
+// What a glTF file's own JSON says that Assimp does not pass on: the
+// version, the extensions the file uses and requires, how many scenes it
+// holds. The scene loader refuses a file on these before Assimp reads it
+// (glTF 1.0, a required extension raycache cannot honour) and notes the
+// extensions it ignores (docs/scene-format.md, "glTF 2.0 scenes").
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace raycache {
+
+struct GltfDocument {
+    std::string version;                      // asset.version as written ("2.0"); "1.0" also for a binary glTF 1.0 file
+    std::vector<std::string> extensionsUsed;  // in file order
+    std::vector<std::string> extensionsRequired;  // in file order
+    std::size_t sceneCount = 0;                   // entries of "scenes"
+    // Per entry of "cameras" (Assimp keeps their order): whether it is
+    // orthographic. Assimp 5.2 gives such a camera a field of view of 0,
+    // which a broken perspective camera can have too.
+    std::vector<bool> orthographicCameras;
+    std::size_t defaultScene = 0;  // "scene", the one drawn
+    // Some texture's KHR_texture_transform names its own texture coordinate
+    // set ("texCoord"), which Assimp 5.2 does not read.
+    bool textureTransformSetsTexCoord = false;
+
+    bool isVersion2() const { return version.rfind("2.", 0) == 0; }
+};
+
+// Reads the JSON of a .gltf file, or the JSON chunk of a binary glTF (a
+// file starting with "glTF", whatever its name). Throws InputError naming
+// the file if it cannot be read, is larger than a mesh file may be, is not
+// JSON (with the line and column of a .gltf file's syntax error), or its
+// binary header or chunks do not fit in the file.
+GltfDocument readGltfDocument(const std::filesystem::path& path);
+
+}  // namespace raycache
