@@ -561,6 +561,7 @@ std::optional<MeshTextProblem> checkPlyHeader(std::string_view text, std::string
     std::vector<PlyElement> elements;
     int vertexElementLine = 0;  // where the vertex element was declared, else 0
     int faceElementLine = 0;    // and the face element
+    int unknownElement = -1;    // the first element Assimp does not know with a nonzero count, else -1
     // The first line since the last element line that is not a property:
     // Assimp ends an element's property list at any such line (a comment
     // too), and skips the properties after it, so the body would be
@@ -659,15 +660,33 @@ std::optional<MeshTextProblem> checkPlyHeader(std::string_view text, std::string
             // Assimp keeps the last triangle of each strip only.
             if (words[1].text == "tristrips")
                 return at(words[1].column, "Assimp reads one triangle of each triangle strip: use \"element face\"");
-            // Assimp writes every vertex element into one array sized for the
-            // first, and every face element into another (heap overflows).
+            // Assimp reads the count of an element it does not know from the
+            // start of its name (finding 20): 555555555 instances of
+            // "555555555face", allocated at once, and 0 of most others.
+            const bool known = words[1].text == "vertex" || words[1].text == "face" || words[1].text == "edge" ||
+                               words[1].text == "material";
+            if (!known && std::isdigit(static_cast<unsigned char>(words[1].text[0])))
+                return at(words[1].column, "element name " + quoted(words[1].text) +
+                                               " starts with a digit (Assimp reads it as the count)");
             if (words[1].text == "vertex" || words[1].text == "face") {
+                // Assimp writes every vertex element into one array sized for
+                // the first, and every face element into another (heap overflows).
                 int& first = words[1].text == "vertex" ? vertexElementLine : faceElementLine;
                 if (first > 0)
                     return at(words[1].column, "a second " + quoted(words[1].text) + " element (the first is on line " +
                                                    std::to_string(first) + "): Assimp writes both into one array");
                 first = lineNumber;
+                // Having read none of an unknown element's instances, Assimp
+                // would read their data as this element's.
+                if (unknownElement >= 0) {
+                    const PlyElement& unknown = elements[static_cast<std::size_t>(unknownElement)];
+                    return MeshTextProblem{unknown.line, unknown.column,
+                                           "Assimp reads no " + quoted(unknown.name) +
+                                               " instances (an element it does not know), so they may only come "
+                                               "after the vertex and face elements"};
+                }
             }
+            if (!known && *count > 0 && unknownElement < 0) unknownElement = static_cast<int>(elements.size());
             elements.push_back({words[1].text, *count, lineNumber, words[1].column, {}});
             interruptingLine = 0;
         } else if (keyword == "property") {

@@ -40,8 +40,11 @@ std::optional<MeshTextProblem> checkOffText(std::string_view text);
 // file). Assimp reads into memory it does not own, or misreads,
 // some headers of that grammar, refused too: a second "vertex" or "face"
 // element (written into the first one's array), "element tristrips" (one
-// triangle kept per strip), "element TextureFile", and a face's "texcoord"
-// list without a "vertex_indices" one (read through it). No header line holds a control byte other than tab
+// triangle kept per strip), "element TextureFile", a face's "texcoord"
+// list without a "vertex_indices" one (read through it), an element name
+// starting with a digit, and an element other than vertex, face, edge and
+// material with instances before the vertex or face element (Assimp reads
+// such an element's count from its name: the digits, else 0). No header line holds a control byte other than tab
 // (and a line's trailing \r), comments included: Assimp's line reader ends
 // a line at NUL, \r or \f and then looks for the next \n past its buffer
 // (it hung and freed bad pointers on such headers, found by fuzzing,

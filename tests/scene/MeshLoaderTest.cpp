@@ -403,8 +403,11 @@ TEST(MeshLoader, TruncatedBinaryPlyIsAnError) {
 // it does not own (found by reading its PLY reader; a release build aborted
 // in malloc or crashed on each): a second vertex element written into the
 // first one's array, a second face element likewise, and face texture
-// coordinates read through vertex indices that are not there.
+// coordinates read through vertex indices that are not there. And one
+// found by fuzzing, whose element name Assimp took for a count of
+// 555555555 and allocated 13 GB for.
 TEST(MeshLoader, PlyHeadersAssimpWouldOverflowAreOneError) {
+    const auto findings = std::filesystem::path(RAYCACHE_TEST_DATA_DIR).parent_path() / "fuzz" / "findings";
     const std::string start = "ply\nformat ascii 1.0\n";
     const std::string vertices = "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
     const std::string faces = "element face 1\nproperty list uchar int vertex_indices\n";
@@ -423,6 +426,8 @@ TEST(MeshLoader, PlyHeadersAssimpWouldOverflowAreOneError) {
                    "a face's texcoord list needs its vertex_indices list", 8, 1);
     expectRejected(writeMesh("long-uv.ply", textured + "3 0 1 2 8 0 0 1 0 0 1 1 1\n"),
                    "face 0's list \"texcoord\" has 8 values for its 3 vertices", 14, 9);
+    // Finding 20: an element name read as its count, 555555555.
+    expectRejected(findings / "assimp-oom-ply-element-name-read-as-count.ply", "starts with a digit", 11, 9);
     const TriangleMesh mesh = loadMeshFile(writeMesh("uv.ply", textured + "3 0 1 2 6 0 0 1 0 0 1\n")).mesh;
     EXPECT_EQ(mesh.triangles.size(), 1u);
     EXPECT_EQ(mesh.uvs.size(), 3u);

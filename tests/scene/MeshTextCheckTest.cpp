@@ -314,6 +314,27 @@ TEST(MeshTextCheck, PlySecondVertexOrFaceElementIsRefused) {
                    "other elements");
 }
 
+// Assimp reads the count of an element it does not know (other than vertex,
+// face, edge and material) from the start of its name: 555555555 instances
+// of "555555555face 2", allocated at once (13 GB, finding 20), and 0 of
+// "junk 1", whose data it then reads as the next element's.
+TEST(MeshTextCheck, PlyElementsAssimpWouldCountWronglyAreRefused) {
+    expectRefused(asciiWithHeaderLines(kTriangleElements + "element 555555555face 2\nproperty float a\n"), 9, 9,
+                  "element name \"555555555face\" starts with a digit (Assimp reads it as the count)");
+    const std::string junk = "element junk 1\nproperty float a\n";
+    expectRefused(
+        "ply\nformat ascii 1.0\n" + junk + kTriangleElements + "end_header\n7\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", 3, 9,
+        "Assimp reads no \"junk\" instances (an element it does not know), so they may only come after");
+    expectAccepted(
+        "ply\nformat ascii 1.0\n" + kTriangleElements + junk + "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n7\n",
+        "an unknown element last");
+    expectAccepted(
+        "ply\nformat ascii 1.0\nelement junk 0\nproperty float a\nelement material 1\nproperty float red\n"
+        "element edge 1\nproperty int vertex1\n" +
+            kTriangleElements + "end_header\n1\n2\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+        "known elements and an empty unknown one first");
+}
+
 // Assimp 5.2 keeps one triangle of each strip (the last): 0 1 2 3 gave one
 // triangle, not two.
 TEST(MeshTextCheck, PlyTriangleStripsAreRefused) {
