@@ -26,18 +26,38 @@ TriangleUvRecord uvRecordOf(const TriangleMesh& mesh, std::size_t triangle) {
     return {mesh.uvs[tri[0]], mesh.uvs[tri[1]], mesh.uvs[tri[2]]};
 }
 
-MeshShadingRecords makeMeshShadingRecords(std::shared_ptr<const TriangleMesh> mesh) {
-    MeshShadingRecords records;
+namespace {
+
+// Empties `v` for `n` new elements: keeps its memory when that is enough,
+// otherwise frees it before taking the new.
+template <typename T>
+void emptyFor(std::vector<T>& v, std::size_t n) {
+    v.clear();
+    if (v.capacity() < n) {
+        std::vector<T>().swap(v);
+        v.reserve(n);
+    }
+}
+
+}  // namespace
+
+void remakeMeshShadingRecords(std::shared_ptr<const TriangleMesh> mesh, MeshShadingRecords& records) {
     const std::size_t n = mesh->triangles.size();
+    records.mesh.reset();
     records.hasNormals = !mesh->normals.empty();
     records.hasUvs = !mesh->uvs.empty();
-    records.triangles.resize(n);
-    for (std::size_t t = 0; t < n; ++t) records.triangles[t] = shadingRecordOf(*mesh, t);
-    if (records.hasUvs) {
-        records.uvs.resize(n);
-        for (std::size_t t = 0; t < n; ++t) records.uvs[t] = uvRecordOf(*mesh, t);
-    }
+    // push_back, not resize: each record is written once, not zeroed first.
+    emptyFor(records.triangles, n);
+    for (std::size_t t = 0; t < n; ++t) records.triangles.push_back(shadingRecordOf(*mesh, t));
+    emptyFor(records.uvs, records.hasUvs ? n : 0);
+    if (records.hasUvs)
+        for (std::size_t t = 0; t < n; ++t) records.uvs.push_back(uvRecordOf(*mesh, t));
     records.mesh = std::move(mesh);
+}
+
+MeshShadingRecords makeMeshShadingRecords(std::shared_ptr<const TriangleMesh> mesh) {
+    MeshShadingRecords records;
+    remakeMeshShadingRecords(std::move(mesh), records);
     return records;
 }
 
@@ -48,8 +68,7 @@ void SceneMeshShading::refresh(const Scene& scene) {
         if (!shape) {
             objects_[i] = {};
         } else if (objects_[i].mesh != shape->mesh) {
-            objects_[i] = {};  // the old records go before the new ones are made
-            objects_[i] = makeMeshShadingRecords(shape->mesh);
+            remakeMeshShadingRecords(shape->mesh, objects_[i]);
         }
     }
 }

@@ -44,6 +44,13 @@ TriangleUvRecord uvRecordOf(const TriangleMesh& mesh, std::size_t triangle);
 
 MeshShadingRecords makeMeshShadingRecords(std::shared_ptr<const TriangleMesh> mesh);
 
+// Makes `records` over for `mesh`, in the memory they already hold when it
+// is large enough: a mesh posed anew every frame (a cloth) keeps the same
+// triangle count, and rewriting warm pages costs a fraction of allocating,
+// zeroing and faulting in fresh ones. Memory too small is freed before the
+// new is taken, so a large mesh's records are never held twice.
+void remakeMeshShadingRecords(std::shared_ptr<const TriangleMesh> mesh, MeshShadingRecords& records);
+
 // The records of every mesh object of a scene, by object index. A posed
 // scene's objects get new meshes as they move (scene/ScenePose.h); refresh()
 // remakes the records of those whose mesh is not the one their records were

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <utility>
 
 #include "render/MeshShading.h"
 
@@ -67,6 +68,36 @@ TEST(MeshShading, RecordsAreOnlyGivenForTheMeshTheyWereMadeFrom) {
     ASSERT_NE(remade, nullptr);
     EXPECT_EQ(remade->triangles[0].geometricNormal, (Vec3{-1, 0, 0}));
     EXPECT_EQ(shading.recordsFor(1, first.get()), nullptr);
+}
+
+TEST(MeshShading, RemadeRecordsEqualFreshOnesWhateverTheyHeldBefore) {
+    // Remaking reuses the old records' memory: nothing of the old mesh may
+    // survive, whether the new one has more, as many or fewer attributes.
+    const auto withAll = twoTriangles(true, true);
+    const auto bare = twoTriangles(false, false);
+    auto bigger = std::make_shared<TriangleMesh>(*withAll);
+    bigger->triangles.push_back({1, 2, 3});
+    for (const auto& [before, after] : {std::pair{withAll, bare}, std::pair{bare, withAll},
+                                        std::pair{withAll, bigger}, std::pair{bigger, withAll}}) {
+        MeshShadingRecords records = makeMeshShadingRecords(before);
+        remakeMeshShadingRecords(after, records);
+        const MeshShadingRecords fresh = makeMeshShadingRecords(after);
+        EXPECT_EQ(records.mesh, after);
+        EXPECT_EQ(records.hasNormals, fresh.hasNormals);
+        EXPECT_EQ(records.hasUvs, fresh.hasUvs);
+        ASSERT_EQ(records.triangles.size(), fresh.triangles.size());
+        ASSERT_EQ(records.uvs.size(), fresh.uvs.size());
+        for (std::size_t t = 0; t < fresh.triangles.size(); ++t) {
+            EXPECT_EQ(records.triangles[t].geometricNormal, fresh.triangles[t].geometricNormal);
+            EXPECT_EQ(records.triangles[t].normal0, fresh.triangles[t].normal0);
+            EXPECT_EQ(records.triangles[t].normal1, fresh.triangles[t].normal1);
+            EXPECT_EQ(records.triangles[t].normal2, fresh.triangles[t].normal2);
+        }
+        for (std::size_t t = 0; t < fresh.uvs.size(); ++t) {
+            EXPECT_EQ(records.uvs[t].uv0, fresh.uvs[t].uv0);
+            EXPECT_EQ(records.uvs[t].uv2, fresh.uvs[t].uv2);
+        }
+    }
 }
 
 }  // namespace
