@@ -1,5 +1,6 @@
 #include "scene/RealMeshScenes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <numbers>
@@ -35,6 +36,7 @@ public:
         try {
             LoadedMesh loaded = loadMeshFile(*path);
             if (!loaded.note.empty()) notes_.push_back(std::move(loaded.note));
+            requireHeight(loaded.mesh, *path);
             return std::move(loaded.mesh);
         } catch (const InputError& e) {
             // The loader names the file and what is wrong; say which scene wanted it.
@@ -49,6 +51,19 @@ public:
     }
 
 private:
+    // standing() scales a mesh to a height: one (nearly) flat in y would
+    // become infinite or enormous. Turning about y keeps the height, so the
+    // file's own box decides.
+    static void requireHeight(const TriangleMesh& mesh, const std::filesystem::path& path) {
+        Box3 box;
+        for (const Vec3& p : mesh.positions) box.add(p);
+        const float size = std::max({std::fabs(box.lo.x), std::fabs(box.lo.y), std::fabs(box.lo.z),
+                                     std::fabs(box.hi.x), std::fabs(box.hi.y), std::fabs(box.hi.z), 1e-30f});
+        if (!(box.hi.y - box.lo.y > 1e-6f * size))
+            failFile(path.string(), "is flat in y (height " + std::to_string(box.hi.y - box.lo.y) +
+                                        "): a built-in scene stands its mesh up to a height");
+    }
+
     std::string sceneName_;
     const MeshSearchPath& searchPath_;
     std::vector<std::string>& notes_;

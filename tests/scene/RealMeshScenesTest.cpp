@@ -113,15 +113,20 @@ TEST(RealMeshScenes, AMissingMeshIsOneLineNamingItAndTheInstallStep) {
 TEST(RealMeshScenes, ABrokenMeshIsOneLineNamingTheFile) {
     const TempDir dir;
     const fs::path bunny = dir.path() / "bunny.obj";
-    std::ofstream(bunny) << "v 0 0 0\nv 1 0 0\nf 1 2 7\n";  // a face past the last vertex
-    try {
-        (void)makeRealMeshScene("bunny-glass", MeshSearchPath{{dir.path()}});
-        ADD_FAILURE() << "a broken bunny.obj built";
-    } catch (const InputError& e) {
-        const std::string line = e.what();
-        EXPECT_EQ(line.find('\n'), std::string::npos) << line;
-        EXPECT_NE(line.find("'bunny-glass'"), std::string::npos) << line;
-        EXPECT_NE(line.find(bunny.string()), std::string::npos) << line;
+    for (const char* content : {
+             "v 0 0 0\nv 1 0 0\nf 1 2 7\n",            // a face past the last vertex
+             "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n",  // flat in y: no height to scale to
+         }) {
+        std::ofstream(bunny) << content;
+        try {
+            (void)makeRealMeshScene("bunny-glass", MeshSearchPath{{dir.path()}});
+            ADD_FAILURE() << "a broken bunny.obj built: " << content;
+        } catch (const InputError& e) {
+            const std::string line = e.what();
+            EXPECT_EQ(line.find('\n'), std::string::npos) << line;
+            EXPECT_NE(line.find("'bunny-glass'"), std::string::npos) << line;
+            EXPECT_NE(line.find(bunny.string()), std::string::npos) << line;
+        }
     }
 }
 
