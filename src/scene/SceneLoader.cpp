@@ -5,12 +5,14 @@
 #include "core/Errors.h"
 #include "scene/BuiltinScenes.h"
 #include "scene/GltfScene.h"
+#include "scene/RealMeshScenes.h"
 #include "scene/SceneFile.h"
 
 namespace raycache {
 
 Scene loadScene(const std::string& builtinNameOrPath) {
     if (auto builtin = makeBuiltinScene(builtinNameOrPath)) return std::move(*builtin);
+    if (auto real = makeRealMeshScene(builtinNameOrPath, meshSearchPathFromEnvironment())) return std::move(*real);
     const std::filesystem::path path(builtinNameOrPath);
     // The extension decides: a glTF 2.0 file is a whole scene, anything else our JSON.
     if (isGltfPath(path)) return loadGltfScene(path);
