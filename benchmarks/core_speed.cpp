@@ -22,9 +22,9 @@
 #include "bench/InterleavedRuns.h"
 #include "core/Parallel.h"
 #include "render/CameraRays.h"
-#include "render/RenderSession.h"
 #include "scene/BuiltinScenes.h"
 #include "scene/SceneLoader.h"
+#include "session/RenderSession.h"
 #include "trace/BaselineWhitted.h"
 
 using namespace raycache;

@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "bench/GridsWorkload.h"
-#include "bench/SampleSummary.h"
 #include "core/Elapsed.h"
 #include "core/Errors.h"
+#include "core/SampleSummary.h"
 #include "scene/BuiltinScenes.h"
 
 using namespace raycache;

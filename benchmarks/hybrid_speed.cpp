@@ -12,12 +12,13 @@
 #include <vector>
 
 #include "bench/InterleavedRuns.h"
-#include "bench/SampleSummary.h"
 #include "core/Parallel.h"
+#include "core/SampleSummary.h"
 #include "raster/GBufferRasterizer.h"
 #include "render/FramePipeline.h"
 #include "render/PacketGBuffer.h"
 #include "scene/BuiltinScenes.h"
+#include "session/PipelineFactory.h"
 #include "trace/TraceScene.h"
 
 using namespace raycache;

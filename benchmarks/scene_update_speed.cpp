@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "bench/SampleSummary.h"
-#include "render/RenderSession.h"
+#include "core/SampleSummary.h"
 #include "scene/BuiltinScenes.h"
+#include "session/RenderSession.h"
 
 using namespace raycache;
 

@@ -8,11 +8,12 @@
 #include <cstdio>
 #include <string>
 
-#include "app/RenderJob.h"
 #include "core/Parallel.h"
 #include "core/ProcessMemory.h"
 #include "render/FramePipeline.h"
 #include "scene/BuiltinScenes.h"
+#include "session/PipelineFactory.h"
+#include "session/RenderJob.h"
 #include "trace/TraceScene.h"
 
 using namespace raycache;

@@ -3,12 +3,12 @@
 #include <ostream>
 #include <vector>
 
-#include "app/FrameReport.h"
 #include "app/OutputDirectory.h"
 #include "cache/CubeCross.h"
 #include "core/Errors.h"
-#include "render/FrameLoop.h"
 #include "render/ImageWriter.h"
+#include "session/FrameLoop.h"
+#include "session/FrameReport.h"
 
 namespace raycache {
 

@@ -5,7 +5,7 @@
 #include <iosfwd>
 #include <string>
 
-#include "app/RenderJob.h"
+#include "session/RenderJob.h"
 
 namespace raycache {
 

@@ -4,14 +4,14 @@
 #include <cmath>
 #include <ostream>
 
-#include "app/FrameReport.h"
 #include "app/OutputDirectory.h"
-#include "bench/Heatmap.h"
-#include "bench/ImageMetrics.h"
-#include "bench/Ssim.h"
 #include "core/Errors.h"
+#include "metrics/Heatmap.h"
+#include "metrics/ImageMetrics.h"
+#include "metrics/Ssim.h"
 #include "render/ImageWriter.h"
 #include "scene/ImageLoader.h"
+#include "session/FrameReport.h"
 
 namespace raycache {
 

@@ -8,17 +8,17 @@
 
 #include "app/FramePathPattern.h"
 #include "app/OutputDirectory.h"
-#include "bench/SampleSummary.h"
-#include "app/FrameReport.h"
 #include "bench/BuildInfo.h"
 #include "bench/ResultsJson.h"
 #include "core/AtomicFile.h"
-#include "core/Parallel.h"
 #include "core/Errors.h"
+#include "core/Parallel.h"
 #include "core/ProcessAgreement.h"
-#include "render/FrameLoop.h"
-#include "render/FrameParallelLoop.h"
+#include "core/SampleSummary.h"
 #include "render/ImageWriter.h"
+#include "session/FrameLoop.h"
+#include "session/FrameParallelLoop.h"
+#include "session/FrameReport.h"
 
 namespace raycache {
 

@@ -4,8 +4,8 @@
 #include <iosfwd>
 #include <string>
 
-#include "app/RenderJob.h"
 #include "core/ProcessGroup.h"
+#include "session/RenderJob.h"
 
 namespace raycache {
 

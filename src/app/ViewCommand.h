@@ -4,7 +4,7 @@
 #include <iosfwd>
 #include <string>
 
-#include "app/RenderJob.h"
+#include "session/RenderJob.h"
 
 namespace raycache {
 

@@ -5,17 +5,17 @@
 #include <cmath>
 #include <functional>
 
-#include "bench/ImageMetrics.h"
 #include "bench/MarkdownTable.h"
 #include "bench/ResultsJson.h"
-#include "bench/SampleSummary.h"
 #include "bench/SvgPlot.h"
 #include "core/AtomicFile.h"
 #include "core/Elapsed.h"
 #include "core/Errors.h"
-#include "render/InvalidationOracle.h"
-#include "render/RenderSession.h"
+#include "core/SampleSummary.h"
+#include "metrics/ImageMetrics.h"
 #include "scene/BuiltinScenes.h"
+#include "session/InvalidationOracle.h"
+#include "session/RenderSession.h"
 
 namespace raycache {
 

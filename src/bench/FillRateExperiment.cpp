@@ -8,8 +8,8 @@
 #include "bench/SvgPlot.h"
 #include "core/AtomicFile.h"
 #include "core/Errors.h"
-#include "render/FrameLoop.h"
 #include "scene/BuiltinScenes.h"
+#include "session/FrameLoop.h"
 
 namespace raycache {
 

@@ -1,8 +1,8 @@
 #include "bench/ImageComparison.h"
 
-#include "bench/ImageMetrics.h"
 #include "bench/ResultsJson.h"
-#include "bench/Ssim.h"
+#include "metrics/ImageMetrics.h"
+#include "metrics/Ssim.h"
 
 namespace raycache {
 

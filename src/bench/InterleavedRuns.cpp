@@ -1,7 +1,7 @@
 #include "bench/InterleavedRuns.h"
 
 #include "bench/AdaptiveStopping.h"
-#include "bench/SampleSummary.h"
+#include "core/SampleSummary.h"
 
 #include <algorithm>
 #include <chrono>

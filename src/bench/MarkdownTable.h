@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "bench/SampleSummary.h"
+#include "core/SampleSummary.h"
 
 namespace raycache {
 

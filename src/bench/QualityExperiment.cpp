@@ -2,16 +2,16 @@
 
 #include <cmath>
 
-#include "bench/Heatmap.h"
 #include "bench/ImageComparison.h"
 #include "bench/MarkdownTable.h"
 #include "bench/ResultsJson.h"
 #include "bench/SvgPlot.h"
 #include "core/AtomicFile.h"
 #include "core/Errors.h"
-#include "render/RenderSession.h"
+#include "metrics/Heatmap.h"
 #include "render/ImageWriter.h"
 #include "scene/BuiltinScenes.h"
+#include "session/RenderSession.h"
 #include "trace/TraceScene.h"
 
 namespace raycache {

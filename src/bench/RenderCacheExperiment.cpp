@@ -6,22 +6,22 @@
 #include <numeric>
 #include <optional>
 
-#include "bench/Heatmap.h"
 #include "bench/ImageComparison.h"
-#include "bench/ImageMetrics.h"
 #include "bench/MachineLoad.h"
 #include "bench/MarkdownTable.h"
 #include "bench/PaperFigures.h"
 #include "bench/ResultsJson.h"
-#include "bench/SampleSummary.h"
 #include "bench/SpeedupInterval.h"
 #include "bench/SvgPlot.h"
 #include "core/AtomicFile.h"
 #include "core/Errors.h"
+#include "core/SampleSummary.h"
+#include "metrics/Heatmap.h"
+#include "metrics/ImageMetrics.h"
 #include "render/CameraRays.h"
 #include "render/ImageWriter.h"
-#include "render/RenderSession.h"
 #include "scene/BuiltinScenes.h"
+#include "session/RenderSession.h"
 #include "trace/TraceScene.h"
 
 namespace raycache {

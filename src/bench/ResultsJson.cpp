@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "bench/SampleSummary.h"
 #include "core/AtomicFile.h"
+#include "core/SampleSummary.h"
 
 namespace raycache {
 

@@ -8,13 +8,13 @@
 #include "bench/MachineLoad.h"
 #include "bench/MarkdownTable.h"
 #include "bench/ResultsJson.h"
-#include "bench/SampleSummary.h"
 #include "bench/SpeedupInterval.h"
 #include "bench/SvgPlot.h"
 #include "core/AtomicFile.h"
 #include "core/Errors.h"
-#include "render/RenderSession.h"
+#include "core/SampleSummary.h"
 #include "scene/BuiltinScenes.h"
+#include "session/RenderSession.h"
 #include "trace/TraceScene.h"
 
 namespace raycache {

@@ -19,7 +19,7 @@ namespace {
 
 // What every fragment shader shares: the pixel's camera ray, built exactly as
 // render/CameraRays.h builds it, the material's albedo, and the outputs in
-// the layout of render/GBuffer.h.
+// the layout of raster/GBuffer.h.
 constexpr const char* kFragmentCommon = R"(
 #version 450 core
 uniform vec3 cameraOrigin;

@@ -3,7 +3,7 @@
 // core draws the scene into multiple render targets (position + ray distance,
 // normal, albedo, object/primitive id, depth) and reads them back once per
 // frame into a persistently mapped pixel buffer, which the deferred passes
-// then read in place (layout: render/GBuffer.h).
+// then read in place (layout: raster/GBuffer.h).
 //
 // Triangles are drawn as they are. Spheres are ray-cast impostors: the back
 // faces of each sphere's bounding box are rasterized and the fragment shader
@@ -15,7 +15,7 @@
 #include <span>
 #include <string>
 
-#include "render/GBuffer.h"
+#include "raster/GBuffer.h"
 #include "scene/Camera.h"
 #include "scene/Scene.h"
 

@@ -6,9 +6,9 @@
 // them, answered by the same caches as in the ray pipeline; then composition.
 #include "core/Image.h"
 #include "core/Parallel.h"
+#include "raster/GBuffer.h"
 #include "render/CacheLevelImage.h"
 #include "render/FrameStats.h"
-#include "render/GBuffer.h"
 #include "render/RenderSettings.h"
 #include "render/TileKernel.h"
 #include "scene/Camera.h"

@@ -48,15 +48,6 @@ public:
     virtual void sceneChanged(const SceneChanges& changes) { (void)changes; }
 };
 
-// The pipeline settings.pipeline asks for. The hybrid pipeline with
-// GBufferSource::Auto uses OpenGL when a 4.5 core context can be made and
-// primary-ray packets otherwise. Throws RuntimeError when GBufferSource::OpenGl
-// is forced and no context can be made. With `group` of several processes
-// only the ray pipeline shares its tiles among them, without the cache-level
-// record; the others, and the record, throw InputError. All arguments must
-// outlive the pipeline.
-std::unique_ptr<FramePipeline> makeFramePipeline(const Scene& scene, const TraceScene& tracer,
-                                                 const RenderSettings& settings, const Parallel& parallel,
-                                                 RayCache* cache = nullptr, const ProcessGroup* group = nullptr);
+// Pipelines are made by session/PipelineFactory.h, which knows them all.
 
 }  // namespace raycache

@@ -5,7 +5,7 @@
 
 #include "cache/CacheStats.h"
 #include "core/RayCounts.h"
-#include "rendercache/RenderCacheStats.h"
+#include "render/RenderCacheStats.h"
 #include "trace/TraceScene.h"
 
 namespace raycache {

@@ -4,9 +4,9 @@
 #include <memory>
 #include <string>
 
+#include "raster/GBuffer.h"
 #include "render/DeferredShading.h"
 #include "render/FramePipeline.h"
-#include "render/GBuffer.h"
 #include "render/PacketGBuffer.h"
 
 namespace raycache {

@@ -1,11 +1,11 @@
 #pragma once
 // The hybrid pipeline's G-buffer without OpenGL: primary rays per tile traced
 // as coherent packets, each hit written in the G-buffer layout
-// (render/GBuffer.h), exactly the surface the ray pipeline would shade.
+// (raster/GBuffer.h), exactly the surface the ray pipeline would shade.
 #include <cstdint>
 
 #include "core/Parallel.h"
-#include "render/GBuffer.h"
+#include "raster/GBuffer.h"
 #include "scene/Camera.h"
 #include "scene/Scene.h"
 #include "trace/TraceScene.h"

@@ -3,8 +3,8 @@
 #include <string>
 
 #include "cache/RayCache.h"
+#include "render/RenderCacheSettings.h"
 #include "render/TileAssignment.h"
-#include "rendercache/RenderCacheSettings.h"
 #include "trace/TraceScene.h"
 
 namespace raycache {

@@ -3,7 +3,7 @@
 // rule every first stage and bounce of the tile kernel uses, whether the hit
 // comes from the tracer or from a G-buffer.
 #include "core/Ray.h"
-#include "render/GBuffer.h"
+#include "raster/GBuffer.h"
 #include "scene/Scene.h"
 #include "trace/TraceHit.h"
 

@@ -8,7 +8,7 @@
 
 namespace raycache {
 
-// The Render Cache's options (rendercache/RenderCacheSettings.h) that a
+// The Render Cache's options (render/RenderCacheSettings.h) that a
 // scene file or the command line sets; those left unset keep their value.
 struct RenderCacheOverrides {
     std::optional<float> budget, targetFrameMs, alpha, predictShare, margin, depthCullThreshold;

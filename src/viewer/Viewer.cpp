@@ -14,16 +14,16 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
-#include "app/FrameReport.h"
-#include "bench/SampleSummary.h"
 #include "core/ColorSpace.h"
+#include "core/SampleSummary.h"
 #include "render/CameraRays.h"
 #include "render/ImageWriter.h"
+#include "session/FrameReport.h"
 #include "trace/TraceScene.h"
 #include "viewer/FrameHandoff.h"
 #include "viewer/FrameTimeHistory.h"
-#include "viewer/PipelineChoice.h"
 #include "viewer/GlTexture.h"
+#include "viewer/PipelineChoice.h"
 #include "viewer/RenderWorker.h"
 #include "viewer/ViewerCamera.h"
 #include "viewer/ViewerPanel.h"

@@ -4,7 +4,7 @@
 // camera controls and the panel responsive.
 #include <iosfwd>
 
-#include "app/RenderJob.h"
+#include "session/RenderJob.h"
 #include "viewer/ViewerOptions.h"
 #include "viewer/ViewerRenderConfig.h"
 

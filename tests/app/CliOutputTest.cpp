@@ -12,11 +12,12 @@
 #include <string>
 
 #include "CliScratchTest.h"
-#include "app/RenderJob.h"
 #include "core/ColorSpace.h"
 #include "core/Parallel.h"
 #include "render/FramePipeline.h"
 #include "scene/ImageLoader.h"
+#include "session/PipelineFactory.h"
+#include "session/RenderJob.h"
 #include "trace/TraceScene.h"
 
 namespace fs = std::filesystem;

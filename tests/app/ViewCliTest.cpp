@@ -10,11 +10,11 @@
 #include <filesystem>
 #include <string>
 
-#include "TempDir.h"
 #include "CiRequirement.h"
 #include "ShellRun.h"
-#include "bench/ImageMetrics.h"
+#include "TempDir.h"
 #include "core/ColorSpace.h"
+#include "metrics/ImageMetrics.h"
 #include "scene/ImageLoader.h"
 
 namespace fs = std::filesystem;

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "bench/ImageMetrics.h"
 #include "core/Parallel.h"
+#include "metrics/ImageMetrics.h"
 #include "render/FrameRenderer.h"
 #include "scene/BuiltinScenes.h"
 #include "trace/TraceScene.h"

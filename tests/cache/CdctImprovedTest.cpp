@@ -16,10 +16,10 @@
 #include <random>
 #include <vector>
 
-#include "bench/ImageMetrics.h"
 #include "cache/CdctSearch.h"
 #include "cache/DepthPyramid.h"
 #include "cache/RayCache.h"
+#include "metrics/ImageMetrics.h"
 
 using namespace raycache;
 using namespace raycache::cdct_test;

@@ -9,7 +9,7 @@
 #include <cstdio>
 
 #include "PathRender.h"
-#include "bench/ImageMetrics.h"
+#include "metrics/ImageMetrics.h"
 #include "scene/BuiltinScenes.h"
 #include "scene/MeshLoader.h"
 

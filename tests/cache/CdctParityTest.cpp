@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "bench/ImageMetrics.h"
 #include "cache/RayCache.h"
 #include "core/Parallel.h"
+#include "metrics/ImageMetrics.h"
 #include "render/FrameRenderer.h"
 #include "scene/BuiltinScenes.h"
 #include "trace/TraceScene.h"

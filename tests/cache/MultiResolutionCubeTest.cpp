@@ -13,10 +13,10 @@
 #include <random>
 #include <vector>
 
-#include "bench/ImageMetrics.h"
 #include "cache/CoarseLevels.h"
 #include "cache/RayCache.h"
 #include "core/Errors.h"
+#include "metrics/ImageMetrics.h"
 
 using namespace raycache;
 

@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <string>
 
-#include "bench/ImageMetrics.h"
+#include "metrics/ImageMetrics.h"
 #include "scene/RealMeshScenes.h"
 
 using namespace raycache;

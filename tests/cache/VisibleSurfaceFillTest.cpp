@@ -10,9 +10,9 @@
 
 #include <cstdio>
 
-#include "render/InvalidationOracle.h"
-#include "render/RenderSession.h"
 #include "scene/BuiltinScenes.h"
+#include "session/InvalidationOracle.h"
+#include "session/RenderSession.h"
 
 using namespace raycache;
 

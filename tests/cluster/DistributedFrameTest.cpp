@@ -11,9 +11,9 @@
 #include "core/Errors.h"
 #include "core/ProcessAgreement.h"
 #include "render/FrameRenderer.h"
-#include "render/FrameParallelLoop.h"
 #include "render/TileAssignment.h"
 #include "scene/BuiltinScenes.h"
+#include "session/FrameParallelLoop.h"
 
 namespace raycache {
 namespace {

@@ -6,12 +6,12 @@
 #include <cstdio>
 #include <cstring>
 
-#include "bench/ImageMetrics.h"
+#include "metrics/ImageMetrics.h"
 
 #include "core/Errors.h"
-#include "render/RenderSession.h"
 #include "scene/BuiltinScenes.h"
 #include "scene/ScenePose.h"
+#include "session/RenderSession.h"
 
 namespace raycache {
 namespace {

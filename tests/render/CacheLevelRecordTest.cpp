@@ -16,8 +16,8 @@
 #include "render/CacheLevelImage.h"
 #include "render/CameraRays.h"
 #include "render/FrameRenderer.h"
-#include "render/RenderSession.h"
 #include "scene/BuiltinScenes.h"
+#include "session/RenderSession.h"
 #include "trace/TraceScene.h"
 
 using namespace raycache;

@@ -8,8 +8,8 @@
 #include <iostream>
 #include <string>
 
-#include "render/RenderSession.h"
 #include "scene/BuiltinScenes.h"
+#include "session/RenderSession.h"
 
 using namespace raycache;
 

@@ -15,15 +15,16 @@
 
 #include "CiRequirement.h"
 #include "app/RenderCommand.h"
-#include "bench/ImageMetrics.h"
 #include "core/Errors.h"
 #include "core/Parallel.h"
+#include "metrics/ImageMetrics.h"
 #include "raster/GBufferRasterizer.h"
 #include "render/FramePipeline.h"
 #include "render/FrameRenderer.h"
 #include "render/HybridPipeline.h"
 #include "render/PacketGBuffer.h"
 #include "scene/BuiltinScenes.h"
+#include "session/PipelineFactory.h"
 #include "trace/TraceScene.h"
 
 using namespace raycache;

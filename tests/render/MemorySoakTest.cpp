@@ -16,6 +16,7 @@
 #include "core/ProcessMemory.h"
 #include "render/FramePipeline.h"
 #include "scene/BuiltinScenes.h"
+#include "session/PipelineFactory.h"
 #include "trace/TraceScene.h"
 
 using namespace raycache;

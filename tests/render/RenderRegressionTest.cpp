@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <string>
 
-#include "bench/ImageMetrics.h"
 #include "core/Parallel.h"
+#include "metrics/ImageMetrics.h"
 #include "render/FrameRenderer.h"
 #include "scene/BuiltinScenes.h"
 #include "scene/ImageLoader.h"

@@ -17,10 +17,10 @@
 #include "core/Parallel.h"
 #include "render/AnalyticScene.h"
 #include "render/FrameRenderer.h"
-#include "render/RenderSession.h"
 #include "rendercache/CameraPrediction.h"
 #include "rendercache/RenderCachePipeline.h"
 #include "scene/BuiltinScenes.h"
+#include "session/RenderSession.h"
 #include "trace/TraceScene.h"
 
 using namespace raycache;

@@ -17,15 +17,15 @@
 
 #include "GltfTestFile.h"
 #include "TempDir.h"
-#include "bench/ImageMetrics.h"
 #include "core/Errors.h"
+#include "metrics/ImageMetrics.h"
 #include "render/ImageWriter.h"
-#include "render/RenderSession.h"
 #include "scene/GltfScene.h"
 #include "scene/MeshGenerators.h"
 #include "scene/PbrToBlinnPhong.h"
 #include "scene/SceneFile.h"
 #include "scene/SceneLoader.h"
+#include "session/RenderSession.h"
 
 namespace raycache {
 namespace {

@@ -9,8 +9,8 @@
 #include <thread>
 
 #include "core/ColorSpace.h"
-#include "render/FrameLoop.h"
 #include "scene/BuiltinScenes.h"
+#include "session/FrameLoop.h"
 #include "viewer/CacheLevelOverlayImage.h"
 #include "viewer/PipelineChoice.h"
 #include "viewer/RenderCacheOverlayImage.h"

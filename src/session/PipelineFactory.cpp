@@ -1,4 +1,4 @@
-#include "render/FramePipeline.h"
+#include "session/PipelineFactory.h"
 
 #include "core/Errors.h"
 #include "raster/GBufferRasterizer.h"

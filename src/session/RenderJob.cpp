@@ -1,4 +1,4 @@
-#include "app/RenderJob.h"
+#include "session/RenderJob.h"
 
 #include <cmath>
 #include <string>

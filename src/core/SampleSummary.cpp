@@ -1,4 +1,4 @@
-#include "bench/SampleSummary.h"
+#include "core/SampleSummary.h"
 
 #include <algorithm>
 #include <vector>

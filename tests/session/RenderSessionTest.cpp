@@ -8,9 +8,9 @@
 #include "render/CacheFrame.h"
 #include "render/CameraRays.h"
 #include "render/FrameRenderer.h"
-#include "render/RenderSession.h"
 #include "render/TileKernel.h"
 #include "scene/BuiltinScenes.h"
+#include "session/RenderSession.h"
 
 using namespace raycache;
 

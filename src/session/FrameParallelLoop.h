@@ -8,7 +8,7 @@
 #include <functional>
 
 #include "core/ProcessGroup.h"
-#include "render/FrameLoop.h"
+#include "session/FrameLoop.h"
 
 namespace raycache {
 

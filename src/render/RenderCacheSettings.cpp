@@ -1,4 +1,4 @@
-#include "rendercache/RenderCacheSettings.h"
+#include "render/RenderCacheSettings.h"
 
 #include <cmath>
 #include <sstream>

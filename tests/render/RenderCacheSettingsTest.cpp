@@ -8,7 +8,7 @@
 #include <string>
 
 #include "core/Errors.h"
-#include "rendercache/RenderCacheSettings.h"
+#include "render/RenderCacheSettings.h"
 
 using namespace raycache;
 

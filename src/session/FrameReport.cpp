@@ -1,4 +1,4 @@
-#include "app/FrameReport.h"
+#include "session/FrameReport.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
-#include "bench/Heatmap.h"
 #include "core/Errors.h"
+#include "metrics/Heatmap.h"
 
 using namespace raycache;
 

@@ -1,4 +1,4 @@
-#include "bench/Heatmap.h"
+#include "metrics/Heatmap.h"
 
 #include <algorithm>
 #include <array>

@@ -13,8 +13,8 @@
 
 #include <cstdio>
 
-#include "render/InvalidationOracle.h"
 #include "scene/BuiltinScenes.h"
+#include "session/InvalidationOracle.h"
 
 namespace raycache {
 namespace {

@@ -1,4 +1,4 @@
-#include "render/InvalidationOracle.h"
+#include "session/InvalidationOracle.h"
 
 #include "render/TileKernel.h"
 

@@ -1,4 +1,4 @@
-#include "bench/Ssim.h"
+#include "metrics/Ssim.h"
 
 #include <algorithm>
 #include <cmath>

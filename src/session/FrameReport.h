@@ -3,7 +3,7 @@
 // `render` and `cache-view` report frames identically.
 #include <string>
 
-#include "render/FrameLoop.h"
+#include "session/FrameLoop.h"
 
 namespace raycache {
 

@@ -4,8 +4,8 @@
 #include <limits>
 #include <vector>
 
-#include "bench/ImageMetrics.h"
-#include "bench/SampleSummary.h"
+#include "core/SampleSummary.h"
+#include "metrics/ImageMetrics.h"
 
 using namespace raycache;
 

@@ -1,4 +1,4 @@
-#include "bench/ImageMetrics.h"
+#include "metrics/ImageMetrics.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,8 +1,8 @@
-#include "render/FrameLoop.h"
+#include "session/FrameLoop.h"
 
 #include <chrono>
 
-#include "render/RenderSession.h"
+#include "session/RenderSession.h"
 
 namespace raycache {
 

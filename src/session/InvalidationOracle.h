@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "render/RenderSession.h"
+#include "session/RenderSession.h"
 
 namespace raycache {
 

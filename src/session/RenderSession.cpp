@@ -1,4 +1,4 @@
-#include "render/RenderSession.h"
+#include "session/RenderSession.h"
 
 #include <chrono>
 
@@ -6,6 +6,7 @@
 #include "core/Errors.h"
 
 #include "scene/ScenePose.h"
+#include "session/PipelineFactory.h"
 
 namespace raycache {
 

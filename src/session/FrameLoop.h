@@ -4,9 +4,9 @@
 #include <optional>
 #include <string>
 
+#include "cache/RayCache.h"
 #include "core/Image.h"
 #include "core/ProcessGroup.h"
-#include "cache/RayCache.h"
 #include "render/FrameStats.h"
 #include "render/RenderSettings.h"
 #include "scene/Scene.h"

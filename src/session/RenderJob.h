@@ -7,10 +7,10 @@
 #include <ostream>
 #include <string>
 
-#include "render/FrameLoop.h"
 #include "render/RenderSettings.h"
 #include "scene/CameraPath.h"
 #include "scene/Scene.h"
+#include "session/FrameLoop.h"
 
 namespace raycache {
 

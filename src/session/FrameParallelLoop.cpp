@@ -1,8 +1,8 @@
-#include "render/FrameParallelLoop.h"
+#include "session/FrameParallelLoop.h"
 
 #include <chrono>
 
-#include "render/RenderSession.h"
+#include "session/RenderSession.h"
 
 namespace raycache {
 

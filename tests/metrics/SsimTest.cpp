@@ -1,9 +1,9 @@
 // SSIM against values computed by hand from the definition (Wang et al. 2004).
 #include <gtest/gtest.h>
 
-#include "bench/Ssim.h"
 #include "core/ColorSpace.h"
 #include "core/Errors.h"
+#include "metrics/Ssim.h"
 
 using namespace raycache;
 
