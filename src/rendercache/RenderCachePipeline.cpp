@@ -425,7 +425,10 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     // image environment along every pixel's ray again cost 12 ms per frame
     // at 1024x1024 on `room`.
     const SampleColors colors{pool_.look.data(), image_.pixelIndex(0, 0), static_cast<std::size_t>(image_.stride())};
-    const FillCounts filled = fillHoles(state, film, parallel_, &bytes_, &colors);
+    // Edge-aware: a hole takes the samples of one surface around it.
+    const SampleSurfaces surfaces{&image_, pool_.point.data(), image_.pixelIndex(0, 0),
+                                  static_cast<std::size_t>(image_.stride())};
+    const FillCounts filled = fillHoles(state, film, parallel_, &bytes_, &colors, &surfaces);
     stats.filled3x3 = filled.filled3x3;
     stats.filled7x7 = filled.filled7x7;
     stats.unfilled = filled.unfilled;
