@@ -13,7 +13,8 @@ constexpr int kPrefilterRadius = 3;  // 7x7
 }  // namespace
 
 FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel& parallel,
-                     std::vector<unsigned char>* scratch, const SampleColors* samples, const SampleSurfaces* surfaces) {
+                     std::vector<unsigned char>* scratch, const SampleColors* samples, const SampleSurfaces* surfaces,
+                     std::vector<std::int32_t>* fillSource) {
     const int width = film.width(), height = film.height();
     const auto at = [width](int x, int y) {
         return static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
@@ -35,8 +36,12 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
     // A sample's colour into `groups`: without `surfaces`, all in one group.
     const auto addSample = [&](SurfaceClusters& groups, int nx, int ny, float w) {
         const Rgb& color = samples ? samples->at(nx, ny) : film.at(nx, ny);
-        if (surfaces) groups.add(color, w, surfaces->depth(nx, ny), surfaces->object(nx, ny));
+        if (surfaces) groups.add(color, w, surfaces->depth(nx, ny), surfaces->object(nx, ny), ny * width + nx);
         else groups.add(color, w, 0.0f, 0);
+    };
+    if (fillSource) fillSource->resize(state.size());
+    const auto recordSource = [&](int x, int y, const SurfaceClusters& groups) {
+        if (fillSource && surfaces) (*fillSource)[at(x, y)] = groups.chosenSource();
     };
     // Counts per row go to a local, written once (no false sharing).
     parallel.forEachIndex(height, [&](int y, int) {
@@ -61,6 +66,7 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
             }
             if (!groups.empty()) {
                 film.at(x, y) = groups.mean();
+                recordSource(x, y, groups);
                 outcome[at(x, y)] = k3x3;
                 ++row.filled3x3;
             } else {
@@ -126,6 +132,7 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
             }
             if (!groups.empty()) {
                 film.at(x, y) = groups.mean();
+                recordSource(x, y, groups);
                 outcome[at(x, y)] = k7x7;
                 ++row.filled7x7;
             } else {

@@ -53,10 +53,14 @@ struct SampleSurfaces {
 // filled from those pixels only, and their state set to Filled3x3,
 // Filled7x7 or Unfilled. With `surfaces`, each filter takes the mean of
 // one group of the samples it reaches, those on one surface
-// (SurfaceClusters); without, of all of them.
+// (SurfaceClusters); without, of all of them. With `surfaces` and
+// `fillSource` (resized to the image's pixels), each filled hole's entry
+// gets the pixel (y * width + x) of the first sample of the group it took
+// (the caller may shade the hole from that sample's surface); other
+// entries are not written.
 // `scratch`, when given, is reused from frame to frame (no allocation).
 FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel& parallel,
                      std::vector<unsigned char>* scratch = nullptr, const SampleColors* samples = nullptr,
-                     const SampleSurfaces* surfaces = nullptr);
+                     const SampleSurfaces* surfaces = nullptr, std::vector<std::int32_t>* fillSource = nullptr);
 
 }  // namespace raycache

@@ -428,7 +428,26 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     // Edge-aware: a hole takes the samples of one surface around it.
     const SampleSurfaces surfaces{&image_, pool_.point.data(), image_.pixelIndex(0, 0),
                                   static_cast<std::size_t>(image_.stride())};
-    const FillCounts filled = fillHoles(state, film, parallel_, &bytes_, &colors, &surfaces);
+    const FillCounts filled = fillHoles(state, film, parallel_, &bytes_, &colors, &surfaces, &fillSource_);
+    // A hole filled from a textured surface shows that surface's texture at
+    // its own centre: the lighting and rest of the group's first sample,
+    // the albedo where the hole's centre ray meets that sample's primitive
+    // (on a checkerboard floor the filters' mean of neighbouring squares is
+    // a grey that neither square has). Where it misses, the filter's mean.
+    if (rc.textureRefetch && filled.filled3x3 + filled.filled7x7 > 0)
+        parallel_.forEachIndex(height, [&](int y, int) {
+            for (int x = 0; x < width; ++x) {
+                const auto i = static_cast<std::size_t>(y * width + x);
+                if (state[i] != PixelState::Filled3x3 && state[i] != PixelState::Filled7x7) continue;
+                const int source = fillSource_[i];
+                const std::size_t slot = image_.pixelIndex(source % width, source / width);
+                if (!pool_.look[slot].textured) continue;
+                const int object = pool_.point[slot].objectId;
+                const SceneObject& sceneObject = scene_.objects[static_cast<std::size_t>(object)];
+                const float distance = length(sceneObject.origin + pool_.point[slot].position - camera.position);
+                retexturedColor(sceneObject, object, pool_.texturing[slot], rays.ray(x, y), distance, film.at(x, y));
+            }
+        });
     stats.filled3x3 = filled.filled3x3;
     stats.filled7x7 = filled.filled7x7;
     stats.unfilled = filled.unfilled;

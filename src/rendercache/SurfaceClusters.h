@@ -34,8 +34,9 @@ public:
     static constexpr int kMaxGroups = 4;  // samples beyond four surfaces are left out
 
     // A sample of colour `color` with filter weight `weight`, at `depth`
-    // (+infinity for the background) on object `object`.
-    void add(const Rgb& color, float weight, float depth, int object) {
+    // (+infinity for the background) on object `object`; `source` names it
+    // for the caller (chosenSource()).
+    void add(const Rgb& color, float weight, float depth, int object, int source = -1) {
         for (int g = 0; g < count_; ++g) {
             Group& group = groups_[static_cast<std::size_t>(g)];
             if (group.object == object && sameDepth(group.depth, depth)) {
@@ -44,19 +45,17 @@ public:
                 return;
             }
         }
-        if (count_ < kMaxGroups) groups_[static_cast<std::size_t>(count_++)] = Group{color * weight, weight, depth, object};
+        if (count_ < kMaxGroups)
+            groups_[static_cast<std::size_t>(count_++)] = Group{color * weight, weight, depth, object, source};
     }
     bool empty() const { return count_ == 0; }
     // The weighted mean of the chosen group; empty() must be false.
     Rgb mean() const {
-        const Group* chosen = &groups_[0];
-        for (int g = 1; g < count_; ++g) {
-            const Group& group = groups_[static_cast<std::size_t>(g)];
-            if (group.weight > chosen->weight || (group.weight == chosen->weight && group.depth > chosen->depth))
-                chosen = &group;
-        }
-        return chosen->sum * (1.0f / chosen->weight);
+        const Group& group = chosen();
+        return group.sum * (1.0f / group.weight);
     }
+    // The `source` of the chosen group's first sample; empty() must be false.
+    int chosenSource() const { return chosen().source; }
 
 private:
     static bool sameDepth(float a, float b) {
@@ -68,7 +67,17 @@ private:
         float weight;
         float depth;  // of its first member
         int object;
+        int source;   // of its first member
     };
+    const Group& chosen() const {
+        const Group* best = &groups_[0];
+        for (int g = 1; g < count_; ++g) {
+            const Group& group = groups_[static_cast<std::size_t>(g)];
+            if (group.weight > best->weight || (group.weight == best->weight && group.depth > best->depth))
+                best = &group;
+        }
+        return *best;
+    }
     std::array<Group, kMaxGroups> groups_;
     int count_ = 0;
 };
