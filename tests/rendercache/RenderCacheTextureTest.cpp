@@ -11,8 +11,8 @@
 #include <numbers>
 #include <vector>
 
-#include "bench/ImageMetrics.h"
 #include "core/Parallel.h"
+#include "metrics/ImageMetrics.h"
 #include "render/AnalyticScene.h"
 #include "render/FrameRenderer.h"
 #include "rendercache/RenderCachePipeline.h"
