@@ -23,7 +23,7 @@ using namespace raycache;
 
 namespace {
 
-constexpr int kWidth = 64, kHeight = 48, kFrames = 10;
+constexpr int kTextureWidth = 64, kTextureHeight = 48, kTextureFrames = 10;
 
 // A checkerboard wall at z = 0 facing the analytic camera, squares of about
 // 6.6 pixels, lit by a directional light: its light is the same everywhere,
@@ -45,7 +45,7 @@ Scene checkerWallScene() {
 // `up` pixels at the wall's distance.
 Camera slid(float right, float up) {
     const Camera camera = analytic::analyticCamera();
-    const double pixel = 2.0 * 5.0 * std::tan(20.0 * std::numbers::pi / 180.0) / kHeight;
+    const double pixel = 2.0 * 5.0 * std::tan(20.0 * std::numbers::pi / 180.0) / kTextureHeight;
     const Vec3 step{static_cast<float>(right * pixel), static_cast<float>(up * pixel), 0.0f};
     Camera moved = camera;
     moved.position = camera.position + step;
@@ -53,13 +53,13 @@ Camera slid(float right, float up) {
     return moved;
 }
 // Frame f's camera: 0.37 pixels right and 0.23 up per frame, never on a
-// whole pixel within kFrames.
+// whole pixel within kTextureFrames.
 Camera cameraOfFrame(int frame) { return slid(0.37f * static_cast<float>(frame), 0.23f * static_cast<float>(frame)); }
 
 RenderSettings settingsWith(bool refetch, int threads) {
     RenderSettings s;
-    s.width = kWidth;
-    s.height = kHeight;
+    s.width = kTextureWidth;
+    s.height = kTextureHeight;
     s.threads = threads;
     s.pipeline = PipelineKind::RenderCache;
     s.renderCache.textureRefetch = refetch;
@@ -68,9 +68,9 @@ RenderSettings settingsWith(bool refetch, int threads) {
 
 struct CheckerRun {
     std::vector<Image> frames;
-    double meanPsnr = 0.0;           // frames 2..kFrames against the ray pipeline's
+    double meanPsnr = 0.0;           // frames 2..kTextureFrames against the ray pipeline's
     double worstReprojected = 0.0;   // largest channel difference on a reprojected pixel
-    long reprojected = 0;            // reprojected pixels over frames 2..kFrames
+    long reprojected = 0;            // reprojected pixels over frames 2..kTextureFrames
     double worstFilled = 0.0;        // largest channel difference on a hole a filter filled
     long filled = 0;
 };
@@ -85,16 +85,16 @@ CheckerRun run(bool refetch, int threads) {
     raySettings.pipeline = PipelineKind::Ray;
     const FrameRenderer ray(scene, tracer, raySettings, parallel, nullptr);
     CheckerRun r;
-    for (int frame = 0; frame < kFrames; ++frame) {
+    for (int frame = 0; frame < kTextureFrames; ++frame) {
         Image film, truth;
         pipeline.render(cameraOfFrame(frame), film);
         ray.render(cameraOfFrame(frame), truth);
         if (frame > 0) {
-            r.meanPsnr += psnr(film, truth) / (kFrames - 1);
+            r.meanPsnr += psnr(film, truth) / (kTextureFrames - 1);
             const RenderCacheOverlays* overlays = pipeline.renderCacheOverlays();
-            for (int y = 0; y < kHeight; ++y)
-                for (int x = 0; x < kWidth; ++x) {
-                    const PixelState state = overlays->state[static_cast<std::size_t>(y * kWidth + x)];
+            for (int y = 0; y < kTextureHeight; ++y)
+                for (int x = 0; x < kTextureWidth; ++x) {
+                    const PixelState state = overlays->state[static_cast<std::size_t>(y * kTextureWidth + x)];
                     const bool reprojected = state == PixelState::Reprojected;
                     const bool filled = state == PixelState::Filled3x3 || state == PixelState::Filled7x7;
                     if (!reprojected && !filled) continue;
@@ -115,7 +115,7 @@ CheckerRun run(bool refetch, int threads) {
     return r;
 }
 
-bool sameImage(const Image& a, const Image& b) {
+bool sameTextureImage(const Image& a, const Image& b) {
     return a.width() == b.width() && a.height() == b.height() &&
            std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size() * sizeof(Rgb)) == 0;
 }
@@ -134,7 +134,7 @@ TEST(RenderCacheTexture, RefetchingTheTextureBeatsReprojectingItsColour) {
                 "over %ld reprojected pixels; worst filled hole %.2e / %.2e over %ld\n",
                 with.meanPsnr, without.meanPsnr, with.worstReprojected, without.worstReprojected, with.reprojected,
                 with.worstFilled, without.worstFilled, with.filled);
-    ASSERT_GT(with.reprojected, (kFrames - 1) * kWidth * kHeight / 2) << "the frames must be mostly reprojected";
+    ASSERT_GT(with.reprojected, (kTextureFrames - 1) * kTextureWidth * kTextureHeight / 2) << "the frames must be mostly reprojected";
     EXPECT_GT(with.meanPsnr - without.meanPsnr, 134.5 - 50.0);
     // Where the pixel's centre meets the sample's triangle (the whole wall),
     // a reprojected pixel is the full render's up to rounding; without
@@ -150,7 +150,7 @@ TEST(RenderCacheTexture, RefetchingTheTextureBeatsReprojectingItsColour) {
 
 TEST(RenderCacheTexture, RefetchGivesTheSameImagesOnOneAndTwoThreads) {
     const CheckerRun one = run(true, 1), two = run(true, 2);
-    for (int frame = 0; frame < kFrames; ++frame)
-        EXPECT_TRUE(sameImage(one.frames[static_cast<std::size_t>(frame)], two.frames[static_cast<std::size_t>(frame)]))
+    for (int frame = 0; frame < kTextureFrames; ++frame)
+        EXPECT_TRUE(sameTextureImage(one.frames[static_cast<std::size_t>(frame)], two.frames[static_cast<std::size_t>(frame)]))
             << "frame " << frame;
 }
