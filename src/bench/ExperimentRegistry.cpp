@@ -9,6 +9,7 @@
 #include "bench/QualityExperiment.h"
 #include "bench/RenderCacheExperiment.h"
 #include "bench/TimingTableExperiment.h"
+#include "bench/WhereCachingPaysExperiment.h"
 #include "core/Errors.h"
 
 namespace raycache {
@@ -24,6 +25,7 @@ std::vector<std::unique_ptr<Experiment>> allExperiments() {
     all.push_back(makeRenderCacheExperiment());
     all.push_back(makeDynamicExperiment());
     all.push_back(makeGridsExperiment());
+    all.push_back(makeWhereCachingPaysExperiment());
     return all;
 }
 

@@ -108,10 +108,10 @@ TEST_F(DiffBenchCli, DiffBadInputIsOneLineExitTwoAndNoHeatmap) {
 TEST_F(DiffBenchCli, BenchListsAndRejectsBadOptionsBeforeRunning) {
     const RunResult list = runRaycacheStderrBeside("bench --list", dir_);
     ASSERT_EQ(list.exitCode, 0) << list.err;
-    EXPECT_EQ(lineCount(list.out), 9);
+    EXPECT_EQ(lineCount(list.out), 10);
     for (const char* name :
          {"table-5.1", "table-5.2", "table-5.3", "fill-rate", "quality", "parallax", "render-cache", "dynamic",
-          "grids"})
+          "grids", "where-caching-pays"})
         EXPECT_NE(list.out.find(name), std::string::npos) << name;
 
     const std::string out = " --out " + (dir_ / "results").string();

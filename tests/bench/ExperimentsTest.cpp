@@ -432,3 +432,39 @@ TEST_F(Experiments, ReportLinksResolveAndStateTheSize) {
     EXPECT_GT(links, 20);
     checkMarkdownTables(report, "report.md");
 }
+
+TEST_F(Experiments, WhereCachingPaysModelsEverySceneFromItsMeasuredParts) {
+    const nlohmann::json j = results("where-caching-pays");
+    ASSERT_FALSE(j.at("rows").empty());
+    bool animated = false;
+    for (const auto& row : j.at("rows")) {
+        SCOPED_TRACE(row.at("scene").get<std::string>());
+        const double coverage = row.at("mirror_glass_coverage").get<double>();
+        EXPECT_GT(coverage, 0.0);  // every scene of the map shows a mirror or glass
+        EXPECT_LE(coverage, 1.0);
+        animated = animated || row.at("animated").get<bool>();
+        for (const char* technique : {"cct", "cdct"})
+            for (const char* part : {"still", "path"}) {
+                SCOPED_TRACE(std::string(technique) + " " + part);
+                const auto& t = row.at(technique).at(part);
+                const auto& p = t.at("parts");
+                const double uncached = p.at("uncached_ms").get<double>(), ideal = p.at("ideal_ms").get<double>();
+                EXPECT_GT(uncached, 0.0);
+                EXPECT_GT(ideal, 0.0);
+                EXPECT_GT(p.at("leaving_rays").get<std::uint64_t>(), 0u);
+                const double hitRate = p.at("hit_rate").get<double>();
+                EXPECT_GE(hitRate, 0.0);
+                EXPECT_LE(hitRate, 1.0);
+                // The reported prediction is the model applied to the reported parts.
+                const double trees = uncached - ideal + p.at("ideal_lookup_ms").get<double>();
+                EXPECT_NEAR(p.at("cacheable_tree_ms").get<double>(), trees, 1e-9 * uncached);
+                const double frame = uncached - hitRate * trees + p.at("lookup_ms").get<double>() +
+                                     p.at("frame_end_ms").get<double>();
+                EXPECT_NEAR(t.at("predicted").get<double>(), uncached / frame, 1e-9 * uncached / frame);
+            }
+    }
+    EXPECT_TRUE(animated);
+    const std::string md = readFile(dir_ / "where-caching-pays" / "results.md");
+    EXPECT_NE(md.find("### CCT"), std::string::npos);
+    EXPECT_NE(md.find("### CDCT"), std::string::npos);
+}

@@ -1,0 +1,22 @@
+#include "bench/CachingPayModel.h"
+
+namespace raycache {
+
+double cacheableTreeMs(const CachingPayParts& parts) {
+    return parts.uncachedMs - parts.idealMs + parts.idealLookupMs;
+}
+
+double cacheableShare(const CachingPayParts& parts) {
+    return parts.uncachedMs > 0.0 ? cacheableTreeMs(parts) / parts.uncachedMs : 0.0;
+}
+
+double predictedFrameMs(const CachingPayParts& parts) {
+    return parts.uncachedMs - parts.hitRate * cacheableTreeMs(parts) + parts.lookupMs + parts.frameEndMs;
+}
+
+double predictedSpeedup(const CachingPayParts& parts) {
+    const double predicted = predictedFrameMs(parts);
+    return predicted > 0.0 ? parts.uncachedMs / predicted : 0.0;
+}
+
+}  // namespace raycache
