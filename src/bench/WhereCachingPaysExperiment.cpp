@@ -263,29 +263,26 @@ private:
         }
 
         // (a) Still camera at t = 0: warm-up frames fill the caches, then timed
-        // frames, the variants interleaved.
+        // frames, the variants interleaved. Every frame's stats are kept; the
+        // timed ones are the last.
         Image film;
-        std::array<FrameTotals, kVariants> still;
+        std::array<std::vector<FrameStats>, kVariants> stillStats;
         std::vector<Variant> variants;
         for (std::size_t v = 0; v < kVariants; ++v)
             variants.push_back({kVariantNames[v],
                                 [&, v] {
-                                    const FrameStats stats = sessions[v]->render(scene.camera, film);
-                                    still[v].add(stats);
-                                    return stats.rays.total();
+                                    stillStats[v].push_back(sessions[v]->render(scene.camera, film));
+                                    return stillStats[v].back().rays.total();
                                 },
                                 {},
                                 [&, v] { context.progress.advance(kVariantCost[v] * megapixels); }});
         const std::vector<VariantTimes> stillTimes = runInterleaved(variants, size.warmupFrames, size.timedFrames);
+        std::array<FrameTotals, kVariants> still;
         for (std::size_t v = 0; v < kVariants; ++v) {
-            // add() also counted the warm-up frames: keep the timed ones' share.
-            const int timed = static_cast<int>(stillTimes[v].milliseconds.size());
-            const double keep = still[v].frames > 0 ? static_cast<double>(timed) / still[v].frames : 0.0;
-            still[v].lookupCpuMs *= keep;
-            still[v].frameEndMs *= keep;
-            still[v].lookups = static_cast<std::uint64_t>(std::llround(static_cast<double>(still[v].lookups) * keep));
-            still[v].hits = static_cast<std::uint64_t>(std::llround(static_cast<double>(still[v].hits) * keep));
-            still[v].frames = timed;
+            const std::size_t timed = stillTimes[v].milliseconds.size();
+            for (std::size_t k = stillStats[v].size() - std::min(timed, stillStats[v].size()); k < stillStats[v].size();
+                 ++k)
+                still[v].add(stillStats[v][k]);
             still[v].ms = stillTimes[v].milliseconds;
         }
 
