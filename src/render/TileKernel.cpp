@@ -570,8 +570,15 @@ void TileKernel::lookupReuse(TileScratch& s, CacheWorker& cache) const {
         // A cube that sees past its object's surface would answer a ray that
         // meets that surface (a concave mirror seeing itself) with what lies
         // behind it: such a ray is traced.
-        const bool meetsOwnSurface = cache_->seesPastOwnSurface(l.objectId) && tracer_.meetsObject(l.objectId, l.ray);
-        s.cacheQueries[i] = {l.objectId, l.ray.origin, l.ray.direction, l.cone.spread, meetsOwnSurface};
+        // Field by field: a whole-struct assignment was built on the stack
+        // with narrow stores and copied with wide loads, a store-forwarding
+        // stall per query (most of this loop's time in perf).
+        RayCache::Query& q = s.cacheQueries[i];
+        q.objectId = l.objectId;
+        q.origin = l.ray.origin;
+        q.direction = l.ray.direction;
+        q.spread = l.cone.spread;
+        q.meetsOwnSurface = cache_->seesPastOwnSurface(l.objectId) && tracer_.meetsObject(l.objectId, l.ray);
     }
     // Without the cache-level record the batch is looked up exactly as before:
     // an empty span, and one branch here and one after.
