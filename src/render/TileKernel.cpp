@@ -92,9 +92,10 @@ void TileKernel::renderCameraTile(const CameraRays& cameraRays, const TileRange&
     resolveNodes(s, cache, tileKey);
     fillFromVisiblePoints(s, cache, cameraRays.ray(tile.x0, tile.y0).origin);
     StageTimer timer(settings_.stageTimes, s.stages.compose);
-    for (std::size_t i = 0; i < n; ++i)
-        film.at(tile.x0 + static_cast<int>(i) % tileWidth, tile.y0 + static_cast<int>(i) / tileWidth) =
-            s.nodes[i].color();
+    // Row by row: no division per pixel to find its place.
+    std::size_t root = 0;
+    for (int y = tile.y0; y < tile.y1; ++y)
+        for (int x = tile.x0; x < tile.x1; ++x, ++root) film.at(x, y) = s.nodes[root].color();
     if (levels) writeLevelRecord(s, tile, *levels);
 }
 
@@ -137,9 +138,9 @@ void TileKernel::renderGBufferTile(const CameraRays& cameraRays, const GBufferVi
     const auto t1 = Clock::now();
     {
         StageTimer timer(settings_.stageTimes, s.stages.compose);
-        for (std::size_t k = 0; k < n; ++k)
-            film.at(tile.x0 + static_cast<int>(k) % tileWidth, tile.y0 + static_cast<int>(k) / tileWidth) =
-                s.nodes[k].color();
+        std::size_t root = 0;
+        for (int y = tile.y0; y < tile.y1; ++y)
+            for (int x = tile.x0; x < tile.x1; ++x, ++root) film.at(x, y) = s.nodes[root].color();
         if (levels) writeLevelRecord(s, tile, *levels);
     }
     s.compose += Clock::now() - t1;
