@@ -143,6 +143,9 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
             s.height = size.height;
             s.threads = context.settings.threads;
             s.cache.techniqueOverride = v.technique;
+            // The documents' protocol (Tables 5.1-5.3): every cube caches every
+            // frame, whatever the cache policy would decide.
+            s.cache.policy = CachePolicyMode::Always;
             s.cache.resolutionOverride = size.cacheResolution;
             if (v.cdct) {
                 s.cache.cdctStepOverride = v.cdct->step;
