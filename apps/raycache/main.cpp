@@ -107,6 +107,9 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
     command.add_option("--rc-reflections", job.renderCache.reflections,
                        "Render cache: reprojected mirror/glass/glossy samples: reshade (highlights and "
                        "reflections from the new eye, through the caching cubes; the default) or reproject (as traced)");
+    command.add_option("--rc-texture", job.renderCache.texture,
+                       "Render cache: reprojected textured samples: refetch (the albedo where the pixel's centre "
+                       "meets the sample's primitive; the default) or reproject (as traced)");
     command.add_option("--rc-seed", job.renderCache.seed, "Render cache: seed of the request map's random choices (default 1)");
     command.add_option("--rc-margin", job.renderCache.margin,
                        "Render cache: samples kept past each image edge, share of the side, [0, 0.5] (default 0.05)");

@@ -40,6 +40,10 @@ struct RenderCacheSettings {
     // every pixel is traced.
     float refreshAllHoleShare = 0.5f;
     ReprojectedReflections reflections = ReprojectedReflections::Reshade;
+    // A textured sample shows the albedo its pixel's centre sees on its
+    // primitive, multiplied by its stored lighting (rendercache/SampleRetexturing.h);
+    // off, the colour it was traced with (as the 2002 Render Cache).
+    bool textureRefetch = true;
     std::uint64_t seed = 1;
 };
 

@@ -27,13 +27,26 @@ void faceToward(SurfacePoint& sp, const Vec3& rayDirection) {
     }
 }
 
+// A sphere's texture coordinates at outward unit normal n.
+void sphereUv(const Vec3& n, float& u, float& v) {
+    constexpr float pi = std::numbers::pi_v<float>;
+    u = 0.5f + std::atan2(n.z, n.x) / (2.0f * pi);
+    v = 0.5f + std::asin(std::fmax(-1.0f, std::fmin(1.0f, n.y))) / pi;
+}
+
 void sphereSurface(const Sphere& sphere, SurfacePoint& sp, bool needUv) {
     const Vec3 n = (sp.position - sphere.center) * (1.0f / sphere.radius);
     sp.normal = sp.geometricNormal = n;
-    if (!needUv) return;
-    constexpr float pi = std::numbers::pi_v<float>;
-    sp.u = 0.5f + std::atan2(n.z, n.x) / (2.0f * pi);
-    sp.v = 0.5f + std::asin(std::fmax(-1.0f, std::fmin(1.0f, n.y))) / pi;
+    if (needUv) sphereUv(n, sp.u, sp.v);
+}
+
+// A triangle's interpolated texture coordinates (left alone when the mesh has none).
+void meshUv(const TriangleMesh& mesh, const TraceHit& hit, float& u, float& v) {
+    if (mesh.uvs.empty()) return;
+    const auto& tri = mesh.triangles[static_cast<std::size_t>(hit.primitiveId)];
+    const float w = 1.0f - hit.u - hit.v;
+    u = mesh.uvs[tri[0]][0] * w + mesh.uvs[tri[1]][0] * hit.u + mesh.uvs[tri[2]][0] * hit.v;
+    v = mesh.uvs[tri[0]][1] * w + mesh.uvs[tri[1]][1] * hit.u + mesh.uvs[tri[2]][1] * hit.v;
 }
 
 void meshSurface(const TriangleMesh& mesh, const TraceHit& hit, SurfacePoint& sp) {
@@ -52,10 +65,7 @@ void meshSurface(const TriangleMesh& mesh, const TraceHit& hit, SurfacePoint& sp
     }
     sp.geometricNormal = triangleNormal(mesh, hit.primitiveId, ns, hasShadingNormal);
     sp.normal = hasShadingNormal ? ns : sp.geometricNormal;
-    if (!mesh.uvs.empty()) {
-        sp.u = mesh.uvs[tri[0]][0] * w + mesh.uvs[tri[1]][0] * hit.u + mesh.uvs[tri[2]][0] * hit.v;
-        sp.v = mesh.uvs[tri[0]][1] * w + mesh.uvs[tri[1]][1] * hit.u + mesh.uvs[tri[2]][1] * hit.v;
-    }
+    meshUv(mesh, hit, sp.u, sp.v);
 }
 
 }  // namespace
@@ -67,6 +77,16 @@ SurfacePoint surfacePointAt(const SceneObject& object, const Ray& ray, const Tra
     else meshSurface(*std::get<MeshShape>(object.shape).mesh, hit, sp);
     faceToward(sp, ray.direction);
     return sp;
+}
+
+Rgb albedoAtHit(const SceneObject& object, const Ray& ray, const TraceHit& hit) {
+    if (!object.material.diffuseTexture) return object.material.diffuse;
+    float u = 0.0f, v = 0.0f;
+    if (const auto* sphere = std::get_if<Sphere>(&object.shape))
+        sphereUv((ray.origin + ray.direction * hit.t - sphere->center) * (1.0f / sphere->radius), u, v);
+    else
+        meshUv(*std::get<MeshShape>(object.shape).mesh, hit, u, v);
+    return object.material.diffuseTexture->sample(u, v);
 }
 
 SurfacePoint surfacePointFromGBuffer(const Scene& scene, const GBufferView& gbuffer, std::size_t i,

@@ -21,6 +21,12 @@ struct SurfacePoint {
 // when `needUv` is set (the material has a texture); otherwise they stay 0.
 SurfacePoint surfacePointAt(const SceneObject& object, const Ray& ray, const TraceHit& hit, bool needUv);
 
+// The diffuse albedo at a hit, as surfacePointAt's texture coordinates
+// give it, without the rest of the surface (normals, orientation): one
+// texture fetch where the Render Cache moves a sample's shading to its
+// pixel's centre (rendercache/SampleRetexturing.h).
+Rgb albedoAtHit(const SceneObject& object, const Ray& ray, const TraceHit& hit);
+
 // The surface the tracer's hit would give, from G-buffer pixel i (which must
 // hold a surface): position and shading normal from the G-buffer, the
 // triangle's geometric normal, both turned toward the camera ray as above.

@@ -193,6 +193,7 @@ void TileKernel::renderCameraPixels(const CameraRays& cameraRays, std::span<cons
     s.beginTile(n);
     s.recordFirstHits = true;
     s.rootViewIndependent.assign(n, Rgb{});
+    s.rootLighting.assign(n, Rgb{});
     s.rootLitMask.assign(n, 0);
     {
         StageTimer timer(settings_.stageTimes, s.stages.firstHits);
@@ -216,6 +217,7 @@ void TileKernel::renderCameraPixels(const CameraRays& cameraRays, std::span<cons
     for (std::size_t i = 0; i < n; ++i) {
         out[i].color = s.nodes[i].color();
         out[i].viewIndependent = s.rootViewIndependent[i];
+        out[i].lighting = s.rootLighting[i];
         out[i].litMask = s.rootLitMask[i];
     }
 }
@@ -486,6 +488,14 @@ void TileKernel::shadeDirect(TileScratch& s) const {
             s.rootViewIndependent[static_cast<std::size_t>(v.node)] = shading_.viewIndependentLight(
                 material, s.albedo[i], s.surfaces[i], std::span(s.queries.data() + first, count),
                 std::span(s.occluded.data() + first, count), s.rootLitMask[static_cast<std::size_t>(v.node)]);
+        if (s.recordFirstHits && v.depth == 1 && material.diffuseTexture) {
+            // Only a texture varies the albedo within a primitive; the
+            // lighting of untextured hits is never asked for.
+            std::uint64_t sameMask;
+            s.rootLighting[static_cast<std::size_t>(v.node)] = shading_.viewIndependentLight(
+                material, Rgb{1.0f}, s.surfaces[i], std::span(s.queries.data() + first, count),
+                std::span(s.occluded.data() + first, count), sameMask);
+        }
     }
 }
 

@@ -48,6 +48,10 @@ struct PrimarySample {
     Rgb color;
     TraceHit hit;               // objectId -1: the ray saw the background
     Rgb viewIndependent;        // ambient plus the unshadowed lights' diffuse term
+    // viewIndependent with the albedo divided out (computed with a white
+    // albedo, so it is known where the albedo is black): the Render Cache
+    // multiplies it by the albedo its pixel's centre sees on a texture.
+    Rgb lighting;
     std::uint64_t litMask = 0;  // bit l: light l reached the hit
 };
 
@@ -166,6 +170,7 @@ private:
     // The first hits' view-independent light, recorded for PrimarySample.
     bool recordFirstHits = false;
     std::vector<Rgb> rootViewIndependent;
+    std::vector<Rgb> rootLighting;  // rootViewIndependent with a white albedo
     std::vector<std::uint64_t> rootLitMask;
     std::span<const ReshadeRequest> reshade;  // the roots of a reshade call
     // When the caller asked for the cache-level record (CacheLevelImage): per

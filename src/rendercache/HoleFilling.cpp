@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "rendercache/SurfaceClusters.h"
+
 namespace raycache {
 
 namespace {
@@ -11,7 +13,8 @@ constexpr int kPrefilterRadius = 3;  // 7x7
 }  // namespace
 
 FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel& parallel,
-                     std::vector<unsigned char>* scratch, const SampleColors* samples) {
+                     std::vector<unsigned char>* scratch, const SampleColors* samples, const SampleSurfaces* surfaces,
+                     std::vector<std::int32_t>* fillSource) {
     const int width = film.width(), height = film.height();
     const auto at = [width](int x, int y) {
         return static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
@@ -30,6 +33,16 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
     // any hole (rows without are skipped by the later passes).
     std::vector<int> wants7x7(static_cast<std::size_t>(height), 0);
     std::vector<unsigned char> hasHoles(static_cast<std::size_t>(height), 0);
+    // A sample's colour into `groups`: without `surfaces`, all in one group.
+    const auto addSample = [&](SurfaceClusters& groups, int nx, int ny, float w) {
+        const Rgb& color = samples ? samples->at(nx, ny) : film.at(nx, ny);
+        if (surfaces) groups.add(color, w, surfaces->depth(nx, ny), surfaces->object(nx, ny), ny * width + nx);
+        else groups.add(color, w, 0.0f, 0);
+    };
+    if (fillSource) fillSource->resize(state.size());
+    const auto recordSource = [&](int x, int y, const SurfaceClusters& groups) {
+        if (fillSource && surfaces) (*fillSource)[at(x, y)] = groups.chosenSource();
+    };
     // Counts per row go to a local, written once (no false sharing).
     parallel.forEachIndex(height, [&](int y, int) {
         FillCounts row;
@@ -40,8 +53,7 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
             if (samples && showsSample(s)) film.at(x, y) = samples->at(x, y);
             if (!isHole(s)) continue;
             holes = true;
-            Rgb sum;
-            float weight = 0.0f;
+            SurfaceClusters groups;
             for (int dy = -1; dy <= 1; ++dy) {
                 const int ny = y + dy;
                 if (ny < 0 || ny >= height) continue;
@@ -49,12 +61,12 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
                     const int nx = x + dx;
                     if (nx < 0 || nx >= width || !showsSample(state[at(nx, ny)])) continue;
                     const float w = (dx == 0 || dy == 0) ? 2.0f : 1.0f;
-                    sum += (samples ? samples->at(nx, ny) : film.at(nx, ny)) * w;
-                    weight += w;
+                    addSample(groups, nx, ny, w);
                 }
             }
-            if (weight > 0.0f) {
-                film.at(x, y) = sum * (1.0f / weight);
+            if (!groups.empty()) {
+                film.at(x, y) = groups.mean();
+                recordSource(x, y, groups);
                 outcome[at(x, y)] = k3x3;
                 ++row.filled3x3;
             } else {
@@ -87,7 +99,8 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
                 last = x;
             }
         const int wanting = wants7x7[static_cast<std::size_t>(y)];
-        const bool dense = last - first + 1 + 2 * kPrefilterRadius < 6 * wanting;
+        // The edge-aware filter groups each box's samples itself: the 49 pixels of each box.
+        const bool dense = !surfaces && last - first + 1 + 2 * kPrefilterRadius < 6 * wanting;
         const int x0 = dense ? std::max(0, first - kPrefilterRadius) : 0;
         const int x1 = dense ? std::min(width - 1, last + kPrefilterRadius) : -1;  // no columns when sparse
         const int y0 = std::max(0, y - kPrefilterRadius), y1 = std::min(height - 1, y + kPrefilterRadius);
@@ -104,22 +117,22 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
             if (outcome[at(x, y)] != kWants7x7) continue;
             Rgb sum;
             int count = 0;
+            SurfaceClusters groups;
             const int nx0 = std::max(0, x - kPrefilterRadius), nx1 = std::min(width - 1, x + kPrefilterRadius);
             if (dense) {
                 for (int nx = nx0; nx <= nx1; ++nx) {
                     sum += columns.sum[static_cast<std::size_t>(nx - x0)];
                     count += columns.count[static_cast<std::size_t>(nx - x0)];
                 }
+                if (count > 0) groups.add(sum * (1.0f / static_cast<float>(count)), 1.0f, 0.0f, 0);
             } else {
                 for (int ny = y0; ny <= y1; ++ny)
                     for (int nx = nx0; nx <= nx1; ++nx)
-                        if (showsSample(state[at(nx, ny)])) {
-                            sum += film.at(nx, ny);
-                            ++count;
-                        }
+                        if (showsSample(state[at(nx, ny)])) addSample(groups, nx, ny, 1.0f);
             }
-            if (count > 0) {
-                film.at(x, y) = sum * (1.0f / static_cast<float>(count));
+            if (!groups.empty()) {
+                film.at(x, y) = groups.mean();
+                recordSource(x, y, groups);
                 outcome[at(x, y)] = k7x7;
                 ++row.filled7x7;
             } else {

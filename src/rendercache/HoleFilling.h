@@ -4,13 +4,15 @@
 // the samples among their 3x3 neighbours (edge neighbours count twice,
 // corners once); pixels the 3x3 filter cannot reach take the mean of the
 // samples in their 7x7 box (the prefilter), applied only there, like the
-// stencil-masked pass of the GPU version.
+// stencil-masked pass of the GPU version. Both filters can be edge-aware:
+// only the samples on one surface count (rendercache/SurfaceClusters.h).
 #include <cstdint>
 #include <vector>
 
 #include "core/Image.h"
 #include "core/Parallel.h"
 #include "rendercache/PixelState.h"
+#include "rendercache/PointImage.h"
 #include "rendercache/SamplePool.h"
 
 namespace raycache {
@@ -32,13 +34,33 @@ struct SampleColors {
     }
 };
 
+// What surface each pixel's sample lies on, for the edge-aware fills
+// (rendercache/SurfaceClusters.h): pixel (x, y)'s depth in `depths`, its
+// object in points[origin + y * stride + x] (the sample pool, as SampleColors).
+struct SampleSurfaces {
+    const PointImage* depths = nullptr;
+    const SamplePoint* points = nullptr;
+    std::size_t origin = 0, stride = 0;
+    float depth(int x, int y) const { return depths->depthAt(x, y); }
+    int object(int x, int y) const {
+        return points[origin + static_cast<std::size_t>(y) * stride + static_cast<std::size_t>(x)].objectId;
+    }
+};
+
 // The pixels where showsSample(state) show their samples' colours: taken
 // from `samples` and written to `film` in the same pass as the 3x3 filter
 // when `samples` is given, else already in `film`. The holes (isHole) are
 // filled from those pixels only, and their state set to Filled3x3,
-// Filled7x7 or Unfilled.
+// Filled7x7 or Unfilled. With `surfaces`, each filter takes the mean of
+// one group of the samples it reaches, those on one surface
+// (SurfaceClusters); without, of all of them. With `surfaces` and
+// `fillSource` (resized to the image's pixels), each filled hole's entry
+// gets the pixel (y * width + x) of the first sample of the group it took
+// (the caller may shade the hole from that sample's surface); other
+// entries are not written.
 // `scratch`, when given, is reused from frame to frame (no allocation).
 FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel& parallel,
-                     std::vector<unsigned char>* scratch = nullptr, const SampleColors* samples = nullptr);
+                     std::vector<unsigned char>* scratch = nullptr, const SampleColors* samples = nullptr,
+                     const SampleSurfaces* surfaces = nullptr, std::vector<std::int32_t>* fillSource = nullptr);
 
 }  // namespace raycache

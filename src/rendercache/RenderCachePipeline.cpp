@@ -11,11 +11,13 @@
 #include "render/CacheFrame.h"
 #include "render/CameraRays.h"
 #include "render/HitOnPrimitive.h"
+#include "render/SurfacePoint.h"
 #include "rendercache/CameraPrediction.h"
 #include "rendercache/DepthCulling.h"
 #include "rendercache/HoleFilling.h"
 #include "rendercache/Reprojection.h"
 #include "rendercache/RequestMap.h"
+#include "rendercache/SampleRetexturing.h"
 #include "rendercache/ScreenProjection.h"
 
 namespace raycache {
@@ -111,12 +113,18 @@ void RenderCachePipeline::keep(std::size_t slot, const PrimarySample& traced, co
     if (!traced.hit.hit()) {
         pool_.point[slot] = {ray.direction, SamplePool::kBackground};
         look.viewDependent = 0;
+        look.textured = 0;
         return;
     }
     const SceneObject& object = scene_.objects[static_cast<std::size_t>(traced.hit.objectId)];
     pool_.point[slot] = {ray.origin + ray.direction * traced.hit.t - object.origin, traced.hit.objectId};
     look.viewDependent = dependsOnView(object.material) ? 1 : 0;
     pool_.reshade[slot] = {traced.hit.primitiveId, traced.hit.u, traced.hit.v, traced.viewIndependent, traced.litMask};
+    // Only a texture varies the albedo within a primitive: elsewhere the
+    // albedo at the pixel's centre is the sample's own.
+    look.textured = object.material.diffuseTexture && settings_.renderCache.textureRefetch ? 1 : 0;
+    if (look.textured)
+        pool_.texturing[slot] = {traced.lighting, traced.color + traced.viewIndependent * -1.0f, traced.hit.primitiveId};
 }
 
 std::uint64_t RenderCachePipeline::trace(const Camera& camera, const std::vector<PixelCoord>& pixels,
@@ -193,6 +201,11 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     std::vector<std::int64_t> culledPerRow(static_cast<std::size_t>(height), 0);
     std::vector<std::int64_t> reprojectedPerRow(static_cast<std::size_t>(height), 0);
     const float agePriority = 0.5f / static_cast<float>(rc.maxAge);
+    // Textured samples show the albedo their pixel's centre sees
+    // (SampleRetexturing); a still camera puts every sample back where it was
+    // traced, so they already do.
+    const bool retexture = moved && rc.textureRefetch;
+    const CameraRays centreRays(camera, width, height);
     parallel_.forEachIndex(height, [&](int y, int) {
         std::int64_t rowHoles = 0, rowCulled = 0, rowReprojected = 0;
         for (int x = 0; x < width; ++x) {
@@ -207,7 +220,19 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
                 ++rowCulled;
             } else {
                 state[i] = PixelState::Reprojected;
-                priority[i] = agePriority * static_cast<float>(pool_.look[image_.pixelIndex(x, y)].age);
+                const std::size_t slot = image_.pixelIndex(x, y);
+                SampleLook& look = pool_.look[slot];
+                priority[i] = agePriority * static_cast<float>(look.age);
+                if (retexture && look.textured) {
+                    const int object = pool_.point[slot].objectId;
+                    const SceneObject& sceneObject = scene_.objects[static_cast<std::size_t>(object)];
+                    const float distance = length(sceneObject.origin + pool_.point[slot].position - camera.position);
+                    // Where the centre misses the sample's primitive (its
+                    // edge, a silhouette), the stored colour, and a ray sooner.
+                    if (!retexturedColor(sceneObject, object, pool_.texturing[slot], centreRays.ray(x, y), distance,
+                                         look.color))
+                        priority[i] = std::max(priority[i], kMissedPrimitivePriority);
+                }
                 ++rowReprojected;
             }
         }
@@ -355,14 +380,17 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
                 // shading the sample's own point (up to a pixel off) smears it.
                 // Where that ray misses the surface, the sample's point.
                 const Ray centreRay = pixelRays.ray(x, y);
+                r.viewIndependent = inputs.viewIndependent;
                 if (const auto atCentre = hitOnPrimitive(sceneObject, object, inputs.primitiveId, centreRay, distance)) {
                     r.ray = centreRay;
                     r.hit = *atCentre;
+                    // A textured sample's diffuse part with the albedo seen there.
+                    if (pool_.look[slot].textured)
+                        r.viewIndependent = albedoAtHit(sceneObject, centreRay, *atCentre) * pool_.texturing[slot].lighting;
                 } else {
                     r.ray = Ray{camera.position, toPoint * (1.0f / distance)};
                     r.hit = TraceHit{distance, object, inputs.primitiveId, inputs.baryU, inputs.baryV};
                 }
-                r.viewIndependent = inputs.viewIndependent;
                 r.litMask = inputs.litMask;
                 slots[i++] = slot;
             }
@@ -397,7 +425,29 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     // image environment along every pixel's ray again cost 12 ms per frame
     // at 1024x1024 on `room`.
     const SampleColors colors{pool_.look.data(), image_.pixelIndex(0, 0), static_cast<std::size_t>(image_.stride())};
-    const FillCounts filled = fillHoles(state, film, parallel_, &bytes_, &colors);
+    // Edge-aware: a hole takes the samples of one surface around it.
+    const SampleSurfaces surfaces{&image_, pool_.point.data(), image_.pixelIndex(0, 0),
+                                  static_cast<std::size_t>(image_.stride())};
+    const FillCounts filled = fillHoles(state, film, parallel_, &bytes_, &colors, &surfaces, &fillSource_);
+    // A hole filled from a textured surface shows that surface's texture at
+    // its own centre: the lighting and rest of the group's first sample,
+    // the albedo where the hole's centre ray meets that sample's primitive
+    // (on a checkerboard floor the filters' mean of neighbouring squares is
+    // a grey that neither square has). Where it misses, the filter's mean.
+    if (rc.textureRefetch && filled.filled3x3 + filled.filled7x7 > 0)
+        parallel_.forEachIndex(height, [&](int y, int) {
+            for (int x = 0; x < width; ++x) {
+                const auto i = static_cast<std::size_t>(y * width + x);
+                if (state[i] != PixelState::Filled3x3 && state[i] != PixelState::Filled7x7) continue;
+                const int source = fillSource_[i];
+                const std::size_t slot = image_.pixelIndex(source % width, source / width);
+                if (!pool_.look[slot].textured) continue;
+                const int object = pool_.point[slot].objectId;
+                const SceneObject& sceneObject = scene_.objects[static_cast<std::size_t>(object)];
+                const float distance = length(sceneObject.origin + pool_.point[slot].position - camera.position);
+                retexturedColor(sceneObject, object, pool_.texturing[slot], rays.ray(x, y), distance, film.at(x, y));
+            }
+        });
     stats.filled3x3 = filled.filled3x3;
     stats.filled7x7 = filled.filled7x7;
     stats.unfilled = filled.unfilled;

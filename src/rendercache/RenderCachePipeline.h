@@ -78,6 +78,7 @@ private:
     RequestMap predictedRequests_;
     // Buffers reused from frame to frame: fresh memory costs page faults.
     std::vector<float> priority_;
+    std::vector<std::int32_t> fillSource_;  // per pixel: the sample a filled hole took its surface from
     std::vector<unsigned char> bytes_;  // each step's own per-pixel flags, one step at a time
     std::vector<PrimarySample> traced_;
     std::vector<ReshadeRequest> reshade_;

@@ -176,7 +176,8 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
     for (const Landed& loser : losers.back()) secondChance(loser);
 
     // Each pixel's winner to its own slot of `to` (two 16-byte records and,
-    // for a sample that depends on the eye, its reshading inputs); the
+    // for a sample that depends on the eye, its reshading inputs, for a
+    // textured one its colour's parts); the
     // image's keys lose their second-chance marks.
     std::vector<std::int64_t> placedPerRow(static_cast<std::size_t>(rows), 0);
     std::vector<std::int64_t> movedPerRow(static_cast<std::size_t>(rows), 0);
@@ -188,6 +189,8 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
         SamplePoint* toPoint = to.point.data();
         SampleLook* toLook = to.look.data();
         ReshadeInputs* toReshade = to.reshade.data();
+        const SampleTexturing* fromTexturing = from.texturing.data();
+        SampleTexturing* toTexturing = to.texturing.data();
         std::int32_t* nextOfPixel = next ? nextPixel->data() : nullptr;
         const int y = row - margin;
         std::int64_t placed = 0, moved = 0;
@@ -211,6 +214,7 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
             toLook[pixel] = look;
             // What reshading needs, only where it means something.
             if (look.viewDependent) toReshade[pixel] = fromReshade[source];
+            if (look.textured) toTexturing[pixel] = fromTexturing[source];
             ++placed;
         }
         placedPerRow[static_cast<std::size_t>(row)] = placed;

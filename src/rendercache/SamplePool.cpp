@@ -11,6 +11,7 @@ void SamplePool::reset(std::size_t pixelSlotCount, std::size_t overflowCapacity)
     point.assign(capacity, SamplePoint{});
     look.assign(capacity, SampleLook{});
     reshade.assign(capacity, ReshadeInputs{});
+    texturing.assign(capacity, SampleTexturing{});
 }
 
 std::size_t SamplePool::takeOverflowSlot() {

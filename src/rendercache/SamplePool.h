@@ -32,9 +32,25 @@ struct SampleLook {
     Rgb color;                       // what the pixel showed when last traced or reshaded
     std::uint16_t age = 0;           // reprojections since it was traced
     unsigned char viewDependent = 0; // mirror, glass or highlight: its colour depends on the eye
+    unsigned char textured = 0;      // its albedo comes from a texture: SampleTexturing holds its colour's parts
     bool operator==(const SampleLook&) const = default;
 };
 static_assert(sizeof(SampleLook) == 16);
+
+// A textured sample's colour taken apart (only meaningful where
+// SampleLook::textured is set): colour = albedo * lighting + rest, where
+// `lighting` is the light that the albedo multiplies (ambient and the
+// unshadowed lights' diffuse term: LocalShading::viewIndependentLight with a
+// white albedo) and `rest` what it does not (highlights, reflected and
+// refracted light). Reconstruction fetches the albedo where the pixel's
+// centre meets `primitiveId` and multiplies it back
+// (rendercache/SampleRetexturing.h).
+struct SampleTexturing {
+    Rgb lighting;
+    Rgb rest;
+    int primitiveId = 0;
+    bool operator==(const SampleTexturing&) const = default;
+};
 
 // For reshading (only meaningful where SampleLook::viewDependent is set).
 struct ReshadeInputs {
@@ -65,6 +81,7 @@ struct SamplePool {
     std::vector<SamplePoint> point;
     std::vector<SampleLook> look;
     std::vector<ReshadeInputs> reshade;
+    std::vector<SampleTexturing> texturing;
 };
 
 }  // namespace raycache

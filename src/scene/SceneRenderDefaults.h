@@ -15,6 +15,7 @@ struct RenderCacheOverrides {
     std::optional<int> maxAge, requestTileSize;
     std::optional<std::uint64_t> seed;
     std::optional<std::string> reflections;  // reshade | reproject
+    std::optional<std::string> texture;      // refetch | reproject (command line only)
 };
 
 struct SceneRenderDefaults {

@@ -40,6 +40,7 @@ void applyRenderCacheOverrides(const RenderCacheOverrides& o, RenderCacheSetting
     if (o.depthCullThreshold) rc.depthCullThreshold = *o.depthCullThreshold;
     if (o.requestTileSize) rc.requestTileSize = *o.requestTileSize;
     if (o.reflections) parseReprojectedReflections(*o.reflections, rc.reflections);
+    if (o.texture) rc.textureRefetch = *o.texture == "refetch";
 }
 
 std::optional<VisibleFill> parseVisibleFill(const std::string& name) {
@@ -104,6 +105,8 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
     ReprojectedReflections reflections;
     if (o.renderCache.reflections && !parseReprojectedReflections(*o.renderCache.reflections, reflections))
         throw InputError("--rc-reflections must be reshade or reproject (got '" + *o.renderCache.reflections + "')");
+    if (o.renderCache.texture && *o.renderCache.texture != "refetch" && *o.renderCache.texture != "reproject")
+        throw InputError("--rc-texture must be refetch or reproject (got '" + *o.renderCache.texture + "')");
     if (!parseTileBalance(o.tileBalance))
         throw InputError("--tile-balance must be static, dynamic or claim (got '" + o.tileBalance + "')");
     if (o.gbuffer != "auto" && o.gbuffer != "gl" && o.gbuffer != "packets")

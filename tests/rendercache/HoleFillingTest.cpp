@@ -1,6 +1,7 @@
 // fillHoles(): the 3x3 weighted mean (edge neighbours 2, corners 1) for
 // holes next to a sample, the 7x7 box mean only where the 3x3 finds none,
-// and Unfilled beyond. Expected values are computed here in double from the
+// and Unfilled beyond; given the samples' surfaces, the mean of one
+// surface's samples only (edge-aware). Expected values are computed here in double from the
 // samples' known colours.
 #include <gtest/gtest.h>
 
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "rendercache/HoleFilling.h"
+#include "rendercache/PointImage.h"
 
 using namespace raycache;
 
@@ -249,4 +251,86 @@ TEST(HoleFilling, ColoursReadFromThePoolGiveTheSameFilmAsColoursInTheFilm) {
                 ASSERT_EQ(copied.film.at(x, y), fromPool.film.at(x, y)) << x << "," << y << ", " << threads << " threads";
             }
     }
+}
+
+namespace {
+
+// A silhouette: the left of the image shows object 1 at depth 2 in red, the
+// right object 2 at depth 9 in blue, with holes along the edge between them
+// (for the 3x3 filter) and a hole wide enough for the 7x7 filter across it.
+struct Silhouette {
+    static constexpr int kW = 24, kH = 16, kEdge = 11;  // columns < kEdge are the near object
+    static constexpr Rgb kNear{1.0f, 0.0f, 0.0f}, kFar{0.0f, 0.0f, 1.0f};
+    Synthetic img{kW, kH};
+    PointImage depths;
+    std::vector<SamplePoint> points;
+    Silhouette() : points(static_cast<std::size_t>(kW * kH)) {
+        depths.reset(kW, kH, 0);
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                const bool near = x < kEdge;
+                img.film.at(x, y) = near ? kNear : kFar;
+                depths.place(x, y, near ? 2.0f : 9.0f);
+                points[static_cast<std::size_t>(y * kW + x)].objectId = near ? 1 : 2;
+                const bool edgeHole = (x == kEdge - 1 || x == kEdge) && (x + y) % 2 == 0;
+                const bool wideHole = y >= 6 && y <= 11 && x >= kEdge - 3 && x <= kEdge + 2;
+                if (edgeHole || wideHole) {
+                    img.hole(x, y);
+                    depths.clear(x, y);
+                }
+            }
+    }
+    SampleSurfaces surfaces() const { return SampleSurfaces{&depths, points.data(), 0, static_cast<std::size_t>(kW)}; }
+};
+
+}  // namespace
+
+// Given the samples' surfaces, a filled hole shows one side of a depth
+// discontinuity, never a blend; without them (the same holes) the filters
+// blend the two sides, which is what makes this test able to fail.
+TEST(HoleFilling, EdgeAwareFillsDoNotMixColoursAcrossADepthDiscontinuity) {
+    Silhouette aware, plain;
+    const SampleSurfaces surfaces = aware.surfaces();
+    const FillCounts a = fillHoles(aware.img.state, aware.img.film, Parallel(2), nullptr, nullptr, &surfaces);
+    const FillCounts b = fillHoles(plain.img.state, plain.img.film, Parallel(2));
+    EXPECT_GT(a.filled3x3, 10);
+    EXPECT_GT(a.filled7x7, 0);
+    EXPECT_EQ(a.filled3x3, b.filled3x3);
+    EXPECT_EQ(a.filled7x7, b.filled7x7);
+    int blendedWithout = 0;
+    for (int y = 0; y < Silhouette::kH; ++y)
+        for (int x = 0; x < Silhouette::kW; ++x) {
+            const Rgb c = aware.img.film.at(x, y);
+            EXPECT_TRUE(c == Silhouette::kNear || c == Silhouette::kFar) << x << "," << y << ": " << c.r << " " << c.b;
+            const Rgb p = plain.img.film.at(x, y);
+            blendedWithout += (p == Silhouette::kNear || p == Silhouette::kFar) ? 0 : 1;
+        }
+    EXPECT_GT(blendedWithout, 10);
+}
+
+// Which side a hole takes: the surface with more weight among its samples;
+// of two equally weighted, the farther (a moving camera's holes at a
+// silhouette are mostly what it newly sees behind the object).
+TEST(HoleFilling, AnEdgeHoleTakesTheHeavierSurfaceAndOnATieTheFarther) {
+    Silhouette s;
+    const SampleSurfaces surfaces = s.surfaces();
+    fillHoles(s.img.state, s.img.film, Parallel(1), nullptr, nullptr, &surfaces);
+    for (int y = 0; y < Silhouette::kH; ++y)
+        for (int x = Silhouette::kEdge - 1; x <= Silhouette::kEdge; ++x) {
+            if (s.img.s(x, y) != PixelState::Filled3x3) continue;
+            float nearWeight = 0.0f, farWeight = 0.0f;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int nx = x + dx, ny = y + dy;
+                    if (nx < 0 || ny < 0 || nx >= Silhouette::kW || ny >= Silhouette::kH) continue;
+                    if (!s.depths.hasSample(nx, ny) || (dx == 0 && dy == 0)) continue;
+                    // Filled pixels were holes: only the original samples count.
+                    const bool wasHole = ((nx == Silhouette::kEdge - 1 || nx == Silhouette::kEdge) && (nx + ny) % 2 == 0) ||
+                                         (ny >= 6 && ny <= 11 && nx >= Silhouette::kEdge - 3 && nx <= Silhouette::kEdge + 2);
+                    if (wasHole) continue;
+                    (nx < Silhouette::kEdge ? nearWeight : farWeight) += (dx == 0 || dy == 0) ? 2.0f : 1.0f;
+                }
+            const Rgb want = nearWeight > farWeight ? Silhouette::kNear : Silhouette::kFar;
+            EXPECT_EQ(s.img.film.at(x, y), want) << x << "," << y << ": near " << nearWeight << ", far " << farWeight;
+        }
 }
