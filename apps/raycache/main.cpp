@@ -244,6 +244,11 @@ int run(int argc, char** argv, const raycache::ClusterRuntime& cluster) {
     benchCmd->add_flag("--tiny", bench.tiny, "A few dozen pixels, seconds: a smoke test, numbers meaningless");
     benchCmd->add_option("--threads", bench.threads, "Worker threads, 0 = all cores")->capture_default_str();
     benchCmd->add_option("--out", bench.outDir, "Results directory")->capture_default_str();
+    benchCmd->add_option("--cache-policy", bench.cachePolicy,
+                         "always: every cube caches every frame (the documents' protocol, comparable tables); auto: "
+                         "the cache policy of `raycache render` (docs/caching.md) in dynamic and parallax; the other "
+                         "experiments always cache (docs/bench.md)")
+        ->capture_default_str();
     benchCmd->add_flag("--list", bench.list, "List the experiments and exit");
 
     // Every process parses the same arguments, so they all agree on the outcome.

@@ -469,6 +469,7 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
                                   {{"width", size.width},
                                    {"height", size.height},
                                    {"cache_resolution", size.cacheResolution},
+                                   {"cache_policy", "always"},  // the documents' protocol, whatever --cache-policy says
                                    {"warmup_frames", size.warmupFrames},
                                    {"timed_frames", size.timedFrames},
                                    {"max_timed_frames", std::max(size.timedFrames, size.maxTimedFrames)},

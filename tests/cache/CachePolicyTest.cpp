@@ -15,16 +15,16 @@ using namespace raycache;
 
 namespace {
 
-const CachePolicyCosts kCosts{0.1, 0.1, 0.02};
+const CachePolicyCosts kPolicyTestCosts{0.1, 0.1, 0.02};
 
 // A frame of `lookups` lookups of which `hits` hit, the misses each traced a
 // tree of `tree` rays and queued a store.
-CubeFrameCounts frame(std::uint64_t lookups, std::uint64_t hits, std::uint64_t tree) {
+CubeFrameCounts policyFrame(std::uint64_t lookups, std::uint64_t hits, std::uint64_t tree) {
     const std::uint64_t misses = lookups - hits;
     return {lookups, hits, misses, misses, misses * tree, 0};
 }
 
-bool sameImage(const Image& a, const Image& b) {
+bool policyImagesMatch(const Image& a, const Image& b) {
     return a.width() == b.width() && a.height() == b.height() &&
            std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size() * sizeof(Rgb)) == 0;
 }
@@ -46,18 +46,18 @@ TEST(CachePolicy, ParsesItsModes) {
 }
 
 TEST(CachePolicy, FirstFrameFillsAndIsNotJudged) {
-    CubePolicy p(CachePolicyMode::Auto, kCosts);
-    const auto j = p.afterFrame(frame(1000, 0, 3));  // all misses: only cost
+    CubePolicy p(CachePolicyMode::Auto, kPolicyTestCosts);
+    const auto j = p.afterFrame(policyFrame(1000, 0, 3));  // all misses: only cost
     EXPECT_FALSE(j.judged);
     EXPECT_GT(j.cost, j.saving);
     EXPECT_FALSE(p.bypassed());
 }
 
 TEST(CachePolicy, BypassesWhenCostsExceedSavings) {
-    CubePolicy p(CachePolicyMode::Auto, kCosts);
-    p.afterFrame(frame(1000, 0, 3));
+    CubePolicy p(CachePolicyMode::Auto, kPolicyTestCosts);
+    p.afterFrame(policyFrame(1000, 0, 3));
     // 10 hits of 3-ray trees save 30; 1000 lookups and 990 stores cost 199.
-    const auto j = p.afterFrame(frame(1000, 10, 3));
+    const auto j = p.afterFrame(policyFrame(1000, 10, 3));
     EXPECT_TRUE(j.judged);
     EXPECT_DOUBLE_EQ(j.saving, 30.0);
     EXPECT_DOUBLE_EQ(j.cost, 1000 * 0.1 + 990 * 0.1);
@@ -65,11 +65,11 @@ TEST(CachePolicy, BypassesWhenCostsExceedSavings) {
 }
 
 TEST(CachePolicy, KeepsCachingWhenHitsPay) {
-    CubePolicy p(CachePolicyMode::Auto, kCosts);
-    p.afterFrame(frame(1000, 0, 3));
+    CubePolicy p(CachePolicyMode::Auto, kPolicyTestCosts);
+    p.afterFrame(policyFrame(1000, 0, 3));
     // A still camera's second frame: every lookup hits; the tree a hit
     // replaces is the last traced one's (3 rays).
-    const auto j = p.afterFrame(frame(1000, 1000, 3));
+    const auto j = p.afterFrame(policyFrame(1000, 1000, 3));
     EXPECT_TRUE(j.judged);
     EXPECT_DOUBLE_EQ(j.saving, 3000.0);
     EXPECT_FALSE(p.bypassed());
@@ -78,25 +78,25 @@ TEST(CachePolicy, KeepsCachingWhenHitsPay) {
 
 TEST(CachePolicy, BreakEvenKeepsCaching) {
     CubePolicy p(CachePolicyMode::Auto, {1.0, 0.0, 0.0});
-    p.afterFrame(frame(10, 0, 1));
-    p.afterFrame(frame(10, 10, 1));  // saving 10, cost 10: not a loss
+    p.afterFrame(policyFrame(10, 0, 1));
+    p.afterFrame(policyFrame(10, 10, 1));  // saving 10, cost 10: not a loss
     EXPECT_FALSE(p.bypassed());
 }
 
 TEST(CachePolicy, AlwaysNeverBypasses) {
-    CubePolicy p(CachePolicyMode::Always, kCosts);
-    for (int f = 0; f < 10; ++f) p.afterFrame(frame(1000, 0, 3));
+    CubePolicy p(CachePolicyMode::Always, kPolicyTestCosts);
+    for (int f = 0; f < 10; ++f) p.afterFrame(policyFrame(1000, 0, 3));
     EXPECT_FALSE(p.bypassed());
     EXPECT_EQ(p.framesCaching(), 10u);
     EXPECT_EQ(p.framesBypassed(), 0u);
 }
 
 TEST(CachePolicy, ProbesAfterABackoffThatDoublesUpToItsLongest) {
-    CubePolicy p(CachePolicyMode::Auto, kCosts);
-    p.afterFrame(frame(1000, 0, 3));  // warm-up
+    CubePolicy p(CachePolicyMode::Auto, kPolicyTestCosts);
+    p.afterFrame(policyFrame(1000, 0, 3));  // warm-up
     int expected = CubePolicy::kFirstBackoff;
     for (int probe = 0; probe < 8; ++probe) {
-        p.afterFrame(frame(1000, 0, 3));  // caching (a probe after the first) that loses
+        p.afterFrame(policyFrame(1000, 0, 3));  // caching (a probe after the first) that loses
         ASSERT_TRUE(p.bypassed());
         for (int f = 0; f < expected; ++f) {
             ASSERT_TRUE(p.bypassed()) << "probe " << probe << " frame " << f;
@@ -110,15 +110,15 @@ TEST(CachePolicy, ProbesAfterABackoffThatDoublesUpToItsLongest) {
 }
 
 TEST(CachePolicy, ResumesWhenAProbePaysAndTheBackoffStartsAgain) {
-    CubePolicy p(CachePolicyMode::Auto, kCosts);
-    p.afterFrame(frame(1000, 0, 3));
-    p.afterFrame(frame(1000, 0, 3));  // loses: bypass 4
+    CubePolicy p(CachePolicyMode::Auto, kPolicyTestCosts);
+    p.afterFrame(policyFrame(1000, 0, 3));
+    p.afterFrame(policyFrame(1000, 0, 3));  // loses: bypass 4
     for (int f = 0; f < CubePolicy::kFirstBackoff; ++f) p.afterFrame({});
-    p.afterFrame(frame(1000, 0, 3));  // the probe loses: bypass 8
+    p.afterFrame(policyFrame(1000, 0, 3));  // the probe loses: bypass 8
     EXPECT_EQ(p.nextBackoff(), 16);
     for (int f = 0; f < 8; ++f) p.afterFrame({});
     ASSERT_FALSE(p.bypassed());
-    p.afterFrame(frame(1000, 900, 3));  // the probe pays: caching again
+    p.afterFrame(policyFrame(1000, 900, 3));  // the probe pays: caching again
     EXPECT_FALSE(p.bypassed());
     EXPECT_EQ(p.nextBackoff(), CubePolicy::kFirstBackoff);
     EXPECT_EQ(p.framesBypassed(), 12u);
@@ -126,7 +126,7 @@ TEST(CachePolicy, ResumesWhenAProbePaysAndTheBackoffStartsAgain) {
 }
 
 TEST(CachePolicy, NoEvidenceOfTreesCountsAHitAsOneRay) {
-    CubePolicy p(CachePolicyMode::Auto, kCosts);
+    CubePolicy p(CachePolicyMode::Auto, kPolicyTestCosts);
     p.afterFrame({100, 100, 0, 0, 0, 0});  // filled from elsewhere: no traced tree yet
     const auto j = p.afterFrame({100, 100, 0, 0, 0, 0});
     EXPECT_DOUBLE_EQ(j.saving, 100.0 * CachePolicyCosts::kMinimumTree);
@@ -134,11 +134,11 @@ TEST(CachePolicy, NoEvidenceOfTreesCountsAHitAsOneRay) {
 }
 
 TEST(CachePolicy, EmptiedCubeWarmsUpAgain) {
-    CubePolicy p(CachePolicyMode::Auto, kCosts);
-    p.afterFrame(frame(1000, 1000, 3));
-    p.afterFrame(frame(1000, 1000, 3));
+    CubePolicy p(CachePolicyMode::Auto, kPolicyTestCosts);
+    p.afterFrame(policyFrame(1000, 1000, 3));
+    p.afterFrame(policyFrame(1000, 1000, 3));
     p.restart();
-    EXPECT_FALSE(p.afterFrame(frame(1000, 0, 3)).judged);
+    EXPECT_FALSE(p.afterFrame(policyFrame(1000, 0, 3)).judged);
     EXPECT_FALSE(p.bypassed());
 }
 
@@ -163,7 +163,7 @@ TEST(CachePolicyRender, BypassedFramesAreTheUncachedRender) {
         EXPECT_GT(c.bypassedRays(), 0u);
         EXPECT_EQ(cached.stats[static_cast<std::size_t>(f)].rays.reflection,
                   plain.stats[static_cast<std::size_t>(f)].rays.reflection);
-        EXPECT_TRUE(sameImage(cached.frames[static_cast<std::size_t>(f)], plain.frames[static_cast<std::size_t>(f)]))
+        EXPECT_TRUE(policyImagesMatch(cached.frames[static_cast<std::size_t>(f)], plain.frames[static_cast<std::size_t>(f)]))
             << "frame " << f;
     }
     // The probe looks the cubes up again.
@@ -177,7 +177,7 @@ TEST(CachePolicyRender, AlwaysIsTheDefaultBehaviour) {
                                          TileBalance::Dynamic, 1, 0, false, VisibleFill::Off, {},
                                          CachePolicyMode::Always, losingCosts());
     for (std::size_t f = 0; f < 4; ++f) {
-        EXPECT_TRUE(sameImage(byDefault.frames[f], always.frames[f])) << "frame " << f;
+        EXPECT_TRUE(policyImagesMatch(byDefault.frames[f], always.frames[f])) << "frame " << f;
         EXPECT_EQ(always.stats[f].cache->bypassedCubes(), 0);
     }
     EXPECT_EQ(byDefault.texels, always.texels);
@@ -191,7 +191,7 @@ TEST(CachePolicyRender, AutoIsTheSameOnOneAndTwoThreads) {
     };
     const PathRender one = run(1), two = run(2);
     for (std::size_t f = 0; f < one.frames.size(); ++f) {
-        EXPECT_TRUE(sameImage(one.frames[f], two.frames[f])) << "frame " << f;
+        EXPECT_TRUE(policyImagesMatch(one.frames[f], two.frames[f])) << "frame " << f;
         for (std::size_t o = 0; o < one.stats[f].cache->objects.size(); ++o) {
             EXPECT_EQ(one.stats[f].cache->objects[o].bypassed, two.stats[f].cache->objects[o].bypassed);
             EXPECT_EQ(one.stats[f].cache->objects[o].policyCost, two.stats[f].cache->objects[o].policyCost);
@@ -228,7 +228,7 @@ TEST(CachePolicyRender, AnimatedSceneBypassedFramesAreTheUncachedRender) {
         ASSERT_TRUE(sa.cache.has_value());
         EXPECT_EQ(sa.cache->bypassedCubes() > 0, aside) << "frame " << f;
         if (aside) {
-            EXPECT_TRUE(sameImage(a, b)) << "frame " << f;
+            EXPECT_TRUE(policyImagesMatch(a, b)) << "frame " << f;
         }
     }
 }
