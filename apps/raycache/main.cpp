@@ -77,6 +77,12 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
                      "Animated scenes: also store what reached the objects and lights the last change moved, and "
                      "pre-fill CDCT cubes in frames that follow a change (by default both are skipped: the next "
                      "change would drop them; docs/dynamic-scenes.md)");
+    command.add_option("--cache-policy", job.cachePolicy,
+                       "auto: a cube whose lookups would cost more than they save (judged every frame from its hit, "
+                       "lookup and store counts, never the clock) stands aside, its rays traced directly, and "
+                       "probes again after 4, 8, ... 64 frames; always: every cube caches every frame, as the "
+                       "documents did (docs/caching.md)")
+        ->capture_default_str();
     command.add_flag("--cache-ideal", job.cacheIdeal,
                      "Benchmark switch: cache misses return black instead of being traced");
     command.add_flag("--stage-times", job.stageTimes,
@@ -238,6 +244,11 @@ int run(int argc, char** argv, const raycache::ClusterRuntime& cluster) {
     benchCmd->add_flag("--tiny", bench.tiny, "A few dozen pixels, seconds: a smoke test, numbers meaningless");
     benchCmd->add_option("--threads", bench.threads, "Worker threads, 0 = all cores")->capture_default_str();
     benchCmd->add_option("--out", bench.outDir, "Results directory")->capture_default_str();
+    benchCmd->add_option("--cache-policy", bench.cachePolicy,
+                         "always: every cube caches every frame (the documents' protocol, comparable tables); auto: "
+                         "the cache policy of `raycache render` (docs/caching.md) in dynamic and parallax; the other "
+                         "experiments always cache (docs/bench.md)")
+        ->capture_default_str();
     benchCmd->add_flag("--list", bench.list, "List the experiments and exit");
 
     // Every process parses the same arguments, so they all agree on the outcome.

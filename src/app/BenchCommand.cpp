@@ -50,12 +50,15 @@ void runBenchCommand(const BenchCommandOptions& options, std::ostream& out, cons
         if (options.threads < 0 || options.threads > 1024)
             throw InputError("--threads must be between 0 (all) and 1024");
         if (options.outDir.empty()) throw InputError("--out must name a directory");
+        const std::optional<CachePolicyMode> policy = parseCachePolicyMode(options.cachePolicy);
+        if (!policy) throw InputError("--cache-policy must be auto or always (got '" + options.cachePolicy + "')");
         experiments = selectExperiments(options.experiments);
         wholeReport =
             std::find(options.experiments.begin(), options.experiments.end(), "all") != options.experiments.end();
         settings.size = options.full ? BenchSize::Full : options.tiny ? BenchSize::Tiny : BenchSize::Quick;
         settings.threads = options.threads;
         settings.outDir = options.outDir;
+        settings.cachePolicy = *policy;
         if (!group.isRoot()) return;
         std::error_code ec;
         std::filesystem::create_directories(settings.outDir, ec);
@@ -107,6 +110,9 @@ void runBenchCommand(const BenchCommandOptions& options, std::ostream& out, cons
         std::filesystem::create_directories(context.dir, ec);
         if (ec) throw RuntimeError("cannot create " + context.dir.string() + ": " + ec.message());
         ExperimentOutput output = e.run(context);
+        if (settings.cachePolicy != CachePolicyMode::Always && !e.honoursCachePolicy())
+            output.caveats.push_back("--cache-policy " + std::string(cachePolicyModeName(settings.cachePolicy)) +
+                                     " not applied: this experiment's protocol caches every frame (always)");
         printOutput(progress, output, context.dir);
         if (!group.isRoot()) {
             appendBytes(mine, static_cast<std::uint64_t>(i));

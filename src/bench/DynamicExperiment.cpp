@@ -87,12 +87,15 @@ public:
         return report(runs, side, frames, context);
     }
 
+    bool honoursCachePolicy() const override { return true; }
+
 private:
-    static RenderSettings settingsFor(int side, int threads, CacheTechnique technique) {
+    static RenderSettings settingsFor(int side, const BenchSettings& bench, CacheTechnique technique) {
         RenderSettings s;
         s.width = s.height = side;
-        s.threads = threads;
+        s.threads = bench.threads;
         s.cache.techniqueOverride = technique;
+        s.cache.policy = bench.cachePolicy;  // the oracle's cubes always cache (RayCache)
         return s;
     }
 
@@ -100,10 +103,10 @@ private:
         const std::optional<Scene> scene = makeBuiltinScene(name);
         if (!scene) throw RuntimeError("built-in scene " + name + " is missing");
         SceneRun run{name, {}, {}, {}, {}, {}, {}, {}, {}, {}};
-        const int threads = context.settings.threads;
-        RenderSession uncached(*scene, settingsFor(side, threads, CacheTechnique::None));
-        RenderSession cct(*scene, settingsFor(side, threads, CacheTechnique::Cct));
-        RenderSettings everyStoreSettings = settingsFor(side, threads, CacheTechnique::Cct);
+        const BenchSettings& bench = context.settings;
+        RenderSession uncached(*scene, settingsFor(side, bench, CacheTechnique::None));
+        RenderSession cct(*scene, settingsFor(side, bench, CacheTechnique::Cct));
+        RenderSettings everyStoreSettings = settingsFor(side, bench, CacheTechnique::Cct);
         everyStoreSettings.cache.skipStoresReachingChanges = false;
         RenderSession everyStore(*scene, everyStoreSettings);
         Image truth, film, everyStoreFilm;
@@ -145,7 +148,7 @@ private:
         // The oracle, in sessions of its own (every lookup misses there).
         const std::array<OracleProtocol, 2> protocols = oracleProtocols(context.settings.size);
         for (std::size_t p = 0; p < protocols.size(); ++p) {
-            RenderSettings oracleSettings = settingsFor(protocols[p].side, threads, CacheTechnique::Cct);
+            RenderSettings oracleSettings = settingsFor(protocols[p].side, bench, CacheTechnique::Cct);
             if (protocols[p].resolution > 0) oracleSettings.cache.resolutionOverride = protocols[p].resolution;
             oracleSettings.cache.invalidationOracle = true;
             // From a third into the animation: eased keys start at rest, where
@@ -274,7 +277,8 @@ private:
                          {"oracle_as_timed_side", protocols[0].side},
                          {"oracle_coarse_side", protocols[1].side},
                          {"oracle_coarse_resolution", protocols[1].resolution},
-                         {"oracle_changes", oracleChanges(context.settings.size)}}},
+                         {"oracle_changes", oracleChanges(context.settings.size)},
+                         {"cache_policy", cachePolicyModeName(context.settings.cachePolicy)}}},
                        {"environment", toJson(context.environment)},
                        {"series", series}});
         writeTextFileAtomically(context.dir / "results.md", experimentMarkdown(out));

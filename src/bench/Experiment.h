@@ -9,6 +9,7 @@
 
 #include "bench/ProgressBar.h"
 #include "bench/RunEnvironment.h"
+#include "cache/CachePolicy.h"
 #include "core/Parallel.h"
 
 namespace raycache {
@@ -24,6 +25,10 @@ struct BenchSettings {
     BenchSize size = BenchSize::Quick;
     int threads = 0;  // 0 = all hardware threads
     std::filesystem::path outDir = "results";
+    // `bench --cache-policy`: what the experiments that honour it
+    // (Experiment::honoursCachePolicy) give their cached renders. Always by
+    // default, so the reported numbers stay comparable from run to run.
+    CachePolicyMode cachePolicy = CachePolicyMode::Always;
 };
 
 // What an experiment is given to run with.
@@ -56,6 +61,10 @@ public:
     virtual double estimatedWork(const BenchSettings& settings) const = 0;
     // Runs the experiment, writing its files into context.dir.
     virtual ExperimentOutput run(ExperimentContext& context) const = 0;
+    // Whether its cached renders take BenchSettings::cachePolicy. The
+    // documents' tables and figures of what a cube holds (Table 5.x, fill
+    // rate, quality) keep `always`: their protocol caches every frame.
+    virtual bool honoursCachePolicy() const { return false; }
 };
 
 // The experiment's results.md: title, `body`, caveats, and links to plots and images.

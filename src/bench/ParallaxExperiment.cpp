@@ -51,6 +51,8 @@ public:
         return parallaxFrameCount(settings.size) * mp * (1.0 + 1.5 * static_cast<double>(parallaxVariants().size()));
     }
 
+    bool honoursCachePolicy() const override { return true; }
+
     ExperimentOutput run(ExperimentContext& context) const override {
         const int side = parallaxImageSide(context.settings.size);
         const int frames = parallaxFrameCount(context.settings.size);
@@ -70,6 +72,7 @@ public:
         for (const CachedVariant& v : variants) {
             RenderSettings s = plainSettings;
             s.cache.techniqueOverride = v.technique;
+            s.cache.policy = context.settings.cachePolicy;
             s.cache.cdctStepOverride = 0.4f;  // the thesis' middle pair, depths up to 100
             s.cache.cdctEpsilonOverride = 0.05f;
             s.cache.cdctMaxDepthOverride = 100.0f;
@@ -184,7 +187,8 @@ public:
                          {"width", side},
                          {"height", side},
                          {"frames", frames},
-                         {"cdct", {{"step", 0.4}, {"epsilon", 0.05}, {"max_depth", 100}}}}},
+                         {"cdct", {{"step", 0.4}, {"epsilon", 0.05}, {"max_depth", 100}}},
+                         {"cache_policy", cachePolicyModeName(context.settings.cachePolicy)}}},
                        {"environment", toJson(context.environment)},
                        {"reference_ms", referenceMs},
                        {"variants", variantsJson}});

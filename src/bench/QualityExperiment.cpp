@@ -222,7 +222,8 @@ public:
                                                        {"resolutions", kResolutions},
                                                        {"orbit_fill_frames", kOrbitFillFrames},
                                                        {"orbit_degrees_per_frame", kOrbitDegreesPerFrame},
-                                                       {"multi_resolution_levels", kMultiResolutionLevels}}},
+                                                       {"multi_resolution_levels", kMultiResolutionLevels},
+                                                       {"cache_policy", "always"}}},
                                                      {"environment", toJson(context.environment)},
                                                      {"rows", rows}});
         writeTextFileAtomically(context.dir / "results.md", experimentMarkdown(out));

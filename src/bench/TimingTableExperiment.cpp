@@ -143,6 +143,9 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
             s.height = size.height;
             s.threads = context.settings.threads;
             s.cache.techniqueOverride = v.technique;
+            // The documents' protocol (Tables 5.1-5.3): every cube caches every
+            // frame, whatever the cache policy would decide.
+            s.cache.policy = CachePolicyMode::Always;
             s.cache.resolutionOverride = size.cacheResolution;
             if (v.cdct) {
                 s.cache.cdctStepOverride = v.cdct->step;
@@ -466,6 +469,7 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
                                   {{"width", size.width},
                                    {"height", size.height},
                                    {"cache_resolution", size.cacheResolution},
+                                   {"cache_policy", "always"},  // the documents' protocol, whatever --cache-policy says
                                    {"warmup_frames", size.warmupFrames},
                                    {"timed_frames", size.timedFrames},
                                    {"max_timed_frames", std::max(size.timedFrames, size.maxTimedFrames)},

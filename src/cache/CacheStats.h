@@ -54,6 +54,20 @@ struct ObjectCacheStats {
     std::uint64_t prefilledTexels = 0;  // improved CDCT: texels filled from the centre after this frame
     double invalidPercentBefore = 0.0;  // invalid texels when the frame started
     std::size_t bytes = 0;              // memory of the cube's texels (all levels)
+    // The cache policy (cache/CachePolicy.h, --cache-policy): whether the cube
+    // stepped aside during this frame (its rays traced directly, nothing
+    // looked up or stored), and whether it will during the next.
+    bool bypassed = false;
+    bool bypassedNext = false;
+    std::uint64_t bypassedRays = 0;     // rays that left the object while it stood aside: traced
+    std::uint64_t framesCaching = 0;    // frames so far in each state, this one included
+    std::uint64_t framesBypassed = 0;
+    std::uint64_t queuedStores = 0;     // stores asked for this frame (before merge)
+    double meanTree = 0.0;              // rays of the traced tree a hit replaces (the last frame that traced one)
+    // The policy's model of this frame, in traced rays: what the hits spared
+    // and what the lookups, stores and searches cost (0 when bypassed).
+    double policySaving = 0.0;
+    double policyCost = 0.0;
 };
 
 struct FrameCacheStats {
@@ -70,6 +84,12 @@ struct FrameCacheStats {
     std::uint64_t cdctSearches() const { return sum(&ObjectCacheStats::cdctSearches); }
     std::uint64_t cdctSteps() const { return sum(&ObjectCacheStats::cdctSteps); }
     std::uint64_t prefilledTexels() const { return sum(&ObjectCacheStats::prefilledTexels); }
+    std::uint64_t bypassedRays() const { return sum(&ObjectCacheStats::bypassedRays); }
+    int bypassedCubes() const {
+        int n = 0;
+        for (const auto& o : objects) n += o.bypassed ? 1 : 0;
+        return n;
+    }
     std::uint64_t hitsAtLevel(int level) const {
         std::uint64_t s = 0;
         for (const auto& o : objects) s += o.hitsByLevel[static_cast<std::size_t>(level)];

@@ -31,7 +31,7 @@ public:
     // What `workers` queued this frame (their non-empty batches with their
     // stores, in worker then queue order, and their lookup counters summed
     // per cube) as bytes for the other processes of a cluster job
-    // (src/cluster/): 16 bytes per store, 16 per batch, 224 per cube; in an
+    // (src/cluster/): 16 bytes per store, 16 per batch, 256 per cube; in an
     // animated scene also each store's RayTreeRecord (156 bytes); with
     // multi-resolution cubes each store's SeenPoint (16 bytes). Written into
     // `out` (replacing what it held; its capacity is reused).
@@ -61,6 +61,10 @@ private:
         std::uint64_t viewDependent = 0;  // of the misses: CDCT rays meeting a texel that saw a mirror or glass
         std::array<std::uint64_t, kMaxCubeLevels> levelHits{};  // of the hits, per level (0: the finest)
         std::uint64_t cdctSearches = 0, cdctSteps = 0;
+        // The cache policy's counts (cache/CachePolicy.h): rays that passed a
+        // cube standing aside, stores asked for, and the traced trees handed
+        // to store() with the rays each traced.
+        std::uint64_t bypassed = 0, queuedStores = 0, tracedTrees = 0, treeRays = 0;
         std::array<std::uint64_t, kCdctStepBuckets> cdctStepsHistogram{};
         // View-sized cubes: lookups by the coarsest level their footprint
         // allows (ViewSizedResolution::levelAllowed).
@@ -82,6 +86,10 @@ private:
             for (std::size_t k = 0; k < levelHits.size(); ++k) levelHits[k] += o.levelHits[k];
             cdctSearches += o.cdctSearches;
             cdctSteps += o.cdctSteps;
+            bypassed += o.bypassed;
+            queuedStores += o.queuedStores;
+            tracedTrees += o.tracedTrees;
+            treeRays += o.treeRays;
             for (std::size_t k = 0; k < cdctStepsHistogram.size(); ++k) cdctStepsHistogram[k] += o.cdctStepsHistogram[k];
             for (std::size_t k = 0; k < lookupsByAllowedLevel.size(); ++k)
                 lookupsByAllowedLevel[k] += o.lookupsByAllowedLevel[k];

@@ -166,6 +166,8 @@ RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings)
         }
         if (oracle_) e.storedTrees.resize(e.cube.texelCount());
         if (tracksDependencies_) e.droppedBits.assign((e.cube.texelCount() + 63) / 64, 0);
+        const bool mayStepAside = !settings.ideal && !settings.invalidationOracle;
+        e.policy = CubePolicy(mayStepAside ? settings.policy : CachePolicyMode::Always, settings.policyCosts);
     }
     const bool anyCct = std::any_of(cubes_.begin(), cubes_.end(), [](const Entry& e) { return e.technique == CacheTechnique::Cct; });
     if (anyCct) visibleFill_ = settings.visibleFill;
@@ -213,6 +215,7 @@ void RayCache::clearEntry(Entry& e) {
 void RayCache::clear() {
     for (Entry& e : cubes_) {
         clearEntry(e);
+        e.policy.restart();
         // A view-sized cube starts again as it was made: at its full resolution, undecided.
         if (e.view.fullSize() > 0) {
             e.view = ViewSizedResolution(e.view.fullSize());
@@ -594,6 +597,19 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
         s.cdctSteps = all.cdctSteps;
         s.cdctStepsHistogram = all.cdctStepsHistogram;
         Entry& e = cubes_[c];
+        // The policy judges the frame from counts summed over every worker
+        // (and, in a cluster job, every process): the same decision everywhere.
+        s.bypassed = e.policy.bypassed();
+        s.bypassedRays = all.bypassed;
+        s.queuedStores = all.queuedStores;
+        const CubePolicy::Judgement judged = e.policy.afterFrame(
+            {all.lookups, all.hits, all.queuedStores, all.tracedTrees, all.treeRays, all.cdctSteps});
+        s.policySaving = judged.saving;
+        s.policyCost = judged.cost;
+        s.bypassedNext = e.policy.bypassed();
+        s.framesCaching = e.policy.framesCaching();
+        s.framesBypassed = e.policy.framesBypassed();
+        s.meanTree = e.policy.meanTree();
         if (e.view.fullSize() > 0) {
             const int size = e.view.fullSize() >> e.view.afterFrame(all.lookupsByAllowedLevel);
             if (size != e.cube.size()) s.resizedTo = size;
@@ -791,7 +807,7 @@ std::vector<int> RayCache::objectsSeenPastThemselves() const {
 std::optional<Rgb> RayCache::lookup(int objectId, const Vec3& origin, const Vec3& direction,
                                     CacheWorker& worker) const {
     if (auto color = lookupAnswer(objectId, origin, direction, worker)) return color;
-    if (ideal_) return Rgb{};
+    if (ideal_ && !bypassed(objectId)) return Rgb{};
     return std::nullopt;
 }
 
@@ -799,6 +815,10 @@ std::optional<Rgb> RayCache::lookupAnswer(int objectId, const Vec3& origin, cons
                                           CacheWorker& worker, bool meetsOwnSurface) const {
     const auto c = static_cast<std::size_t>(cubeIndexOf(objectId));
     CacheWorker::Counters& counters = worker.counters_[c];
+    if (cubes_[c].policy.bypassed()) {
+        ++counters.bypassed;
+        return std::nullopt;
+    }
     ++counters.lookups;
     if (meetsOwnSurface) ++counters.ownSurface;
     if (oracle_ || meetsOwnSurface) {
@@ -815,8 +835,15 @@ std::optional<Rgb> RayCache::lookupAnswer(int objectId, const Vec3& origin, cons
 }
 
 void RayCache::store(int objectId, const Vec3& origin, const Vec3& direction, const Rgb& color, float hitDistance,
-                     CacheWorker& worker, int knownTexel, const RayTreeRecord* tree) const {
+                     CacheWorker& worker, int knownTexel, const RayTreeRecord* tree, std::uint32_t tracedRays) const {
     const auto c = static_cast<std::size_t>(cubeIndexOf(objectId));
+    if (cubes_[c].policy.bypassed()) return;
+    CacheWorker::Counters& counters = worker.counters_[c];
+    ++counters.queuedStores;
+    if (tracedRays > 0) {
+        ++counters.tracedTrees;
+        counters.treeRays += tracedRays;
+    }
     const auto queueTree = [&] {
         if (!tracksDependencies_) return;
         if (tree) {
@@ -915,6 +942,8 @@ void RayCache::lookupBatchAs(std::span<const Query> queries, std::span<Rgb> colo
     // Chunks small enough for the texel indices to stay on the stack and the
     // prefetched lines to stay in L1/L2 until they are read.
     constexpr std::size_t kChunk = 64;
+    // A query of a cube that stands aside this frame (texel[k]).
+    constexpr int kBypassedQuery = -2;
     std::array<int, kChunk> texel;
     for (std::size_t base = 0; base < queries.size(); base += kChunk) {
         const std::size_t count = std::min(kChunk, queries.size() - base);
@@ -922,12 +951,16 @@ void RayCache::lookupBatchAs(std::span<const Query> queries, std::span<Rgb> colo
             const Query& q = queries[base + k];
             const Entry& e = cubes_[static_cast<std::size_t>(cubeIndexOf(q.objectId))];
             texel[k] = -1;
+            if (e.policy.bypassed()) {
+                texel[k] = kBypassedQuery;
+                continue;
+            }
             if (e.technique != CacheTechnique::Cct) continue;
             texel[k] = e.cube.texelIndexFor(q.direction);
             __builtin_prefetch(e.cube.validWordOf(texel[k]));
         }
         for (std::size_t k = 0; k < count; ++k) {
-            if (texel[k] < 0) continue;
+            if (texel[k] < 0) continue;  // not CCT, or the cube stands aside
             const CachingCube& cube = cubes_[static_cast<std::size_t>(cubeIndexOf(queries[base + k].objectId))].cube;
             if (cube.isValid(texel[k])) __builtin_prefetch(cube.texelWordOf(texel[k]));
         }
@@ -936,6 +969,13 @@ void RayCache::lookupBatchAs(std::span<const Query> queries, std::span<Rgb> colo
             const std::size_t i = base + k;
             storeTexels[i] = -1;
             if (!answerTexels.empty()) answerTexels[i] = -1;
+            if (texel[k] == kBypassedQuery) {
+                // Traced as without a cache; nothing looked up, nothing to store.
+                ++worker.counters_[static_cast<std::size_t>(cubeIndexOf(q.objectId))].bypassed;
+                if constexpr (kRecordLevels) answerLevels[i] = -1;
+                found[i] = 0;
+                continue;
+            }
             if (texel[k] < 0) {
                 const auto color = lookupAnswer(q.objectId, q.origin, q.direction, worker, q.meetsOwnSurface);
                 if constexpr (kRecordLevels) answerLevels[i] = color ? 0 : -1;

@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "cache/CachePolicy.h"
 #include "cache/CacheStats.h"
 #include "cache/CacheWorker.h"
 #include "cache/CdctSearch.h"
@@ -111,6 +112,14 @@ struct RayCacheSettings {
     // follows a change. Off under invalidationOracle, whose records must
     // cover every texel.
     bool skipStoresReachingChanges = true;
+    // Whether a cube steps aside while caching would cost more than it saves
+    // (cache/CachePolicy.h, docs/caching.md "Caching that never costs").
+    // The library keeps the documents' behaviour unless asked; the CLI's
+    // default for cct and cdct is Auto. Always under ideal and
+    // invalidationOracle, whose lookups are not the renderer's.
+    CachePolicyMode policy = CachePolicyMode::Always;
+    // The policy's per-operation costs (calibrated; see CachePolicyCosts).
+    CachePolicyCosts policyCosts;
 };
 
 class RayCache {
@@ -324,15 +333,27 @@ public:
     // std::logic_error for rows out of order.
     void addPrefillRows(int objectId, int firstRow, std::span<const PrefillTexel> texels);
 
+    // Whether `objectId`'s cube stands aside this frame (the cache policy):
+    // its lookups miss without looking and its stores are dropped, so its
+    // rays are traced exactly as without a cache.
+    bool bypassed(int objectId) const {
+        const int c = cubeIndexOf(objectId);
+        return c >= 0 && cubes_[static_cast<std::size_t>(c)].policy.bypassed();
+    }
+
     // Queues what a traced ray brought back (`hitDistance` from origin to its
     // first hit, infinity for a miss) for the end of the frame. CDCT stores
     // it at the texel addressed by centre -> hit point, with that distance
     // (misses and hits beyond maxDepth: the point of the ray at maxDepth).
     // `knownTexel`: the storeTexels answer of lookupBatch for this ray, or -1.
     // `tree`: when tracksDependencies(), what the ray's tree reached; a store
-    // without it counts as depending on everything.
+    // without it counts as depending on everything. `tracedRays`: the rays
+    // its tree traced (the ray itself, shadow rays, later bounces), for the
+    // cache policy's estimate of what a hit spares; 0 when not counted.
+    // Nothing is queued for a cube that stands aside (bypassed()).
     void store(int objectId, const Vec3& origin, const Vec3& direction, const Rgb& color, float hitDistance,
-               CacheWorker& worker, int knownTexel = -1, const RayTreeRecord* tree = nullptr) const;
+               CacheWorker& worker, int knownTexel = -1, const RayTreeRecord* tree = nullptr,
+               std::uint32_t tracedRays = 0) const;
 
 private:
     struct Entry {
@@ -360,6 +381,8 @@ private:
         int blocksPerSide = 0;
         std::vector<RayTreeRecord> storedTrees;  // invalidationOracle: per texel
         std::vector<std::uint64_t> droppedBits;  // tracksDependencies_: see droppedByLastChange
+        // Whether the cube caches or stands aside; changed only by endFrame.
+        CubePolicy policy;
     };
     // Invalidates texel `texel`; if it was valid, marks it dropped. Returns whether it was valid.
     static bool dropTexel(Entry& e, int texel);

@@ -433,6 +433,10 @@ void TileKernel::traceShadowRays(TileScratch& s, bool coherent) const {
         traceShadowRaysByLight(s, count);
     }
     s.counts.shadow += count;
+    if (cache_)
+        for (std::size_t i = 0; i < n; ++i)
+            s.nodes[static_cast<std::size_t>(s.vertices[i].node)].tracedRays +=
+                static_cast<std::uint32_t>(s.firstQuery[i + 1] - s.firstQuery[i]);
     if (s.trackTrees)
         for (std::size_t i = 0; i < n; ++i) {
             const auto node = static_cast<std::size_t>(s.vertices[i].node);
@@ -664,6 +668,7 @@ void TileKernel::traceSecondaryRays(TileScratch& s) const {
         const TileScratch::PendingRay& p = s.pending[i];
         const TraceHit& hit = s.hits[i];
         TileScratch::Node& node = s.nodes[static_cast<std::size_t>(p.node)];
+        ++node.tracedRays;
         if (node.objectId >= 0) node.hitDistance = hit.hit() ? hit.t : kInfinity;
         if (node.tracked) {
             RayTreeBounds& bounds = s.nodeBounds[static_cast<std::size_t>(p.node)];
@@ -691,8 +696,9 @@ void TileKernel::resolveNodes(TileScratch& s, CacheWorker* cache, std::uint64_t 
             std::optional<RayTreeRecord> tree;
             if (s.trackTrees) tree = RayTreeRecord{s.nodeBounds[i], node.origin, node.direction, node.depth, node.pathWeight};
             cache_->store(node.objectId, node.origin, node.direction, color, node.hitDistance, *cache, node.storeTexel,
-                          tree ? &*tree : nullptr);
+                          tree ? &*tree : nullptr, node.tracedRays);
         }
+        s.nodes[static_cast<std::size_t>(node.parent)].tracedRays += node.tracedRays;
         if (s.nodes[static_cast<std::size_t>(node.parent)].tracked)
             s.nodeBounds[static_cast<std::size_t>(node.parent)].add(s.nodeBounds[i]);
         s.nodes[static_cast<std::size_t>(node.parent)].secondary += color * node.weightInParent;

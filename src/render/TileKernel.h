@@ -128,6 +128,10 @@ private:
         // GCC 12 filled each tile's nodes (80 bytes a pixel) with overlapping
         // unaligned stores, six times slower: 9 % of an uncached frame.
         std::uint32_t tracked = 0;
+        // With a cache: rays traced for this node's tree (its own ray, the
+        // shadow rays at its hit, its children's trees), what a store of it
+        // tells the cache policy a hit spares (cache/CachePolicy.h).
+        std::uint32_t tracedRays = 0;
         Rgb color() const { return direct + secondary; }
     };
 

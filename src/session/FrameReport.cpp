@@ -28,6 +28,20 @@ std::string formatFrameLine(const FrameResult& r, int frameCount) {
         line << "  cache: " << c->objects.size() << (c->objects.size() == 1 ? " cube" : " cubes") << ", hits " << formatFixed(hitRate, 1) << "% of "
              << c->lookups() << ", stores " << c->stores();
         if (c->skippedStores()) line << " (" << c->skippedStores() << " skipped: reached what moved)";
+        if (const int aside = c->bypassedCubes()) {
+            // The cache policy stepped these cubes aside: their rays were traced.
+            line << ", bypassed " << aside << "/" << c->objects.size() << " (" << c->bypassedRays() << " rays traced)";
+        }
+        {
+            // The cache policy's model of the frame, in traced rays.
+            double saving = 0.0, cost = 0.0;
+            for (const ObjectCacheStats& o : c->objects) {
+                saving += o.policySaving;
+                cost += o.policyCost;
+            }
+            if (saving > 0.0 || cost > 0.0)
+                line << ", model: saves " << formatFixed(saving, 0) << " rays, costs " << formatFixed(cost, 0);
+        }
         if (c->levels() > 1) {
             // Where the hits came from, finest level first.
             line << " (by level";

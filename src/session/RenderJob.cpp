@@ -86,6 +86,8 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
     if (o.cacheLevels < 1 || o.cacheLevels > kMaxCubeLevels)
         throw InputError("--cache-levels must be between 1 and " + std::to_string(kMaxCubeLevels) + " (got " +
                          std::to_string(o.cacheLevels) + ")");
+    if (!parseCachePolicyMode(o.cachePolicy))
+        throw InputError("--cache-policy must be auto or always (got '" + o.cachePolicy + "')");
     if (!parseVisibleFill(o.cacheFill))
         throw InputError("--cache-fill must be off, exact or approximate (got '" + o.cacheFill + "')");
     if (!(std::isfinite(o.cacheLevelError) && o.cacheLevelError > 0.0f && o.cacheLevelError <= 1000.0f))
@@ -140,6 +142,7 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     settings.cache.visibleFill = *parseVisibleFill(options.cacheFill);
     settings.cache.ideal = options.cacheIdeal;
     settings.cache.skipStoresReachingChanges = !options.cacheStoreChanging;
+    settings.cache.policy = *parseCachePolicyMode(options.cachePolicy);
     settings.stageTimes = options.stageTimes;
     settings.tileBalance = *parseTileBalance(options.tileBalance);
     // Command-line options win over the scene file's, which win over the defaults.

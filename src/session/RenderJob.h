@@ -41,6 +41,7 @@ struct RenderJobOptions {
     std::optional<double> cacheBudgetMiB;  // cubes' memory budget; default: the scene file's, else half the machine's memory
     bool cacheIdeal = false;               // benchmark switch, see RayCacheSettings::ideal
     bool cacheStoreChanging = false;       // RayCacheSettings::skipStoresReachingChanges off
+    std::string cachePolicy = "auto";      // RayCacheSettings::policy: auto | always
     bool stageTimes = false;               // time the tile kernel's stages (RenderSettings::stageTimes)
     std::optional<std::string> pipeline;   // ray | hybrid | render-cache; default: the scene file's, else ray
     std::optional<std::string> accel;      // embree | grids; default: the scene file's, else embree

@@ -111,7 +111,7 @@ constexpr double kMiB = 1024.0 * 1024.0;
 // them. Clipped to the visible rows, for scenes of very many cubes.
 void drawCubeTable(const FrameCacheStats& c) {
     const int levels = c.levels();
-    const int columns = 4 + levels;
+    const int columns = 6 + levels;
     constexpr int kVisibleRows = 8;
     const auto rows = static_cast<int>(c.objects.size()) + 1;
     const float height = ImGui::GetFrameHeightWithSpacing() * static_cast<float>(std::min(rows, kVisibleRows) + 1);
@@ -125,6 +125,9 @@ void drawCubeTable(const FrameCacheStats& c) {
     ImGui::TableSetupColumn("finest");
     ImGui::TableSetupColumn("levels");
     ImGui::TableSetupColumn("MiB");
+    // The cache policy (docs/caching.md, "Caching that never costs").
+    ImGui::TableSetupColumn("policy");
+    ImGui::TableSetupColumn("saves/costs (rays)");
     for (int k = 0; k < levels; ++k) ImGui::TableSetupColumn(("L" + std::to_string(k)).c_str());
     ImGui::TableHeadersRow();
     ImGuiListClipper clipper;
@@ -139,6 +142,9 @@ void drawCubeTable(const FrameCacheStats& c) {
                 ImGui::TableNextColumn();
                 ImGui::TableNextColumn();
                 ImGui::Text("%.2f", static_cast<double>(c.bytes()) / kMiB);
+                ImGui::TableNextColumn();
+                ImGui::Text("%d aside", c.bypassedCubes());
+                ImGui::TableNextColumn();
                 for (int k = 0; k < levels; ++k) {
                     ImGui::TableNextColumn();
                     ImGui::Text("%llu", static_cast<unsigned long long>(c.hitsAtLevel(k)));
@@ -154,6 +160,13 @@ void drawCubeTable(const FrameCacheStats& c) {
             ImGui::Text("%d", o.levels);
             ImGui::TableNextColumn();
             ImGui::Text("%.2f", static_cast<double>(o.bytes) / kMiB);
+            ImGui::TableNextColumn();
+            ImGui::Text("%s (%llu/%llu)", o.bypassed ? "bypassed" : "caching",
+                        static_cast<unsigned long long>(o.framesCaching),
+                        static_cast<unsigned long long>(o.framesBypassed));
+            ImGui::TableNextColumn();
+            if (o.bypassed) ImGui::TextDisabled("-");
+            else ImGui::Text("%.0f / %.0f", o.policySaving, o.policyCost);
             for (int k = 0; k < levels; ++k) {
                 ImGui::TableNextColumn();
                 if (k < o.levels)
@@ -182,7 +195,10 @@ void drawStatisticsSection(const ViewerPanelInput& in) {
                     static_cast<unsigned long long>(c.lookups()), static_cast<unsigned long long>(c.stores()));
         ImGui::Text("       invalid texels %.1f%% (before the frame), memory %.1f MiB", c.invalidPercentBefore(),
                     static_cast<double>(f.cacheBytes) / kMiB);
-        if (ImGui::TreeNodeEx("every cube: memory, hits per level (L0 finest) this frame",
+        if (const int aside = c.bypassedCubes())
+            ImGui::Text("       policy: %d of %zu cubes bypassed (their %llu rays traced directly)", aside,
+                        c.objects.size(), static_cast<unsigned long long>(c.bypassedRays()));
+        if (ImGui::TreeNodeEx("every cube: memory, policy (frames caching/bypassed), hits per level (L0 finest) this frame",
                               ImGuiTreeNodeFlags_DefaultOpen)) {
             drawCubeTable(c);
             ImGui::TreePop();

@@ -5,6 +5,7 @@
 #include <array>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "TempDir.h"
@@ -116,7 +117,8 @@ TEST_F(DiffBenchCli, BenchListsAndRejectsBadOptionsBeforeRunning) {
 
     const std::string out = " --out " + (dir_ / "results").string();
     for (const std::string& args : {"bench no-such-experiment" + out, "bench table-5.1 --quick --full" + out,
-                                    "bench" + out, "bench all --threads -1" + out}) {
+                                    "bench" + out, "bench all --threads -1" + out,
+                                    "bench fill-rate --cache-policy sometimes" + out}) {
         const RunResult r = runRaycacheStderrBeside(args, dir_);
         EXPECT_EQ(r.exitCode, 2) << args;
         EXPECT_EQ(lineCount(r.err), 1) << args << "\n" << r.err;
@@ -135,6 +137,25 @@ TEST_F(DiffBenchCli, BenchRunsOneExperimentWithPlainProgressLines) {
     EXPECT_TRUE(fs::exists(dir_ / "results" / "fill-rate" / "results.json"));
     EXPECT_TRUE(fs::exists(dir_ / "results" / "fill-rate" / "invalid-texels.svg"));
     EXPECT_FALSE(fs::exists(dir_ / "results" / "report.md"));  // only `bench all` writes the report
+}
+
+TEST_F(DiffBenchCli, BenchCachePolicyAutoReachesOnlyTheExperimentsThatHonourIt) {
+    const fs::path results = dir_ / "results";
+    const RunResult r = runRaycacheStderrBeside(
+        "bench parallax table-5.2 --tiny --threads 2 --cache-policy auto --out " + results.string(), dir_);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto policyOf = [&](const char* experiment) {
+        std::ifstream in(results / experiment / "results.json");
+        return nlohmann::json::parse(in).at("settings").at("cache_policy").get<std::string>();
+    };
+    EXPECT_EQ(policyOf("parallax"), "auto");
+    EXPECT_EQ(policyOf("table-5.2"), "always");  // the documents' protocol
+    // The terminal says which experiment did not take it, and only that one.
+    const std::string note = "--cache-policy auto not applied";
+    const std::size_t at = r.out.find(note);
+    ASSERT_NE(at, std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find(note, at + 1), std::string::npos) << r.out;
+    EXPECT_LT(r.out.find("Table 5.2"), at) << r.out;
 }
 
 TEST_F(DiffBenchCli, HelpForDiffAndBench) {

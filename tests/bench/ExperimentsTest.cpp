@@ -133,6 +133,15 @@ TEST_F(Experiments, EveryExperimentWritesWellFormedJsonMarkdownAndSvg) {
     }
 }
 
+TEST_F(Experiments, CachedExperimentsCacheEveryFrameByDefault) {
+    // bench's default --cache-policy is always, so the reported tables stay comparable.
+    for (const char* name : {"table-5.1", "table-5.2", "table-5.3", "fill-rate", "quality", "parallax", "dynamic"}) {
+        SCOPED_TRACE(name);
+        EXPECT_EQ(results(name).at("settings").at("cache_policy"), "always");
+    }
+    EXPECT_EQ(log_.find("not applied"), std::string::npos) << log_;
+}
+
 TEST_F(Experiments, TimingTablesRecordEveryFrameAndSayWhatIsMissing) {
     for (const char* name : {"table-5.1", "table-5.2", "table-5.3"}) {
         SCOPED_TRACE(name);

@@ -12,18 +12,20 @@ namespace raycache {
 PathRender renderPath(const std::string& sceneName, CacheTechnique technique, int frames, bool still, int size,
                       int threads, int cacheResolution, const ProcessGroup* group, TileBalance balance, int cubeLevels,
                       std::int64_t prefillPerFrame, bool resolutionFromView, VisibleFill fill,
-                      const CdctImprovements& improvements) {
+                      const CdctImprovements& improvements, CachePolicyMode policy,
+                      const CachePolicyCosts& policyCosts) {
     const auto scene = makeBuiltinScene(sceneName);
     EXPECT_TRUE(scene.has_value()) << sceneName;
     if (!scene) return {};
     return renderPath(*scene, technique, frames, still, size, threads, cacheResolution, group, balance, cubeLevels,
-                      prefillPerFrame, resolutionFromView, fill, improvements);
+                      prefillPerFrame, resolutionFromView, fill, improvements, policy, policyCosts);
 }
 
 PathRender renderPath(const Scene& sceneRef, CacheTechnique technique, int frames, bool still, int size, int threads,
                       int cacheResolution, const ProcessGroup* group, TileBalance balance, int cubeLevels,
                       std::int64_t prefillPerFrame, bool resolutionFromView, VisibleFill fill,
-                      const CdctImprovements& improvements) {
+                      const CdctImprovements& improvements, CachePolicyMode policy,
+                      const CachePolicyCosts& policyCosts) {
     const Scene* scene = &sceneRef;
     RenderSettings settings;
     settings.width = settings.height = size;
@@ -36,6 +38,8 @@ PathRender renderPath(const Scene& sceneRef, CacheTechnique technique, int frame
     settings.cache.resolutionFromView = resolutionFromView;
     settings.cache.visibleFill = fill;
     settings.cache.cdctImprovements = improvements;
+    settings.cache.policy = policy;
+    settings.cache.policyCosts = policyCosts;
     const TraceScene tracer(*scene);
     const Parallel parallel(threads);
     RayCache cache(*scene, settings.cache);

@@ -30,17 +30,19 @@ struct PathRender {
 // among them and only process 0's frames are whole. `prefillPerFrame`:
 // RayCacheSettings::prefillTexelsPerFrame. `resolutionFromView`, `fill`:
 // RayCacheSettings::resolutionFromView, visibleFill. `improvements`:
-// RayCacheSettings::cdctImprovements.
+// RayCacheSettings::cdctImprovements. `policy`, `policyCosts`: RayCacheSettings::policy, policyCosts.
 PathRender renderPath(const std::string& sceneName, CacheTechnique technique, int frames, bool still, int size,
                       int threads = 2, int cacheResolution = 512, const ProcessGroup* group = nullptr,
                       TileBalance balance = TileBalance::Dynamic, int cubeLevels = 1,
                       std::int64_t prefillPerFrame = 0, bool resolutionFromView = false,
-                      VisibleFill fill = VisibleFill::Off, const CdctImprovements& improvements = {});
+                      VisibleFill fill = VisibleFill::Off, const CdctImprovements& improvements = {},
+                      CachePolicyMode policy = CachePolicyMode::Always, const CachePolicyCosts& policyCosts = {});
 // The same for a scene of the caller's.
 PathRender renderPath(const Scene& scene, CacheTechnique technique, int frames, bool still, int size,
                       int threads = 2, int cacheResolution = 512, const ProcessGroup* group = nullptr,
                       TileBalance balance = TileBalance::Dynamic, int cubeLevels = 1,
                       std::int64_t prefillPerFrame = 0, bool resolutionFromView = false,
-                      VisibleFill fill = VisibleFill::Off, const CdctImprovements& improvements = {});
+                      VisibleFill fill = VisibleFill::Off, const CdctImprovements& improvements = {},
+                      CachePolicyMode policy = CachePolicyMode::Always, const CachePolicyCosts& policyCosts = {});
 
 }  // namespace raycache

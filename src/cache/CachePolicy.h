@@ -1,0 +1,98 @@
+#pragma once
+// Whether a caching cube's lookups pay (docs/caching.md, "Caching that never
+// costs"): after every frame a cube is judged from that frame's counts alone —
+// what its hits saved (hits × the mean traced ray tree they replace) against
+// what caching cost (lookups, queued stores, CDCT search steps) — in units of
+// one traced ray. A cube that would lose steps aside: its rays are traced
+// directly and nothing is looked up or stored. It probes again after a
+// back-off that doubles with every probe that still loses.
+//
+// Never the clock: the counts are integers summed over every worker (and every
+// process), so the decision, and the image, are the same on any thread count
+// and in any cluster job.
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+namespace raycache {
+
+enum class CachePolicyMode : unsigned char {
+    Always,  // every cube caches every frame (the documents' protocol)
+    Auto,    // a cube steps aside while caching would cost more than it saves
+};
+
+// "always" / "auto"; nullopt for anything else.
+std::optional<CachePolicyMode> parseCachePolicyMode(std::string_view text);
+const char* cachePolicyModeName(CachePolicyMode mode);
+
+// What one operation costs, in units of one traced ray (a secondary or shadow
+// ray with the shading of its hit); ratios of CPU times, so roughly
+// machine-independent. Calibrated with `scripts/calibrate-cache-policy.sh`
+// (grid-32 orbit, 384², one thread) on 2026-11-26, 2 shared vCPUs at load
+// average ~7.7 (the machine was busy: repeat it quietly): one traced ray
+// 149.8 ns, a lookup 63.8 ns, a store 91.9 ns, a CDCT texel sampled 246.6 ns
+// (that figure carries the whole CDCT lookup: its search, own-surface test
+// and error control).
+struct CachePolicyCosts {
+    double lookup = 0.43;     // one lookup: address, validity, texel read
+    double store = 0.61;      // one queued store: queue, merge, dependency record
+    double cdctStep = 1.65;   // one texel a CDCT search sampled
+    // A traced tree is at least its own ray: the saving of one hit when a
+    // cube has never traced one (no evidence yet) is not assumed larger.
+    static constexpr double kMinimumTree = 1.0;
+};
+
+// One frame of a cube, as the policy reads it (cache/CacheStats.h).
+struct CubeFrameCounts {
+    std::uint64_t lookups = 0;
+    std::uint64_t hits = 0;
+    std::uint64_t queuedStores = 0;  // stores asked for (misses traced and handed back)
+    std::uint64_t tracedTrees = 0;   // trees traced for misses whose size was counted
+    std::uint64_t treeRays = 0;      // rays those trees traced, in all
+    std::uint64_t cdctSteps = 0;
+};
+
+class CubePolicy {
+public:
+    // Frames bypassed before the first probe, and the most between probes.
+    static constexpr int kFirstBackoff = 4;
+    static constexpr int kLongestBackoff = 64;
+
+    CubePolicy() = default;
+    CubePolicy(CachePolicyMode mode, const CachePolicyCosts& costs) : mode_(mode), costs_(costs) {}
+
+    // Whether the cube is stepped aside during the coming frame.
+    bool bypassed() const { return bypassLeft_ > 0; }
+
+    // The model's figures for the frame just judged (0 for a bypassed frame).
+    struct Judgement {
+        double saving = 0.0;  // traced rays the hits spared
+        double cost = 0.0;    // traced rays' worth of lookups, stores, searches
+        bool judged = false;  // false: a bypassed frame, the warm-up frame, or `always`
+    };
+    // After a frame: judges it (when the cube cached it) and sets the state
+    // of the next frame. `counts` are the whole frame's.
+    Judgement afterFrame(const CubeFrameCounts& counts);
+    // The cube was emptied (RayCache::clear): its next caching frame fills it
+    // again and is not judged.
+    void restart() { warmedUp_ = false; }
+
+    // Frames so far in each state, and the traced tree a hit replaces (mean
+    // of the last frame that traced one; 0 before any).
+    std::uint64_t framesCaching() const { return framesCaching_; }
+    std::uint64_t framesBypassed() const { return framesBypassed_; }
+    double meanTree() const { return meanTree_; }
+    // Frames of bypass the next losing probe would earn.
+    int nextBackoff() const { return backoff_; }
+
+private:
+    CachePolicyMode mode_ = CachePolicyMode::Always;
+    CachePolicyCosts costs_{};
+    int bypassLeft_ = 0;
+    int backoff_ = kFirstBackoff;
+    bool warmedUp_ = false;  // the cube cached a frame since it was built or emptied
+    double meanTree_ = 0.0;
+    std::uint64_t framesCaching_ = 0, framesBypassed_ = 0;
+};
+
+}  // namespace raycache
