@@ -473,7 +473,13 @@ TEST_F(Experiments, WhereCachingPaysModelsEverySceneFromItsMeasuredParts) {
             }
     }
     EXPECT_TRUE(animated);
+    for (const auto& row : j.at("rows")) {
+        const double bypassed = row.at("cct_auto").at("path_bypassed_share").get<double>();
+        EXPECT_GE(bypassed, 0.0);
+        EXPECT_LE(bypassed, 1.0);
+    }
     const std::string md = readFile(dir_ / "where-caching-pays" / "results.md");
+    EXPECT_NE(md.find("--cache-policy auto"), std::string::npos);
     EXPECT_NE(md.find("### CCT"), std::string::npos);
     EXPECT_NE(md.find("### CDCT"), std::string::npos);
 }
