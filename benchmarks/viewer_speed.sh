@@ -16,7 +16,7 @@ common=(grid-32 --width 640 --height 360 --threads 2 --frames 60)
 warmup=20
 xvfb() { xvfb-run -a -s '-screen 0 1280x1024x24' "$@"; }
 
-variants=(view-static-cct view-static-cct-hidden-ui view-static-none render-static-cct view-orbit-cct render-orbit-cct)
+variants=(view-static-cct view-static-cct-hidden-ui view-static-none render-static-cct view-orbit-cct view-orbit-none render-orbit-cct)
 run() {
   case $1 in
     view-static-cct)           xvfb "$bin" view "${common[@]}" --path static --technique cct --warmup $warmup ;;
@@ -24,6 +24,7 @@ run() {
     view-static-none)          xvfb "$bin" view "${common[@]}" --path static --technique none --warmup $warmup ;;
     render-static-cct)         "$bin" render --scene "${common[@]}" --path static --technique cct ;;
     view-orbit-cct)            xvfb "$bin" view "${common[@]}" --technique cct --warmup $warmup ;;
+    view-orbit-none)           xvfb "$bin" view "${common[@]}" --technique none --warmup $warmup ;;
     render-orbit-cct)          "$bin" render --scene "${common[@]}" --technique cct ;;
   esac
 }
