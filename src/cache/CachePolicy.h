@@ -28,15 +28,15 @@ const char* cachePolicyModeName(CachePolicyMode mode);
 // What one operation costs, in units of one traced ray (a secondary or shadow
 // ray with the shading of its hit); ratios of CPU times, so roughly
 // machine-independent. Calibrated with `scripts/calibrate-cache-policy.sh`
-// (grid-32 orbit, 384², one thread) on 2026-11-26, 2 shared vCPUs at load
-// average ~7.7 (the machine was busy: repeat it quietly): one traced ray
-// 149.8 ns, a lookup 63.8 ns, a store 91.9 ns, a CDCT texel sampled 246.6 ns
-// (that figure carries the whole CDCT lookup: its search, own-surface test
-// and error control).
+// (grid-32 orbit, 384², one thread) on 2026-11-26 at 5689969, quiet, the
+// median of three runs: one traced ray 97.7 ns (93.9-116.0), a lookup 39.0 ns
+// (0.36-0.42 rays), a store 70.6 ns (0.62-0.75 rays), a CDCT texel sampled
+// 163.8 ns (1.41-1.79 rays; that figure carries the whole CDCT lookup: its
+// search, own-surface test and error control).
 struct CachePolicyCosts {
-    double lookup = 0.43;     // one lookup: address, validity, texel read
-    double store = 0.61;      // one queued store: queue, merge, dependency record
-    double cdctStep = 1.65;   // one texel a CDCT search sampled
+    double lookup = 0.38;     // one lookup: address, validity, texel read
+    double store = 0.71;      // one queued store: queue, merge, dependency record
+    double cdctStep = 1.68;   // one texel a CDCT search sampled
     // A traced tree is at least its own ray: the saving of one hit when a
     // cube has never traced one (no evidence yet) is not assumed larger.
     static constexpr double kMinimumTree = 1.0;
