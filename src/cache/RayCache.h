@@ -340,6 +340,12 @@ public:
         const int c = cubeIndexOf(objectId);
         return c >= 0 && cubes_[static_cast<std::size_t>(c)].policy.bypassed();
     }
+    // Counts a ray that left `objectId` while its cube stood aside, traced
+    // without asking the cube (the tile kernel routes such rays around the
+    // lookups; ObjectCacheStats::bypassedRays).
+    void countBypassedRay(int objectId, CacheWorker& worker) const {
+        ++worker.counters_[static_cast<std::size_t>(cubeIndexOf(objectId))].bypassed;
+    }
 
     // Queues what a traced ray brought back (`hitDistance` from origin to its
     // first hit, infinity for a miss) for the end of the frame. CDCT stores

@@ -265,7 +265,7 @@ void TileKernel::runWaves(TileScratch& s, CacheWorker* cache, FirstWave firstWav
             shadeDirect(s);
         }
         if (first) s.firstBounce += Clock::now() - start;
-        spawnSecondaryRays(s, useCache);
+        spawnSecondaryRays(s, useCache ? cache : nullptr);
         if (useCache) lookupReuse(s, *cache);
         traceSecondaryRays(s);
         first = false;
@@ -500,7 +500,7 @@ void TileKernel::shadeDirect(TileScratch& s) const {
     }
 }
 
-void TileKernel::spawnSecondaryRays(TileScratch& s, bool useCache) const {
+void TileKernel::spawnSecondaryRays(TileScratch& s, CacheWorker* cache) const {
     StageTimer timer(settings_.stageTimes, s.stages.secondaryRays);
     s.leaving.clear();
     s.pending.clear();
@@ -514,10 +514,18 @@ void TileKernel::spawnSecondaryRays(TileScratch& s, bool useCache) const {
         added.parent = v.node;
         added.weightInParent = share;
         const float pathWeight = v.pathWeight * share;
-        if (leavesObject && useCache && cache_->cachesObject(v.hit.objectId)) {
+        // A cube that stands aside this frame (cache/CachePolicy.h) is not
+        // asked: its rays go straight to tracing, as without a cache, and
+        // cost no lookup, no miss bookkeeping and no store.
+        if (leavesObject && cache && cache_->cachesObject(v.hit.objectId) && !cache_->bypassed(v.hit.objectId)) {
             s.leaving.push_back({ray, v.hit.objectId, node, pathWeight, v.depth + 1, kind, cone});
             added.tracked = s.trackTrees;
         } else {
+            if (leavesObject && cache && cache_->cachesObject(v.hit.objectId)) {
+                cache_->countBypassedRay(v.hit.objectId, *cache);
+                // Asked nothing, so traced: what the level record shows for it.
+                if (s.recordLevels) noteRootLevel(s, node, pathWeight, CacheLevelImage::kTraced);
+            }
             s.pending.push_back({ray, node, pathWeight, v.depth + 1, kind, cone});
             added.tracked = parentTracked;
         }
@@ -626,19 +634,21 @@ void TileKernel::beginLevelRecord(TileScratch& s, std::size_t roots) {
 }
 
 void TileKernel::recordLookupLevels(TileScratch& s) {
-    for (std::size_t i = 0; i < s.leaving.size(); ++i) {
-        const TileScratch::LeavingRay& l = s.leaving[i];
-        // The pixel is the root of the ray's tree: a few parents up (at most maxDepth).
-        int root = l.node;
-        while (s.nodes[static_cast<std::size_t>(root)].parent >= 0)
-            root = s.nodes[static_cast<std::size_t>(root)].parent;
-        const auto r = static_cast<std::size_t>(root);
-        // The weightiest lookup stays; on equal weight the one asked first
-        // (an earlier wave, or earlier in this batch). See CacheLevelImage.
-        if (s.rootLevels[r] != CacheLevelImage::kNoCachingRay && !(l.pathWeight > s.rootLevelWeights[r])) continue;
-        s.rootLevels[r] = s.answerLevels[i] >= 0 ? s.answerLevels[i] : CacheLevelImage::kTraced;
-        s.rootLevelWeights[r] = l.pathWeight;
-    }
+    for (std::size_t i = 0; i < s.leaving.size(); ++i)
+        noteRootLevel(s, s.leaving[i].node, s.leaving[i].pathWeight,
+                      s.answerLevels[i] >= 0 ? s.answerLevels[i] : CacheLevelImage::kTraced);
+}
+
+void TileKernel::noteRootLevel(TileScratch& s, int node, float pathWeight, std::int8_t level) {
+    // The pixel is the root of the ray's tree: a few parents up (at most maxDepth).
+    int root = node;
+    while (s.nodes[static_cast<std::size_t>(root)].parent >= 0) root = s.nodes[static_cast<std::size_t>(root)].parent;
+    const auto r = static_cast<std::size_t>(root);
+    // The weightiest lookup stays; on equal weight the one asked first
+    // (an earlier wave, or earlier in this batch). See CacheLevelImage.
+    if (s.rootLevels[r] != CacheLevelImage::kNoCachingRay && !(pathWeight > s.rootLevelWeights[r])) return;
+    s.rootLevels[r] = level;
+    s.rootLevelWeights[r] = pathWeight;
 }
 
 void TileKernel::writeLevelRecord(const TileScratch& s, const TileRange& tile, CacheLevelImage& levels) {

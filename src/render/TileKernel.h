@@ -259,13 +259,16 @@ private:
     // Shadow rays of several lights as packets, each light's rays together.
     void traceShadowRaysByLight(TileScratch& s, std::size_t count) const;
     void shadeDirect(TileScratch& s) const;
-    void spawnSecondaryRays(TileScratch& s, bool useCache) const;
+    void spawnSecondaryRays(TileScratch& s, CacheWorker* cache) const;
     void lookupReuse(TileScratch& s, CacheWorker& cache) const;
     // The cache-level record: every root starts with no caching ray; each
     // batch of lookups may replace a root's value (CacheLevelImage says which
     // lookup a pixel keeps); the tile's pixels are written at the end.
     static void beginLevelRecord(TileScratch& s, std::size_t roots);
     static void recordLookupLevels(TileScratch& s);
+    // Records `level` for the pixel at the root of `node`'s tree, unless a
+    // weightier (or as weighty and earlier) ray of that pixel was recorded.
+    static void noteRootLevel(TileScratch& s, int node, float pathWeight, std::int8_t level);
     static void writeLevelRecord(const TileScratch& s, const TileRange& tile, CacheLevelImage& levels);
     void traceSecondaryRays(TileScratch& s) const;
     // Adds every node's colour to its parent's, children first, queueing the
