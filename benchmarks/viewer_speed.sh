@@ -37,7 +37,7 @@ echo "load average after:  $(cut -d' ' -f1-3 /proc/loadavg)"
 
 # Column values of frames after the warm-up, one per line.
 column() {  # variant field
-  cat "$out/$1"-*.txt | awk -v warm=$warmup -v field="$2" '
+  cat "$out/$1"-[0-9]*.txt | awk -v warm=$warmup -v field="$2" '
     /^frame [0-9]+\/[0-9]+ / {
       split($2, f, "/"); if (f[1] + 0 <= warm) next
       if (field == "render") { print $3; next }
