@@ -23,7 +23,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr const char* kScenes[] = {"room-moving", "orbit", "cloth", "light-sweep"};
+constexpr const char* kDynamicScenes[] = {"room-moving", "orbit", "cloth", "light-sweep"};
 
 int dynamicImageSide(BenchSize size) { return size == BenchSize::Tiny ? 48 : size == BenchSize::Quick ? 512 : 1024; }
 int dynamicFrameCount(BenchSize size) { return size == BenchSize::Tiny ? 3 : size == BenchSize::Quick ? 24 : 60; }
@@ -56,7 +56,7 @@ nlohmann::json oracleJson(const InvalidationCounts& o) {
             {"moved_cube_kept", o.movedCubeKept}};
 }
 
-struct SceneRun {
+struct DynamicSceneRun {
     std::string scene;
     std::vector<double> uncachedMs, cctMs, updateMs, psnrDb, hitPercent;
     // CCT with every store made (RayCacheSettings::skipStoresReachingChanges off).
@@ -73,14 +73,14 @@ public:
     }
     double estimatedWork(const BenchSettings& settings) const override {
         const double mp = std::pow(dynamicImageSide(settings.size), 2) / 1e6;
-        return std::size(kScenes) * dynamicFrameCount(settings.size) * 3.0 * mp;
+        return std::size(kDynamicScenes) * dynamicFrameCount(settings.size) * 3.0 * mp;
     }
 
     ExperimentOutput run(ExperimentContext& context) const override {
         const BenchSize size = context.settings.size;
         const int side = dynamicImageSide(size), frames = dynamicFrameCount(size);
-        std::vector<SceneRun> runs;
-        for (const char* name : kScenes) {
+        std::vector<DynamicSceneRun> runs;
+        for (const char* name : kDynamicScenes) {
             context.progress.step("dynamic: " + std::string(name));
             runs.push_back(runScene(name, side, frames, context));
         }
@@ -99,10 +99,10 @@ private:
         return s;
     }
 
-    static SceneRun runScene(const std::string& name, int side, int frames, ExperimentContext& context) {
+    static DynamicSceneRun runScene(const std::string& name, int side, int frames, ExperimentContext& context) {
         const std::optional<Scene> scene = makeBuiltinScene(name);
         if (!scene) throw RuntimeError("built-in scene " + name + " is missing");
-        SceneRun run{name, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+        DynamicSceneRun run{name, {}, {}, {}, {}, {}, {}, {}, {}, {}};
         const BenchSettings& bench = context.settings;
         RenderSession uncached(*scene, settingsFor(side, bench, CacheTechnique::None));
         RenderSession cct(*scene, settingsFor(side, bench, CacheTechnique::Cct));
@@ -167,7 +167,7 @@ private:
         return run;
     }
 
-    ExperimentOutput report(const std::vector<SceneRun>& runs, int side, int frames, ExperimentContext& context) const {
+    ExperimentOutput report(const std::vector<DynamicSceneRun>& runs, int side, int frames, ExperimentContext& context) const {
         ExperimentOutput out;
         out.name = name();
         out.title = title();
@@ -188,7 +188,7 @@ private:
         plot.xLabel = "frame";
         plot.yLabel = "speed-up of CCT";
         plot.referenceY = 1.0;
-        for (const SceneRun& r : runs) {
+        for (const DynamicSceneRun& r : runs) {
             const auto tail = [](const std::vector<double>& v) {
                 return v.size() > 1 ? std::vector<double>(v.begin() + 1, v.end()) : v;
             };
@@ -248,7 +248,7 @@ private:
                               "needless / changed", "texels of moving caching objects", "of them kept",
                               "of them within 1/255 if all kept"});
         for (std::size_t p = 0; p < protocols.size(); ++p)
-            for (const SceneRun& r : runs) {
+            for (const DynamicSceneRun& r : runs) {
                 const InvalidationCounts& o = r.oracle[p];
                 const std::int64_t changed = o.changed();
                 oracle.addRow({r.scene, protocols[p].name, std::to_string(o.checked), std::to_string(o.kept),

@@ -17,13 +17,13 @@ namespace {
 
 constexpr int kSteps = 9;  // camera moves after the first frame
 constexpr float kDegreesPerStep = 10.0f / 3.0f;
-constexpr int kResolutions[] = {128, 256, 512};
+constexpr int kFillRateResolutions[] = {128, 256, 512};
 
 // Multi-resolution cubes (docs/caching.md) at the finest resolution: the
 // share of lookups traced per frame, beside one level. The goal for
 // this protocol: at most 5 % traced after frame 2.
 constexpr int kMultiResolutionFaces = 512;
-constexpr int kMultiResolutionLevels = 4;
+constexpr int kFillRateLevels = 4;
 constexpr float kErrorBounds[] = {0.25f, 1.0f};
 
 int fillRateImageSide(BenchSize size) {
@@ -70,7 +70,7 @@ public:
             return settings;
         };
         std::vector<double> plainTraced;  // lookups traced per frame at kMultiResolutionFaces, one level
-        for (int resolution : kResolutions) {
+        for (int resolution : kFillRateResolutions) {
             context.progress.step("fill-rate: " + std::to_string(resolution) + "² faces");
             const RenderSettings settings = cctSettings(resolution);
             std::vector<double> before, ms, hits;
@@ -106,9 +106,9 @@ public:
         nlohmann::json multiResolution = nlohmann::json::array();
         for (const float bound : kErrorBounds) {
             context.progress.step("fill-rate: " + std::to_string(kMultiResolutionFaces) + "² faces, " +
-                                  std::to_string(kMultiResolutionLevels) + " levels, bound " + cellNumber(bound, 2));
+                                  std::to_string(kFillRateLevels) + " levels, bound " + cellNumber(bound, 2));
             RenderSettings settings = cctSettings(kMultiResolutionFaces);
-            settings.cache.cubeLevels = kMultiResolutionLevels;
+            settings.cache.cubeLevels = kFillRateLevels;
             settings.cache.levelErrorBound = bound;
             std::vector<double> traced;
             renderFrames(*scene, path, settings, kSteps + 1, [&](const FrameResult& r, const Image&, const RayCache&) {
@@ -119,7 +119,7 @@ public:
                 context.progress.advance(frameWork);
             });
             multiResolution.push_back({{"faces", kMultiResolutionFaces},
-                                       {"levels", kMultiResolutionLevels},
+                                       {"levels", kFillRateLevels},
                                        {"error_bound", bound},
                                        {"traced_percent", traced}});
             levelsTraced.push_back(std::move(traced));
@@ -148,7 +148,7 @@ public:
         PlotSeries docs{"documents, after frame 1 (Fig 5.9)", {}};
         docs.line = false;
         docs.dashed = true;
-        for (int resolution : kResolutions)
+        for (int resolution : kFillRateResolutions)
             docs.points.push_back({1.0, documents.value(std::to_string(resolution), "invalid-after-frame-1").value()});
         plot.series.push_back(std::move(docs));
         writeSvgPlot(plot, (context.dir / "invalid-texels.svg").string());
@@ -164,8 +164,8 @@ public:
             "frame (= before the next).\n\n";
         MarkdownTable first({"face resolution", "documents: invalid after frame 1", "raycache: invalid after frame 1",
                              "raycache: after frame 5", "raycache: after frame 10"});
-        for (std::size_t i = 0; i < std::size(kResolutions); ++i) {
-            const std::string res = std::to_string(kResolutions[i]);
+        for (std::size_t i = 0; i < std::size(kFillRateResolutions); ++i) {
+            const std::string res = std::to_string(kFillRateResolutions[i]);
             first.addRow({res + "²", cellNumber(documents.value(res, "invalid-after-frame-1").value(), 0) + "%",
                           cellNumber(invalid[i][1], 1) + "%", cellNumber(invalid[i][5], 1) + "%",
                           cellNumber(invalid[i][10], 1) + "%"});
@@ -211,7 +211,7 @@ public:
                                                        {"height", side},
                                                        {"frames", kSteps + 1},
                                                        {"degrees_per_frame", kDegreesPerStep},
-                                                       {"resolutions", kResolutions},
+                                                       {"resolutions", kFillRateResolutions},
                                                        {"cache_policy", "always"}}},
                                                      {"environment", toJson(context.environment)},
                                                      {"documents", toJson(documents)},

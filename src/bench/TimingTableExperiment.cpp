@@ -42,7 +42,7 @@ struct VariantResult {
     bool measured() const { return variant->unavailable.empty(); }
 };
 
-nlohmann::json cacheJson(const std::optional<FrameCacheStats>& c) {
+nlohmann::json lastFrameCacheJson(const std::optional<FrameCacheStats>& c) {
     if (!c) return nullptr;
     const double lookups = static_cast<double>(c->lookups());
     return {{"lookups", c->lookups()},
@@ -232,12 +232,12 @@ ExperimentOutput TimingTableExperiment::run(ExperimentContext& context) const {
                 v["available"] = true;
                 v["still"] = toJson(r.still);
                 v["still"]["speedup_vs_" + baseline.key] = toJson(r.stillSpeedup);
-                v["still"]["cache_last_frame"] = cacheJson(r.stillCache);
+                v["still"]["cache_last_frame"] = lastFrameCacheJson(r.stillCache);
                 if (!r.movingFrameMs.empty()) {
                     v["moving"] = toJson(r.moving);
                     v["moving"]["frame_ms_per_round"] = r.movingFrameMs;
                     v["moving"]["speedup_vs_" + baseline.key] = toJson(r.movingSpeedup);
-                    v["moving"]["cache_last_frame"] = cacheJson(r.movingLastCache);
+                    v["moving"]["cache_last_frame"] = lastFrameCacheJson(r.movingLastCache);
                 }
             }
             variantsJson[r.variant->key] = std::move(v);

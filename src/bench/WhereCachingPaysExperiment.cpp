@@ -96,7 +96,7 @@ struct FrameTotals {
     double meanLookups() const { return frames > 0 ? static_cast<double>(lookups) / frames : 0.0; }
 };
 
-double mean(const std::vector<double>& v) {
+double meanMs(const std::vector<double>& v) {
     double sum = 0.0;
     for (double x : v) sum += x;
     return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
@@ -325,8 +325,8 @@ private:
 
         const auto parts = [&](const std::array<FrameTotals, kVariants>& t, std::size_t technique, bool useMean) {
             CachingPayParts p;
-            p.uncachedMs = useMean ? mean(t[kUncached].ms) : summarize(t[kUncached].ms).median;
-            p.idealMs = useMean ? mean(t[kIdeal].ms) : summarize(t[kIdeal].ms).median;
+            p.uncachedMs = useMean ? meanMs(t[kUncached].ms) : summarize(t[kUncached].ms).median;
+            p.idealMs = useMean ? meanMs(t[kIdeal].ms) : summarize(t[kIdeal].ms).median;
             p.idealLookupMs = t[kIdeal].meanLookupWallMs(threads);
             p.lookupMs = t[technique].meanLookupWallMs(threads);
             p.frameEndMs = t[technique].meanFrameEndMs();

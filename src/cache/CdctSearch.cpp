@@ -10,12 +10,12 @@ namespace raycache {
 
 namespace {
 
-constexpr float kInfinity = std::numeric_limits<float>::infinity();
+constexpr float kCdctInfinity = std::numeric_limits<float>::infinity();
 
 // The ray parameter at which the line origin + t * direction leaves the box
 // center ± half (the far slab crossing); 0 if it is behind the origin.
 float tLeavingBox(const Vec3& center, const Vec3& half, const Vec3& origin, const Vec3& direction) {
-    float tExit = kInfinity;
+    float tExit = kCdctInfinity;
     for (int a = 0; a < 3; ++a) {
         const float d = direction[a];
         if (std::fabs(d) < 1e-12f) continue;  // parallel to this slab pair: it does not bound the exit
@@ -134,7 +134,7 @@ struct FaceAxis {
     double tAt(double edge, double w0, double wd) const {
         const double denominator = cd - edge * wd;
         const double t = (edge * w0 - c0) / denominator;
-        return denominator != 0.0 && std::isfinite(t) ? t : kInfinity;
+        return denominator != 0.0 && std::isfinite(t) ? t : kCdctInfinity;
     }
 };
 
@@ -376,7 +376,7 @@ CdctResult searchCdctImproved(const CachingCube& cube, const CdctParameters& p, 
     const auto tAfterTurn = [&](float t, float k) {
         const float x = t - tClosest;
         const float denominator = impact - k * x;
-        return denominator > 0.0f ? tClosest + impact * (x + k * impact) / denominator : kInfinity;
+        return denominator > 0.0f ? tClosest + impact * (x + k * impact) / denominator : kCdctInfinity;
     };
     const float stepTangent = std::tan(stepAngle);
     const long maxSteps = improvements.texelSteps

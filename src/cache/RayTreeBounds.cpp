@@ -8,7 +8,7 @@ namespace raycache {
 
 namespace {
 
-constexpr float kInfinity = std::numeric_limits<float>::infinity();
+constexpr float kBoundsInfinity = std::numeric_limits<float>::infinity();
 
 // The interval of a parameter s that the two constraints below leave, narrowed
 // one linear inequality at a time; empty once lo > hi.
@@ -77,7 +77,7 @@ bool boxMeetsSegments(const Box3& box, const Box3& starts, const Box3& ends) {
 // t*u <= d - lo and t*u >= c - hi, for some t >= 0 shared by the axes.
 bool boxMeetsSweep(const Box3& box, const Box3& points, const Vec3& direction) {
     if (box.empty() || points.empty()) return false;
-    ParameterRange t{0.0, kInfinity};
+    ParameterRange t{0.0, kBoundsInfinity};
     for (int axis = 0; axis < 3; ++axis) {
         const double u = direction[axis];
         t.keepAtMost(u, static_cast<double>(box.hi[axis]) - points.lo[axis]);
@@ -92,7 +92,7 @@ bool boxMeetsSweep(const Box3& box, const Box3& points, const Vec3& direction) {
 // t*dlo <= d' - olo and t*dhi >= c - ohi.
 bool boxMeetsRays(const Box3& box, const Box3& origins, const Box3& directions) {
     if (box.empty() || origins.empty() || directions.empty()) return false;
-    ParameterRange t{0.0, kInfinity};
+    ParameterRange t{0.0, kBoundsInfinity};
     for (int axis = 0; axis < 3; ++axis) {
         t.keepAtMost(directions.lo[axis], static_cast<double>(box.hi[axis]) - origins.lo[axis]);
         t.keepAtLeast(directions.hi[axis], static_cast<double>(box.lo[axis]) - origins.hi[axis]);
@@ -173,14 +173,14 @@ bool ballMeetsRays(const Vec3& centre, float radius, const Box3& origins, const 
     if (origins.empty() || directions.empty()) return false;
     // Past the smallest such t one face of the box has left the ball behind:
     // an axis whose directions all point one way moves that face away.
-    double reach = kInfinity;
+    double reach = kBoundsInfinity;
     for (int a = 0; a < 3; ++a) {
         if (directions.lo[a] > 0.0f)
             reach = std::min(reach, (static_cast<double>(centre[a]) + radius - origins.lo[a]) / directions.lo[a]);
         if (directions.hi[a] < 0.0f)
             reach = std::min(reach, (static_cast<double>(origins.hi[a]) - (centre[a] - radius)) / -directions.hi[a]);
     }
-    if (reach == kInfinity) return boxMeetsRays(Box3{centre - Vec3{radius, radius, radius}, centre + Vec3{radius, radius, radius}},
+    if (reach == kBoundsInfinity) return boxMeetsRays(Box3{centre - Vec3{radius, radius, radius}, centre + Vec3{radius, radius, radius}},
                                                  origins, directions);
     return ballMeetsMovingBox(centre, radius, origins.lo, directions.lo, origins.hi, directions.hi,
                               std::max(reach, 0.0) + 1.0);
@@ -241,7 +241,7 @@ bool RayTreeBounds::blockedRaysAllMeetBall(const Vec3& centre, float radius, flo
             const Vec3 toward = directional ? -light.direction : light.position;
             double u[3];
             for (int k = 0; k < 3; ++k) u[k] = directional ? toward[k] : static_cast<double>(toward[k]) - p[k];
-            const double d2 = distanceToSpan2(centre, p, u, directional ? kInfinity : 1.0);
+            const double d2 = distanceToSpan2(centre, p, u, directional ? kBoundsInfinity : 1.0);
             if (!(d2 <= r2)) return false;
         }
     }

@@ -22,7 +22,7 @@
 namespace raycache {
 namespace {
 
-std::string lowerExtension(const std::filesystem::path& path) {
+std::string lowerImageExtension(const std::filesystem::path& path) {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -73,7 +73,7 @@ std::string saveExr(const Image& image, const std::filesystem::path& file) {
 }  // namespace
 
 bool isSupportedImageExtension(const std::filesystem::path& path) {
-    const std::string ext = lowerExtension(path);
+    const std::string ext = lowerImageExtension(path);
     return ext == ".png" || ext == ".exr";
 }
 
@@ -94,7 +94,7 @@ void writeImage(const Image& image, const std::filesystem::path& path) {
     if (image.empty())
         throw RuntimeError("cannot write " + path.string() + ": the image is empty");
 
-    const bool png = lowerExtension(path) == ".png";
+    const bool png = lowerImageExtension(path) == ".png";
     writeFileAtomically(path, [&](const std::filesystem::path& temp) {
         const std::string error = png ? savePng(image, temp) : saveExr(image, temp);
         if (!error.empty()) throw RuntimeError(error);

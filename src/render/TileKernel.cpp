@@ -14,7 +14,7 @@ namespace raycache {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr float kInfinity = std::numeric_limits<float>::infinity();
+constexpr float kKernelInfinity = std::numeric_limits<float>::infinity();
 
 // Adds the time until it goes out of scope to one stage's total, when stage
 // timing is on (it costs two clock reads per stage and wave).
@@ -155,7 +155,7 @@ void TileKernel::renderFromInside(int objectId, std::span<const Ray> rays, int d
     constexpr int kMaxOwnSurfaces = 64;
     const std::size_t n = rays.size();
     s.beginTile(n);
-    s.rootHitDistance.assign(n, kInfinity);
+    s.rootHitDistance.assign(n, kKernelInfinity);
     {
         StageTimer timer(settings_.stageTimes, s.stages.firstHits);
         for (std::size_t i = 0; i < n; ++i) {
@@ -679,7 +679,7 @@ void TileKernel::traceSecondaryRays(TileScratch& s) const {
         const TraceHit& hit = s.hits[i];
         TileScratch::Node& node = s.nodes[static_cast<std::size_t>(p.node)];
         ++node.tracedRays;
-        if (node.objectId >= 0) node.hitDistance = hit.hit() ? hit.t : kInfinity;
+        if (node.objectId >= 0) node.hitDistance = hit.hit() ? hit.t : kKernelInfinity;
         if (node.tracked) {
             RayTreeBounds& bounds = s.nodeBounds[static_cast<std::size_t>(p.node)];
             if (hit.hit()) bounds.addSegment(p.ray.origin, p.ray.origin + p.ray.direction * hit.t);

@@ -11,8 +11,8 @@ float ease(float s, Interpolation interpolation) {
     return interpolation == Interpolation::Smooth ? s * s * (3.0f - 2.0f * s) : s;
 }
 
-Vec3 mix(const Vec3& a, const Vec3& b, float s) { return a * (1.0f - s) + b * s; }
-Rgb mix(const Rgb& a, const Rgb& b, float s) { return a * (1.0f - s) + b * s; }
+Vec3 mixKeys(const Vec3& a, const Vec3& b, float s) { return a * (1.0f - s) + b * s; }
+Rgb mixKeys(const Rgb& a, const Rgb& b, float s) { return a * (1.0f - s) + b * s; }
 
 // `time` folded into [first, last] by the wrap rule.
 float wrapTime(float time, float first, float last, Wrap wrap) {
@@ -54,8 +54,8 @@ Transform TransformTrack::at(float time) const {
     const TransformKey& a = keys[span.from];
     const TransformKey& b = keys[span.to];
     const float s = span.fraction;
-    return Transform::translate(mix(a.translate, b.translate, s)) * slerp(a.rotation, b.rotation, s).toTransform() *
-           Transform::scale(mix(a.scale, b.scale, s));
+    return Transform::translate(mixKeys(a.translate, b.translate, s)) * slerp(a.rotation, b.rotation, s).toTransform() *
+           Transform::scale(mixKeys(a.scale, b.scale, s));
 }
 
 Light LightTrack::at(const Light& base, float time) const {
@@ -64,11 +64,11 @@ Light LightTrack::at(const Light& base, float time) const {
     const LightKey& b = keys[span.to];
     const float s = span.fraction;
     Light posed = base;
-    posed.position = mix(a.position, b.position, s);
-    const Vec3 direction = mix(a.direction, b.direction, s);
+    posed.position = mixKeys(a.position, b.position, s);
+    const Vec3 direction = mixKeys(a.direction, b.direction, s);
     // Opposite directions blend through zero at the midpoint: keep the nearer key's.
     posed.direction = length(direction) > 1e-6f ? normalize(direction) : (s < 0.5f ? a.direction : b.direction);
-    posed.intensity = mix(a.intensity, b.intensity, s);
+    posed.intensity = mixKeys(a.intensity, b.intensity, s);
     return posed;
 }
 
@@ -85,7 +85,7 @@ void MeshSequence::positionsAt(float time, std::span<Vec3> out) const {
     const float s = f - static_cast<float>(from);
     const std::vector<Vec3>& a = frames_[from];
     const std::vector<Vec3>& b = frames_[to];
-    for (std::size_t i = 0; i < out.size(); ++i) out[i] = s == 0.0f ? a[i] : mix(a[i], b[i], s);
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = s == 0.0f ? a[i] : mixKeys(a[i], b[i], s);
 }
 
 float SceneAnimation::duration() const {

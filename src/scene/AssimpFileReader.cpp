@@ -98,14 +98,14 @@ std::string noReaderForTheExtension(const Assimp::Importer& importer, const std:
     return "not a " + path.extension().string() + " file: Assimp's readers for it refuse its content";
 }
 
-std::span<const aiMesh* const> meshesOf(const aiScene& scene) {
+std::span<const aiMesh* const> assimpMeshesOf(const aiScene& scene) {
     if (!scene.mMeshes) return {};
     return {scene.mMeshes, scene.mNumMeshes};
 }
 
 // "face F of mesh M has no vertices" for the first such face, else empty.
 std::string faceWithoutVertices(const aiScene& scene) {
-    const auto meshes = meshesOf(scene);
+    const auto meshes = assimpMeshesOf(scene);
     for (std::size_t m = 0; m < meshes.size(); ++m)
         for (unsigned f = 0; meshes[m]->mFaces && f < meshes[m]->mNumFaces; ++f)
             if (meshes[m]->mFaces[f].mNumIndices == 0)
@@ -118,7 +118,7 @@ std::string faceWithoutVertices(const aiScene& scene) {
 // by position, which NaN breaks.
 std::string nonFiniteVertices(const aiScene& scene) {
     std::size_t bad = 0, all = 0;
-    for (const aiMesh* m : meshesOf(scene)) {
+    for (const aiMesh* m : assimpMeshesOf(scene)) {
         all += m->mNumVertices;
         for (unsigned i = 0; m->mVertices && i < m->mNumVertices; ++i) {
             const aiVector3D& p = m->mVertices[i];

@@ -41,7 +41,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // As many objects as a JSON scene may have (docs/scene-format.md, "Limits").
-constexpr std::size_t kMaxObjects = 100000;
+constexpr std::size_t kMaxGltfObjects = 100000;
 
 // Extensions raycache reads (through Assimp): required or not, they are honoured.
 constexpr std::array<std::string_view, 4> kReadExtensions{"KHR_lights_punctual", "KHR_materials_transmission",
@@ -68,11 +68,11 @@ bool listed(const std::array<std::string_view, N>& list, std::string_view name) 
     return std::find(list.begin(), list.end(), name) != list.end();
 }
 
-std::string quoted(const std::string& s) {
+std::string gltfQuoted(const std::string& s) {
     return "'" + s + "'";
 }
 
-std::string counted(std::size_t n, const std::string& singular, const std::string& plural) {
+std::string gltfCounted(std::size_t n, const std::string& singular, const std::string& plural) {
     return std::to_string(n) + " " + (n == 1 ? singular : plural);
 }
 
@@ -169,7 +169,7 @@ private:
     void note(const std::string& what) { notes_.push_back(path_.string() + ": " + what); }
 
     static std::string nameOf(const aiString& name, const std::string& kind, std::size_t index) {
-        return name.length > 0 ? kind + " " + quoted(name.C_Str()) : kind + " " + std::to_string(index);
+        return name.length > 0 ? kind + " " + gltfQuoted(name.C_Str()) : kind + " " + std::to_string(index);
     }
 
     // ---- extensions -------------------------------------------------------
@@ -421,7 +421,7 @@ private:
             if (face.mNumIndices == 3) mesh.triangles.push_back({face.mIndices[0], face.mIndices[1], face.mIndices[2]});
         }
         if (const std::string problem = indexOutOfRange(mesh); !problem.empty())
-            fail("mesh " + quoted(m.mName.C_Str()) + ": " + problem);
+            fail("mesh " + gltfQuoted(m.mName.C_Str()) + ": " + problem);
         const MeshRepairs repairs = repairMesh(mesh);
         repairs_.trianglesRead += repairs.trianglesRead;
         repairs_.degenerateTriangles += repairs.degenerateTriangles;
@@ -431,7 +431,7 @@ private:
         if (!repairs.ignoredUvs.empty()) {
             ++meshesWithUnusableUvs_;
             if (firstUnusableUvs_.empty())
-                firstUnusableUvs_ = "mesh " + quoted(m.mName.C_Str()) + ": " + repairs.ignoredUvs;
+                firstUnusableUvs_ = "mesh " + gltfQuoted(m.mName.C_Str()) + ": " + repairs.ignoredUvs;
         }
         if (!validateMesh(mesh).empty()) {
             // Only degenerate triangles: nothing of it could be seen.
@@ -470,8 +470,8 @@ private:
                     fail("the scene's meshes, every placement counted, have more than " +
                          std::to_string(kMaxMeshVertices) + " vertices or " + std::to_string(kMaxMeshTriangles) +
                          " triangles, the limit");
-                if (scene.objects.size() == kMaxObjects)
-                    fail("the scene has more than " + std::to_string(kMaxObjects) +
+                if (scene.objects.size() == kMaxGltfObjects)
+                    fail("the scene has more than " + std::to_string(kMaxGltfObjects) +
                          " objects (mesh placements), the limit");
 
                 SceneObject object;
@@ -509,10 +509,10 @@ private:
                 ++outside;
         }
         if (nonFinite > 0)
-            fail("node " + quoted(nodeName) + ": its transform makes " + std::to_string(nonFinite) + " of the mesh's " +
+            fail("node " + gltfQuoted(nodeName) + ": its transform makes " + std::to_string(nonFinite) + " of the mesh's " +
                  std::to_string(mesh.positions.size()) + " vertices non-finite (infinite or NaN)");
         if (outside > 0)
-            fail("node " + quoted(nodeName) + ": " + std::to_string(outside) + " of the mesh's " +
+            fail("node " + gltfQuoted(nodeName) + ": " + std::to_string(outside) + " of the mesh's " +
                  std::to_string(mesh.positions.size()) + " vertices lie beyond ±" + shortNumber(kMaxWorldCoordinate) +
                  " on some axis (floats are too coarse to trace beyond)");
     }
@@ -566,15 +566,15 @@ private:
             chosenName = name;
         }
         if (orthographic > 0)
-            note("ignored " + counted(orthographic, "orthographic camera", "orthographic cameras") +
+            note("ignored " + gltfCounted(orthographic, "orthographic camera", "orthographic cameras") +
                  " (raycache's camera is a pinhole)");
         if (unplaced > 0)
-            note("ignored " + counted(unplaced, "camera", "cameras") + " that no node of the scene places");
+            note("ignored " + gltfCounted(unplaced, "camera", "cameras") + " that no node of the scene places");
         if (chosen) {
             scene.camera = *chosen;
             const std::size_t others = ai_.mNumCameras - orthographic - unplaced - 1;
             if (others > 0)
-                note("uses its first camera, " + chosenName + "; ignored " + counted(others, "other", "others"));
+                note("uses its first camera, " + chosenName + "; ignored " + gltfCounted(others, "other", "others"));
         } else {
             scene.camera = cameraFramingBounds(bounds);
             if (!overrides_.camera) note("no camera in the file: a camera framed on the scene's bounds is used");
@@ -649,10 +649,10 @@ private:
             scene.lights.push_back(light);
         }
         if (otherTypes > 0)
-            note("ignored " + counted(otherTypes, "light", "lights") + " of a type glTF does not define");
-        if (unplaced > 0) note("ignored " + counted(unplaced, "light", "lights") + " that no node of the scene places");
+            note("ignored " + gltfCounted(otherTypes, "light", "lights") + " of a type glTF does not define");
+        if (unplaced > 0) note("ignored " + gltfCounted(unplaced, "light", "lights") + " that no node of the scene places");
         if (ranged > 0)
-            note("ignored the range of " + counted(ranged, "light", "lights") + " (raycache's lights do not fall off)");
+            note("ignored the range of " + gltfCounted(ranged, "light", "lights") + " (raycache's lights do not fall off)");
         if (scene.lights.empty()) {
             scene.lights.push_back(lightOverTheShoulder(scene.camera));
             note("no lights in the file: a directional light over the camera's left shoulder is used");
@@ -663,57 +663,57 @@ private:
 
     void noteWhatIsNotDrawn() {
         if (skinnedMeshes_ > 0)
-            note("ignored the skins of " + counted(skinnedMeshes_, "mesh", "meshes") +
+            note("ignored the skins of " + gltfCounted(skinnedMeshes_, "mesh", "meshes") +
                  ": drawn as stored, not posed by their joints");
         if (morphedMeshes_ > 0)
-            note("ignored the morph targets of " + counted(morphedMeshes_, "mesh", "meshes") +
+            note("ignored the morph targets of " + gltfCounted(morphedMeshes_, "mesh", "meshes") +
                  ": drawn in their base shape");
         if (ai_.mNumAnimations > 0)
-            note("ignored " + counted(ai_.mNumAnimations, "animation", "animations") +
+            note("ignored " + gltfCounted(ai_.mNumAnimations, "animation", "animations") +
                  ": the scene is drawn still, as its nodes stand");
-        if (coloredMeshes_ > 0) note("ignored the vertex colours of " + counted(coloredMeshes_, "mesh", "meshes"));
+        if (coloredMeshes_ > 0) note("ignored the vertex colours of " + gltfCounted(coloredMeshes_, "mesh", "meshes"));
         if (otherPrimitives_ > 0)
             note("ignored " + std::to_string(otherPrimitives_) +
                  (otherPrimitives_ == 1 ? " point or line" : " points and lines") + " (only triangles are drawn)");
         if (collapsedInstances_ > 0)
-            note("left out " + counted(collapsedInstances_, "mesh placement", "mesh placements") +
+            note("left out " + gltfCounted(collapsedInstances_, "mesh placement", "mesh placements") +
                  " that the node transform flattens to no area");
         if (specularGlossiness_ > 0)
             note("read " +
-                 counted(specularGlossiness_, "KHR_materials_pbrSpecularGlossiness material",
+                 gltfCounted(specularGlossiness_, "KHR_materials_pbrSpecularGlossiness material",
                          "KHR_materials_pbrSpecularGlossiness materials") +
                  " as metallic-roughness (diffuse as base colour, 1 - glossiness as roughness, not metallic); their "
                  "specular colour and specular-glossiness texture are ignored");
         if (emissive_ > 0)
-            note("ignored the emission of " + counted(emissive_, "material", "materials") +
+            note("ignored the emission of " + gltfCounted(emissive_, "material", "materials") +
                  " (raycache's surfaces do not glow)");
         if (normalTextures_ > 0)
-            note("ignored the normal textures of " + counted(normalTextures_, "material", "materials"));
+            note("ignored the normal textures of " + gltfCounted(normalTextures_, "material", "materials"));
         if (occlusionTextures_ > 0)
-            note("ignored the occlusion textures of " + counted(occlusionTextures_, "material", "materials"));
+            note("ignored the occlusion textures of " + gltfCounted(occlusionTextures_, "material", "materials"));
         if (metallicRoughnessTextures_ > 0)
             note("ignored the metallic-roughness textures of " +
-                 counted(metallicRoughnessTextures_, "material", "materials") + " (their factors are used)");
+                 gltfCounted(metallicRoughnessTextures_, "material", "materials") + " (their factors are used)");
         if (transmissionTextures_ > 0)
-            note("ignored the transmission textures of " + counted(transmissionTextures_, "material", "materials") +
+            note("ignored the transmission textures of " + gltfCounted(transmissionTextures_, "material", "materials") +
                  " (their factors are used)");
         if (alphaMaterials_ > 0)
-            note("ignored the alpha (BLEND or MASK) of " + counted(alphaMaterials_, "material", "materials") +
+            note("ignored the alpha (BLEND or MASK) of " + gltfCounted(alphaMaterials_, "material", "materials") +
                  ": drawn opaque");
         if (clampedOrMirroredTextures_ > 0)
-            note(counted(clampedOrMirroredTextures_, "texture asks", "textures ask") +
+            note(gltfCounted(clampedOrMirroredTextures_, "texture asks", "textures ask") +
                  " to clamp or mirror at the edges: raycache's textures repeat");
         if (nearestTextures_ > 0)
-            note(counted(nearestTextures_, "texture asks", "textures ask") +
+            note(gltfCounted(nearestTextures_, "texture asks", "textures ask") +
                  " for nearest filtering: raycache's textures filter bilinearly");
         if (texturedWithoutUvs_ > 0)
-            note(counted(texturedWithoutUvs_, "mesh has", "meshes have") +
+            note(gltfCounted(texturedWithoutUvs_, "mesh has", "meshes have") +
                  " a base colour texture but not its texture coordinates: drawn with the base colour factor");
         if (tintedMirrors_ > 0)
-            note(counted(tintedMirrors_, "mirror material reflects", "mirror materials reflect") +
+            note(gltfCounted(tintedMirrors_, "mirror material reflects", "mirror materials reflect") +
                  " untinted (kr is one number): the base colour tints only the highlight and the diffuse rest");
         if (tintedGlass_ > 0)
-            note(counted(tintedGlass_, "glass material transmits", "glass materials transmit") +
+            note(gltfCounted(tintedGlass_, "glass material transmits", "glass materials transmit") +
                  " untinted (kt is one number): the base colour tints only the diffuse rest");
         std::vector<std::string> repaired = repairs_.phrases();
         if (allDegenerateTriangles_ > 0)
@@ -721,7 +721,7 @@ private:
                                std::to_string(allDegenerateTriangles_) + " triangles)");
         if (meshesWithUnusableUvs_ > 0)
             repaired.push_back("ignored the texture coordinates of " +
-                               counted(meshesWithUnusableUvs_, "mesh", "meshes") + " (" + firstUnusableUvs_ +
+                               gltfCounted(meshesWithUnusableUvs_, "mesh", "meshes") + " (" + firstUnusableUvs_ +
                                (meshesWithUnusableUvs_ > 1 ? ", ..." : "") + ")");
         if (!repaired.empty()) {
             std::string line;

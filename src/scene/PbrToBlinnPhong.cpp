@@ -10,7 +10,7 @@ namespace {
 constexpr float kDielectricF0 = 0.04f;
 constexpr float kMaxShininess = 4096.0f;
 // The caching cube mirrors and glass get; --technique and --cache-resolution override it.
-const CacheSettings kCached{CacheTechnique::Cct, 512};
+const CacheSettings kPbrCached{CacheTechnique::Cct, 512};
 
 Rgb mix(const Rgb& a, const Rgb& b, float t) {
     return a * (1.0f - t) + b * t;
@@ -57,7 +57,7 @@ Material blinnPhongFromPbr(const PbrMaterial& pbr) {
             // what is left of a gold mirror's tint.
             albedo = pbr.baseColor * (1.0f - m.reflectivity);
             m.specular = highlight(mix(Rgb(kDielectricF0), pbr.baseColor, pbr.metallic), pbr.roughness, m.shininess);
-            m.cache = kCached;
+            m.cache = kPbrCached;
             break;
         }
         case PbrMaterialKind::Glass: {
@@ -68,7 +68,7 @@ Material blinnPhongFromPbr(const PbrMaterial& pbr) {
             m.ior = pbr.ior;
             albedo = pbr.baseColor * (1.0f - transmitted);
             m.specular = highlight(mix(Rgb(f0), pbr.baseColor, pbr.metallic), pbr.roughness, m.shininess);
-            m.cache = kCached;
+            m.cache = kPbrCached;
             break;
         }
         case PbrMaterialKind::Diffuse:

@@ -55,7 +55,7 @@ constexpr std::uintmax_t kMaxSceneFileBytes = 64u << 20;
 
 // Shortest text that reads back as the same double ("-1", "0.25", "1e+39"),
 // except that whole numbers are written out ("1000000", not "1e+06").
-std::string formatNumber(double v) {
+std::string formatSceneNumber(double v) {
     if (v == std::floor(v) && std::fabs(v) < 1e15) return std::to_string(static_cast<long long>(v));
     std::array<char, 32> buf{};
     const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), v);
@@ -200,11 +200,11 @@ struct Range {
     }
     std::string describe() const {
         if (lo && hi && loInclusive && hiInclusive)
-            return "must be between " + formatNumber(*lo) + " and " + formatNumber(*hi);
+            return "must be between " + formatSceneNumber(*lo) + " and " + formatSceneNumber(*hi);
         std::string s = "must be";
-        if (lo) s += std::string(loInclusive ? " >= " : " > ") + formatNumber(*lo);
+        if (lo) s += std::string(loInclusive ? " >= " : " > ") + formatSceneNumber(*lo);
         if (lo && hi) s += " and";
-        if (hi) s += std::string(hiInclusive ? " <= " : " < ") + formatNumber(*hi);
+        if (hi) s += std::string(hiInclusive ? " <= " : " < ") + formatSceneNumber(*hi);
         return s;
     }
 };
@@ -368,16 +368,16 @@ private:
         // Everything downstream is float: a double beyond float range would
         // silently become infinity.
         if (std::fabs(d) > static_cast<double>(std::numeric_limits<float>::max()))
-            fail(n, "is too large to be represented (got " + formatNumber(d) + ")");
-        if (!range.contains(d)) fail(n, range.describe() + " (got " + formatNumber(d) + ")");
+            fail(n, "is too large to be represented (got " + formatSceneNumber(d) + ")");
+        if (!range.contains(d)) fail(n, range.describe() + " (got " + formatSceneNumber(d) + ")");
         return static_cast<float>(d);
     }
 
     int integer(const Node& n, int lo, int hi) const {
         const double d = numberValue(n);
-        if (d != std::floor(d)) fail(n, "must be a whole number (got " + formatNumber(d) + ")");
+        if (d != std::floor(d)) fail(n, "must be a whole number (got " + formatSceneNumber(d) + ")");
         const Range range = closed(lo, hi);
-        if (!range.contains(d)) fail(n, range.describe() + " (got " + formatNumber(d) + ")");
+        if (!range.contains(d)) fail(n, range.describe() + " (got " + formatSceneNumber(d) + ")");
         return static_cast<int>(d);
     }
 
@@ -701,7 +701,7 @@ private:
             const Node t = required(k, "time");
             const float time = number(t, closed(-kMaxAnimationSeconds, kMaxAnimationSeconds));
             if (!times.empty() && !(time > times.back()))
-                fail(t, "key times must increase (got " + formatNumber(time) + " after " + formatNumber(times.back()) + ")");
+                fail(t, "key times must increase (got " + formatSceneNumber(time) + " after " + formatSceneNumber(times.back()) + ")");
             times.push_back(time);
         }
         return keys;
@@ -746,7 +746,7 @@ private:
             const double reach = static_cast<double>(length(key.translate)) +
                                  static_cast<double>(std::max({key.scale.x, key.scale.y, key.scale.z})) * restReach;
             if (!(reach <= kMaxWorldCoordinate))
-                fail(k, "this key moves the object up to " + formatNumber(reach) + " from the origin, beyond the limit of " +
+                fail(k, "this key moves the object up to " + formatSceneNumber(reach) + " from the origin, beyond the limit of " +
                             formatFloat(kMaxWorldCoordinate) + " (floats are too coarse to trace beyond)");
             track.keys.push_back(key);
         }
@@ -961,8 +961,8 @@ private:
                 if (t.rotate) fail(t.rotate, "a sphere cannot be rotated (only translate and a uniform scale apply)");
                 const Vec3& s = t.scaleFactors;
                 if (t.scale && !(s.x == s.y && s.y == s.z))
-                    fail(t.scale, "a sphere needs a uniform scale (got [" + formatNumber(s.x) + ", " +
-                                      formatNumber(s.y) + ", " + formatNumber(s.z) + "])");
+                    fail(t.scale, "a sphere needs a uniform scale (got [" + formatSceneNumber(s.x) + ", " +
+                                      formatSceneNumber(s.y) + ", " + formatSceneNumber(s.z) + "])");
                 Sphere sphere;
                 if (const Node v = child(o, "center")) sphere.center = vec3(v);
                 if (const Node v = child(o, "radius")) sphere.radius = number(v, positive());
@@ -1017,7 +1017,7 @@ private:
                             formatFloat(sphere.center.y) + ", " + formatFloat(sphere.center.z) + "], radius " +
                             formatFloat(sphere.radius) + ") reaches " +
                             (reach <= std::numeric_limits<float>::max() ? formatFloat(static_cast<float>(reach))
-                                                                        : formatNumber(reach)) +
+                                                                        : formatSceneNumber(reach)) +
                             ", beyond the limit of ±" + formatFloat(kMaxWorldCoordinate) +
                             " on some axis (floats are too coarse to trace beyond)");
     }

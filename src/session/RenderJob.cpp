@@ -12,7 +12,7 @@ namespace raycache {
 namespace {
 
 constexpr int kMaxImageSide = 16384;
-constexpr int kMaxFrames = 1000000;
+constexpr int kMaxJobFrames = 1000000;
 
 CameraPath chooseCameraPath(const Scene& scene, const std::optional<std::string>& override) {
     if (!override) return scene.cameraPath;
@@ -55,8 +55,8 @@ std::optional<CacheTechnique> parseTechnique(const std::string& name) { return p
 void validateRenderJobOptions(const RenderJobOptions& o) {
     if (o.width < 1 || o.height < 1 || o.width > kMaxImageSide || o.height > kMaxImageSide)
         throw InputError("--width/--height must be between 1 and " + std::to_string(kMaxImageSide));
-    if (o.frames && (*o.frames < 1 || *o.frames > kMaxFrames))
-        throw InputError("--frames must be between 1 and " + std::to_string(kMaxFrames));
+    if (o.frames && (*o.frames < 1 || *o.frames > kMaxJobFrames))
+        throw InputError("--frames must be between 1 and " + std::to_string(kMaxJobFrames));
     if (!(std::isfinite(o.time) && std::fabs(o.time) <= kMaxAnimationSeconds))
         throw InputError("--time must be a finite number of seconds within ±" +
                          std::to_string(static_cast<int>(kMaxAnimationSeconds)));

@@ -13,7 +13,7 @@ namespace raycache {
 namespace {
 
 // room: one mirror sphere. 16² faces: 96 rows of 16 texels, 1536 texels.
-constexpr int kSize = 40;
+constexpr int kPrefillImageSize = 40;
 constexpr int kResolution = 16;
 constexpr int kRows = 6 * kResolution;
 constexpr int kCubeTexels = kRows * kResolution;
@@ -27,10 +27,10 @@ TEST(PrefillSpread, FillsTheSameCubeOverSeveralFramesWithinTheBudget) {
     constexpr std::int64_t kBudget = kRowsPerFrame * kResolution;
     constexpr int kFillFrames = (kRows + kRowsPerFrame - 1) / kRowsPerFrame;  // 10
     constexpr int kFrames = kFillFrames + 2;
-    const PathRender atOnce = renderPath("room", CacheTechnique::Cdct, kFrames, true, kSize, 2, kResolution);
-    const PathRender spread = renderPath("room", CacheTechnique::Cdct, kFrames, true, kSize, 2, kResolution, nullptr,
+    const PathRender atOnce = renderPath("room", CacheTechnique::Cdct, kFrames, true, kPrefillImageSize, 2, kResolution);
+    const PathRender spread = renderPath("room", CacheTechnique::Cdct, kFrames, true, kPrefillImageSize, 2, kResolution, nullptr,
                                          TileBalance::Dynamic, 1, kBudget);
-    const PathRender uncached = renderPath("room", CacheTechnique::None, kFrames, true, kSize, 2, kResolution);
+    const PathRender uncached = renderPath("room", CacheTechnique::None, kFrames, true, kPrefillImageSize, 2, kResolution);
     ASSERT_EQ(spread.frames.size(), static_cast<std::size_t>(kFrames));
 
     EXPECT_EQ(spread.texels, atOnce.texels);
@@ -56,7 +56,7 @@ TEST(PrefillSpread, FillsTheSameCubeOverSeveralFramesWithinTheBudget) {
 
 // A budget smaller than one row still makes progress: one row a frame.
 TEST(PrefillSpread, BudgetBelowOneRowTracesOneRowAFrame) {
-    const PathRender run = renderPath("room", CacheTechnique::Cdct, 4, true, kSize, 1, kResolution, nullptr,
+    const PathRender run = renderPath("room", CacheTechnique::Cdct, 4, true, kPrefillImageSize, 1, kResolution, nullptr,
                                       TileBalance::Dynamic, 1, /*prefillPerFrame=*/3);
     for (const FrameStats& s : run.stats) EXPECT_EQ(s.rays.prefill, static_cast<std::uint64_t>(kResolution));
 }

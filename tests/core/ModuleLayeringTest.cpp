@@ -43,10 +43,11 @@ int layerOf(std::string_view module) {
 TEST(ModuleLayering, EveryModuleOfSrcHasALayer) {
     const std::filesystem::path src = sourceTreeDir() / "src";
     ASSERT_TRUE(std::filesystem::is_directory(src)) << src;
-    for (const auto& entry : std::filesystem::directory_iterator(src))
-        if (entry.is_directory())
-            EXPECT_GE(layerOf(entry.path().filename().string()), 0)
-                << "src/" << entry.path().filename().string() << " is not in kLayers: give it its place";
+    for (const auto& entry : std::filesystem::directory_iterator(src)) {
+        if (!entry.is_directory()) continue;
+        EXPECT_GE(layerOf(entry.path().filename().string()), 0)
+            << "src/" << entry.path().filename().string() << " is not in kLayers: give it its place";
+    }
 }
 
 TEST(ModuleLayering, NoIncludePointsToAHigherModule) {

@@ -43,7 +43,7 @@ Scene checkerWallScene() {
 
 // The analytic camera (5 from the wall) slid parallel to it by `right` and
 // `up` pixels at the wall's distance.
-Camera slid(float right, float up) {
+Camera slidTextureCamera(float right, float up) {
     const Camera camera = analytic::analyticCamera();
     const double pixel = 2.0 * 5.0 * std::tan(20.0 * std::numbers::pi / 180.0) / kTextureHeight;
     const Vec3 step{static_cast<float>(right * pixel), static_cast<float>(up * pixel), 0.0f};
@@ -54,7 +54,7 @@ Camera slid(float right, float up) {
 }
 // Frame f's camera: 0.37 pixels right and 0.23 up per frame, never on a
 // whole pixel within kTextureFrames.
-Camera cameraOfFrame(int frame) { return slid(0.37f * static_cast<float>(frame), 0.23f * static_cast<float>(frame)); }
+Camera cameraOfFrame(int frame) { return slidTextureCamera(0.37f * static_cast<float>(frame), 0.23f * static_cast<float>(frame)); }
 
 RenderSettings settingsWith(bool refetch, int threads) {
     RenderSettings s;

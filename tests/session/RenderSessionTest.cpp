@@ -16,7 +16,7 @@ using namespace raycache;
 
 namespace {
 
-RenderSettings smallSettings(CacheTechnique technique) {
+RenderSettings smallSessionSettings(CacheTechnique technique) {
     RenderSettings s;
     s.width = s.height = 48;
     s.threads = 2;
@@ -36,7 +36,7 @@ TEST(RenderSession, RendersWhatTheHandAssembledPartsRender) {
     const auto scene = makeBuiltinScene("grid-8");
     ASSERT_TRUE(scene.has_value());
     for (CacheTechnique technique : {CacheTechnique::None, CacheTechnique::Cct}) {
-        const RenderSettings settings = smallSettings(technique);
+        const RenderSettings settings = smallSessionSettings(technique);
         RenderSession session(*scene, settings);
         const TraceScene tracer(*scene);
         const Parallel parallel(settings.threads);
@@ -58,7 +58,7 @@ TEST(RenderSession, RendersWhatTheHandAssembledPartsRender) {
 TEST(RenderSession, ResizeKeepsTheCaches) {
     const auto scene = makeBuiltinScene("grid-1");
     ASSERT_TRUE(scene.has_value());
-    RenderSession session(*scene, smallSettings(CacheTechnique::Cct));
+    RenderSession session(*scene, smallSessionSettings(CacheTechnique::Cct));
     Image film;
     session.render(scene->camera, film);
     int mirror = 0;
@@ -118,7 +118,7 @@ TEST(CacheFrame, AFrameLeftUnfinishedStillAppliesItsStoresAndLeavesTheCacheReady
 TEST(RenderSession, StageTimesCountTheCameraRaysThatHit) {
     const auto scene = makeBuiltinScene("grid-8");
     ASSERT_TRUE(scene.has_value());
-    RenderSettings settings = smallSettings(CacheTechnique::None);
+    RenderSettings settings = smallSessionSettings(CacheTechnique::None);
     settings.maxDepth = 1;
     settings.stageTimes = true;
     RenderSession session(*scene, settings);

@@ -13,7 +13,7 @@ namespace raycache {
 
 namespace {
 
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
+constexpr double kFrustumInfinity = std::numeric_limits<double>::infinity();
 // A camera packet's key: its column (i, j), whether it crosses the near
 // zone, and its shear axes (kz, then kx; ky follows), in one integer.
 constexpr int kColumnBits = 24;
@@ -109,7 +109,7 @@ FrustumGrid::CellRange FrustumGrid::binPrimitive(std::uint32_t primitive, bool& 
     const double m = spec_.margin;
     bool isBox = false;
     Polygon polygon = cornersOf(frame, *primitives_, primitive, isBox);
-    FrameBox bounds{{kInfinity, kInfinity, kInfinity}, {-kInfinity, -kInfinity, -kInfinity}};
+    FrameBox bounds{{kFrustumInfinity, kFrustumInfinity, kFrustumInfinity}, {-kFrustumInfinity, -kFrustumInfinity, -kFrustumInfinity}};
     for (int i = 0; i < polygon.count; ++i) {
         const PolygonPoint& p = polygon.points[i];
         bounds.lo = {std::min(bounds.lo.x, p.x), std::min(bounds.lo.y, p.y), std::min(bounds.lo.z, p.z)};
@@ -123,7 +123,7 @@ FrustumGrid::CellRange FrustumGrid::binPrimitive(std::uint32_t primitive, bool& 
     }
     const double zA = std::max(bounds.lo.z - m, zLo_), zB = std::min(bounds.hi.z + m, zHi_);
     if (zA > zB) return kNoCells;
-    double sLo = kInfinity, sHi = -kInfinity, tLo = kInfinity, tHi = -kInfinity;
+    double sLo = kFrustumInfinity, sHi = -kFrustumInfinity, tLo = kFrustumInfinity, tHi = -kFrustumInfinity;
     if (frame.perspective()) {
         // Only the part in front of the first slice projects into the grid.
         if (bounds.lo.z < zLo_) {
@@ -208,7 +208,7 @@ void FrustumGrid::binPrimitives(std::uint32_t first, std::uint32_t count, Primit
             z[k][l] = c[static_cast<std::size_t>(3 * k + 2)];
         }
     }
-    DoubleLanes loX = kInfinity + DoubleLanes{}, loY = loX, loZ = loX, hiX = -loX, hiY = hiX, hiZ = hiX;
+    DoubleLanes loX = kFrustumInfinity + DoubleLanes{}, loY = loX, loZ = loX, hiX = -loX, hiY = hiX, hiZ = hiX;
     for (int k = 0; k < 3; ++k) {
         frame.toFrame(x[k], y[k], z[k]);
         keepMin(loX, x[k]);
@@ -230,7 +230,7 @@ void FrustumGrid::binPrimitives(std::uint32_t first, std::uint32_t count, Primit
     const LaneMask clipped = frame.perspective() ? loZ < zLo_ : LaneMask{};
     DoubleLanes sLo, sHi, tLo, tHi;
     if (frame.perspective()) {
-        sLo = tLo = kInfinity + DoubleLanes{};
+        sLo = tLo = kFrustumInfinity + DoubleLanes{};
         sHi = tHi = -sLo;
         for (int k = 0; k < 3; ++k) {
             // One division: x (1/z) is within an ulp or two of x/z, far below the margin.
@@ -336,7 +336,7 @@ void FrustumGrid::build(const FrustumGridSpec& spec, const GridPrimitives& primi
     // 1. The depth range of all geometry in this frame (of the candidates):
     //    beyond it a ray meets nothing.
     struct BlockDepth {
-        double lo = kInfinity, hi = -kInfinity;
+        double lo = kFrustumInfinity, hi = -kFrustumInfinity;
         std::uint32_t candidates = 0;
     };
     std::vector<BlockDepth> blockDepth(static_cast<std::size_t>(blocks));
@@ -349,8 +349,8 @@ void FrustumGrid::build(const FrustumGridSpec& spec, const GridPrimitives& primi
                 ++depth.candidates;
             }
     });
-    geometryZLo_ = kInfinity;
-    geometryZHi_ = -kInfinity;
+    geometryZLo_ = kFrustumInfinity;
+    geometryZHi_ = -kFrustumInfinity;
     std::uint32_t candidates = 0;
     for (const BlockDepth& depth : blockDepth) {
         geometryZLo_ = std::min(geometryZLo_, depth.lo - spec_.margin);
@@ -554,7 +554,7 @@ void FrustumGrid::generalTraversals(std::span<const Ray> rays, Traversal* out, C
     LaneMask finiteA, finiteB;
     if (frame.perspective() && geometryZLo_ < spec_.zNear) {
         DoubleLanes na = ta, nb = tb;
-        clipDepthLanes(oz, dz, inverseDz, -kInfinity, spec_.zNear, na, nb, clipped);
+        clipDepthLanes(oz, dz, inverseDz, -kFrustumInfinity, spec_.zNear, na, nb, clipped);
         const LaneMask crosses = open & clipped;
         LaneMask insideA, insideB;
         markFinite(na, finiteA);
@@ -568,12 +568,12 @@ void FrustumGrid::generalTraversals(std::span<const Ray> rays, Traversal* out, C
     }
     if (zLo_ > zHi_) open = LaneMask{};
     DoubleLanes ga = ta, gb = tb;
-    clipDepthLanes(oz, dz, inverseDz, zLo_, kInfinity, ga, gb, clipped);
+    clipDepthLanes(oz, dz, inverseDz, zLo_, kFrustumInfinity, ga, gb, clipped);
     open &= clipped;
     // Geometry beyond the last slice (a light grid ends at the farthest shadow-ray origin).
     if (zHi_ < geometryZHi_) {
         DoubleLanes fa = ga, fb = gb;
-        clipDepthLanes(oz, dz, inverseDz, zHi_ + spec_.margin, kInfinity, fa, fb, clipped);
+        clipDepthLanes(oz, dz, inverseDz, zHi_ + spec_.margin, kFrustumInfinity, fa, fb, clipped);
         const LaneMask beyond = open & clipped;
         refused |= beyond;
         open &= ~beyond;
@@ -849,7 +849,7 @@ void FrustumGrid::intersectPacket(std::span<const Ray> rays, std::span<const std
     // too, the same all along them. Padding lanes repeat lane 0.
     static_assert(kLanes % kDoubleLanes == 0);
     const GridFrame& frame = spec_.frame;
-    DoubleLanes sLo = kInfinity + DoubleLanes{}, sHi = -sLo, tLo = sLo, tHi = sHi;
+    DoubleLanes sLo = kFrustumInfinity + DoubleLanes{}, sHi = -sLo, tLo = sLo, tHi = sHi;
     for (std::size_t l = 0; l < kLanes; l += kDoubleLanes) {
         DoubleLanes x, y, z;
         for (int k = 0; k < kDoubleLanes; ++k) {
@@ -1121,7 +1121,7 @@ std::vector<Vec3> FrustumGrid::occupiedColumnCorners() const {
     // quarter of the points.
     const std::size_t across = static_cast<std::size_t>(spec_.nx) + 1;
     const std::size_t latticeCorners = across * (static_cast<std::size_t>(spec_.ny) + 1);
-    std::vector<double> nearest(latticeCorners, kInfinity), farthest(latticeCorners, -kInfinity);
+    std::vector<double> nearest(latticeCorners, kFrustumInfinity), farthest(latticeCorners, -kFrustumInfinity);
     for (int j = 0; j < spec_.ny; ++j)
         for (int i = 0; i < spec_.nx; ++i) {
             int first = -1, last = -1;
