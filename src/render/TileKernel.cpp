@@ -92,10 +92,7 @@ void TileKernel::renderCameraTile(const CameraRays& cameraRays, const TileRange&
     resolveNodes(s, cache, tileKey);
     fillFromVisiblePoints(s, cache, cameraRays.ray(tile.x0, tile.y0).origin);
     StageTimer timer(settings_.stageTimes, s.stages.compose);
-    // Row by row: no division per pixel to find its place.
-    std::size_t root = 0;
-    for (int y = tile.y0; y < tile.y1; ++y)
-        for (int x = tile.x0; x < tile.x1; ++x, ++root) film.at(x, y) = s.nodes[root].color();
+    composeTile(s, tile, film);
     if (levels) writeLevelRecord(s, tile, *levels);
 }
 
@@ -138,9 +135,7 @@ void TileKernel::renderGBufferTile(const CameraRays& cameraRays, const GBufferVi
     const auto t1 = Clock::now();
     {
         StageTimer timer(settings_.stageTimes, s.stages.compose);
-        std::size_t root = 0;
-        for (int y = tile.y0; y < tile.y1; ++y)
-            for (int x = tile.x0; x < tile.x1; ++x, ++root) film.at(x, y) = s.nodes[root].color();
+        composeTile(s, tile, film);
         if (levels) writeLevelRecord(s, tile, *levels);
     }
     s.compose += Clock::now() - t1;
@@ -517,11 +512,12 @@ void TileKernel::spawnSecondaryRays(TileScratch& s, CacheWorker* cache) const {
         // A cube that stands aside this frame (cache/CachePolicy.h) is not
         // asked: its rays go straight to tracing, as without a cache, and
         // cost no lookup, no miss bookkeeping and no store.
-        if (leavesObject && cache && cache_->cachesObject(v.hit.objectId) && !cache_->bypassed(v.hit.objectId)) {
+        const bool cached = leavesObject && cache && cache_->cachesObject(v.hit.objectId);
+        if (cached && !cache_->bypassed(v.hit.objectId)) {
             s.leaving.push_back({ray, v.hit.objectId, node, pathWeight, v.depth + 1, kind, cone});
             added.tracked = s.trackTrees;
         } else {
-            if (leavesObject && cache && cache_->cachesObject(v.hit.objectId)) {
+            if (cached) {
                 cache_->countBypassedRay(v.hit.objectId, *cache);
                 // Asked nothing, so traced: what the level record shows for it.
                 if (s.recordLevels) noteRootLevel(s, node, pathWeight, CacheLevelImage::kTraced);
@@ -649,6 +645,13 @@ void TileKernel::noteRootLevel(TileScratch& s, int node, float pathWeight, std::
     if (s.rootLevels[r] != CacheLevelImage::kNoCachingRay && !(pathWeight > s.rootLevelWeights[r])) return;
     s.rootLevels[r] = level;
     s.rootLevelWeights[r] = pathWeight;
+}
+
+void TileKernel::composeTile(const TileScratch& s, const TileRange& tile, Image& film) {
+    // Row by row: no division per pixel to find its place.
+    std::size_t root = 0;
+    for (int y = tile.y0; y < tile.y1; ++y)
+        for (int x = tile.x0; x < tile.x1; ++x, ++root) film.at(x, y) = s.nodes[root].color();
 }
 
 void TileKernel::writeLevelRecord(const TileScratch& s, const TileRange& tile, CacheLevelImage& levels) {

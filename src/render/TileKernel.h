@@ -265,6 +265,8 @@ private:
     // batch of lookups may replace a root's value (CacheLevelImage says which
     // lookup a pixel keeps); the tile's pixels are written at the end.
     static void beginLevelRecord(TileScratch& s, std::size_t roots);
+    // The tile's root colours into the film (roots in row order).
+    static void composeTile(const TileScratch& s, const TileRange& tile, Image& film);
     static void recordLookupLevels(TileScratch& s);
     // Records `level` for the pixel at the root of `node`'s tree, unless a
     // weightier (or as weighty and earlier) ray of that pixel was recorded.
