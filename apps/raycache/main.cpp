@@ -80,8 +80,9 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
     command.add_option("--cache-policy", job.cachePolicy,
                        "auto: a cube whose lookups would cost more than they save (judged every frame from its hit, "
                        "lookup and store counts, never the clock) stands aside, its rays traced directly, and "
-                       "probes again after 4, 8, ... 64 frames; always: every cube caches every frame, as the "
-                       "documents did (docs/caching.md)")
+                       "probes again after 8, 16, ... 64 frames; a CCT cube judges on a sample of 1 texel in 16 "
+                       "first and caches fully only when the sample pays; always: every cube caches every frame, "
+                       "as the documents did (docs/caching.md)")
         ->capture_default_str();
     command.add_flag("--cache-ideal", job.cacheIdeal,
                      "Benchmark switch: cache misses return black instead of being traced");

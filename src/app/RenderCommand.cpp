@@ -39,15 +39,16 @@ nlohmann::json cacheJson(const FrameCacheStats& c) {
                            {"cdct_steps_histogram", o.cdctStepsHistogram},
                            {"invalid_percent_before", o.invalidPercentBefore}, {"bytes", o.bytes},
                            // The cache policy (docs/caching.md, "Caching that never costs").
-                           {"policy", {{"state", o.bypassed ? "bypassed" : "caching"},
-                                       {"next", o.bypassedNext ? "bypassed" : "caching"},
+                           {"policy", {{"state", o.bypassed ? "bypassed" : o.sampling ? "sampling" : "caching"},
+                                       {"next", o.bypassedNext ? "bypassed" : o.samplingNext ? "sampling" : "caching"},
                                        {"bypassed_rays", o.bypassedRays}, {"stores_queued", o.queuedStores},
-                                       {"frames_caching", o.framesCaching}, {"frames_bypassed", o.framesBypassed},
+                                       {"frames_caching", o.framesCaching}, {"frames_sampling", o.framesSampling},
+                                       {"frames_bypassed", o.framesBypassed},
                                        {"mean_tree_rays", o.meanTree}, {"saving_rays", o.policySaving},
                                        {"cost_rays", o.policyCost}}}});
     return {{"lookups", c.lookups()}, {"hits", c.hits()}, {"misses", c.misses()}, {"rejected", c.rejected()},
             {"own_surface", c.ownSurface()}, {"view_dependent", c.viewDependent()}, {"stores", c.stores()}, {"stores_skipped", c.skippedStores()}, {"prefilled_texels", c.prefilledTexels()},
-            {"bypassed_cubes", c.bypassedCubes()}, {"bypassed_rays", c.bypassedRays()},
+            {"bypassed_cubes", c.bypassedCubes()}, {"sampling_cubes", c.samplingCubes()}, {"bypassed_rays", c.bypassedRays()},
             {"invalid_percent_before", c.invalidPercentBefore()}, {"bytes", c.bytes()}, {"objects", objects}};
 }
 

@@ -12,30 +12,56 @@ std::optional<CachePolicyMode> parseCachePolicyMode(std::string_view text) {
 
 const char* cachePolicyModeName(CachePolicyMode mode) { return mode == CachePolicyMode::Auto ? "auto" : "always"; }
 
+const char* cubeStateName(CubeState state) {
+    switch (state) {
+    case CubeState::Sampling: return "sampling";
+    case CubeState::Bypassed: return "bypassed";
+    default: return "caching";
+    }
+}
+
 CubePolicy::Judgement CubePolicy::afterFrame(const CubeFrameCounts& counts) {
     if (bypassed()) {
         ++framesBypassed_;
-        --bypassLeft_;  // at 0, the next frame is a probe
+        if (--bypassLeft_ == 0) {
+            // The next frame probes. A sampling cube probes over two frames:
+            // one refreshes the sample from where the camera is now, the
+            // next is judged, so the verdict reads frame-to-frame reuse, not
+            // what the sample kept from before the bypass.
+            if (samplesTexels_) {
+                state_ = CubeState::Sampling;
+                warmedUp_ = false;
+            } else {
+                state_ = CubeState::Caching;
+            }
+        }
         return {};
     }
-    ++framesCaching_;
+    ++(sampling() ? framesSampling_ : framesCaching_);
     if (counts.tracedTrees > 0)
         meanTree_ = static_cast<double>(counts.treeRays) / static_cast<double>(counts.tracedTrees);
     Judgement j;
     j.saving = static_cast<double>(counts.hits) * std::max(meanTree_, CachePolicyCosts::kMinimumTree);
     j.cost = static_cast<double>(counts.lookups) * costs_.lookup + static_cast<double>(counts.queuedStores) * costs_.store +
              static_cast<double>(counts.cdctSteps) * costs_.cdctStep;
-    // The first frame of an empty cube only fills it: its stores are an
-    // investment the following frames judge.
+    // The first frame of an empty cube (or sample) only fills it: its stores
+    // are an investment the following frames judge.
     const bool warmUp = !warmedUp_;
     warmedUp_ = true;
     if (mode_ != CachePolicyMode::Auto || warmUp) return j;
     j.judged = true;
     if (j.cost > j.saving) {
+        state_ = CubeState::Bypassed;
         bypassLeft_ = backoff_;
         backoff_ = std::min(2 * backoff_, kLongestBackoff);
     } else {
         backoff_ = kFirstBackoff;
+        if (sampling()) {
+            // The sample pays: full caching, whose first frame fills the other
+            // texels and is not judged.
+            state_ = CubeState::Caching;
+            warmedUp_ = false;
+        }
     }
     return j;
 }

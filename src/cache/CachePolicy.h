@@ -7,6 +7,16 @@
 // directly and nothing is looked up or stored. It probes again after a
 // back-off that doubles with every probe that still loses.
 //
+// A CCT cube gathers its evidence on a sample: while it samples, only the
+// rays whose texel is one of a fixed 1 in 16 of the cube's texels are looked
+// up and stored, the rest are traced as if it stood aside. Since the sample
+// is chosen by texel, a sampled ray hits exactly when it would under full
+// caching, so the sample's counts judge full caching at a sixteenth of its
+// cost: a cube starts by sampling (one frame to fill the sample, one judged),
+// and probes the same way after standing aside. Only a sample that pays
+// turns full caching on; its first full frame fills the rest and is not
+// judged. A CDCT lookup searches many texels, so its cubes judge full frames.
+//
 // Never the clock: the counts are integers summed over every worker (and every
 // process), so the decision, and the image, are the same on any thread count
 // and in any cluster job.
@@ -52,34 +62,63 @@ struct CubeFrameCounts {
     std::uint64_t cdctSteps = 0;
 };
 
+// What a cube does during a frame.
+enum class CubeState : unsigned char {
+    Caching,   // every ray leaving the object is looked up; misses are stored
+    Sampling,  // only rays of sampled texels (CubePolicy::sampledTexel) are;
+               // the others are traced without asking
+    Bypassed,  // no ray is looked up or stored: all are traced
+};
+const char* cubeStateName(CubeState state);
+
 class CubePolicy {
 public:
     // Frames bypassed before the first probe, and the most between probes.
-    static constexpr int kFirstBackoff = 4;
+    // A probe costs: two sampled frames (each about 5 % above an uncached
+    // frame on grid-32's orbit) or one full frame for a CDCT cube.
+    static constexpr int kFirstBackoff = 8;
     static constexpr int kLongestBackoff = 64;
+    // The sample: 1 texel in 2^kSampleBits.
+    static constexpr int kSampleBits = 4;
 
     CubePolicy() = default;
-    CubePolicy(CachePolicyMode mode, const CachePolicyCosts& costs) : mode_(mode), costs_(costs) {}
+    // `samplesTexels`: whether the cube's evidence may come from a sample of
+    // its texels (CCT cubes; see above). Only `auto` ever samples or bypasses.
+    CubePolicy(CachePolicyMode mode, const CachePolicyCosts& costs, bool samplesTexels = false)
+        : mode_(mode), costs_(costs), samplesTexels_(samplesTexels && mode == CachePolicyMode::Auto),
+          state_(samplesTexels_ ? CubeState::Sampling : CubeState::Caching) {}
 
-    // Whether the cube is stepped aside during the coming frame.
-    bool bypassed() const { return bypassLeft_ > 0; }
+    // What the cube does during the coming frame.
+    CubeState state() const { return state_; }
+    bool bypassed() const { return state_ == CubeState::Bypassed; }
+    bool sampling() const { return state_ == CubeState::Sampling; }
+    // Whether texel `texel` belongs to the sample: a fixed, scattered 1 in 16
+    // of a cube's texels (a multiplicative hash of the index).
+    static bool sampledTexel(int texel) {
+        return (static_cast<std::uint32_t>(texel) * 2654435761u) >> (32 - kSampleBits) == 0;
+    }
+    // Whether a ray addressed to `texel` is looked up (and stored) this frame.
+    bool admitsTexel(int texel) const {
+        return state_ == CubeState::Caching || (state_ == CubeState::Sampling && sampledTexel(texel));
+    }
 
     // The model's figures for the frame just judged (0 for a bypassed frame).
     struct Judgement {
         double saving = 0.0;  // traced rays the hits spared
         double cost = 0.0;    // traced rays' worth of lookups, stores, searches
-        bool judged = false;  // false: a bypassed frame, the warm-up frame, or `always`
+        bool judged = false;  // false: a bypassed frame, a warm-up frame, or `always`
     };
     // After a frame: judges it (when the cube cached it) and sets the state
     // of the next frame. `counts` are the whole frame's.
     Judgement afterFrame(const CubeFrameCounts& counts);
-    // The cube was emptied (RayCache::clear): its next caching frame fills it
-    // again and is not judged.
+    // The cube was emptied (RayCache::clear): its next caching or sampling
+    // frame fills it again and is not judged.
     void restart() { warmedUp_ = false; }
 
     // Frames so far in each state, and the traced tree a hit replaces (mean
     // of the last frame that traced one; 0 before any).
     std::uint64_t framesCaching() const { return framesCaching_; }
+    std::uint64_t framesSampling() const { return framesSampling_; }
     std::uint64_t framesBypassed() const { return framesBypassed_; }
     double meanTree() const { return meanTree_; }
     // Frames of bypass the next losing probe would earn.
@@ -88,11 +127,15 @@ public:
 private:
     CachePolicyMode mode_ = CachePolicyMode::Always;
     CachePolicyCosts costs_{};
+    bool samplesTexels_ = false;
+    CubeState state_ = CubeState::Caching;
     int bypassLeft_ = 0;
     int backoff_ = kFirstBackoff;
-    bool warmedUp_ = false;  // the cube cached a frame since it was built or emptied
+    // The cube cached (or sampled) a frame since it was built, emptied,
+    // turned to full caching, or came back from standing aside to sample.
+    bool warmedUp_ = false;
     double meanTree_ = 0.0;
-    std::uint64_t framesCaching_ = 0, framesBypassed_ = 0;
+    std::uint64_t framesCaching_ = 0, framesSampling_ = 0, framesBypassed_ = 0;
 };
 
 }  // namespace raycache

@@ -56,11 +56,15 @@ struct ObjectCacheStats {
     std::size_t bytes = 0;              // memory of the cube's texels (all levels)
     // The cache policy (cache/CachePolicy.h, --cache-policy): whether the cube
     // stepped aside during this frame (its rays traced directly, nothing
-    // looked up or stored), and whether it will during the next.
+    // looked up or stored) or only sampled (rays of 1 texel in 16 looked up),
+    // and whether it will during the next. Neither: it cached.
     bool bypassed = false;
     bool bypassedNext = false;
-    std::uint64_t bypassedRays = 0;     // rays that left the object while it stood aside: traced
+    bool sampling = false;
+    bool samplingNext = false;
+    std::uint64_t bypassedRays = 0;     // rays that left the object while it stood aside or out of its sample: traced
     std::uint64_t framesCaching = 0;    // frames so far in each state, this one included
+    std::uint64_t framesSampling = 0;
     std::uint64_t framesBypassed = 0;
     std::uint64_t queuedStores = 0;     // stores asked for this frame (before merge)
     double meanTree = 0.0;              // rays of the traced tree a hit replaces (the last frame that traced one)
@@ -88,6 +92,11 @@ struct FrameCacheStats {
     int bypassedCubes() const {
         int n = 0;
         for (const auto& o : objects) n += o.bypassed ? 1 : 0;
+        return n;
+    }
+    int samplingCubes() const {
+        int n = 0;
+        for (const auto& o : objects) n += o.sampling ? 1 : 0;
         return n;
     }
     std::uint64_t hitsAtLevel(int level) const {

@@ -167,7 +167,10 @@ RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings)
         if (oracle_) e.storedTrees.resize(e.cube.texelCount());
         if (tracksDependencies_) e.droppedBits.assign((e.cube.texelCount() + 63) / 64, 0);
         const bool mayStepAside = !settings.ideal && !settings.invalidationOracle;
-        e.policy = CubePolicy(mayStepAside ? settings.policy : CachePolicyMode::Always, settings.policyCosts);
+        // A CCT lookup reads the one texel its store would write, so a sample
+        // of texels shows what full caching would hit; a CDCT search does not.
+        e.policy = CubePolicy(mayStepAside ? settings.policy : CachePolicyMode::Always, settings.policyCosts,
+                              technique == CacheTechnique::Cct);
     }
     const bool anyCct = std::any_of(cubes_.begin(), cubes_.end(), [](const Entry& e) { return e.technique == CacheTechnique::Cct; });
     if (anyCct) visibleFill_ = settings.visibleFill;
@@ -600,6 +603,7 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
         // The policy judges the frame from counts summed over every worker
         // (and, in a cluster job, every process): the same decision everywhere.
         s.bypassed = e.policy.bypassed();
+        s.sampling = e.policy.sampling();
         s.bypassedRays = all.bypassed;
         s.queuedStores = all.queuedStores;
         const CubePolicy::Judgement judged = e.policy.afterFrame(
@@ -607,7 +611,9 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
         s.policySaving = judged.saving;
         s.policyCost = judged.cost;
         s.bypassedNext = e.policy.bypassed();
+        s.samplingNext = e.policy.sampling();
         s.framesCaching = e.policy.framesCaching();
+        s.framesSampling = e.policy.framesSampling();
         s.framesBypassed = e.policy.framesBypassed();
         s.meanTree = e.policy.meanTree();
         if (e.view.fullSize() > 0) {
@@ -815,7 +821,9 @@ std::optional<Rgb> RayCache::lookupAnswer(int objectId, const Vec3& origin, cons
                                           CacheWorker& worker, bool meetsOwnSurface) const {
     const auto c = static_cast<std::size_t>(cubeIndexOf(objectId));
     CacheWorker::Counters& counters = worker.counters_[c];
-    if (cubes_[c].policy.bypassed()) {
+    const CubePolicy& policy = cubes_[c].policy;
+    if (policy.bypassed() ||
+        (policy.sampling() && !CubePolicy::sampledTexel(cubes_[c].cube.texelIndexFor(direction)))) {
         ++counters.bypassed;
         return std::nullopt;
     }
@@ -864,6 +872,7 @@ void RayCache::store(int objectId, const Vec3& origin, const Vec3& direction, co
         if (multiLevel_) worker.pendingSeen_.push_back(seen);
     };
     if (knownTexel >= 0) {
+        if (!cubes_[c].policy.admitsTexel(knownTexel)) return;
         worker.queue({static_cast<std::uint32_t>(c), knownTexel, CachingCube::encodeTexel(color), CachingCube::kInvalidDepth});
         queueSeen();
         queueTree();
@@ -892,7 +901,7 @@ void RayCache::store(int objectId, const Vec3& origin, const Vec3& direction, co
         texel = cube.texelIndexFor(direction);
     }
     // Lookups read the frame-start state, so only texels invalid then are worth queuing.
-    if (cube.isValid(texel)) return;
+    if (cube.isValid(texel) || !cubes_[c].policy.admitsTexel(texel)) return;
     worker.queue({static_cast<std::uint32_t>(c), texel, CachingCube::encodeTexel(color), depth});
     queueSeen();
     queueTree();
@@ -942,7 +951,7 @@ void RayCache::lookupBatchAs(std::span<const Query> queries, std::span<Rgb> colo
     // Chunks small enough for the texel indices to stay on the stack and the
     // prefetched lines to stay in L1/L2 until they are read.
     constexpr std::size_t kChunk = 64;
-    // A query of a cube that stands aside this frame (texel[k]).
+    // A query of a cube that stands aside this frame, or out of its sample (texel[k]).
     constexpr int kBypassedQuery = -2;
     std::array<int, kChunk> texel;
     for (std::size_t base = 0; base < queries.size(); base += kChunk) {
@@ -957,6 +966,10 @@ void RayCache::lookupBatchAs(std::span<const Query> queries, std::span<Rgb> colo
             }
             if (e.technique != CacheTechnique::Cct) continue;
             texel[k] = e.cube.texelIndexFor(q.direction);
+            if (!e.policy.admitsTexel(texel[k])) {  // out of a sampling cube's sample
+                texel[k] = kBypassedQuery;
+                continue;
+            }
             __builtin_prefetch(e.cube.validWordOf(texel[k]));
         }
         for (std::size_t k = 0; k < count; ++k) {

@@ -340,8 +340,20 @@ public:
         const int c = cubeIndexOf(objectId);
         return c >= 0 && cubes_[static_cast<std::size_t>(c)].policy.bypassed();
     }
-    // Counts a ray that left `objectId` while its cube stood aside, traced
-    // without asking the cube (the tile kernel routes such rays around the
+    // Whether a ray leaving `objectId` along `direction` is looked up this
+    // frame: always while its cube caches, never while it stands aside, and
+    // while it samples only when the ray's texel is in the sample
+    // (cache/CachePolicy.h). The tile kernel traces the others directly.
+    bool admits(int objectId, const Vec3& direction) const {
+        const Entry& e = cubes_[static_cast<std::size_t>(cubeIndexOf(objectId))];
+        switch (e.policy.state()) {
+        case CubeState::Caching: return true;
+        case CubeState::Bypassed: return false;
+        default: return CubePolicy::sampledTexel(e.cube.texelIndexFor(direction));
+        }
+    }
+    // Counts a ray that left `objectId` while its cube stood aside (or out of
+    // its sample), traced without asking the cube (the tile kernel routes such rays around the
     // lookups; ObjectCacheStats::bypassedRays).
     void countBypassedRay(int objectId, CacheWorker& worker) const {
         ++worker.counters_[static_cast<std::size_t>(cubeIndexOf(objectId))].bypassed;
@@ -356,7 +368,8 @@ public:
     // without it counts as depending on everything. `tracedRays`: the rays
     // its tree traced (the ray itself, shadow rays, later bounces), for the
     // cache policy's estimate of what a hit spares; 0 when not counted.
-    // Nothing is queued for a cube that stands aside (bypassed()).
+    // Nothing is queued for a cube that stands aside (bypassed()), nor for a
+    // texel outside the sample of a sampling cube.
     void store(int objectId, const Vec3& origin, const Vec3& direction, const Rgb& color, float hitDistance,
                CacheWorker& worker, int knownTexel = -1, const RayTreeRecord* tree = nullptr,
                std::uint32_t tracedRays = 0) const;

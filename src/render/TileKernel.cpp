@@ -509,11 +509,12 @@ void TileKernel::spawnSecondaryRays(TileScratch& s, CacheWorker* cache) const {
         added.parent = v.node;
         added.weightInParent = share;
         const float pathWeight = v.pathWeight * share;
-        // A cube that stands aside this frame (cache/CachePolicy.h) is not
-        // asked: its rays go straight to tracing, as without a cache, and
-        // cost no lookup, no miss bookkeeping and no store.
+        // A cube that stands aside this frame (cache/CachePolicy.h), or a ray
+        // out of a sampling cube's sample, is not asked: such rays go straight
+        // to tracing, as without a cache, and cost no lookup, no miss
+        // bookkeeping and no store.
         const bool cached = leavesObject && cache && cache_->cachesObject(v.hit.objectId);
-        if (cached && !cache_->bypassed(v.hit.objectId)) {
+        if (cached && cache_->admits(v.hit.objectId, ray.direction)) {
             s.leaving.push_back({ray, v.hit.objectId, node, pathWeight, v.depth + 1, kind, cone});
             added.tracked = s.trackTrees;
         } else {

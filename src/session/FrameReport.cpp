@@ -28,10 +28,12 @@ std::string formatFrameLine(const FrameResult& r, int frameCount) {
         line << "  cache: " << c->objects.size() << (c->objects.size() == 1 ? " cube" : " cubes") << ", hits " << formatFixed(hitRate, 1) << "% of "
              << c->lookups() << ", stores " << c->stores();
         if (c->skippedStores()) line << " (" << c->skippedStores() << " skipped: reached what moved)";
-        if (const int aside = c->bypassedCubes()) {
-            // The cache policy stepped these cubes aside: their rays were traced.
-            line << ", bypassed " << aside << "/" << c->objects.size() << " (" << c->bypassedRays() << " rays traced)";
-        }
+        const int aside = c->bypassedCubes(), sampling = c->samplingCubes();
+        if (aside) line << ", bypassed " << aside << "/" << c->objects.size();
+        if (sampling) line << ", sampling " << sampling << "/" << c->objects.size();
+        // The cache policy stepped these cubes aside or had them sample: the
+        // rays they did not look up were traced.
+        if (aside || sampling) line << " (" << c->bypassedRays() << " rays traced)";
         {
             // The cache policy's model of the frame, in traced rays.
             double saving = 0.0, cost = 0.0;

@@ -161,8 +161,9 @@ void drawCubeTable(const FrameCacheStats& c) {
             ImGui::TableNextColumn();
             ImGui::Text("%.2f", static_cast<double>(o.bytes) / kMiB);
             ImGui::TableNextColumn();
-            ImGui::Text("%s (%llu/%llu)", o.bypassed ? "bypassed" : "caching",
+            ImGui::Text("%s (%llu/%llu/%llu)", o.bypassed ? "bypassed" : o.sampling ? "sampling" : "caching",
                         static_cast<unsigned long long>(o.framesCaching),
+                        static_cast<unsigned long long>(o.framesSampling),
                         static_cast<unsigned long long>(o.framesBypassed));
             ImGui::TableNextColumn();
             if (o.bypassed) ImGui::TextDisabled("-");
@@ -195,10 +196,11 @@ void drawStatisticsSection(const ViewerPanelInput& in) {
                     static_cast<unsigned long long>(c.lookups()), static_cast<unsigned long long>(c.stores()));
         ImGui::Text("       invalid texels %.1f%% (before the frame), memory %.1f MiB", c.invalidPercentBefore(),
                     static_cast<double>(f.cacheBytes) / kMiB);
-        if (const int aside = c.bypassedCubes())
-            ImGui::Text("       policy: %d of %zu cubes bypassed (their %llu rays traced directly)", aside,
-                        c.objects.size(), static_cast<unsigned long long>(c.bypassedRays()));
-        if (ImGui::TreeNodeEx("every cube: memory, policy (frames caching/bypassed), hits per level (L0 finest) this frame",
+        if (c.bypassedCubes() || c.samplingCubes())
+            ImGui::Text("       policy: of %zu cubes %d bypassed, %d sampling (%llu rays traced directly)",
+                        c.objects.size(), c.bypassedCubes(), c.samplingCubes(),
+                        static_cast<unsigned long long>(c.bypassedRays()));
+        if (ImGui::TreeNodeEx("every cube: memory, policy (frames caching/sampling/bypassed), hits per level (L0 finest) this frame",
                               ImGuiTreeNodeFlags_DefaultOpen)) {
             drawCubeTable(c);
             ImGui::TreePop();

@@ -29,9 +29,12 @@ bool policyImagesMatch(const Image& a, const Image& b) {
            std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size() * sizeof(Rgb)) == 0;
 }
 
-// Under costs no hit repays: frame 0 fills (not judged), frame 1 loses, frames
-// 2-5 stand aside, frame 6 probes and loses, frames 7-14 stand aside.
-bool bypassedFrame(int f) { return (f >= 2 && f < 2 + CubePolicy::kFirstBackoff) || f >= 3 + CubePolicy::kFirstBackoff; }
+// A CCT cube under costs no hit repays: frame 0 fills its sample (not judged),
+// frame 1 samples and loses, frames 2 to 1 + kFirstBackoff stand aside, the
+// next two probe on the sample (the second judged, loses), then twice as
+// many stand aside.
+bool bypassedFrame(int f) { return (f >= 2 && f < 2 + CubePolicy::kFirstBackoff) || f >= 4 + CubePolicy::kFirstBackoff; }
+bool samplingFrame(int f) { return f < 2 || f == 2 + CubePolicy::kFirstBackoff || f == 3 + CubePolicy::kFirstBackoff; }
 
 // Costs no hit can repay: every judged frame loses.
 CachePolicyCosts losingCosts() { return {1e6, 1e6, 1e6}; }
@@ -112,16 +115,17 @@ TEST(CachePolicy, ProbesAfterABackoffThatDoublesUpToItsLongest) {
 TEST(CachePolicy, ResumesWhenAProbePaysAndTheBackoffStartsAgain) {
     CubePolicy p(CachePolicyMode::Auto, kPolicyTestCosts);
     p.afterFrame(policyFrame(1000, 0, 3));
-    p.afterFrame(policyFrame(1000, 0, 3));  // loses: bypass 4
-    for (int f = 0; f < CubePolicy::kFirstBackoff; ++f) p.afterFrame({});
-    p.afterFrame(policyFrame(1000, 0, 3));  // the probe loses: bypass 8
-    EXPECT_EQ(p.nextBackoff(), 16);
-    for (int f = 0; f < 8; ++f) p.afterFrame({});
+    constexpr int kFirst = CubePolicy::kFirstBackoff;
+    p.afterFrame(policyFrame(1000, 0, 3));  // loses: bypass kFirst
+    for (int f = 0; f < kFirst; ++f) p.afterFrame({});
+    p.afterFrame(policyFrame(1000, 0, 3));  // the probe loses: bypass 2 kFirst
+    EXPECT_EQ(p.nextBackoff(), 4 * kFirst);
+    for (int f = 0; f < 2 * kFirst; ++f) p.afterFrame({});
     ASSERT_FALSE(p.bypassed());
     p.afterFrame(policyFrame(1000, 900, 3));  // the probe pays: caching again
     EXPECT_FALSE(p.bypassed());
-    EXPECT_EQ(p.nextBackoff(), CubePolicy::kFirstBackoff);
-    EXPECT_EQ(p.framesBypassed(), 12u);
+    EXPECT_EQ(p.nextBackoff(), kFirst);
+    EXPECT_EQ(p.framesBypassed(), static_cast<std::uint64_t>(3 * kFirst));
     EXPECT_EQ(p.framesCaching(), 4u);
 }
 
@@ -142,12 +146,78 @@ TEST(CachePolicy, EmptiedCubeWarmsUpAgain) {
     EXPECT_FALSE(p.bypassed());
 }
 
+TEST(CachePolicy, ACctCubeSamplesFirstAndCachesFullyOnlyWhenTheSamplePays) {
+    CubePolicy p(CachePolicyMode::Auto, kPolicyTestCosts, true);
+    EXPECT_EQ(p.state(), CubeState::Sampling);
+    EXPECT_FALSE(p.afterFrame(policyFrame(100, 0, 3)).judged);  // fills the sample
+    EXPECT_TRUE(p.sampling());
+    EXPECT_TRUE(p.afterFrame(policyFrame(100, 100, 3)).judged);  // the sample pays
+    EXPECT_EQ(p.state(), CubeState::Caching);
+    // The first full frame fills the other texels: an investment, not judged.
+    EXPECT_FALSE(p.afterFrame(policyFrame(1600, 100, 3)).judged);
+    EXPECT_EQ(p.state(), CubeState::Caching);
+    EXPECT_TRUE(p.afterFrame(policyFrame(1600, 1600, 3)).judged);
+    EXPECT_EQ(p.state(), CubeState::Caching);
+    EXPECT_EQ(p.framesSampling(), 2u);
+    EXPECT_EQ(p.framesCaching(), 2u);
+}
+
+TEST(CachePolicy, ALosingSampleStandsAsideAndProbesOnTheSampleOverTwoFrames) {
+    CubePolicy p(CachePolicyMode::Auto, kPolicyTestCosts, true);
+    p.afterFrame(policyFrame(100, 0, 3));
+    EXPECT_TRUE(p.afterFrame(policyFrame(100, 2, 3)).judged);  // 6 saved, 19.8 spent
+    EXPECT_TRUE(p.bypassed());
+    for (int f = 0; f < CubePolicy::kFirstBackoff; ++f) {
+        ASSERT_TRUE(p.bypassed());
+        p.afterFrame({});
+    }
+    // The probe: one frame refreshes the sample, the next is judged.
+    ASSERT_TRUE(p.sampling());
+    EXPECT_FALSE(p.afterFrame(policyFrame(100, 0, 3)).judged);
+    ASSERT_TRUE(p.sampling());
+    EXPECT_TRUE(p.afterFrame(policyFrame(100, 1, 3)).judged);
+    EXPECT_TRUE(p.bypassed());
+    EXPECT_EQ(p.nextBackoff(), 4 * CubePolicy::kFirstBackoff);
+    EXPECT_EQ(p.framesSampling(), 4u);
+    EXPECT_EQ(p.framesCaching(), 0u);
+}
+
+TEST(CachePolicy, OnlyAutoSamples) {
+    EXPECT_EQ(CubePolicy(CachePolicyMode::Always, kPolicyTestCosts, true).state(), CubeState::Caching);
+    EXPECT_EQ(CubePolicy(CachePolicyMode::Auto, kPolicyTestCosts, false).state(), CubeState::Caching);
+    CubePolicy always(CachePolicyMode::Always, kPolicyTestCosts, true);
+    for (int f = 0; f < 4; ++f) always.afterFrame(policyFrame(100, 0, 3));
+    EXPECT_EQ(always.state(), CubeState::Caching);
+    EXPECT_STREQ(cubeStateName(CubeState::Sampling), "sampling");
+}
+
+TEST(CachePolicy, TheSampleIsAScatteredSixteenthOfEveryFace) {
+    // A 256² cube: each face, and each 32x32 block of texels, holds close to
+    // 1 in 16 sampled texels, so the sample sees every part of the cube.
+    constexpr int kSize = 256, kBlock = 32;
+    for (int face = 0; face < 6; ++face) {
+        int faceCount = 0;
+        for (int by = 0; by < kSize / kBlock; ++by)
+            for (int bx = 0; bx < kSize / kBlock; ++bx) {
+                int inBlock = 0;
+                for (int y = by * kBlock; y < (by + 1) * kBlock; ++y)
+                    for (int x = bx * kBlock; x < (bx + 1) * kBlock; ++x)
+                        inBlock += CubePolicy::sampledTexel((face * kSize + y) * kSize + x) ? 1 : 0;
+                // 64 expected of 1024.
+                EXPECT_GE(inBlock, 40) << "face " << face << " block " << bx << "," << by;
+                EXPECT_LE(inBlock, 90) << "face " << face << " block " << bx << "," << by;
+                faceCount += inBlock;
+            }
+        EXPECT_NEAR(static_cast<double>(faceCount) / (kSize * kSize), 1.0 / 16.0, 0.003) << "face " << face;
+    }
+}
+
 // A cube standing aside traces its rays as without a cache: with costs no hit
 // repays, every frame but the warm-up, the judged second frame and the probe
 // (bypassedFrame) is bypassed by every cube and is the uncached render bit
 // for bit.
 TEST(CachePolicyRender, BypassedFramesAreTheUncachedRender) {
-    constexpr int kFrames = 8;
+    constexpr int kFrames = 6 + CubePolicy::kFirstBackoff;
     const PathRender cached = renderPath("grid-8", CacheTechnique::Cct, kFrames, false, 64, 2, 64, nullptr,
                                          TileBalance::Dynamic, 1, 0, false, VisibleFill::Off, {},
                                          CachePolicyMode::Auto, losingCosts());
@@ -166,8 +236,62 @@ TEST(CachePolicyRender, BypassedFramesAreTheUncachedRender) {
         EXPECT_TRUE(policyImagesMatch(cached.frames[static_cast<std::size_t>(f)], plain.frames[static_cast<std::size_t>(f)]))
             << "frame " << f;
     }
-    // The probe looks the cubes up again.
+    // The probe looks the cubes up again, on their samples.
     EXPECT_GT(cached.stats[2 + CubePolicy::kFirstBackoff].cache->lookups(), 0u);
+    for (int f = 0; f < kFrames; ++f)
+        EXPECT_EQ(cached.stats[static_cast<std::size_t>(f)].cache->samplingCubes(),
+                  samplingFrame(f) ? static_cast<int>(cached.stats[static_cast<std::size_t>(f)].cache->objects.size()) : 0)
+            << "frame " << f;
+}
+
+// A sampling cube looks up and stores only the rays of its sampled texels: a
+// sixteenth of them, give or take; the other rays are traced. Still camera,
+// calibrated costs: every sampled lookup of the second frame hits (the first
+// stored exactly those texels), the sample pays, and the third frame caches
+// fully. The first frame, all misses, is the uncached render bit for bit.
+TEST(CachePolicyRender, SampledFramesLookUpTheSampleOnlyAndItPredictsFullCaching) {
+    constexpr int kFrames = 4;
+    const PathRender cached = renderPath("grid-8", CacheTechnique::Cct, kFrames, true, 96, 2, 64, nullptr,
+                                         TileBalance::Dynamic, 1, 0, false, VisibleFill::Off, {},
+                                         CachePolicyMode::Auto);
+    const PathRender plain = renderPath("grid-8", CacheTechnique::None, 1, true, 96);
+    const auto cacheOf = [&](int f) -> const FrameCacheStats& { return *cached.stats[static_cast<std::size_t>(f)].cache; };
+    for (int f = 0; f < 2; ++f) {
+        const FrameCacheStats& c = cacheOf(f);
+        EXPECT_EQ(c.samplingCubes(), static_cast<int>(c.objects.size())) << "frame " << f;
+        const double sampled = static_cast<double>(c.lookups()) / static_cast<double>(c.lookups() + c.bypassedRays());
+        EXPECT_GT(sampled, 1.0 / 32.0) << "frame " << f;
+        EXPECT_LT(sampled, 1.0 / 8.0) << "frame " << f;
+    }
+    EXPECT_EQ(cacheOf(0).hits(), 0u);
+    EXPECT_TRUE(policyImagesMatch(cached.frames[0], plain.frames[0]));
+    EXPECT_GT(cacheOf(1).lookups(), 0u);
+    EXPECT_EQ(cacheOf(1).hits(), cacheOf(1).lookups());
+    for (int f = 2; f < kFrames; ++f) {
+        EXPECT_EQ(cacheOf(f).samplingCubes(), 0) << "frame " << f;
+        EXPECT_EQ(cacheOf(f).bypassedCubes(), 0) << "frame " << f;
+        EXPECT_EQ(cacheOf(f).bypassedRays(), 0u) << "frame " << f;
+    }
+    // Full caching: the fill frame looks up every ray, the next hits all it
+    // looks up (fewer: the hits' trees are not traced, so their later bounces
+    // do not ask).
+    EXPECT_LT(cacheOf(2).hits(), cacheOf(2).lookups());
+    EXPECT_EQ(cacheOf(3).hits(), cacheOf(3).lookups());
+}
+
+// Stores of a sampling cube land in its sample only.
+TEST(CachePolicyRender, ASamplingCubeStoresOnlySampledTexels) {
+    const PathRender cached = renderPath("grid-8", CacheTechnique::Cct, 1, true, 96, 2, 64, nullptr,
+                                         TileBalance::Dynamic, 1, 0, false, VisibleFill::Off, {},
+                                         CachePolicyMode::Auto);
+    std::size_t stored = 0;
+    for (const auto& words : cached.texels)
+        for (std::size_t t = 0; t < words.size(); ++t) {
+            if (words[t] == CachingCube::kInvalidTexel) continue;
+            ++stored;
+            EXPECT_TRUE(CubePolicy::sampledTexel(static_cast<int>(t))) << "texel " << t;
+        }
+    EXPECT_GT(stored, 0u);
 }
 
 TEST(CachePolicyRender, AlwaysIsTheDefaultBehaviour) {
