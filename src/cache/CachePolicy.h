@@ -92,10 +92,16 @@ public:
     CubeState state() const { return state_; }
     bool bypassed() const { return state_ == CubeState::Bypassed; }
     bool sampling() const { return state_ == CubeState::Sampling; }
-    // Whether texel `texel` belongs to the sample: a fixed, scattered 1 in 16
-    // of a cube's texels (a multiplicative hash of the index).
+    // Whether texel `texel` belongs to the sample: 1 in 16 of a cube's runs of
+    // 64 texels (kSampleRunBits; a multiplicative hash of the run's index).
+    // Runs, not single texels: a run is one word of the validity bits and
+    // four cache lines of texels, so the sampled rays, which are neighbours
+    // in the image and on the cube, share the lines they read and write;
+    // single scattered texels cost a cache miss per lookup and store.
+    static constexpr int kSampleRunBits = 6;
     static bool sampledTexel(int texel) {
-        return (static_cast<std::uint32_t>(texel) * 2654435761u) >> (32 - kSampleBits) == 0;
+        const auto run = static_cast<std::uint32_t>(texel) >> kSampleRunBits;
+        return (run * 2654435761u) >> (32 - kSampleBits) == 0;
     }
     // Whether a ray addressed to `texel` is looked up (and stored) this frame.
     bool admitsTexel(int texel) const {
