@@ -117,9 +117,15 @@ public:
     // After a frame: judges it (when the cube cached it) and sets the state
     // of the next frame. `counts` are the whole frame's.
     Judgement afterFrame(const CubeFrameCounts& counts);
-    // The cube was emptied (RayCache::clear): its next caching or sampling
-    // frame fills it again and is not judged.
-    void restart() { warmedUp_ = false; }
+    // The cube was emptied (RayCache::clear): it starts over as it was made
+    // (sampling, or caching, with the first back-off), and its next frame
+    // fills it and is not judged. Frame counts and meanTree() stay.
+    void restart() {
+        state_ = samplesTexels_ ? CubeState::Sampling : CubeState::Caching;
+        bypassLeft_ = 0;
+        backoff_ = kFirstBackoff;
+        warmedUp_ = false;
+    }
 
     // Frames so far in each state, and the traced tree a hit replaces (mean
     // of the last frame that traced one; 0 before any).

@@ -137,6 +137,23 @@ TEST(CachePolicy, NoEvidenceOfTreesCountsAHitAsOneRay) {
     EXPECT_FALSE(p.bypassed());
 }
 
+TEST(CachePolicy, EmptiedCubeStartsOverAsItWasMade) {
+    CubePolicy p(CachePolicyMode::Auto, kPolicyTestCosts, true);
+    p.afterFrame(policyFrame(100, 0, 3));
+    p.afterFrame(policyFrame(100, 100, 3));  // the sample pays: caching
+    ASSERT_EQ(p.state(), CubeState::Caching);
+    p.restart();
+    EXPECT_EQ(p.state(), CubeState::Sampling);
+    EXPECT_FALSE(p.afterFrame(policyFrame(100, 0, 3)).judged);
+    CubePolicy aside(CachePolicyMode::Auto, kPolicyTestCosts, true);
+    aside.afterFrame(policyFrame(100, 0, 3));
+    aside.afterFrame(policyFrame(100, 0, 3));  // loses: stands aside
+    ASSERT_TRUE(aside.bypassed());
+    aside.restart();
+    EXPECT_EQ(aside.state(), CubeState::Sampling);
+    EXPECT_EQ(aside.nextBackoff(), CubePolicy::kFirstBackoff);
+}
+
 TEST(CachePolicy, EmptiedCubeWarmsUpAgain) {
     CubePolicy p(CachePolicyMode::Auto, kPolicyTestCosts);
     p.afterFrame(policyFrame(1000, 1000, 3));
