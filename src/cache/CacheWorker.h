@@ -31,7 +31,7 @@ public:
     // What `workers` queued this frame (their non-empty batches with their
     // stores, in worker then queue order, and their lookup counters summed
     // per cube) as bytes for the other processes of a cluster job
-    // (src/cluster/): 16 bytes per store, 16 per batch, 256 per cube; in an
+    // (src/cluster/): 20 bytes per store, 16 per batch, sizeof(Counters) per cube; in an
     // animated scene also each store's RayTreeRecord (156 bytes); with
     // multi-resolution cubes each store's SeenPoint (16 bytes). Written into
     // `out` (replacing what it held; its capacity is reused).
@@ -50,6 +50,9 @@ private:
         std::int32_t texel;
         std::uint32_t packed;  // encoded color
         float depth;           // CDCT: distance from the cube's centre; unused by CCT
+        // Rays the stored ray's tree traced (for the cache policy's record of
+        // what a hit on this texel spares); 0 when not counted.
+        std::uint32_t treeRays;
     };
     struct Batch {
         std::uint64_t key;
@@ -65,6 +68,9 @@ private:
         // cube standing aside, stores asked for, and the traced trees handed
         // to store() with the rays each traced.
         std::uint64_t bypassed = 0, queuedStores = 0, tracedTrees = 0, treeRays = 0;
+        // Hits on texels that recorded the tree they hold, and those trees'
+        // rays in all (RayCache's per-texel record, `auto` CCT cubes).
+        std::uint64_t recordedHits = 0, recordedHitRays = 0;
         std::array<std::uint64_t, kCdctStepBuckets> cdctStepsHistogram{};
         // View-sized cubes: lookups by the coarsest level their footprint
         // allows (ViewSizedResolution::levelAllowed).
@@ -90,6 +96,8 @@ private:
             queuedStores += o.queuedStores;
             tracedTrees += o.tracedTrees;
             treeRays += o.treeRays;
+            recordedHits += o.recordedHits;
+            recordedHitRays += o.recordedHitRays;
             for (std::size_t k = 0; k < cdctStepsHistogram.size(); ++k) cdctStepsHistogram[k] += o.cdctStepsHistogram[k];
             for (std::size_t k = 0; k < lookupsByAllowedLevel.size(); ++k)
                 lookupsByAllowedLevel[k] += o.lookupsByAllowedLevel[k];

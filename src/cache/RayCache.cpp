@@ -171,6 +171,8 @@ RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings)
         // of texels shows what full caching would hit; a CDCT search does not.
         e.policy = CubePolicy(mayStepAside ? settings.policy : CachePolicyMode::Always, settings.policyCosts,
                               technique == CacheTechnique::Cct);
+        if (mayStepAside && settings.policy == CachePolicyMode::Auto && technique == CacheTechnique::Cct)
+            e.treeRays.assign(e.cube.texelCount(), 0);
     }
     const bool anyCct = std::any_of(cubes_.begin(), cubes_.end(), [](const Entry& e) { return e.technique == CacheTechnique::Cct; });
     if (anyCct) visibleFill_ = settings.visibleFill;
@@ -213,6 +215,7 @@ void RayCache::clearEntry(Entry& e) {
     e.pyramid.reset();
     e.viewDependentBits.clear();
     std::fill(e.blocks.begin(), e.blocks.end(), RayTreeBounds{});
+    std::fill(e.treeRays.begin(), e.treeRays.end(), 0);
 }
 
 void RayCache::clear() {
@@ -547,7 +550,12 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
                 const bool coarser =
                     e.coarse.levelCount() > 1 && e.coarse.writeOver(p.texel, p.packed, workers[b.worker].pendingSeen_[i]) > 0;
                 if (!finest && !coarser) continue;
-                if (finest) ++stats.objects[p.cube].stores;
+                if (finest) {
+                    ++stats.objects[p.cube].stores;
+                    if (!e.treeRays.empty())
+                        e.treeRays[static_cast<std::size_t>(p.texel)] =
+                            static_cast<std::uint8_t>(std::min<std::uint32_t>(p.treeRays, 255));
+                }
                 if (tracksDependencies_) {
                     // The block covers the coarser texels written too (their
                     // answers take its bounds, see addAnswerDependencies).
@@ -606,8 +614,9 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
         s.sampling = e.policy.sampling();
         s.bypassedRays = all.bypassed;
         s.queuedStores = all.queuedStores;
-        const CubePolicy::Judgement judged = e.policy.afterFrame(
-            {all.lookups, all.hits, all.queuedStores, all.tracedTrees, all.treeRays, all.cdctSteps});
+        const CubePolicy::Judgement judged =
+            e.policy.afterFrame({all.lookups, all.hits, all.queuedStores, all.tracedTrees, all.treeRays, all.cdctSteps,
+                                 all.recordedHits, all.recordedHitRays});
         s.policySaving = judged.saving;
         s.policyCost = judged.cost;
         s.bypassedNext = e.policy.bypassed();
@@ -674,6 +683,8 @@ void RayCache::resizeEntry(Entry& e, int size) {
         e.blocksPerSide = perSide;
     }
     if (!e.droppedBits.empty()) e.droppedBits.assign((resized.texelCount() + 63) / 64, 0);
+    // Resampled colours are inherited, not stored by a tree of their own.
+    if (!e.treeRays.empty()) e.treeRays.assign(resized.texelCount(), 0);
     if (e.coarse.levelCount() > 1) e.coarse = CoarseLevels(resized.center(), size, cubeLevels_);
     e.cube = std::move(resized);
 }
@@ -873,7 +884,8 @@ void RayCache::store(int objectId, const Vec3& origin, const Vec3& direction, co
     };
     if (knownTexel >= 0) {
         if (!cubes_[c].policy.admitsTexel(knownTexel)) return;
-        worker.queue({static_cast<std::uint32_t>(c), knownTexel, CachingCube::encodeTexel(color), CachingCube::kInvalidDepth});
+        worker.queue({static_cast<std::uint32_t>(c), knownTexel, CachingCube::encodeTexel(color), CachingCube::kInvalidDepth,
+                      tracedRays});
         queueSeen();
         queueTree();
         return;
@@ -902,7 +914,7 @@ void RayCache::store(int objectId, const Vec3& origin, const Vec3& direction, co
     }
     // Lookups read the frame-start state, so only texels invalid then are worth queuing.
     if (cube.isValid(texel) || !cubes_[c].policy.admitsTexel(texel)) return;
-    worker.queue({static_cast<std::uint32_t>(c), texel, CachingCube::encodeTexel(color), depth});
+    worker.queue({static_cast<std::uint32_t>(c), texel, CachingCube::encodeTexel(color), depth, tracedRays});
     queueSeen();
     queueTree();
 }
@@ -1008,6 +1020,12 @@ void RayCache::lookupBatchAs(std::span<const Query> queries, std::span<Rgb> colo
             if (level >= 0) {
                 ++counters.hits;
                 ++counters.levelHits[static_cast<std::size_t>(level)];
+                if (level == 0 && !a.inherited && !e.treeRays.empty()) {
+                    if (const std::uint8_t rays = e.treeRays[static_cast<std::size_t>(texel[k])]) {
+                        ++counters.recordedHits;
+                        counters.recordedHitRays += rays;
+                    }
+                }
                 colors[i] = level == 0 || a.inherited
                                 ? e.cube.readValid(texel[k])
                                 : e.coarse.level(level).readValid(e.coarse.texelOver(texel[k], level));

@@ -402,6 +402,10 @@ private:
         std::vector<std::uint64_t> droppedBits;  // tracksDependencies_: see droppedByLastChange
         // Whether the cube caches or stands aside; changed only by endFrame.
         CubePolicy policy;
+        // CCT cubes under the `auto` policy: per texel, the rays of the tree
+        // its colour came from (capped at 255; 0: unknown), so that a hit
+        // counts what it spared (CubeFrameCounts::recordedHitRays).
+        std::vector<std::uint8_t> treeRays;
     };
     // Invalidates texel `texel`; if it was valid, marks it dropped. Returns whether it was valid.
     static bool dropTexel(Entry& e, int texel);

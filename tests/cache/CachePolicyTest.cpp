@@ -129,6 +129,18 @@ TEST(CachePolicy, ResumesWhenAProbePaysAndTheBackoffStartsAgain) {
     EXPECT_EQ(p.framesCaching(), 4u);
 }
 
+TEST(CachePolicy, HitsOnRecordedTexelsCountTheirOwnTrees) {
+    CubePolicy p(CachePolicyMode::Auto, kPolicyTestCosts);
+    p.afterFrame(policyFrame(100, 0, 10));  // misses' trees: 10 rays each
+    // 60 hits, 40 of them on texels whose trees were 1 ray (rays to the sky):
+    // they spare 40 rays, the other 20 the mean tree, 10 each.
+    CubeFrameCounts counts = policyFrame(100, 60, 10);
+    counts.recordedHits = 40;
+    counts.recordedHitRays = 40;
+    const auto j = p.afterFrame(counts);
+    EXPECT_DOUBLE_EQ(j.saving, 40.0 + 20 * 10.0);
+}
+
 TEST(CachePolicy, NoEvidenceOfTreesCountsAHitAsOneRay) {
     CubePolicy p(CachePolicyMode::Auto, kPolicyTestCosts);
     p.afterFrame({100, 100, 0, 0, 0, 0});  // filled from elsewhere: no traced tree yet
@@ -294,6 +306,10 @@ TEST(CachePolicyRender, SampledFramesLookUpTheSampleOnlyAndItPredictsFullCaching
         EXPECT_EQ(cacheOf(f).bypassedCubes(), 0) << "frame " << f;
         EXPECT_EQ(cacheOf(f).bypassedRays(), 0u) << "frame " << f;
     }
+    // Every hit of a full frame is on a texel that recorded its tree (1 to
+    // 255 rays), and the policy's saving is their sum.
+    EXPECT_GE(cacheOf(3).objects[0].policySaving, static_cast<double>(cacheOf(3).objects[0].hits));
+    EXPECT_LE(cacheOf(3).objects[0].policySaving, 255.0 * static_cast<double>(cacheOf(3).objects[0].hits));
     // Full caching: the fill frame looks up every ray, the next hits all it
     // looks up (fewer: the hits' trees are not traced, so their later bounces
     // do not ask).
