@@ -42,11 +42,13 @@ CubePolicy::Judgement CubePolicy::afterFrame(const CubeFrameCounts& counts) {
         meanTree_ = static_cast<double>(counts.treeRays) / static_cast<double>(counts.tracedTrees);
     Judgement j;
     // Hits are not a fair sample of the traced trees (a ray that escapes to
-    // the sky is one ray, and is the likeliest to hit again), so a hit on a
-    // texel that recorded its tree counts that tree; the others the mean.
-    const std::uint64_t recorded = std::min(counts.recordedHits, counts.hits);
-    j.saving = static_cast<double>(counts.recordedHitRays) +
-               static_cast<double>(counts.hits - recorded) * std::max(meanTree_, CachePolicyCosts::kMinimumTree);
+    // the sky is one ray, and is the likeliest to hit again), so the hits on
+    // sampled texels that recorded their trees value every hit; without
+    // them, the mean of the misses' trees does.
+    const double perHit = counts.recordedHits > 0 ? static_cast<double>(counts.recordedHitRays) /
+                                                        static_cast<double>(counts.recordedHits)
+                                                  : std::max(meanTree_, CachePolicyCosts::kMinimumTree);
+    j.saving = static_cast<double>(counts.hits) * perHit;
     j.cost = static_cast<double>(counts.lookups) * costs_.lookup + static_cast<double>(counts.queuedStores) * costs_.store +
              static_cast<double>(counts.cdctSteps) * costs_.cdctStep;
     // The first frame of an empty cube (or sample) only fills it: its stores

@@ -60,9 +60,10 @@ struct CubeFrameCounts {
     std::uint64_t tracedTrees = 0;   // trees traced for misses whose size was counted
     std::uint64_t treeRays = 0;      // rays those trees traced, in all
     std::uint64_t cdctSteps = 0;
-    // Of the hits, those on texels that recorded the tree they hold, and the
-    // rays of those trees: what these hits spared, counted rather than
-    // estimated. The other hits are taken to spare the mean traced tree.
+    // Of the hits, those on sampled texels that recorded the tree they hold,
+    // and the rays of those trees: the mean tree a hit spares, measured on
+    // the hits themselves. Without such hits, a hit is taken to spare the
+    // mean tree the misses traced.
     std::uint64_t recordedHits = 0;
     std::uint64_t recordedHitRays = 0;
 };

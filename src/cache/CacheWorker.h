@@ -68,8 +68,8 @@ private:
         // cube standing aside, stores asked for, and the traced trees handed
         // to store() with the rays each traced.
         std::uint64_t bypassed = 0, queuedStores = 0, tracedTrees = 0, treeRays = 0;
-        // Hits on texels that recorded the tree they hold, and those trees'
-        // rays in all (RayCache's per-texel record, `auto` CCT cubes).
+        // Hits on sampled texels that recorded the tree they hold, and those
+        // trees' rays in all (RayCache's per-texel record, `auto` CCT cubes).
         std::uint64_t recordedHits = 0, recordedHitRays = 0;
         std::array<std::uint64_t, kCdctStepBuckets> cdctStepsHistogram{};
         // View-sized cubes: lookups by the coarsest level their footprint

@@ -552,7 +552,7 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
                 if (!finest && !coarser) continue;
                 if (finest) {
                     ++stats.objects[p.cube].stores;
-                    if (!e.treeRays.empty())
+                    if (!e.treeRays.empty() && CubePolicy::sampledTexel(p.texel))
                         e.treeRays[static_cast<std::size_t>(p.texel)] =
                             static_cast<std::uint8_t>(std::min<std::uint32_t>(p.treeRays, 255));
                 }
@@ -1020,7 +1020,7 @@ void RayCache::lookupBatchAs(std::span<const Query> queries, std::span<Rgb> colo
             if (level >= 0) {
                 ++counters.hits;
                 ++counters.levelHits[static_cast<std::size_t>(level)];
-                if (level == 0 && !a.inherited && !e.treeRays.empty()) {
+                if (level == 0 && !a.inherited && !e.treeRays.empty() && CubePolicy::sampledTexel(texel[k])) {
                     if (const std::uint8_t rays = e.treeRays[static_cast<std::size_t>(texel[k])]) {
                         ++counters.recordedHits;
                         counters.recordedHitRays += rays;

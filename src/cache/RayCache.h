@@ -402,9 +402,14 @@ private:
         std::vector<std::uint64_t> droppedBits;  // tracksDependencies_: see droppedByLastChange
         // Whether the cube caches or stands aside; changed only by endFrame.
         CubePolicy policy;
-        // CCT cubes under the `auto` policy: per texel, the rays of the tree
-        // its colour came from (capped at 255; 0: unknown), so that a hit
-        // counts what it spared (CubeFrameCounts::recordedHitRays).
+        // CCT cubes under the `auto` policy: per sampled texel
+        // (CubePolicy::sampledTexel), the rays of the tree its colour came
+        // from (capped at 255; 0: unknown), so that the hits on sampled
+        // texels tell what a hit spares (CubeFrameCounts::recordedHitRays).
+        // Only sampled texels: with a record read on every hit, filled
+        // grid-32 and reflective-32 ran 1.56× and 1.57× uncached under
+        // `auto` against 1.82× and 1.77× under `always` (one
+        // where-caching-pays run at 384²).
         std::vector<std::uint8_t> treeRays;
     };
     // Invalidates texel `texel`; if it was valid, marks it dropped. Returns whether it was valid.

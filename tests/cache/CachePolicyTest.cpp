@@ -129,16 +129,17 @@ TEST(CachePolicy, ResumesWhenAProbePaysAndTheBackoffStartsAgain) {
     EXPECT_EQ(p.framesCaching(), 4u);
 }
 
-TEST(CachePolicy, HitsOnRecordedTexelsCountTheirOwnTrees) {
+TEST(CachePolicy, HitsAreValuedByTheTreesTheirRecordedTexelsHeld) {
     CubePolicy p(CachePolicyMode::Auto, kPolicyTestCosts);
     p.afterFrame(policyFrame(100, 0, 10));  // misses' trees: 10 rays each
-    // 60 hits, 40 of them on texels whose trees were 1 ray (rays to the sky):
-    // they spare 40 rays, the other 20 the mean tree, 10 each.
+    // 60 hits; the 4 on sampled texels that recorded their trees found trees
+    // of 2 rays (rays to the sky and their shadow ray): each hit spares 2,
+    // not the misses' 10.
     CubeFrameCounts counts = policyFrame(100, 60, 10);
-    counts.recordedHits = 40;
-    counts.recordedHitRays = 40;
+    counts.recordedHits = 4;
+    counts.recordedHitRays = 8;
     const auto j = p.afterFrame(counts);
-    EXPECT_DOUBLE_EQ(j.saving, 40.0 + 20 * 10.0);
+    EXPECT_DOUBLE_EQ(j.saving, 60 * 2.0);
 }
 
 TEST(CachePolicy, NoEvidenceOfTreesCountsAHitAsOneRay) {
@@ -306,8 +307,8 @@ TEST(CachePolicyRender, SampledFramesLookUpTheSampleOnlyAndItPredictsFullCaching
         EXPECT_EQ(cacheOf(f).bypassedCubes(), 0) << "frame " << f;
         EXPECT_EQ(cacheOf(f).bypassedRays(), 0u) << "frame " << f;
     }
-    // Every hit of a full frame is on a texel that recorded its tree (1 to
-    // 255 rays), and the policy's saving is their sum.
+    // The hits on sampled texels recorded their trees (1 to 255 rays): the
+    // policy's saving is the hits times their mean.
     EXPECT_GE(cacheOf(3).objects[0].policySaving, static_cast<double>(cacheOf(3).objects[0].hits));
     EXPECT_LE(cacheOf(3).objects[0].policySaving, 255.0 * static_cast<double>(cacheOf(3).objects[0].hits));
     // Full caching: the fill frame looks up every ray, the next hits all it
