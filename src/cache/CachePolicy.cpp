@@ -43,11 +43,11 @@ CubePolicy::Judgement CubePolicy::afterFrame(const CubeFrameCounts& counts) {
     Judgement j;
     // Hits are not a fair sample of the traced trees (a ray that escapes to
     // the sky is one ray, and is the likeliest to hit again), so the hits on
-    // sampled texels that recorded their trees value every hit; without
-    // them, the mean of the misses' trees does.
-    const double perHit = counts.recordedHits > 0 ? static_cast<double>(counts.recordedHitRays) /
-                                                        static_cast<double>(counts.recordedHits)
-                                                  : std::max(meanTree_, CachePolicyCosts::kMinimumTree);
+    // texels that recorded their trees value every hit; without them, the
+    // mean of the misses' trees does.
+    if (counts.recordedHits > 0)
+        hitValue_ = static_cast<double>(counts.recordedHitRays) / static_cast<double>(counts.recordedHits);
+    const double perHit = hitValue_ > 0.0 ? hitValue_ : std::max(meanTree_, CachePolicyCosts::kMinimumTree);
     j.saving = static_cast<double>(counts.hits) * perHit;
     j.cost = static_cast<double>(counts.lookups) * costs_.lookup + static_cast<double>(counts.queuedStores) * costs_.store +
              static_cast<double>(counts.cdctSteps) * costs_.cdctStep;

@@ -60,10 +60,11 @@ struct CubeFrameCounts {
     std::uint64_t tracedTrees = 0;   // trees traced for misses whose size was counted
     std::uint64_t treeRays = 0;      // rays those trees traced, in all
     std::uint64_t cdctSteps = 0;
-    // Of the hits, those on sampled texels that recorded the tree they hold,
-    // and the rays of those trees: the mean tree a hit spares, measured on
-    // the hits themselves. Without such hits, a hit is taken to spare the
-    // mean tree the misses traced.
+    // Of the hits of a sampling frame, those on texels that recorded the
+    // tree they hold, and the rays of those trees: the mean tree a hit
+    // spares, measured on the hits themselves and kept for the frames that
+    // cache in full (hitValue()). Without such evidence, a hit is taken to
+    // spare the mean tree the misses traced.
     std::uint64_t recordedHits = 0;
     std::uint64_t recordedHitRays = 0;
 };
@@ -139,6 +140,9 @@ public:
     std::uint64_t framesSampling() const { return framesSampling_; }
     std::uint64_t framesBypassed() const { return framesBypassed_; }
     double meanTree() const { return meanTree_; }
+    // Rays a hit spares, as the last sampling frame with recorded hits
+    // measured them; 0 before any.
+    double hitValue() const { return hitValue_; }
     // Frames of bypass the next losing probe would earn.
     int nextBackoff() const { return backoff_; }
 
@@ -153,6 +157,7 @@ private:
     // turned to full caching, or came back from standing aside to sample.
     bool warmedUp_ = false;
     double meanTree_ = 0.0;
+    double hitValue_ = 0.0;
     std::uint64_t framesCaching_ = 0, framesSampling_ = 0, framesBypassed_ = 0;
 };
 

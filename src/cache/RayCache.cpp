@@ -1020,7 +1020,9 @@ void RayCache::lookupBatchAs(std::span<const Query> queries, std::span<Rgb> colo
             if (level >= 0) {
                 ++counters.hits;
                 ++counters.levelHits[static_cast<std::size_t>(level)];
-                if (level == 0 && !a.inherited && !e.treeRays.empty() && CubePolicy::sampledTexel(texel[k])) {
+                // Read while the cube samples only (every texel it looks up is
+                // sampled then): the policy keeps the value for its caching frames.
+                if (level == 0 && !a.inherited && !e.treeRays.empty() && e.policy.sampling()) {
                     if (const std::uint8_t rays = e.treeRays[static_cast<std::size_t>(texel[k])]) {
                         ++counters.recordedHits;
                         counters.recordedHitRays += rays;

@@ -406,10 +406,11 @@ private:
         // (CubePolicy::sampledTexel), the rays of the tree its colour came
         // from (capped at 255; 0: unknown), so that the hits on sampled
         // texels tell what a hit spares (CubeFrameCounts::recordedHitRays).
-        // Only sampled texels: with a record read on every hit, filled
-        // grid-32 and reflective-32 ran 1.56× and 1.57× uncached under
-        // `auto` against 1.82× and 1.77× under `always` (one
-        // where-caching-pays run at 384²).
+        // Written for sampled texels, read only while the cube samples: with
+        // a record read on every hit, filled grid-32 and reflective-32 ran
+        // 1.56× and 1.57× uncached under `auto` against 1.82× and 1.77× under
+        // `always` (one where-caching-pays run at 384²), and 1.74× and 1.72×
+        // against 1.84× and 1.82× with the sampled texels' records read.
         std::vector<std::uint8_t> treeRays;
     };
     // Invalidates texel `texel`; if it was valid, marks it dropped. Returns whether it was valid.
