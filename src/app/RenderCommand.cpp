@@ -159,6 +159,11 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out, st
         out << formatFrameLine(r, frames) << std::endl;
         times.push_back(r.milliseconds);
         totalRays += rays;
+        const bool lastFrame = r.frame + 1 == frames;
+        // Files count from 1 like the progress lines: "frame 1/N" is _0001.
+        if (writesFiles && !options.out.empty() && (outPattern.perFrame() || lastFrame))
+            writeImage(film, outPattern.pathFor(r.frame + 1));
+        if (options.statsPath.empty()) return;  // the statistics are only for --stats
         nlohmann::json frameJson = {{"frame", r.frame + 1}, {"ms", r.milliseconds}, {"rays", raysJson(rays)},
                                     {"mrays_per_s", mrays}};
         if (r.stats.cache) frameJson["cache"] = cacheJson(*r.stats.cache);
@@ -183,10 +188,6 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out, st
             frameJson["scene_update"] = sceneUpdateJson(*r.stats.sceneUpdate);
         }
         frameStats.push_back(std::move(frameJson));
-        const bool lastFrame = r.frame + 1 == frames;
-        // Files count from 1 like the progress lines: "frame 1/N" is _0001.
-        if (writesFiles && !options.out.empty() && (outPattern.perFrame() || lastFrame))
-            writeImage(film, outPattern.pathFor(r.frame + 1));
     };
     if (wholeFrames) {
         const auto needsFilm = [&](int frame) {

@@ -11,8 +11,11 @@ PrefillResult prefillCaches(RayCache& cache, std::span<const CacheWorker> worker
     const int processes = group ? group->size() : 1;
     const int rank = group ? group->rank() : 0;
     PrefillResult result;
+    const std::vector<RayCache::PrefillPiece> pieces = cache.planPrefill(workers);
+    // Most frames pre-fill nothing (CCT never does): no scratch for them.
+    if (pieces.empty()) return result;
     std::vector<TileScratch> scratch(static_cast<std::size_t>(parallel.threadCount()));
-    for (const RayCache::PrefillPiece& piece : cache.planPrefill(workers)) {
+    for (const RayCache::PrefillPiece& piece : pieces) {
         const CachingCube& cube = cache.cube(piece.objectId);
         const auto rowLength = static_cast<std::size_t>(cube.size());
         std::vector<RayCache::PrefillTexel> texels(static_cast<std::size_t>(piece.rows) * rowLength);
