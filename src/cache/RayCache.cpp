@@ -571,12 +571,16 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
     // grid-32 CCT frame merged 15-20 % faster on 2 threads with 2 partitions
     // than with 4, and 30 % faster on 1 thread with 1: docs/cluster.md).
     const int parts = runPartitions ? std::clamp(partitions, 1, std::max(1, static_cast<int>(cubes_.size()))) : 1;
-    if (parts > 1)
-        runPartitions(parts, [&](int part) {
-            applyPartition(static_cast<std::size_t>(part), static_cast<std::size_t>(parts));
-        });
-    else
-        applyPartition(0, 1);
+    // A frame with nothing to merge (every cube standing aside) starts no
+    // parallel work.
+    if (!mergeOrder_.empty()) {
+        if (parts > 1)
+            runPartitions(parts, [&](int part) {
+                applyPartition(static_cast<std::size_t>(part), static_cast<std::size_t>(parts));
+            });
+        else
+            applyPartition(0, 1);
+    }
     // The change is this frame's: a frame rendered without one stores everything.
     changedBeforeThisFrame_ = false;
     forgetLastChange();
