@@ -39,8 +39,8 @@ nlohmann::json cacheJson(const FrameCacheStats& c) {
                            {"cdct_steps_histogram", o.cdctStepsHistogram},
                            {"invalid_percent_before", o.invalidPercentBefore}, {"bytes", o.bytes},
                            // The cache policy (docs/caching.md, "Caching that never costs").
-                           {"policy", {{"state", o.bypassed ? "bypassed" : o.sampling ? "sampling" : "caching"},
-                                       {"next", o.bypassedNext ? "bypassed" : o.samplingNext ? "sampling" : "caching"},
+                           {"policy", {{"state", cubeStateName(o.state)},
+                                       {"next", cubeStateName(o.next)},
                                        {"bypassed_rays", o.bypassedRays}, {"stores_queued", o.queuedStores},
                                        {"frames_caching", o.framesCaching}, {"frames_sampling", o.framesSampling},
                                        {"frames_bypassed", o.framesBypassed},
@@ -155,7 +155,6 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out, st
     };
     const auto onFrame = [&](const FrameResult& r, const Image& film, const RayCache&) {
         const RayCounts& rays = r.stats.rays;
-        const double mrays = static_cast<double>(rays.total()) / (r.milliseconds * 1e3);
         out << formatFrameLine(r, frames) << std::endl;
         times.push_back(r.milliseconds);
         totalRays += rays;
@@ -164,6 +163,7 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out, st
         if (writesFiles && !options.out.empty() && (outPattern.perFrame() || lastFrame))
             writeImage(film, outPattern.pathFor(r.frame + 1));
         if (options.statsPath.empty()) return;  // the statistics are only for --stats
+        const double mrays = static_cast<double>(rays.total()) / (r.milliseconds * 1e3);
         nlohmann::json frameJson = {{"frame", r.frame + 1}, {"ms", r.milliseconds}, {"rays", raysJson(rays)},
                                     {"mrays_per_s", mrays}};
         if (r.stats.cache) frameJson["cache"] = cacheJson(*r.stats.cache);

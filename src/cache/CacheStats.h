@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "cache/CachePolicy.h"
+
 namespace raycache {
 
 // Resolution levels a CCT cube may keep (cache/CoarseLevels.h), the finest included.
@@ -54,14 +56,12 @@ struct ObjectCacheStats {
     std::uint64_t prefilledTexels = 0;  // improved CDCT: texels filled from the centre after this frame
     double invalidPercentBefore = 0.0;  // invalid texels when the frame started
     std::size_t bytes = 0;              // memory of the cube's texels (all levels)
-    // The cache policy (cache/CachePolicy.h, --cache-policy): whether the cube
-    // stepped aside during this frame (its rays traced directly, nothing
-    // looked up or stored) or only sampled (rays of 1 texel in 16 looked up),
-    // and whether it will during the next. Neither: it cached.
-    bool bypassed = false;
-    bool bypassedNext = false;
-    bool sampling = false;
-    bool samplingNext = false;
+    // The cache policy (cache/CachePolicy.h, --cache-policy): what the cube
+    // did during this frame (cached; sampled, looking up the rays of 1 in 16
+    // runs of texels; or stood aside, its rays traced directly) and will do
+    // during the next.
+    CubeState state = CubeState::Caching;
+    CubeState next = CubeState::Caching;
     std::uint64_t bypassedRays = 0;     // rays that left the object while it stood aside or out of its sample: traced
     std::uint64_t framesCaching = 0;    // frames so far in each state, this one included
     std::uint64_t framesSampling = 0;
@@ -89,16 +89,13 @@ struct FrameCacheStats {
     std::uint64_t cdctSteps() const { return sum(&ObjectCacheStats::cdctSteps); }
     std::uint64_t prefilledTexels() const { return sum(&ObjectCacheStats::prefilledTexels); }
     std::uint64_t bypassedRays() const { return sum(&ObjectCacheStats::bypassedRays); }
-    int bypassedCubes() const {
+    int cubesIn(CubeState state) const {
         int n = 0;
-        for (const auto& o : objects) n += o.bypassed ? 1 : 0;
+        for (const auto& o : objects) n += o.state == state ? 1 : 0;
         return n;
     }
-    int samplingCubes() const {
-        int n = 0;
-        for (const auto& o : objects) n += o.sampling ? 1 : 0;
-        return n;
-    }
+    int bypassedCubes() const { return cubesIn(CubeState::Bypassed); }
+    int samplingCubes() const { return cubesIn(CubeState::Sampling); }
     std::uint64_t hitsAtLevel(int level) const {
         std::uint64_t s = 0;
         for (const auto& o : objects) s += o.hitsByLevel[static_cast<std::size_t>(level)];

@@ -614,8 +614,7 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
         Entry& e = cubes_[c];
         // The policy judges the frame from counts summed over every worker
         // (and, in a cluster job, every process): the same decision everywhere.
-        s.bypassed = e.policy.bypassed();
-        s.sampling = e.policy.sampling();
+        s.state = e.policy.state();
         s.bypassedRays = all.bypassed;
         s.queuedStores = all.queuedStores;
         const CubePolicy::Judgement judged =
@@ -623,8 +622,7 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
                                  all.recordedHits, all.recordedHitRays});
         s.policySaving = judged.saving;
         s.policyCost = judged.cost;
-        s.bypassedNext = e.policy.bypassed();
-        s.samplingNext = e.policy.sampling();
+        s.next = e.policy.state();
         s.framesCaching = e.policy.framesCaching();
         s.framesSampling = e.policy.framesSampling();
         s.framesBypassed = e.policy.framesBypassed();
@@ -836,9 +834,7 @@ std::optional<Rgb> RayCache::lookupAnswer(int objectId, const Vec3& origin, cons
                                           CacheWorker& worker, bool meetsOwnSurface) const {
     const auto c = static_cast<std::size_t>(cubeIndexOf(objectId));
     CacheWorker::Counters& counters = worker.counters_[c];
-    const CubePolicy& policy = cubes_[c].policy;
-    if (policy.bypassed() ||
-        (policy.sampling() && !CubePolicy::sampledTexel(cubes_[c].cube.texelIndexFor(direction)))) {
+    if (!admits(objectId, direction)) {
         ++counters.bypassed;
         return std::nullopt;
     }

@@ -346,11 +346,8 @@ public:
     // (cache/CachePolicy.h). The tile kernel traces the others directly.
     bool admits(int objectId, const Vec3& direction) const {
         const Entry& e = cubes_[static_cast<std::size_t>(cubeIndexOf(objectId))];
-        switch (e.policy.state()) {
-        case CubeState::Caching: return true;
-        case CubeState::Bypassed: return false;
-        default: return CubePolicy::sampledTexel(e.cube.texelIndexFor(direction));
-        }
+        // The texel is addressed only for a sampling cube.
+        return e.policy.sampling() ? e.policy.admitsTexel(e.cube.texelIndexFor(direction)) : !e.policy.bypassed();
     }
     // Counts a ray that left `objectId` while its cube stood aside (or out of
     // its sample), traced without asking the cube (the tile kernel routes such rays around the

@@ -161,12 +161,12 @@ void drawCubeTable(const FrameCacheStats& c) {
             ImGui::TableNextColumn();
             ImGui::Text("%.2f", static_cast<double>(o.bytes) / kMiB);
             ImGui::TableNextColumn();
-            ImGui::Text("%s (%llu/%llu/%llu)", o.bypassed ? "bypassed" : o.sampling ? "sampling" : "caching",
+            ImGui::Text("%s (%llu/%llu/%llu)", cubeStateName(o.state),
                         static_cast<unsigned long long>(o.framesCaching),
                         static_cast<unsigned long long>(o.framesSampling),
                         static_cast<unsigned long long>(o.framesBypassed));
             ImGui::TableNextColumn();
-            if (o.bypassed) ImGui::TextDisabled("-");
+            if (o.state == CubeState::Bypassed) ImGui::TextDisabled("-");
             else ImGui::Text("%.0f / %.0f", o.policySaving, o.policyCost);
             for (int k = 0; k < levels; ++k) {
                 ImGui::TableNextColumn();

@@ -362,7 +362,7 @@ TEST(CachePolicyRender, AutoIsTheSameOnOneAndTwoThreads) {
     for (std::size_t f = 0; f < one.frames.size(); ++f) {
         EXPECT_TRUE(policyImagesMatch(one.frames[f], two.frames[f])) << "frame " << f;
         for (std::size_t o = 0; o < one.stats[f].cache->objects.size(); ++o) {
-            EXPECT_EQ(one.stats[f].cache->objects[o].bypassed, two.stats[f].cache->objects[o].bypassed);
+            EXPECT_EQ(one.stats[f].cache->objects[o].state, two.stats[f].cache->objects[o].state);
             EXPECT_EQ(one.stats[f].cache->objects[o].policyCost, two.stats[f].cache->objects[o].policyCost);
         }
     }
