@@ -1,6 +1,7 @@
 #include "render/CameraRays.h"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "core/FloatLanes.h"
@@ -15,10 +16,9 @@ struct CameraFrame {
     float invWidth, invHeight;
 };
 
-// CameraRays::ray's steps for sixteen pixels of one row. GCC resolves a
-// function's clones in the file that defines them: rowOfRays calls this.
-RAYCACHE_WIDE_LANE_CLONES
-void rowLanes(const CameraFrame& c, int x0, int y, int count, Ray* out) {
+// CameraRays::ray's steps for sixteen pixels of one row.
+[[gnu::always_inline]] inline void rowDirections(const CameraFrame& c, int x0, int y, FloatLanes& nx, FloatLanes& ny,
+                                                FloatLanes& nz) {
     FloatLanes x;
     for (int k = 0; k < kFloatLanes; ++k) x[k] = static_cast<float>(x0 + k);
     const FloatLanes sx = 2.0f * (x + 0.5f) * c.invWidth - 1.0f;
@@ -30,8 +30,36 @@ void rowLanes(const CameraFrame& c, int x0, int y, int count, Ray* out) {
     FloatLanes length;
     sqrtLanes(dx * dx + dy * dy + dz * dz, length);
     const FloatLanes inverse = 1.0f / length;
-    const FloatLanes nx = dx * inverse, ny = dy * inverse, nz = dz * inverse;
+    nx = dx * inverse, ny = dy * inverse, nz = dz * inverse;
+}
+
+// GCC resolves a function's clones in the file that defines them: the
+// rowOfRays overloads call these.
+RAYCACHE_WIDE_LANE_CLONES
+void rowLanes(const CameraFrame& c, int x0, int y, int count, Ray* out) {
+    FloatLanes nx, ny, nz;
+    rowDirections(c, x0, y, nx, ny, nz);
     for (int k = 0; k < count; ++k) out[k] = Ray{c.origin, {nx[k], ny[k], nz[k]}};
+}
+
+RAYCACHE_WIDE_LANE_CLONES
+void rowLanes(const CameraFrame& c, int x0, int y, RayLanes16& out) {
+    FloatLanes nx, ny, nz;
+    rowDirections(c, x0, y, nx, ny, nz);
+    storeLanes(nx, out.directionX);
+    storeLanes(ny, out.directionY);
+    storeLanes(nz, out.directionZ);
+    storeLanes(FloatLanes{} + c.origin.x, out.originX);
+    storeLanes(FloatLanes{} + c.origin.y, out.originY);
+    storeLanes(FloatLanes{} + c.origin.z, out.originZ);
+    storeLanes(FloatLanes{}, out.tNear);
+    storeLanes(FloatLanes{}, out.time);
+    storeLanes(FloatLanes{} + std::numeric_limits<float>::infinity(), out.tFar);
+    for (int k = 0; k < kFloatLanes; ++k) {
+        out.mask[k] = 0xFFFFFFFFu;
+        out.id[k] = 0;
+        out.flags[k] = 0;
+    }
 }
 
 }  // namespace
@@ -52,6 +80,10 @@ CameraRays::CameraRays(const Camera& camera, int width, int height)
 
 void CameraRays::rowOfRays(int x0, int y, int count, Ray* out) const {
     rowLanes({origin_, forward_, right_, up_, invWidth_, invHeight_}, x0, y, count, out);
+}
+
+void CameraRays::rowOfRays(int x0, int y, RayLanes16& out) const {
+    rowLanes({origin_, forward_, right_, up_, invWidth_, invHeight_}, x0, y, out);
 }
 
 }  // namespace raycache

@@ -1,6 +1,7 @@
 #pragma once
 // Primary rays of a pinhole camera through pixel centres.
 #include "core/Ray.h"
+#include "trace/RayPacket.h"
 #include "scene/Camera.h"
 
 namespace raycache {
@@ -25,6 +26,9 @@ public:
     // out[k] = ray(x0 + k, y) for k < count (count <= 16), sixteen at a
     // time (core/FloatLanes.h): the same bits as ray().
     void rowOfRays(int x0, int y, int count, Ray* out) const;
+    // The same sixteen rays (x0 + k for every k < 16, also past the row's
+    // end) written into a packet for the tracer, tNear 0 and tFar infinite.
+    void rowOfRays(int x0, int y, RayLanes16& out) const;
 
     // The angle between the rays of neighbouring pixels at the image's
     // centre (radians): where a pixel's cone starts (render/RayCone.h).

@@ -13,6 +13,8 @@
 #include "render/LocalShading.h"
 #include "render/MeshShading.h"
 #include "render/SurfacePoint.h"
+#include "scene/Material.h"
+#include "trace/RayPacket.h"
 
 namespace raycache {
 
@@ -62,6 +64,24 @@ inline void setMeshTriangleLane(MeshHitLanes& lanes, std::size_t k, const Triang
     lanes.uv2U[k] = t.uv2[0], lanes.uv2V[k] = t.uv2[1];
 }
 
+// Lane k's triangle and barycentrics for a hit on `primitiveId`: from the
+// mesh's shading records when they are made for this mesh (`records` not
+// null), else (a kernel not told of a move) from the mesh itself.
+inline void setMeshHitLane(MeshHitLanes& lanes, std::size_t k, const TriangleMesh& mesh,
+                           const MeshShadingRecords* records, int primitiveId, float u, float v) {
+    const auto triangle = static_cast<std::size_t>(primitiveId);
+    lanes.u[k] = u;
+    lanes.v[k] = v;
+    if (records) {
+        setMeshTriangleLane(lanes, k, records->triangles[triangle], records->hasNormals,
+                            records->hasUvs ? &records->uvs[triangle] : nullptr);
+        return;
+    }
+    const TriangleUvRecord uv = uvRecordOf(mesh, triangle);
+    setMeshTriangleLane(lanes, k, shadingRecordOf(mesh, triangle), !mesh.normals.empty(),
+                        mesh.uvs.empty() ? nullptr : &uv);
+}
+
 // out[k] = surfacePointAt(the mesh, ray k, hit k, needUv = true) for k < count.
 void meshSurfaces16(const MeshHitLanes& hits, int count, SurfacePoint* out);
 
@@ -71,5 +91,68 @@ void meshSurfaces16(const MeshHitLanes& hits, int count, SurfacePoint* out);
 // past them. `spot` holds each light's cone (used for spot lights). Returns the number of queries written.
 int shadowQueries16(std::span<const Light> lights, std::span<const SpotCone> spot, const SurfacePoint* surfaces,
                     int count, ShadowQuery* out, int* firstQuery);
+
+// The same per-hit work with the wave itself in lanes (the first bounce of a
+// camera tile, TileKernel): surfaces, shadow rays and direct light of
+// sixteen hits kept as structure of arrays from the tracer's packet to the
+// pixels, with no record per hit in between. Every function writes only the
+// lanes its `lanes` mask selects (-1 selected, 0 not), and each selected
+// lane gets the scalar code's bits, as above.
+
+// Sixteen surface points and their albedos.
+struct SurfaceLanes16 {
+    alignas(64) float positionX[16], positionY[16], positionZ[16];
+    alignas(64) float normalX[16], normalY[16], normalZ[16];
+    alignas(64) float geometricX[16], geometricY[16], geometricZ[16];
+    alignas(64) float u[16], v[16];
+    alignas(64) float albedoR[16], albedoG[16], albedoB[16];
+    alignas(64) int frontFace[16];  // 1: the ray arrived from outside
+};
+
+// One light as sixteen surfaces see it: the direction toward it, the spot
+// factor, and whether its shadow ray came back clear (1) or was blocked or
+// never traced, the light facing away (0).
+struct LightLanes16 {
+    alignas(64) float toX[16], toY[16], toZ[16], strength[16];
+    alignas(64) int lit[16];
+};
+
+// sphereSurfaces16 into lanes.
+void sphereSurfaceLanes16(const SphereHitLanes& hits, const int* lanes, SurfaceLanes16& out);
+// meshSurfaces16 into lanes.
+void meshSurfaceLanes16(const MeshHitLanes& hits, const int* lanes, SurfaceLanes16& out);
+
+// Light `light`'s shadow rays from the surfaces' lanes, as
+// LocalShading::shadowQueries makes them: `rays` gets them and `traced` the
+// lanes that need one (selected, and the light reaches the surface). Fills
+// `seen`'s directions and strengths; its `lit` is the caller's to set once
+// the rays are traced.
+void shadowRayLanes16(const Light& light, const SpotCone& spot, const SurfaceLanes16& surfaces, const int* lanes,
+                      RayLanes16& rays, PacketLanes& traced, LightLanes16& seen);
+
+// LocalShading::directLight for the selected lanes, all of one material,
+// seen along `viewRays`' directions: out{R,G,B}[k] for each selected k.
+void directLightLanes16(const Material& material, std::span<const Light> lights, const LightLanes16* seen,
+                        const SurfaceLanes16& surfaces, const RayLanes16& viewRays, const int* lanes, float* outR,
+                        float* outG, float* outB);
+
+// The secondary rays of sixteen camera-ray hits (path weight 1, the pixel's
+// cone), all of one material: TileKernel::spawnSecondaryRays' arithmetic.
+struct SecondaryRayLanes16 {
+    alignas(64) float reflectedX[16], reflectedY[16], reflectedZ[16];  // unit directions
+    alignas(64) float aboveX[16], aboveY[16], aboveZ[16];              // their origins, lifted off the surface
+    alignas(64) float refractedX[16], refractedY[16], refractedZ[16];
+    alignas(64) float belowX[16], belowY[16], belowZ[16];              // the refracted rays' origins
+    alignas(64) float reflectWeight[16];  // kr, plus kt where the light is totally reflected
+    alignas(64) float coneWidth[16], coneSpread[16];
+    alignas(64) int reflects[16], refracts[16];  // 1: the ray is spawned
+};
+
+// The rays surfaces k (selected by `lanes`) of `material` spawn, hit by
+// `rays` at their tFar: `curvature` as coneCurvature gives it, `pixelSpread`
+// the camera's (render/RayCone.h), `minWeight` RenderSettings::minWeight.
+void secondaryRayLanes16(const Material& material, float curvature, float pixelSpread, float minWeight,
+                         const SurfaceLanes16& surfaces, const RayLanes16& rays, const int* lanes,
+                         SecondaryRayLanes16& out);
 
 }  // namespace raycache

@@ -59,6 +59,8 @@ public:
     int shadowQueriesOf16(const SurfacePoint* surfaces, int count, ShadowQuery* out, int* firstQuery) const;
 
     const Scene& scene() const { return scene_; }
+    // Each light's cone (for spot lights), as shadowQueries uses it.
+    std::span<const SpotCone> spotCones() const { return spotCosines_; }
 
 private:
     const Scene& scene_;

@@ -8,6 +8,7 @@
 #include "core/FloatLanes.h"
 #include "core/Optics.h"
 #include "render/HitLanes.h"
+#include "render/StageTimer.h"
 
 namespace raycache {
 
@@ -15,23 +16,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr float kKernelInfinity = std::numeric_limits<float>::infinity();
-
-// Adds the time until it goes out of scope to one stage's total, when stage
-// timing is on (it costs two clock reads per stage and wave).
-class StageTimer {
-public:
-    StageTimer(bool enabled, double& milliseconds)
-        : target_(enabled ? &milliseconds : nullptr), start_(enabled ? Clock::now() : Clock::time_point{}) {}
-    ~StageTimer() {
-        if (target_) *target_ += std::chrono::duration<double, std::milli>(Clock::now() - start_).count();
-    }
-    StageTimer(const StageTimer&) = delete;
-    StageTimer& operator=(const StageTimer&) = delete;
-
-private:
-    double* target_;
-    Clock::time_point start_;
-};
 
 }  // namespace
 
@@ -62,38 +46,48 @@ void TileKernel::renderCameraTile(const CameraRays& cameraRays, const TileRange&
     const auto n = static_cast<std::size_t>(tileWidth) * static_cast<std::size_t>(tile.y1 - tile.y0);
     s.beginTile(n);
     if (levels) beginLevelRecord(s, n);
-    {
-        StageTimer timer(settings_.stageTimes, s.stages.firstHits);
-        s.rays.resize(n);
-        s.hits.resize(n);
-        std::size_t i = 0;
-        for (int y = tile.y0; y < tile.y1; ++y)
-            for (int x = tile.x0; x < tile.x1;) {
-                const int count = std::min(kFloatLanes, tile.x1 - x);
-                cameraRays.rowOfRays(x, y, count, s.rays.data() + i);
-                x += count;
-                i += static_cast<std::size_t>(count);
-            }
-        tracer_.intersectPrimary(std::span(s.rays.data(), n), std::span(s.hits.data(), n));
-        s.counts.primary += n;
-        const RayCone pixel{0.0f, cameraRays.pixelSpread()};
-        for (i = 0; i < n; ++i) {
-            if (s.hits[i].hit()) {
-                s.vertices.push_back({s.rays[i], s.hits[i], static_cast<int>(i), 1.0f, 1, pixel});
-                if (cache && fill_.active())
-                    noteVisiblePoint(s, static_cast<int>(i), s.hits[i].objectId,
-                                     s.rays[i].origin + s.rays[i].direction * s.hits[i].t);
-            } else {
-                s.nodes[i].direct = shading_.background(s.rays[i]);
-            }
-        }
+    if (shadesCameraHitsInLanes()) {
+        beginWaves(s, cache);
+        shadeCameraHitsInLanes(cameraRays, tile, s, cache);
+        runWaves(s, cache, FirstWave::Spawned, true);
+    } else {
+        traceCameraTile(cameraRays, tile, s, cache);
+        runWaves(s, cache, FirstWave::Hits, true);
     }
-    runWaves(s, cache, FirstWave::Hits, true);
     resolveNodes(s, cache, tileKey);
     fillFromVisiblePoints(s, cache, cameraRays.ray(tile.x0, tile.y0).origin);
     StageTimer timer(settings_.stageTimes, s.stages.compose);
     composeTile(s, tile, film);
     if (levels) writeLevelRecord(s, tile, *levels);
+}
+
+void TileKernel::traceCameraTile(const CameraRays& cameraRays, const TileRange& tile, TileScratch& s,
+                                 CacheWorker* cache) const {
+    StageTimer timer(settings_.stageTimes, s.stages.firstHits);
+    const auto n = s.nodes.size();
+    s.rays.resize(n);
+    s.hits.resize(n);
+    std::size_t i = 0;
+    for (int y = tile.y0; y < tile.y1; ++y)
+        for (int x = tile.x0; x < tile.x1;) {
+            const int count = std::min(kFloatLanes, tile.x1 - x);
+            cameraRays.rowOfRays(x, y, count, s.rays.data() + i);
+            x += count;
+            i += static_cast<std::size_t>(count);
+        }
+    tracer_.intersectPrimary(std::span(s.rays.data(), n), std::span(s.hits.data(), n));
+    s.counts.primary += n;
+    const RayCone pixel{0.0f, cameraRays.pixelSpread()};
+    for (i = 0; i < n; ++i) {
+        if (s.hits[i].hit()) {
+            s.vertices.push_back({s.rays[i], s.hits[i], static_cast<int>(i), 1.0f, 1, pixel});
+            if (cache && fill_.active())
+                noteVisiblePoint(s, static_cast<int>(i), s.hits[i].objectId,
+                                 s.rays[i].origin + s.rays[i].direction * s.hits[i].t);
+        } else {
+            s.nodes[i].direct = shading_.background(s.rays[i]);
+        }
+    }
 }
 
 void TileKernel::renderGBufferTile(const CameraRays& cameraRays, const GBufferView& gbuffer, const TileRange& tile,
@@ -244,11 +238,20 @@ void TileKernel::renderRays(std::span<const RayTreeRecord> rays, std::span<Rgb> 
     for (std::size_t i = 0; i < n; ++i) out[i] = s.nodes[i].color();
 }
 
+void TileKernel::beginWaves(TileScratch& s, CacheWorker* cache) const {
+    s.trackTrees = cache && cache_ && cache_->tracksDependencies();
+    if (s.trackTrees) s.nodeBounds.assign(s.nodes.size(), RayTreeBounds{});
+}
+
 void TileKernel::runWaves(TileScratch& s, CacheWorker* cache, FirstWave firstWave, bool coherentShadows) const {
     const bool useCache = cache && cache_;
-    s.trackTrees = useCache && cache_->tracksDependencies();
-    if (s.trackTrees) s.nodeBounds.assign(s.nodes.size(), RayTreeBounds{});
-    bool first = true;
+    if (firstWave == FirstWave::Spawned) {
+        if (useCache) lookupReuse(s, *cache);
+        traceSecondaryRays(s);
+    } else {
+        beginWaves(s, cache);
+    }
+    bool first = firstWave != FirstWave::Spawned;
     while (!s.vertices.empty()) {
         const auto start = Clock::now();
         s.stages.hitsShaded += s.vertices.size();
@@ -322,23 +325,6 @@ void setRay(Lanes& lanes, std::size_t k, const Ray& ray, float t) {
     lanes.t[k] = t;
 }
 
-// Lane k's triangle: from the mesh's shading records when they are made for
-// this mesh, else (a kernel not told of a move) from the mesh itself.
-void setMeshHit(MeshHitLanes& lanes, std::size_t k, const TriangleMesh& mesh, const MeshShadingRecords* records,
-                const TraceHit& hit) {
-    const auto triangle = static_cast<std::size_t>(hit.primitiveId);
-    lanes.u[k] = hit.u;
-    lanes.v[k] = hit.v;
-    if (records) {
-        setMeshTriangleLane(lanes, k, records->triangles[triangle], records->hasNormals,
-                            records->hasUvs ? &records->uvs[triangle] : nullptr);
-        return;
-    }
-    const TriangleUvRecord uv = uvRecordOf(mesh, triangle);
-    setMeshTriangleLane(lanes, k, shadingRecordOf(mesh, triangle), !mesh.normals.empty(),
-                        mesh.uvs.empty() ? nullptr : &uv);
-}
-
 }  // namespace
 
 void TileKernel::computeSurfaces(TileScratch& s) const {
@@ -379,7 +365,8 @@ void TileKernel::computeSurfaces(TileScratch& s) const {
             const auto k = static_cast<std::size_t>(meshes.next());
             setRay(meshes.lanes(), k, v.ray, v.hit.t);
             const TriangleMesh* mesh = std::get<MeshShape>(object.shape).mesh.get();
-            setMeshHit(meshes.lanes(), k, *mesh, meshShading_.recordsFor(v.hit.objectId, mesh), v.hit);
+            setMeshHitLane(meshes.lanes(), k, *mesh, meshShading_.recordsFor(v.hit.objectId, mesh), v.hit.primitiveId,
+                           v.hit.u, v.hit.v);
             meshes.add(i, s.surfaces);
         }
     }
@@ -495,37 +482,44 @@ void TileKernel::shadeDirect(TileScratch& s) const {
     }
 }
 
+void TileKernel::emitSecondaryRay(TileScratch& s, CacheWorker* cache, int parent, float parentPathWeight,
+                                  int parentDepth, int objectId, const Ray& ray, const RayCone& cone,
+                                  TileScratch::Kind kind, float share, bool leavesObject) const {
+    // Every secondary ray gets a node of its own, whether a cache answers it
+    // or not, so caching never changes how the colours are summed.
+    const int node = static_cast<int>(s.nodes.size());
+    const bool parentTracked = s.nodes[static_cast<std::size_t>(parent)].tracked;
+    TileScratch::Node& added = s.nodes.emplace_back();
+    added.parent = parent;
+    added.weightInParent = share;
+    const float pathWeight = parentPathWeight * share;
+    // A cube that stands aside this frame (cache/CachePolicy.h), or a ray
+    // out of a sampling cube's sample, is not asked: such rays go straight
+    // to tracing, as without a cache, and cost no lookup, no miss
+    // bookkeeping and no store.
+    const bool cached = leavesObject && cache && cache_->cachesObject(objectId);
+    if (cached && cache_->admits(objectId, ray.direction)) {
+        s.leaving.push_back({ray, objectId, node, pathWeight, parentDepth + 1, kind, cone});
+        added.tracked = s.trackTrees;
+    } else {
+        if (cached) {
+            cache_->countBypassedRay(objectId, *cache);
+            // Asked nothing, so traced: what the level record shows for it.
+            if (s.recordLevels) noteRootLevel(s, node, pathWeight, CacheLevelImage::kTraced);
+        }
+        s.pending.push_back({ray, node, pathWeight, parentDepth + 1, kind, cone});
+        added.tracked = parentTracked;
+    }
+}
+
 void TileKernel::spawnSecondaryRays(TileScratch& s, CacheWorker* cache) const {
     StageTimer timer(settings_.stageTimes, s.stages.secondaryRays);
     s.leaving.clear();
     s.pending.clear();
-    // Every secondary ray gets a node of its own, whether a cache answers it
-    // or not, so caching never changes how the colours are summed.
     const auto emit = [&](const TileScratch::PathVertex& v, const Ray& ray, const RayCone& cone,
                           TileScratch::Kind kind, float share, bool leavesObject) {
-        const int node = static_cast<int>(s.nodes.size());
-        const bool parentTracked = s.nodes[static_cast<std::size_t>(v.node)].tracked;
-        TileScratch::Node& added = s.nodes.emplace_back();
-        added.parent = v.node;
-        added.weightInParent = share;
-        const float pathWeight = v.pathWeight * share;
-        // A cube that stands aside this frame (cache/CachePolicy.h), or a ray
-        // out of a sampling cube's sample, is not asked: such rays go straight
-        // to tracing, as without a cache, and cost no lookup, no miss
-        // bookkeeping and no store.
-        const bool cached = leavesObject && cache && cache_->cachesObject(v.hit.objectId);
-        if (cached && cache_->admits(v.hit.objectId, ray.direction)) {
-            s.leaving.push_back({ray, v.hit.objectId, node, pathWeight, v.depth + 1, kind, cone});
-            added.tracked = s.trackTrees;
-        } else {
-            if (cached) {
-                cache_->countBypassedRay(v.hit.objectId, *cache);
-                // Asked nothing, so traced: what the level record shows for it.
-                if (s.recordLevels) noteRootLevel(s, node, pathWeight, CacheLevelImage::kTraced);
-            }
-            s.pending.push_back({ray, node, pathWeight, v.depth + 1, kind, cone});
-            added.tracked = parentTracked;
-        }
+        emitSecondaryRay(s, cache, v.node, v.pathWeight, v.depth, v.hit.objectId, ray, cone, kind, share,
+                         leavesObject);
     };
     // One hit at a time: reflected rays computed sixteen at a time, gathered
     // from and scattered back to the wave's records, cost more than this

@@ -31,6 +31,7 @@
 #include "render/CacheLevelImage.h"
 #include "render/CameraRays.h"
 #include "render/FrameStats.h"
+#include "render/HitLanes.h"
 #include "render/LocalShading.h"
 #include "render/MeshShading.h"
 #include "render/RayCone.h"
@@ -135,13 +136,31 @@ private:
         Rgb color() const { return direct + secondary; }
     };
 
+    // Sixteen pixels of one tile row in lanes, from their camera rays to
+    // their direct light (TileKernel::shadeCameraHitsInLanes).
+    struct CameraPacket {
+        RayHitLanes16 rays;
+        PacketLanes hits;  // -1 where the camera ray hit something
+        alignas(64) int objectId[16];
+        SurfaceLanes16 surface;
+        alignas(64) float directR[16], directG[16], directB[16];
+        alignas(64) int shadowRays[16];  // shadow rays traced from the lane's hit
+        int firstRoot = 0;  // the root (pixel) of lane 0; lane k is firstRoot + k
+        int count = 0;      // lanes that are pixels of the tile
+    };
+
     void beginTile(std::size_t roots);
     // How the first wave starts: from tracer hits, from surfaces a G-buffer
     // already gave, or from reprojected points whose view-independent light
     // is known (ReshadeRequest).
-    enum class FirstWave : unsigned char { Hits, Surfaces, Reshade };
+    // Spawned: the first wave is shaded and its secondary rays are spawned
+    // (TileKernel::shadeCameraHitsInLanes); the waves start from the lookups.
+    enum class FirstWave : unsigned char { Hits, Surfaces, Reshade, Spawned };
 
     std::vector<Node> nodes;
+    std::vector<CameraPacket> cameraPackets;
+    std::vector<LightLanes16> cameraLights;  // packet p's view of light l at p * lights + l
+    SecondaryRayLanes16 cameraSpawn;         // one packet's secondary rays
     std::vector<PathVertex> vertices, nextVertices;
     std::vector<SurfacePoint> surfaces;
     std::vector<Rgb> albedo;
@@ -252,14 +271,37 @@ public:
 private:
     using FirstWave = TileScratch::FirstWave;
     // Shades the waves until no ray is left, the first as `first` says.
+    // beginWaves first (FirstWave::Spawned: before the spawn).
+    void beginWaves(TileScratch& s, CacheWorker* cache) const;
     void runWaves(TileScratch& s, CacheWorker* cache, FirstWave first, bool coherentShadows) const;
     void reshadeDirect(TileScratch& s) const;
+    // The first bounce of a camera tile with the wave in lanes
+    // (RenderSettings::firstBounceLanes): camera rays, their hits' surfaces,
+    // shadow rays and direct light, sixteen pixels of a row at a time, each
+    // stage over the whole tile, then their secondary rays, ready for
+    // FirstWave::Spawned. Each stage gives the general path's bits.
+    bool shadesCameraHitsInLanes() const;
+    // The general path's first stage of a camera tile: rays, packets, one
+    // record per hit.
+    void traceCameraTile(const CameraRays& cameraRays, const TileRange& tile, TileScratch& s, CacheWorker* cache) const;
+    void shadeCameraHitsInLanes(const CameraRays& cameraRays, const TileRange& tile, TileScratch& s,
+                                CacheWorker* cache) const;
+    void cameraPacketSurfaces(TileScratch::CameraPacket& packet) const;
+    void cameraPacketShadowRays(TileScratch& s, std::size_t p) const;
+    void cameraPacketDirect(TileScratch& s, std::size_t p) const;
+    void cameraPacketSpawn(TileScratch& s, std::size_t p, float pixelSpread, CacheWorker* cache) const;
     void computeSurfaces(TileScratch& s) const;
     void traceShadowRays(TileScratch& s, bool coherent) const;
     // Shadow rays of several lights as packets, each light's rays together.
     void traceShadowRaysByLight(TileScratch& s, std::size_t count) const;
     void shadeDirect(TileScratch& s) const;
     void spawnSecondaryRays(TileScratch& s, CacheWorker* cache) const;
+    // One secondary ray of the hit of node `parent`: its node, then the
+    // cache's lookup batch (a ray leaving a caching object whose cube asks)
+    // or the rays to trace.
+    void emitSecondaryRay(TileScratch& s, CacheWorker* cache, int parent, float parentPathWeight, int parentDepth,
+                          int objectId, const Ray& ray, const RayCone& cone, TileScratch::Kind kind, float share,
+                          bool leavesObject) const;
     void lookupReuse(TileScratch& s, CacheWorker& cache) const;
     // The cache-level record: every root starts with no caching ray; each
     // batch of lookups may replace a root's value (CacheLevelImage says which

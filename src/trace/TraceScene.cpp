@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <numeric>
 #include <limits>
 #include <string>
@@ -478,6 +479,46 @@ void TraceScene::occludedCoherent(std::span<const Ray> rays, std::span<unsigned 
         // Embree marks an occluded ray by setting tfar to -inf.
         for (std::size_t k = 0; k < count; ++k) occluded[base + k] = packet.tfar[k] < 0.0f ? 1 : 0;
     }
+}
+
+// RayHitLanes16 is RTCRayHit16 under names of this project's own.
+static_assert(sizeof(RayHitLanes16) == sizeof(RTCRayHit16) && alignof(RayHitLanes16) == alignof(RTCRayHit16));
+static_assert(offsetof(RayHitLanes16, ray.tNear) == offsetof(RTCRayHit16, ray.tnear));
+static_assert(offsetof(RayHitLanes16, ray.directionX) == offsetof(RTCRayHit16, ray.dir_x));
+static_assert(offsetof(RayHitLanes16, ray.time) == offsetof(RTCRayHit16, ray.time));
+static_assert(offsetof(RayHitLanes16, ray.tFar) == offsetof(RTCRayHit16, ray.tfar));
+static_assert(offsetof(RayHitLanes16, ray.flags) == offsetof(RTCRayHit16, ray.flags));
+static_assert(offsetof(RayHitLanes16, hit.u) == offsetof(RTCRayHit16, hit.u));
+static_assert(offsetof(RayHitLanes16, hit.primitiveId) == offsetof(RTCRayHit16, hit.primID));
+static_assert(offsetof(RayHitLanes16, hit.geometryId) == offsetof(RTCRayHit16, hit.geomID));
+static_assert(offsetof(RayHitLanes16, hit.instanceId) == offsetof(RTCRayHit16, hit.instID));
+static_assert(sizeof(RayLanes16) == sizeof(RTCRay16));
+
+void TraceScene::intersectPacket(RayHitLanes16& packet, const PacketLanes& lanes, int* objectId) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    if (impl_->coherentHint) context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    for (std::size_t k = 0; k < kPacketWidth; ++k) {
+        packet.hit.geometryId[k] = RTC_INVALID_GEOMETRY_ID;
+        packet.hit.instanceId[k] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect16(lanes.valid, impl_->scene, &context, reinterpret_cast<RTCRayHit16*>(&packet));
+    for (std::size_t k = 0; k < kPacketWidth; ++k) {
+        const unsigned instance = packet.hit.instanceId[k];
+        const unsigned geometry = packet.hit.geometryId[k];
+        objectId[k] = geometry == RTC_INVALID_GEOMETRY_ID
+                          ? -1
+                          : static_cast<int>(instance != RTC_INVALID_GEOMETRY_ID ? instance : geometry);
+    }
+}
+
+void TraceScene::occludedPacket(RayLanes16& packet, const PacketLanes& lanes, unsigned char* occluded) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    if (impl_->coherentHint) context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcOccluded16(lanes.valid, impl_->scene, &context, reinterpret_cast<RTCRay16*>(&packet));
+    // Embree marks an occluded ray by setting tfar to -inf.
+    for (std::size_t k = 0; k < kPacketWidth; ++k) occluded[k] = lanes.valid[k] && packet.tFar[k] < 0.0f ? 1 : 0;
 }
 
 void TraceScene::intersectIncoherent(std::span<const Ray> rays, std::span<TraceHit> hits) const {

@@ -10,6 +10,7 @@
 #include "scene/Camera.h"
 #include "scene/Scene.h"
 #include "trace/Accelerator.h"
+#include "trace/RayPacket.h"
 #include "trace/TraceHit.h"
 #include "trace/grids/GridAccelerator.h"
 
@@ -74,6 +75,16 @@ public:
     // Occlusion for a batch of coherent rays (e.g. one tile's shadow rays
     // toward one light), as packets: occluded[i] = 1 if rays[i] is blocked.
     void occludedCoherent(std::span<const Ray> rays, std::span<unsigned char> occluded) const;
+
+    // One packet of up to sixteen coherent rays, traced where lanes.valid is
+    // -1, through Embree whatever the accelerator (the tile kernel uses it
+    // only without grids). Sets tFar to each hit's distance and objectId[k]
+    // to the object hit (-1: nothing, or a lane not traced); the hit's
+    // primitive and barycentrics are in packet.hit.
+    void intersectPacket(RayHitLanes16& packet, const PacketLanes& lanes, int* objectId) const;
+    // Occlusion of the valid lanes of one packet: occluded[k] = 1 where lane
+    // k is blocked (0 where it is clear or not traced).
+    void occludedPacket(RayLanes16& packet, const PacketLanes& lanes, unsigned char* occluded) const;
 
     // The same for batches of rays that go their own ways (e.g. shadow rays
     // of later bounces): traced one by one, which beats packets whose lanes
