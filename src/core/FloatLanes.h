@@ -19,6 +19,17 @@ using FloatLanes = float __attribute__((vector_size(64)));
 // A comparison's result: all bits set in the lanes where it holds, 0 elsewhere.
 using FloatMask = decltype(FloatLanes{} < FloatLanes{});
 
+// Sixteen ints, the type of a comparison's result (FloatMask).
+using IntLanes16 = FloatMask;
+
+[[gnu::always_inline]] inline void loadLanes(const int* from, IntLanes16& to) { __builtin_memcpy(&to, from, sizeof to); }
+[[gnu::always_inline]] inline void storeLanes(const IntLanes16& from, int* to) { __builtin_memcpy(to, &from, sizeof from); }
+// Whether any lane of `mask` is set.
+[[gnu::always_inline]] inline bool anyLane(const FloatMask& mask) {
+    unsigned long long words[8];
+    __builtin_memcpy(words, &mask, sizeof words);
+    return (words[0] | words[1] | words[2] | words[3] | words[4] | words[5] | words[6] | words[7]) != 0;
+}
 [[gnu::always_inline]] inline void loadLanes(const float* from, FloatLanes& to) {
     __builtin_memcpy(&to, from, sizeof to);
 }

@@ -36,17 +36,6 @@ int takeObjectLanes(const int* objectId, int* remaining, int* selected) {
     return object;
 }
 
-template <class HitLanes>
-void copyRayLanes(const RayHitLanes16& packet, HitLanes& lanes) {
-    std::memcpy(lanes.originX, packet.ray.originX, sizeof lanes.originX);
-    std::memcpy(lanes.originY, packet.ray.originY, sizeof lanes.originY);
-    std::memcpy(lanes.originZ, packet.ray.originZ, sizeof lanes.originZ);
-    std::memcpy(lanes.directionX, packet.ray.directionX, sizeof lanes.directionX);
-    std::memcpy(lanes.directionY, packet.ray.directionY, sizeof lanes.directionY);
-    std::memcpy(lanes.directionZ, packet.ray.directionZ, sizeof lanes.directionZ);
-    std::memcpy(lanes.t, packet.ray.tFar, sizeof lanes.t);
-}
-
 Ray laneRay(const RayLanes16& rays, int k) {
     return Ray{{rays.originX[k], rays.originY[k], rays.originZ[k]},
                {rays.directionX[k], rays.directionY[k], rays.directionZ[k]}};
@@ -124,7 +113,7 @@ void TileKernel::shadeCameraHitsInLanes(const CameraRays& cameraRays, const Tile
     s.stages.hitsShaded += hits;
     {
         StageTimer timer(settings_.stageTimes, s.stages.surfaces);
-        for (TileScratch::CameraPacket& packet : s.cameraPackets) cameraPacketSurfaces(packet);
+        for (TileScratch::CameraPacket& packet : s.cameraPackets) cameraPacketSurfaces(packet, s.cameraMeshLanes);
     }
     {
         StageTimer timer(settings_.stageTimes, s.stages.shadowRays);
@@ -143,7 +132,7 @@ void TileKernel::shadeCameraHitsInLanes(const CameraRays& cameraRays, const Tile
     if (s.trackTrees) s.nodeBounds.resize(s.nodes.size());
 }
 
-void TileKernel::cameraPacketSurfaces(TileScratch::CameraPacket& packet) const {
+void TileKernel::cameraPacketSurfaces(TileScratch::CameraPacket& packet, MeshHitLanes& meshLanes) const {
     alignas(64) int remaining[kFloatLanes], selected[kFloatLanes];
     std::memcpy(remaining, packet.hits.valid, sizeof remaining);
     SurfaceLanes16& surface = packet.surface;
@@ -158,17 +147,11 @@ void TileKernel::cameraPacketSurfaces(TileScratch::CameraPacket& packet) const {
                         setLaneSurface(surface, k,
                                        surfacePointAt(object, laneRay(packet.rays.ray, k), laneHit(packet.rays, packet.objectId, k), true));
             } else {
-                SphereHitLanes lanes;
-                copyRayLanes(packet.rays, lanes);
-                std::fill_n(lanes.centerX, kFloatLanes, sphere->center.x);
-                std::fill_n(lanes.centerY, kFloatLanes, sphere->center.y);
-                std::fill_n(lanes.centerZ, kFloatLanes, sphere->center.z);
-                std::fill_n(lanes.radius, kFloatLanes, sphere->radius);
-                sphereSurfaceLanes16(lanes, selected, surface);
+                sphereSurfaceLanes16(packet.rays.ray, *sphere, selected, surface);
             }
         } else {
-            MeshHitLanes lanes;
-            copyRayLanes(packet.rays, lanes);
+            // The triangles' records, lane by lane (the rays stay in the packet).
+            MeshHitLanes& lanes = meshLanes;
             const TriangleMesh* mesh = std::get<MeshShape>(object.shape).mesh.get();
             const MeshShadingRecords* records = meshShading_.recordsFor(id, mesh);
             for (int k = 0; k < kFloatLanes; ++k)
@@ -176,14 +159,23 @@ void TileKernel::cameraPacketSurfaces(TileScratch::CameraPacket& packet) const {
                     setMeshHitLane(lanes, static_cast<std::size_t>(k), *mesh, records,
                                    static_cast<int>(packet.rays.hit.primitiveId[k]), packet.rays.hit.u[k],
                                    packet.rays.hit.v[k]);
-            meshSurfaceLanes16(lanes, selected, surface);
+            meshSurfaceLanes16(packet.rays.ray, lanes, selected, surface);
         }
         // The albedo once the lanes' texture coordinates are known.
-        for (int k = 0; k < kFloatLanes; ++k)
-            if (selected[k]) {
-                const Rgb albedo = material.albedo(surface.u[k], surface.v[k]);
-                surface.albedoR[k] = albedo.r, surface.albedoG[k] = albedo.g, surface.albedoB[k] = albedo.b;
+        if (material.diffuseTexture) {
+            for (int k = 0; k < kFloatLanes; ++k)
+                if (selected[k]) {
+                    const Rgb albedo = material.diffuseTexture->sample(surface.u[k], surface.v[k]);
+                    surface.albedoR[k] = albedo.r, surface.albedoG[k] = albedo.g, surface.albedoB[k] = albedo.b;
+                }
+        } else {
+            const Rgb albedo = material.diffuse;
+            for (int k = 0; k < kFloatLanes; ++k) {
+                surface.albedoR[k] = selected[k] ? albedo.r : surface.albedoR[k];
+                surface.albedoG[k] = selected[k] ? albedo.g : surface.albedoG[k];
+                surface.albedoB[k] = selected[k] ? albedo.b : surface.albedoB[k];
             }
+        }
     }
 }
 

@@ -29,6 +29,20 @@ template <class HitLanes>
     px = ox + dx * t, py = oy + dy * t, pz = oz + dz * t;
 }
 
+// The same from a tracer's packet, whose tFar holds the hit distance.
+[[gnu::always_inline]] inline void hitPointLanes(const RayLanes16& h, FloatLanes& dx, FloatLanes& dy, FloatLanes& dz,
+                                                 FloatLanes& px, FloatLanes& py, FloatLanes& pz) {
+    FloatLanes ox, oy, oz, t;
+    loadLanes(h.originX, ox);
+    loadLanes(h.originY, oy);
+    loadLanes(h.originZ, oz);
+    loadLanes(h.directionX, dx);
+    loadLanes(h.directionY, dy);
+    loadLanes(h.directionZ, dz);
+    loadLanes(h.tFar, t);
+    px = ox + dx * t, py = oy + dy * t, pz = oz + dz * t;
+}
+
 // a * w + b * u + c * v lane by lane, from three arrays of sixteen: a
 // triangle's vertex attribute at barycentrics (u, v), in meshSurface's order.
 [[gnu::always_inline]] inline void interpolateLanes(const float* a, const float* b, const float* c,
@@ -45,16 +59,13 @@ template <class HitLanes>
 // exported functions below call these.
 // surfacePointAt's steps at sphere hits: normal = (position - centre) *
 // (1 / radius), turned toward the ray.
-[[gnu::always_inline]] inline void sphereSurfaceCore(const SphereHitLanes& hits, FloatLanes& px, FloatLanes& py,
-                                                     FloatLanes& pz, FloatLanes& nx, FloatLanes& ny, FloatLanes& nz,
-                                                     FloatMask& front) {
-    FloatLanes dx, dy, dz, cx, cy, cz, radius;
-    hitPointLanes(hits, dx, dy, dz, px, py, pz);
-    loadLanes(hits.centerX, cx);
-    loadLanes(hits.centerY, cy);
-    loadLanes(hits.centerZ, cz);
-    loadLanes(hits.radius, radius);
-    const FloatLanes inverseRadius = 1.0f / radius;
+template <class Rays>
+[[gnu::always_inline]] inline void sphereSurfaceCore(const Rays& rays, const FloatLanes& cx, const FloatLanes& cy,
+                                                     const FloatLanes& cz, const FloatLanes& inverseRadius,
+                                                     FloatLanes& px, FloatLanes& py, FloatLanes& pz, FloatLanes& nx,
+                                                     FloatLanes& ny, FloatLanes& nz, FloatMask& front) {
+    FloatLanes dx, dy, dz;
+    hitPointLanes(rays, dx, dy, dz, px, py, pz);
     nx = (px - cx) * inverseRadius, ny = (py - cy) * inverseRadius, nz = (pz - cz) * inverseRadius;
     front = dx * nx + dy * ny + dz * nz < 0.0f;
     nx = front ? nx : -nx;
@@ -66,9 +77,13 @@ template <class HitLanes>
 // exported functions below call these.
 RAYCACHE_WIDE_LANE_CLONES
 void sphereSurfaceLanes(const SphereHitLanes& hits, int count, SurfacePoint* out) {
-    FloatLanes px, py, pz, nx, ny, nz;
+    FloatLanes px, py, pz, nx, ny, nz, cx, cy, cz, radius;
     FloatMask front;
-    sphereSurfaceCore(hits, px, py, pz, nx, ny, nz, front);
+    loadLanes(hits.centerX, cx);
+    loadLanes(hits.centerY, cy);
+    loadLanes(hits.centerZ, cz);
+    loadLanes(hits.radius, radius);
+    sphereSurfaceCore(hits, cx, cy, cz, 1.0f / radius, px, py, pz, nx, ny, nz, front);
     for (int k = 0; k < count; ++k) {
         SurfacePoint& sp = out[k];
         sp.position = {px[k], py[k], pz[k]};
@@ -79,17 +94,31 @@ void sphereSurfaceLanes(const SphereHitLanes& hits, int count, SurfacePoint* out
 }
 
 // Lanes that are set where the ints are non-zero.
+// (Whole-vector operations: GCC turns a loop over a vector's lanes into one
+// scalar instruction per lane.)
 [[gnu::always_inline]] inline void maskOf(const int* flags, FloatMask& mask) {
-    for (int k = 0; k < kFloatLanes; ++k) mask[k] = flags[k] != 0 ? -1 : 0;
+    IntLanes16 lanes;
+    loadLanes(flags, lanes);
+    mask = lanes != 0;
+}
+
+// Writes 1 where `value` is set and 0 where not, into the lanes of `to`
+// that `selected` sets.
+[[gnu::always_inline]] inline void storeSelectedFlags(const FloatMask& value, const FloatMask& selected, int* to) {
+    IntLanes16 old;
+    loadLanes(to, old);
+    storeLanes(selected ? value & 1 : old, to);
 }
 
 // surfacePointAt's steps at triangle-mesh hits.
-[[gnu::always_inline]] inline void meshSurfaceCore(const MeshHitLanes& h, FloatLanes& px, FloatLanes& py,
+template <class Rays>
+[[gnu::always_inline]] inline void meshSurfaceCore(const Rays& rays, const MeshHitLanes& h, FloatLanes& px,
+                                                   FloatLanes& py,
                                                    FloatLanes& pz, FloatLanes& nx, FloatLanes& ny, FloatLanes& nz,
                                                    FloatLanes& gx, FloatLanes& gy, FloatLanes& gz, FloatLanes& tu,
                                                    FloatLanes& tv, FloatMask& front) {
     FloatLanes dx, dy, dz, u, v;
-    hitPointLanes(h, dx, dy, dz, px, py, pz);
+    hitPointLanes(rays, dx, dy, dz, px, py, pz);
     loadLanes(h.u, u);
     loadLanes(h.v, v);
     const FloatLanes w = 1.0f - u - v;
@@ -132,7 +161,7 @@ RAYCACHE_WIDE_LANE_CLONES
 void meshSurfaceLanes(const MeshHitLanes& h, int count, SurfacePoint* out) {
     FloatLanes px, py, pz, nx, ny, nz, gx, gy, gz, tu, tv;
     FloatMask front;
-    meshSurfaceCore(h, px, py, pz, nx, ny, nz, gx, gy, gz, tu, tv, front);
+    meshSurfaceCore(h, h, px, py, pz, nx, ny, nz, gx, gy, gz, tu, tv, front);
     for (int k = 0; k < count; ++k) {
         SurfacePoint& sp = out[k];
         sp.position = {px[k], py[k], pz[k]};
@@ -266,24 +295,25 @@ int shadowQueryLanes(std::span<const Light> lights, std::span<const SpotCone> sp
     storeSelected(gz, selected, out.geometricZ);
     storeSelected(tu, selected, out.u);
     storeSelected(tv, selected, out.v);
-    for (int k = 0; k < kFloatLanes; ++k)
-        if (selected[k]) out.frontFace[k] = front[k] ? 1 : 0;
+    storeSelectedFlags(front, selected, out.frontFace);
 }
 
 RAYCACHE_WIDE_LANE_CLONES
-void sphereSurfaceLanesSoa(const SphereHitLanes& hits, const int* lanes, SurfaceLanes16& out) {
+void sphereSurfaceLanesSoa(const RayLanes16& rays, const Sphere& sphere, const int* lanes, SurfaceLanes16& out) {
     FloatLanes px, py, pz, nx, ny, nz;
     FloatMask front, selected;
-    sphereSurfaceCore(hits, px, py, pz, nx, ny, nz, front);
+    sphereSurfaceCore(rays, FloatLanes{} + sphere.center.x, FloatLanes{} + sphere.center.y,
+                      FloatLanes{} + sphere.center.z, FloatLanes{} + 1.0f / sphere.radius, px, py, pz, nx, ny, nz,
+                      front);
     maskOf(lanes, selected);
     storeSurfaceLanes(selected, px, py, pz, nx, ny, nz, nx, ny, nz, FloatLanes{}, FloatLanes{}, front, out);
 }
 
 RAYCACHE_WIDE_LANE_CLONES
-void meshSurfaceLanesSoa(const MeshHitLanes& hits, const int* lanes, SurfaceLanes16& out) {
+void meshSurfaceLanesSoa(const RayLanes16& rays, const MeshHitLanes& hits, const int* lanes, SurfaceLanes16& out) {
     FloatLanes px, py, pz, nx, ny, nz, gx, gy, gz, tu, tv;
     FloatMask front, selected;
-    meshSurfaceCore(hits, px, py, pz, nx, ny, nz, gx, gy, gz, tu, tv, front);
+    meshSurfaceCore(rays, hits, px, py, pz, nx, ny, nz, gx, gy, gz, tu, tv, front);
     maskOf(lanes, selected);
     storeSurfaceLanes(selected, px, py, pz, nx, ny, nz, gx, gy, gz, tu, tv, front, out);
 }
@@ -326,8 +356,8 @@ void shadowRayLanesSoa(const Light& light, const SpotCone& spot, const SurfaceLa
         rays.mask[k] = 0xFFFFFFFFu;
         rays.id[k] = 0;
         rays.flags[k] = 0;
-        traced.valid[k] = reaches[k] ? -1 : 0;
     }
+    storeLanes(reaches, traced.valid);
     storeLanes(toX, seen.toX);
     storeLanes(toY, seen.toY);
     storeLanes(toZ, seen.toZ);
@@ -378,9 +408,7 @@ void directLightLanesSoa(const Material& material, std::span<const Light> lights
         const LightLanes16& light = seen[l];
         FloatMask lit;
         maskOf(light.lit, lit);
-        bool any = false;
-        for (int k = 0; k < kFloatLanes; ++k) any |= light.lit[k] != 0;
-        if (!any) continue;
+        if (!anyLane(lit)) continue;
         FloatLanes toX, toY, toZ, strength;
         loadLanes(light.toX, toX);
         loadLanes(light.toY, toY);
@@ -476,11 +504,8 @@ void secondaryRayLanesSoa(const Material& material, float curvature, float pixel
     storeSelected(py + gy * offset, selected, out.aboveY);
     storeSelected(pz + gz * offset, selected, out.aboveZ);
     storeSelected(reflectWeight, selected, out.reflectWeight);
-    for (int k = 0; k < kFloatLanes; ++k)
-        if (selected[k]) {
-            out.reflects[k] = reflects[k] ? 1 : 0;
-            out.refracts[k] = refracts[k] ? 1 : 0;
-        }
+    storeSelectedFlags(reflects, selected, out.reflects);
+    storeSelectedFlags(refracts, selected, out.refracts);
 }
 
 }  // namespace
@@ -496,12 +521,13 @@ int shadowQueries16(std::span<const Light> lights, std::span<const SpotCone> spo
     return shadowQueryLanes(lights, spot, surfaces, count, out, firstQuery);
 }
 
-void sphereSurfaceLanes16(const SphereHitLanes& hits, const int* lanes, SurfaceLanes16& out) {
-    sphereSurfaceLanesSoa(hits, lanes, out);
+void sphereSurfaceLanes16(const RayLanes16& rays, const Sphere& sphere, const int* lanes, SurfaceLanes16& out) {
+    sphereSurfaceLanesSoa(rays, sphere, lanes, out);
 }
 
-void meshSurfaceLanes16(const MeshHitLanes& hits, const int* lanes, SurfaceLanes16& out) {
-    meshSurfaceLanesSoa(hits, lanes, out);
+void meshSurfaceLanes16(const RayLanes16& rays, const MeshHitLanes& triangles, const int* lanes,
+                        SurfaceLanes16& out) {
+    meshSurfaceLanesSoa(rays, triangles, lanes, out);
 }
 
 void shadowRayLanes16(const Light& light, const SpotCone& spot, const SurfaceLanes16& surfaces, const int* lanes,

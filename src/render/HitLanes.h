@@ -117,10 +117,12 @@ struct LightLanes16 {
     alignas(64) int lit[16];
 };
 
-// sphereSurfaces16 into lanes.
-void sphereSurfaceLanes16(const SphereHitLanes& hits, const int* lanes, SurfaceLanes16& out);
-// meshSurfaces16 into lanes.
-void meshSurfaceLanes16(const MeshHitLanes& hits, const int* lanes, SurfaceLanes16& out);
+// sphereSurfaces16 into lanes, for hits of `rays` (at their tFar) on one sphere.
+void sphereSurfaceLanes16(const RayLanes16& rays, const Sphere& sphere, const int* lanes, SurfaceLanes16& out);
+// meshSurfaces16 into lanes, for hits of `rays` (at their tFar) on the
+// triangles of `triangles` (whose own rays are not read).
+void meshSurfaceLanes16(const RayLanes16& rays, const MeshHitLanes& triangles, const int* lanes,
+                        SurfaceLanes16& out);
 
 // Light `light`'s shadow rays from the surfaces' lanes, as
 // LocalShading::shadowQueries makes them: `rays` gets them and `traced` the

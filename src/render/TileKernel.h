@@ -161,6 +161,7 @@ private:
     std::vector<CameraPacket> cameraPackets;
     std::vector<LightLanes16> cameraLights;  // packet p's view of light l at p * lights + l
     SecondaryRayLanes16 cameraSpawn;         // one packet's secondary rays
+    MeshHitLanes cameraMeshLanes;            // one packet's triangles
     std::vector<PathVertex> vertices, nextVertices;
     std::vector<SurfacePoint> surfaces;
     std::vector<Rgb> albedo;
@@ -286,7 +287,7 @@ private:
     void traceCameraTile(const CameraRays& cameraRays, const TileRange& tile, TileScratch& s, CacheWorker* cache) const;
     void shadeCameraHitsInLanes(const CameraRays& cameraRays, const TileRange& tile, TileScratch& s,
                                 CacheWorker* cache) const;
-    void cameraPacketSurfaces(TileScratch::CameraPacket& packet) const;
+    void cameraPacketSurfaces(TileScratch::CameraPacket& packet, MeshHitLanes& meshLanes) const;
     void cameraPacketShadowRays(TileScratch& s, std::size_t p) const;
     void cameraPacketDirect(TileScratch& s, std::size_t p) const;
     void cameraPacketSpawn(TileScratch& s, std::size_t p, float pixelSpread, CacheWorker* cache) const;
