@@ -442,10 +442,10 @@ void directLightLanesSoa(const Material& material, std::span<const Light> lights
 }
 
 RAYCACHE_WIDE_LANE_CLONES
-void secondaryRayLanesSoa(const Material& material, float curvature, float pixelSpread, float minWeight,
-                          const SurfaceLanes16& surfaces, const RayLanes16& rays, const int* lanes,
-                          SecondaryRayLanes16& out) {
-    FloatLanes px, py, pz, nx, ny, nz, gx, gy, gz, dx, dy, dz, t;
+void secondaryRayLanesSoa(const Material& material, float curvature, float minWeight, const SurfaceLanes16& surfaces,
+                          const RayLanes16& rays, const float* pathWeights, const float* coneWidth,
+                          const float* coneSpread, const int* lanes, SecondaryRayLanes16& out) {
+    FloatLanes px, py, pz, nx, ny, nz, gx, gy, gz, dx, dy, dz, t, pathWeight, width0, spread0;
     loadSurface(surfaces, px, py, pz, nx, ny, nz);
     loadLanes(surfaces.geometricX, gx);
     loadLanes(surfaces.geometricY, gy);
@@ -454,16 +454,19 @@ void secondaryRayLanesSoa(const Material& material, float curvature, float pixel
     loadLanes(rays.directionY, dy);
     loadLanes(rays.directionZ, dz);
     loadLanes(rays.tFar, t);
+    loadLanes(pathWeights, pathWeight);
+    loadLanes(coneWidth, width0);
+    loadLanes(coneSpread, spread0);
     FloatMask selected, front;
     maskOf(lanes, selected);
     maskOf(surfaces.frontFace, front);
     FloatLanes offset;
     surfaceOffsetLanes(px, py, pz, offset);
-    // RayCone{0, pixelSpread}.bounced(t, curvature)
+    // RayCone::bounced(t, curvature)
     FloatLanes width;
-    absLanes(0.0f + pixelSpread * t, width);
+    absLanes(width0 + spread0 * t, width);
     storeSelected(width, selected, out.coneWidth);
-    storeSelected(pixelSpread + 2.0f * width * curvature, selected, out.coneSpread);
+    storeSelected(spread0 + 2.0f * width * curvature, selected, out.coneSpread);
     // The incident ray's cosine, as reflect() and refract() take it.
     const FloatLanes cosI = -(dx * nx + dy * ny + dz * nz);
     FloatLanes reflectWeight = FloatLanes{} + material.reflectivity;
@@ -486,11 +489,10 @@ void secondaryRayLanesSoa(const Material& material, float curvature, float pixel
         storeSelected(px - gx * offset, selected, out.belowX);
         storeSelected(py - gy * offset, selected, out.belowY);
         storeSelected(pz - gz * offset, selected, out.belowZ);
-        // The path weight of a camera hit is 1: 1 * kt is kt.
-        if (material.transmissivity >= minWeight) refracts = ~total;
+        refracts = ~total & (pathWeight * material.transmissivity >= minWeight);
         reflectWeight = total ? reflectWeight + material.transmissivity : reflectWeight;
     }
-    const FloatMask reflects = (reflectWeight > 0.0f) & (reflectWeight >= minWeight);
+    const FloatMask reflects = (reflectWeight > 0.0f) & (pathWeight * reflectWeight >= minWeight);
     // normalize(reflect(d, n))
     const FloatLanes twice = 2.0f * cosI;
     const FloatLanes rx = dx + nx * twice, ry = dy + ny * twice, rz = dz + nz * twice;
@@ -541,10 +543,11 @@ void directLightLanes16(const Material& material, std::span<const Light> lights,
     directLightLanesSoa(material, lights, seen, surfaces, viewRays, lanes, outR, outG, outB);
 }
 
-void secondaryRayLanes16(const Material& material, float curvature, float pixelSpread, float minWeight,
-                         const SurfaceLanes16& surfaces, const RayLanes16& rays, const int* lanes,
-                         SecondaryRayLanes16& out) {
-    secondaryRayLanesSoa(material, curvature, pixelSpread, minWeight, surfaces, rays, lanes, out);
+void secondaryRayLanes16(const Material& material, float curvature, float minWeight, const SurfaceLanes16& surfaces,
+                         const RayLanes16& rays, const float* pathWeight, const float* coneWidth,
+                         const float* coneSpread, const int* lanes, SecondaryRayLanes16& out) {
+    secondaryRayLanesSoa(material, curvature, minWeight, surfaces, rays, pathWeight, coneWidth, coneSpread, lanes,
+                         out);
 }
 
 }  // namespace raycache

@@ -110,11 +110,11 @@ struct SurfaceLanes16 {
 };
 
 // One light as sixteen surfaces see it: the direction toward it, the spot
-// factor, and whether its shadow ray came back clear (1) or was blocked or
-// never traced, the light facing away (0).
+// factor, whether a shadow ray was traced toward it (0: the light faces
+// away) and whether it came back clear (1) or was blocked or never traced (0).
 struct LightLanes16 {
     alignas(64) float toX[16], toY[16], toZ[16], strength[16];
-    alignas(64) int lit[16];
+    alignas(64) int traced[16], lit[16];
 };
 
 // sphereSurfaces16 into lanes, for hits of `rays` (at their tFar) on one sphere.
@@ -127,8 +127,8 @@ void meshSurfaceLanes16(const RayLanes16& rays, const MeshHitLanes& triangles, c
 // Light `light`'s shadow rays from the surfaces' lanes, as
 // LocalShading::shadowQueries makes them: `rays` gets them and `traced` the
 // lanes that need one (selected, and the light reaches the surface). Fills
-// `seen`'s directions and strengths; its `lit` is the caller's to set once
-// the rays are traced.
+// `seen`'s directions and strengths; its `traced` and `lit` are the
+// caller's to set once the rays are traced.
 void shadowRayLanes16(const Light& light, const SpotCone& spot, const SurfaceLanes16& surfaces, const int* lanes,
                       RayLanes16& rays, PacketLanes& traced, LightLanes16& seen);
 
@@ -138,8 +138,8 @@ void directLightLanes16(const Material& material, std::span<const Light> lights,
                         const SurfaceLanes16& surfaces, const RayLanes16& viewRays, const int* lanes, float* outR,
                         float* outG, float* outB);
 
-// The secondary rays of sixteen camera-ray hits (path weight 1, the pixel's
-// cone), all of one material: TileKernel::spawnSecondaryRays' arithmetic.
+// The secondary rays of sixteen hits of one material:
+// TileKernel::spawnSecondaryRays' arithmetic.
 struct SecondaryRayLanes16 {
     alignas(64) float reflectedX[16], reflectedY[16], reflectedZ[16];  // unit directions
     alignas(64) float aboveX[16], aboveY[16], aboveZ[16];              // their origins, lifted off the surface
@@ -151,10 +151,11 @@ struct SecondaryRayLanes16 {
 };
 
 // The rays surfaces k (selected by `lanes`) of `material` spawn, hit by
-// `rays` at their tFar: `curvature` as coneCurvature gives it, `pixelSpread`
-// the camera's (render/RayCone.h), `minWeight` RenderSettings::minWeight.
-void secondaryRayLanes16(const Material& material, float curvature, float pixelSpread, float minWeight,
-                         const SurfaceLanes16& surfaces, const RayLanes16& rays, const int* lanes,
-                         SecondaryRayLanes16& out);
+// `rays` at their tFar, whose paths weigh pathWeight[k] and whose cones are
+// {coneWidth[k], coneSpread[k]}: `curvature` as coneCurvature gives it,
+// `minWeight` RenderSettings::minWeight (render/RayCone.h).
+void secondaryRayLanes16(const Material& material, float curvature, float minWeight, const SurfaceLanes16& surfaces,
+                         const RayLanes16& rays, const float* pathWeight, const float* coneWidth,
+                         const float* coneSpread, const int* lanes, SecondaryRayLanes16& out);
 
 }  // namespace raycache

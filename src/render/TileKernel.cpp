@@ -46,9 +46,10 @@ void TileKernel::renderCameraTile(const CameraRays& cameraRays, const TileRange&
     const auto n = static_cast<std::size_t>(tileWidth) * static_cast<std::size_t>(tile.y1 - tile.y0);
     s.beginTile(n);
     if (levels) beginLevelRecord(s, n);
-    if (shadesCameraHitsInLanes()) {
+    if (tracesCameraRaysInLanes()) {
         beginWaves(s, cache);
-        shadeCameraHitsInLanes(cameraRays, tile, s, cache);
+        traceCameraRaysInLanes(cameraRays, tile, s, cache);
+        shadePackets(s, cache && cache_ ? cache : nullptr);
         runWaves(s, cache, FirstWave::Spawned, true);
     } else {
         traceCameraTile(cameraRays, tile, s, cache);
@@ -245,28 +246,34 @@ void TileKernel::beginWaves(TileScratch& s, CacheWorker* cache) const {
 
 void TileKernel::runWaves(TileScratch& s, CacheWorker* cache, FirstWave firstWave, bool coherentShadows) const {
     const bool useCache = cache && cache_;
-    if (firstWave == FirstWave::Spawned) {
-        if (useCache) lookupReuse(s, *cache);
-        traceSecondaryRays(s);
-    } else {
+    if (firstWave != FirstWave::Spawned) {
         beginWaves(s, cache);
-    }
-    bool first = firstWave != FirstWave::Spawned;
-    while (!s.vertices.empty()) {
         const auto start = Clock::now();
         s.stages.hitsShaded += s.vertices.size();
-        if (!(first && firstWave == FirstWave::Surfaces)) computeSurfaces(s);
-        if (first && firstWave == FirstWave::Reshade) {
+        if (firstWave != FirstWave::Surfaces) computeSurfaces(s);
+        if (firstWave == FirstWave::Reshade) {
             reshadeDirect(s);
         } else {
-            traceShadowRays(s, first && coherentShadows);
+            traceShadowRays(s, coherentShadows);
             shadeDirect(s);
         }
-        if (first) s.firstBounce += Clock::now() - start;
+        s.firstBounce += Clock::now() - start;
         spawnSecondaryRays(s, useCache ? cache : nullptr);
+    }
+    if (useCache) lookupReuse(s, *cache);
+    while (!s.pending.empty()) {
+        if (settings_.waveLanes) {
+            traceSecondaryRaysInLanes(s);
+            shadePackets(s, useCache ? cache : nullptr);
+        } else {
+            traceSecondaryRays(s);
+            s.stages.hitsShaded += s.vertices.size();
+            computeSurfaces(s);
+            traceShadowRays(s, false);
+            shadeDirect(s);
+            spawnSecondaryRays(s, useCache ? cache : nullptr);
+        }
         if (useCache) lookupReuse(s, *cache);
-        traceSecondaryRays(s);
-        first = false;
     }
 }
 

@@ -136,17 +136,19 @@ private:
         Rgb color() const { return direct + secondary; }
     };
 
-    // Sixteen pixels of one tile row in lanes, from their camera rays to
-    // their direct light (TileKernel::shadeCameraHitsInLanes).
-    struct CameraPacket {
+    // Sixteen rays of a wave and their hits in lanes, from the tracer's
+    // packet to their direct light and secondary rays (render/WaveLanes.cpp).
+    struct HitPacket {
         RayHitLanes16 rays;
-        PacketLanes hits;  // -1 where the camera ray hit something
+        PacketLanes hits;  // -1 where the ray hit something
         alignas(64) int objectId[16];
         SurfaceLanes16 surface;
         alignas(64) float directR[16], directG[16], directB[16];
-        alignas(64) int shadowRays[16];  // shadow rays traced from the lane's hit
-        int firstRoot = 0;  // the root (pixel) of lane 0; lane k is firstRoot + k
-        int count = 0;      // lanes that are pixels of the tile
+        alignas(64) int node[16];          // the node each ray's colour adds to
+        alignas(64) float pathWeight[16];  // as PathVertex's
+        alignas(64) int depth[16];
+        alignas(64) float coneWidth[16], coneSpread[16];
+        int count = 0;  // lanes in use; the rest are not traced
     };
 
     void beginTile(std::size_t roots);
@@ -154,14 +156,17 @@ private:
     // already gave, or from reprojected points whose view-independent light
     // is known (ReshadeRequest).
     // Spawned: the first wave is shaded and its secondary rays are spawned
-    // (TileKernel::shadeCameraHitsInLanes); the waves start from the lookups.
+    // (the camera rays in lanes); the waves start from the lookups.
     enum class FirstWave : unsigned char { Hits, Surfaces, Reshade, Spawned };
 
     std::vector<Node> nodes;
-    std::vector<CameraPacket> cameraPackets;
-    std::vector<LightLanes16> cameraLights;  // packet p's view of light l at p * lights + l
-    SecondaryRayLanes16 cameraSpawn;         // one packet's secondary rays
-    MeshHitLanes cameraMeshLanes;            // one packet's triangles
+    // The waves in lanes (RenderSettings::waveLanes): the wave's packets,
+    // packet p's view of light l at p * lights + l, and one packet's
+    // secondary rays and triangles.
+    std::vector<HitPacket> packets;
+    std::vector<LightLanes16> packetLights;
+    SecondaryRayLanes16 spawnLanes;
+    MeshHitLanes meshLanes;
     std::vector<PathVertex> vertices, nextVertices;
     std::vector<SurfacePoint> surfaces;
     std::vector<Rgb> albedo;
@@ -276,21 +281,25 @@ private:
     void beginWaves(TileScratch& s, CacheWorker* cache) const;
     void runWaves(TileScratch& s, CacheWorker* cache, FirstWave first, bool coherentShadows) const;
     void reshadeDirect(TileScratch& s) const;
-    // The first bounce of a camera tile with the wave in lanes
-    // (RenderSettings::firstBounceLanes): camera rays, their hits' surfaces,
-    // shadow rays and direct light, sixteen pixels of a row at a time, each
-    // stage over the whole tile, then their secondary rays, ready for
-    // FirstWave::Spawned. Each stage gives the general path's bits.
-    bool shadesCameraHitsInLanes() const;
+    // The waves in lanes (RenderSettings::waveLanes, render/WaveLanes.cpp):
+    // a wave is s.packets, each stage runs over all of them, and every lane
+    // gets the general path's bits. The camera rays of a tile go in lanes
+    // with the Embree accelerator only (the grids answer them their own way).
+    bool tracesCameraRaysInLanes() const;
+    void traceCameraRaysInLanes(const CameraRays& cameraRays, const TileRange& tile, TileScratch& s,
+                                CacheWorker* cache) const;
+    // s.pending traced as packets in spawn order: the next wave.
+    void traceSecondaryRaysInLanes(TileScratch& s) const;
+    // Surfaces, shadow rays, direct light, then the secondary rays into
+    // s.leaving and s.pending.
+    void shadePackets(TileScratch& s, CacheWorker* cache) const;
+    void packetSurfaces(TileScratch::HitPacket& packet, MeshHitLanes& meshLanes) const;
+    void packetShadowRays(TileScratch& s, std::size_t p) const;
+    void packetDirect(TileScratch& s, std::size_t p) const;
+    void packetSpawn(TileScratch& s, const TileScratch::HitPacket& packet, CacheWorker* cache) const;
     // The general path's first stage of a camera tile: rays, packets, one
     // record per hit.
     void traceCameraTile(const CameraRays& cameraRays, const TileRange& tile, TileScratch& s, CacheWorker* cache) const;
-    void shadeCameraHitsInLanes(const CameraRays& cameraRays, const TileRange& tile, TileScratch& s,
-                                CacheWorker* cache) const;
-    void cameraPacketSurfaces(TileScratch::CameraPacket& packet, MeshHitLanes& meshLanes) const;
-    void cameraPacketShadowRays(TileScratch& s, std::size_t p) const;
-    void cameraPacketDirect(TileScratch& s, std::size_t p) const;
-    void cameraPacketSpawn(TileScratch& s, std::size_t p, float pixelSpread, CacheWorker* cache) const;
     void computeSurfaces(TileScratch& s) const;
     void traceShadowRays(TileScratch& s, bool coherent) const;
     // Shadow rays of several lights as packets, each light's rays together.

@@ -1,8 +1,7 @@
-// The camera tiles' first bounce with the wave in lanes
-// (RenderSettings::firstBounceLanes, render/CameraHitLanes.cpp) against the
-// wave's general path, one record per hit: every lane does the general
-// path's arithmetic, so images, ray counts and caches must be the same bit
-// for bit. Scenes cover spheres and meshes in one packet, textured spheres
+// The tile kernel's waves in lanes (RenderSettings::waveLanes,
+// render/WaveLanes.cpp) against its general path, one record per hit: every
+// lane does the general path's arithmetic, so images, ray counts and caches
+// must be the same bit for bit. Scenes cover spheres and meshes in one packet, textured spheres
 // and meshes, point, spot and directional lights, glass, concave mirrors,
 // animation, and tiles cut by the image's edge (83x61: neither side a
 // multiple of 16).
@@ -35,7 +34,7 @@ Frames renderFrames(const Scene& scene, bool lanes, CacheTechnique technique, in
     settings.width = kWidth;
     settings.height = kHeight;
     settings.threads = 2;
-    settings.firstBounceLanes = lanes;
+    settings.waveLanes = lanes;
     settings.cache.techniqueOverride = technique;
     settings.cache.resolutionOverride = 64;
     RenderSession session(scene, settings);
@@ -76,7 +75,7 @@ void expectLanesEqualGeneralPath(const Scene& scene, const std::string& name, Ca
 
 }  // namespace
 
-TEST(CameraHitLanes, EveryBuiltinSceneUncachedEqualsTheGeneralPath) {
+TEST(WaveLanes, EveryBuiltinSceneUncachedEqualsTheGeneralPath) {
     for (const BuiltinSceneInfo& info : builtinScenes()) {
         const auto scene = makeBuiltinScene(info.name);
         ASSERT_TRUE(scene.has_value()) << info.name;
@@ -84,7 +83,7 @@ TEST(CameraHitLanes, EveryBuiltinSceneUncachedEqualsTheGeneralPath) {
     }
 }
 
-TEST(CameraHitLanes, CachedFramesEqualTheGeneralPath) {
+TEST(WaveLanes, CachedFramesEqualTheGeneralPath) {
     // The second frame of each answers from the cubes the first filled;
     // the animated ones also drop what moved.
     for (const char* name : {"room", "glass", "bowl", "grid-8", "orbit", "room-moving"}) {
@@ -95,7 +94,7 @@ TEST(CameraHitLanes, CachedFramesEqualTheGeneralPath) {
     }
 }
 
-TEST(CameraHitLanes, TexturedSpheresEqualTheGeneralPath) {
+TEST(WaveLanes, TexturedSpheresEqualTheGeneralPath) {
     // No built-in scene has a textured sphere: their texture coordinates
     // are computed one lane at a time.
     auto scene = makeBuiltinScene("room");
@@ -113,7 +112,7 @@ TEST(CameraHitLanes, TexturedSpheresEqualTheGeneralPath) {
     expectLanesEqualGeneralPath(*scene, "room with textured spheres", CacheTechnique::None, 1);
 }
 
-TEST(CameraHitLanes, RealMeshScenesEqualTheGeneralPath) {
+TEST(WaveLanes, RealMeshScenesEqualTheGeneralPath) {
     for (const char* name : {"bunny-glass", "teapot-mirrors"}) {
         const std::optional<Scene> scene = makeRealMeshScene(name, builtMeshSearchPath());
         if (!scene) {

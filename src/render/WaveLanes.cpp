@@ -1,0 +1,355 @@
+// The tile kernel's waves in lanes (RenderSettings::waveLanes): the
+// tracer's packets stay the wave's records. A wave is a list of packets of
+// sixteen rays: the camera rays of one tile row, or sixteen secondary rays
+// in the order they were spawned. Each stage (surfaces, shadow rays, direct
+// light, secondary rays) runs over the wave's packets before the next, as
+// the general path's stages run over its records. Where a packet's lanes
+// hit several objects, a stage takes one object at a time under a mask, so
+// that a material and a sphere are read once per packet, not once per hit.
+// What each lane computes is the general path's arithmetic, operation for
+// operation (render/HitLanes.h), so the image is the same bit for bit.
+#include <algorithm>
+#include <cstring>
+#include <limits>
+
+#include "core/FloatLanes.h"
+#include "render/StageTimer.h"
+#include "render/TileKernel.h"
+
+namespace raycache {
+
+namespace {
+
+// Selects, among the lanes `remaining` still holds, those of the object of
+// the first one; removes them from `remaining`. Returns that object, or -1
+// when no lane remains.
+int takeObjectLanes(const int* objectId, int* remaining, int* selected) {
+    int object = -1;
+    for (int k = 0; k < kFloatLanes; ++k)
+        if (remaining[k]) {
+            object = objectId[k];
+            break;
+        }
+    for (int k = 0; k < kFloatLanes; ++k) {
+        selected[k] = remaining[k] && objectId[k] == object ? -1 : 0;
+        if (selected[k]) remaining[k] = 0;
+    }
+    return object;
+}
+
+Ray laneRay(const RayLanes16& rays, int k) {
+    return Ray{{rays.originX[k], rays.originY[k], rays.originZ[k]},
+               {rays.directionX[k], rays.directionY[k], rays.directionZ[k]}};
+}
+
+TraceHit laneHit(const RayHitLanes16& packet, const int* objectId, int k) {
+    TraceHit hit;
+    hit.t = packet.ray.tFar[k];
+    hit.objectId = objectId[k];
+    hit.primitiveId = static_cast<int>(packet.hit.primitiveId[k]);
+    hit.u = packet.hit.u[k];
+    hit.v = packet.hit.v[k];
+    return hit;
+}
+
+void setLaneSurface(SurfaceLanes16& s, int k, const SurfacePoint& sp) {
+    s.positionX[k] = sp.position.x, s.positionY[k] = sp.position.y, s.positionZ[k] = sp.position.z;
+    s.normalX[k] = sp.normal.x, s.normalY[k] = sp.normal.y, s.normalZ[k] = sp.normal.z;
+    s.geometricX[k] = sp.geometricNormal.x, s.geometricY[k] = sp.geometricNormal.y;
+    s.geometricZ[k] = sp.geometricNormal.z;
+    s.u[k] = sp.u;
+    s.v[k] = sp.v;
+    s.frontFace[k] = sp.frontFace ? 1 : 0;
+}
+
+// Lane k of a packet from a ray of the caller's: the ray (tNear 0, tFar
+// infinite, as every ray the kernel spawns) and what the packet's lanes carry.
+void setLaneRay(RayLanes16& rays, int k, const Ray& ray) {
+    rays.originX[k] = ray.origin.x, rays.originY[k] = ray.origin.y, rays.originZ[k] = ray.origin.z;
+    rays.directionX[k] = ray.direction.x, rays.directionY[k] = ray.direction.y;
+    rays.directionZ[k] = ray.direction.z;
+    rays.tNear[k] = ray.tNear;
+    rays.tFar[k] = ray.tFar;
+    rays.time[k] = 0.0f;
+    rays.mask[k] = 0xFFFFFFFFu;
+    rays.id[k] = 0;
+    rays.flags[k] = 0;
+}
+
+}  // namespace
+
+bool TileKernel::tracesCameraRaysInLanes() const {
+    return settings_.waveLanes && tracer_.accelerator() == Accelerator::Embree;
+}
+
+void TileKernel::traceCameraRaysInLanes(const CameraRays& cameraRays, const TileRange& tile, TileScratch& s,
+                                        CacheWorker* cache) const {
+    StageTimer timer(settings_.stageTimes, s.stages.firstHits);
+    const int tileWidth = tile.x1 - tile.x0;
+    // One packet per sixteen pixels of a row.
+    const int packetsPerRow = (tileWidth + kFloatLanes - 1) / kFloatLanes;
+    s.packets.resize(static_cast<std::size_t>(packetsPerRow) * static_cast<std::size_t>(tile.y1 - tile.y0));
+    const float pixelSpread = cameraRays.pixelSpread();
+    std::uint64_t hits = 0;
+    std::size_t p = 0;
+    int root = 0;
+    for (int y = tile.y0; y < tile.y1; ++y)
+        for (int x = tile.x0; x < tile.x1; x += kFloatLanes, ++p) {
+            TileScratch::HitPacket& packet = s.packets[p];
+            packet.count = std::min(kFloatLanes, tile.x1 - x);
+            cameraRays.rowOfRays(x, y, packet.rays.ray);
+            PacketLanes traced;
+            for (int k = 0; k < kFloatLanes; ++k) {
+                traced.valid[k] = k < packet.count ? -1 : 0;
+                packet.node[k] = root + k;
+                packet.pathWeight[k] = 1.0f;
+                packet.depth[k] = 1;
+                packet.coneWidth[k] = 0.0f;
+                packet.coneSpread[k] = pixelSpread;
+            }
+            root += packet.count;
+            tracer_.intersectPacket(packet.rays, traced, packet.objectId);
+            s.counts.primary += static_cast<std::uint64_t>(packet.count);
+            for (int k = 0; k < kFloatLanes; ++k) {
+                const bool hit = k < packet.count && packet.objectId[k] >= 0;
+                packet.hits.valid[k] = hit ? -1 : 0;
+                if (k >= packet.count) continue;
+                const auto node = static_cast<std::size_t>(packet.node[k]);
+                if (!hit) {
+                    s.nodes[node].direct = shading_.background(laneRay(packet.rays.ray, k));
+                    continue;
+                }
+                ++hits;
+                if (cache && fill_.active()) {
+                    const Ray ray = laneRay(packet.rays.ray, k);
+                    noteVisiblePoint(s, static_cast<int>(node), packet.objectId[k],
+                                     ray.origin + ray.direction * packet.rays.ray.tFar[k]);
+                }
+            }
+        }
+    s.stages.hitsShaded += hits;
+}
+
+void TileKernel::traceSecondaryRaysInLanes(TileScratch& s) const {
+    StageTimer timer(settings_.stageTimes, s.stages.traceSecondary);
+    const std::size_t n = s.pending.size();
+    s.packets.resize((n + kFloatLanes - 1) / kFloatLanes);
+    std::uint64_t hits = 0;
+    for (std::size_t p = 0; p < s.packets.size(); ++p) {
+        TileScratch::HitPacket& packet = s.packets[p];
+        const std::size_t base = p * kFloatLanes;
+        packet.count = static_cast<int>(std::min<std::size_t>(kFloatLanes, n - base));
+        PacketLanes traced;
+        for (int k = 0; k < kFloatLanes; ++k) {
+            // Lanes past the last ray repeat it, not traced.
+            const TileScratch::PendingRay& ray = s.pending[base + static_cast<std::size_t>(std::min(k, packet.count - 1))];
+            traced.valid[k] = k < packet.count ? -1 : 0;
+            setLaneRay(packet.rays.ray, k, ray.ray);
+            packet.node[k] = ray.node;
+            packet.pathWeight[k] = ray.pathWeight;
+            packet.depth[k] = ray.depth;
+            packet.coneWidth[k] = ray.cone.width;
+            packet.coneSpread[k] = ray.cone.spread;
+        }
+        tracer_.intersectPacket(packet.rays, traced, packet.objectId);
+        // What the general path's traceSecondaryRays records of each ray.
+        for (int k = 0; k < kFloatLanes; ++k) {
+            const bool hit = k < packet.count && packet.objectId[k] >= 0;
+            packet.hits.valid[k] = hit ? -1 : 0;
+            if (k >= packet.count) continue;
+            const TileScratch::PendingRay& ray = s.pending[base + static_cast<std::size_t>(k)];
+            if (ray.kind == TileScratch::Kind::Reflection) ++s.counts.reflection;
+            else ++s.counts.refraction;
+            TileScratch::Node& node = s.nodes[static_cast<std::size_t>(ray.node)];
+            ++node.tracedRays;
+            const float t = packet.rays.ray.tFar[k];
+            if (node.objectId >= 0) node.hitDistance = hit ? t : std::numeric_limits<float>::infinity();
+            if (node.tracked) {
+                RayTreeBounds& bounds = s.nodeBounds[static_cast<std::size_t>(ray.node)];
+                if (hit) bounds.addSegment(ray.ray.origin, ray.ray.origin + ray.ray.direction * t);
+                else bounds.addEscape(ray.ray.origin, ray.ray.direction);
+            }
+            if (hit) ++hits;
+            else node.direct = shading_.background(ray.ray);
+        }
+    }
+    s.stages.hitsShaded += hits;
+}
+
+void TileKernel::shadePackets(TileScratch& s, CacheWorker* cache) const {
+    {
+        StageTimer timer(settings_.stageTimes, s.stages.surfaces);
+        for (TileScratch::HitPacket& packet : s.packets) packetSurfaces(packet, s.meshLanes);
+    }
+    {
+        StageTimer timer(settings_.stageTimes, s.stages.shadowRays);
+        s.packetLights.resize(s.packets.size() * scene_.lights.size());
+        for (std::size_t p = 0; p < s.packets.size(); ++p) packetShadowRays(s, p);
+    }
+    {
+        StageTimer timer(settings_.stageTimes, s.stages.directShading);
+        for (std::size_t p = 0; p < s.packets.size(); ++p) packetDirect(s, p);
+    }
+    StageTimer timer(settings_.stageTimes, s.stages.secondaryRays);
+    s.leaving.clear();
+    s.pending.clear();
+    for (const TileScratch::HitPacket& packet : s.packets) packetSpawn(s, packet, cache);
+    if (s.trackTrees) s.nodeBounds.resize(s.nodes.size());
+}
+
+void TileKernel::packetSurfaces(TileScratch::HitPacket& packet, MeshHitLanes& meshLanes) const {
+    alignas(64) int remaining[kFloatLanes], selected[kFloatLanes];
+    std::memcpy(remaining, packet.hits.valid, sizeof remaining);
+    SurfaceLanes16& surface = packet.surface;
+    for (int id; (id = takeObjectLanes(packet.objectId, remaining, selected)) >= 0;) {
+        const SceneObject& object = scene_.objects[static_cast<std::size_t>(id)];
+        const Material& material = object.material;
+        if (const Sphere* sphere = std::get_if<Sphere>(&object.shape)) {
+            if (material.diffuseTexture) {
+                // Texture coordinates on a sphere cost trigonometry: one lane at a time.
+                for (int k = 0; k < kFloatLanes; ++k)
+                    if (selected[k])
+                        setLaneSurface(surface, k,
+                                       surfacePointAt(object, laneRay(packet.rays.ray, k),
+                                                      laneHit(packet.rays, packet.objectId, k), true));
+            } else {
+                sphereSurfaceLanes16(packet.rays.ray, *sphere, selected, surface);
+            }
+        } else {
+            // The triangles' records, lane by lane (the rays stay in the packet).
+            const TriangleMesh* mesh = std::get<MeshShape>(object.shape).mesh.get();
+            const MeshShadingRecords* records = meshShading_.recordsFor(id, mesh);
+            for (int k = 0; k < kFloatLanes; ++k)
+                if (selected[k])
+                    setMeshHitLane(meshLanes, static_cast<std::size_t>(k), *mesh, records,
+                                   static_cast<int>(packet.rays.hit.primitiveId[k]), packet.rays.hit.u[k],
+                                   packet.rays.hit.v[k]);
+            meshSurfaceLanes16(packet.rays.ray, meshLanes, selected, surface);
+        }
+        // The albedo once the lanes' texture coordinates are known.
+        if (material.diffuseTexture) {
+            for (int k = 0; k < kFloatLanes; ++k)
+                if (selected[k]) {
+                    const Rgb albedo = material.diffuseTexture->sample(surface.u[k], surface.v[k]);
+                    surface.albedoR[k] = albedo.r, surface.albedoG[k] = albedo.g, surface.albedoB[k] = albedo.b;
+                }
+        } else {
+            const Rgb albedo = material.diffuse;
+            for (int k = 0; k < kFloatLanes; ++k) {
+                surface.albedoR[k] = selected[k] ? albedo.r : surface.albedoR[k];
+                surface.albedoG[k] = selected[k] ? albedo.g : surface.albedoG[k];
+                surface.albedoB[k] = selected[k] ? albedo.b : surface.albedoB[k];
+            }
+        }
+    }
+}
+
+void TileKernel::packetShadowRays(TileScratch& s, std::size_t p) const {
+    TileScratch::HitPacket& packet = s.packets[p];
+    const std::size_t lights = scene_.lights.size();
+    alignas(64) int shadowRays[kFloatLanes] = {};
+    bool anyHit = false;
+    for (int k = 0; k < kFloatLanes; ++k) anyHit |= packet.hits.valid[k] != 0;
+    for (std::size_t l = 0; l < lights; ++l) {
+        LightLanes16& seen = s.packetLights[p * lights + l];
+        std::fill_n(seen.lit, kFloatLanes, 0);
+        std::fill_n(seen.traced, kFloatLanes, 0);
+        if (!anyHit) continue;
+        RayLanes16 rays;
+        PacketLanes traced;
+        shadowRayLanes16(scene_.lights[l], shading_.spotCones()[l], packet.surface, packet.hits.valid, rays, traced,
+                         seen);
+        int count = 0;
+        for (int k = 0; k < kFloatLanes; ++k) count += traced.valid[k] != 0;
+        if (count == 0) continue;
+        alignas(64) unsigned char occluded[kFloatLanes];
+        tracer_.occludedPacket(rays, traced, occluded);
+        for (int k = 0; k < kFloatLanes; ++k) {
+            seen.traced[k] = traced.valid[k] ? 1 : 0;
+            seen.lit[k] = traced.valid[k] && !occluded[k] ? 1 : 0;
+            shadowRays[k] += seen.traced[k];
+        }
+        s.counts.shadow += static_cast<std::uint64_t>(count);
+    }
+    // What a store tells the cache policy a hit spares counts these rays,
+    // and a tracked tree's bounds their answers (the general path's
+    // traceShadowRays).
+    if (cache_)
+        for (int k = 0; k < packet.count; ++k)
+            s.nodes[static_cast<std::size_t>(packet.node[k])].tracedRays += static_cast<std::uint32_t>(shadowRays[k]);
+    if (s.trackTrees)
+        for (int k = 0; k < packet.count; ++k) {
+            const auto node = static_cast<std::size_t>(packet.node[k]);
+            if (!packet.hits.valid[k] || !s.nodes[node].tracked) continue;
+            RayTreeBounds& bounds = s.nodeBounds[node];
+            bounds.shaded = true;
+            const Vec3 position{packet.surface.positionX[k], packet.surface.positionY[k], packet.surface.positionZ[k]};
+            const Vec3 geometric{packet.surface.geometricX[k], packet.surface.geometricY[k],
+                                 packet.surface.geometricZ[k]};
+            const Vec3 origin = position + geometric * surfaceOffset(position);
+            for (std::size_t l = 0; l < lights; ++l) {
+                const LightLanes16& seen = s.packetLights[p * lights + l];
+                if (seen.traced[k]) bounds.addShadowRay(origin, static_cast<int>(l), seen.lit[k] != 0);
+            }
+        }
+}
+
+void TileKernel::packetDirect(TileScratch& s, std::size_t p) const {
+    TileScratch::HitPacket& packet = s.packets[p];
+    const std::size_t lights = scene_.lights.size();
+    alignas(64) int remaining[kFloatLanes], selected[kFloatLanes];
+    std::memcpy(remaining, packet.hits.valid, sizeof remaining);
+    for (int id; (id = takeObjectLanes(packet.objectId, remaining, selected)) >= 0;)
+        directLightLanes16(scene_.objects[static_cast<std::size_t>(id)].material, scene_.lights,
+                           s.packetLights.data() + p * lights, packet.surface, packet.rays.ray, selected,
+                           packet.directR, packet.directG, packet.directB);
+    for (int k = 0; k < packet.count; ++k)
+        if (packet.hits.valid[k])
+            s.nodes[static_cast<std::size_t>(packet.node[k])].direct =
+                Rgb{packet.directR[k], packet.directG[k], packet.directB[k]};
+}
+
+void TileKernel::packetSpawn(TileScratch& s, const TileScratch::HitPacket& packet, CacheWorker* cache) const {
+    SecondaryRayLanes16& spawned = s.spawnLanes;
+    // Hits whose path may go on (the rest are done: their light is all they bring).
+    alignas(64) int remaining[kFloatLanes], selected[kFloatLanes];
+    bool any = false;
+    for (int k = 0; k < kFloatLanes; ++k) {
+        remaining[k] = packet.hits.valid[k] && packet.depth[k] < settings_.maxDepth ? -1 : 0;
+        spawned.reflects[k] = spawned.refracts[k] = 0;
+        any |= remaining[k] != 0;
+    }
+    if (!any) return;
+    any = false;
+    for (int id; (id = takeObjectLanes(packet.objectId, remaining, selected)) >= 0;) {
+        const SceneObject& object = scene_.objects[static_cast<std::size_t>(id)];
+        const Material& material = object.material;
+        if (!material.reflects() && !material.refracts()) continue;
+        any = true;
+        secondaryRayLanes16(material, coneCurvature(object), settings_.minWeight, packet.surface, packet.rays.ray,
+                            packet.pathWeight, packet.coneWidth, packet.coneSpread, selected, spawned);
+    }
+    if (!any) return;
+    // Hit by hit, the reflected ray before the refracted one, as the
+    // general path spawns them.
+    for (int k = 0; k < packet.count; ++k) {
+        if (!spawned.reflects[k] && !spawned.refracts[k]) continue;
+        const int objectId = packet.objectId[k];
+        const RayCone cone{spawned.coneWidth[k], spawned.coneSpread[k]};
+        const bool frontFace = packet.surface.frontFace[k] != 0;
+        if (spawned.reflects[k])
+            emitSecondaryRay(s, cache, packet.node[k], packet.pathWeight[k], packet.depth[k], objectId,
+                             Ray{{spawned.aboveX[k], spawned.aboveY[k], spawned.aboveZ[k]},
+                                 {spawned.reflectedX[k], spawned.reflectedY[k], spawned.reflectedZ[k]}},
+                             cone, TileScratch::Kind::Reflection, spawned.reflectWeight[k], frontFace);
+        if (spawned.refracts[k]) {
+            const Material& material = scene_.objects[static_cast<std::size_t>(objectId)].material;
+            emitSecondaryRay(s, cache, packet.node[k], packet.pathWeight[k], packet.depth[k], objectId,
+                             Ray{{spawned.belowX[k], spawned.belowY[k], spawned.belowZ[k]},
+                                 {spawned.refractedX[k], spawned.refractedY[k], spawned.refractedZ[k]}},
+                             cone, TileScratch::Kind::Refraction, material.transmissivity, !frontFace);
+        }
+    }
+}
+
+}  // namespace raycache
