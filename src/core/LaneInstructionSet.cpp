@@ -1,5 +1,7 @@
 #include "core/LaneInstructionSet.h"
 
+#include "core/LaneLevels.h"
+
 namespace raycache {
 
 namespace {
@@ -38,6 +40,20 @@ std::string laneInstructionSet() {
     return "x86-64 (baseline)";
 #else
     return "the target's baseline (no clones off x86-64)";
+#endif
+}
+
+LaneLevel laneLevel() {
+#if defined(RAYCACHE_BASELINE_LANES) || !defined(__x86_64__)
+    return LaneLevel::Baseline;
+#else
+    static const LaneLevel level = [] {
+        __builtin_cpu_init();
+        if (cpuHasLevel4()) return LaneLevel::Avx512;
+        if (cpuHasLevel3()) return LaneLevel::Avx2;
+        return LaneLevel::Baseline;
+    }();
+    return level;
 #endif
 }
 

@@ -19,8 +19,9 @@ struct CameraFrame {
 // CameraRays::ray's steps for sixteen pixels of one row.
 [[gnu::always_inline]] inline void rowDirections(const CameraFrame& c, int x0, int y, FloatLanes& nx, FloatLanes& ny,
                                                 FloatLanes& nz) {
-    FloatLanes x;
-    for (int k = 0; k < kFloatLanes; ++k) x[k] = static_cast<float>(x0 + k);
+    // static_cast<float>(x0 + k) for every lane k, as whole vectors.
+    const IntLanes16 column = IntLanes16{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15} + x0;
+    const FloatLanes x = __builtin_convertvector(column, FloatLanes);
     const FloatLanes sx = 2.0f * (x + 0.5f) * c.invWidth - 1.0f;
     const float sy = 1.0f - 2.0f * (static_cast<float>(y) + 0.5f) * c.invHeight;
     // normalize(forward + right * sx + up * sy), in Vec3's order of operations.

@@ -1,0 +1,44 @@
+#pragma once
+// Lane code compiled once per x86-64 level, for files whose lanes combine
+// masks (core/FloatLanes.h). GCC's target_clones (core/LaneClones.h) lowers
+// a function's vector operations for the baseline target before it makes
+// the clones, and GCC 12 then turns a 16-lane mask's &, | and ~ into one
+// scalar compare per lane even in the AVX-512 clone (seen in perf: half of
+// the sphere callback's time). So such a file keeps its lane functions in a
+// .inc file that it includes three times, inside namespaces avx512, avx2 and
+// baseline, the first two under `#pragma GCC target` for their level, and
+// calls them through RAYCACHE_LANE_DISPATCH. Every copy is the same source,
+// so the same IEEE operations: the same bits on every level.
+//
+//   #define RAYCACHE_LANE_LEVEL avx512
+//   #pragma GCC push_options
+//   #pragma GCC target("arch=x86-64-v4")
+//   #include "FileKernels.inc"   // namespace RAYCACHE_LANE_LEVEL { ... }
+//   #pragma GCC pop_options
+//   #undef RAYCACHE_LANE_LEVEL
+//   ... avx2 with "arch=x86-64-v3", then baseline without a pragma ...
+//
+// A build with RAYCACHE_BASELINE_LANES (the sanitizer and fuzz presets; see
+// core/LaneClones.h) includes the baseline copy alone.
+
+namespace raycache {
+
+enum class LaneLevel { Baseline, Avx2, Avx512 };
+
+// The widest level this processor runs (decided once per process), or
+// Baseline in a build with RAYCACHE_BASELINE_LANES.
+LaneLevel laneLevel();
+
+}  // namespace raycache
+
+#if defined(RAYCACHE_BASELINE_LANES)
+#define RAYCACHE_LANE_DISPATCH(function, ...) return baseline::function(__VA_ARGS__)
+#else
+#define RAYCACHE_LANE_DISPATCH(function, ...)                                      \
+    switch (::raycache::laneLevel()) {                                            \
+    case ::raycache::LaneLevel::Avx512: return avx512::function(__VA_ARGS__);     \
+    case ::raycache::LaneLevel::Avx2: return avx2::function(__VA_ARGS__);         \
+    case ::raycache::LaneLevel::Baseline: break;                                  \
+    }                                                                             \
+    return baseline::function(__VA_ARGS__)
+#endif
