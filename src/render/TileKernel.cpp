@@ -21,6 +21,7 @@ constexpr float kKernelInfinity = std::numeric_limits<float>::infinity();
 
 void TileScratch::beginTile(std::size_t roots) {
     nodes.assign(roots, Node{});
+    stores.clear();
     trackTrees = false;  // runWaves decides, once it knows the cache
     recordLevels = false;  // the callers that record say so after this
     vertices.clear();
@@ -615,12 +616,8 @@ void TileKernel::lookupReuse(TileScratch& s, CacheWorker& cache) const {
         }
         // A miss: the ray is traced, and what its whole tree brings back is
         // stored once the tile is done.
-        node.objectId = l.objectId;
-        node.storeTexel = s.storeTexels[i];
-        node.origin = l.ray.origin;
-        node.direction = l.ray.direction;
-        node.depth = l.depth;
-        node.pathWeight = l.pathWeight;
+        node.store = static_cast<int>(s.stores.size());
+        s.stores.push_back({l.objectId, s.storeTexels[i], l.ray.origin, l.ray.direction, 0.0f, l.depth, l.pathWeight});
         s.pending.push_back({l.ray, l.node, l.pathWeight, l.depth, l.kind, l.cone});
     }
 }
@@ -684,7 +681,7 @@ void TileKernel::traceSecondaryRays(TileScratch& s) const {
         const TraceHit& hit = s.hits[i];
         TileScratch::Node& node = s.nodes[static_cast<std::size_t>(p.node)];
         ++node.tracedRays;
-        if (node.objectId >= 0) node.hitDistance = hit.hit() ? hit.t : kKernelInfinity;
+        if (node.store >= 0) s.stores[static_cast<std::size_t>(node.store)].hitDistance = hit.hit() ? hit.t : kKernelInfinity;
         if (node.tracked) {
             RayTreeBounds& bounds = s.nodeBounds[static_cast<std::size_t>(p.node)];
             if (hit.hit()) bounds.addSegment(p.ray.origin, p.ray.origin + p.ray.direction * hit.t);
@@ -707,10 +704,11 @@ void TileKernel::resolveNodes(TileScratch& s, CacheWorker* cache, std::uint64_t 
         const TileScratch::Node& node = s.nodes[i];
         if (node.parent < 0) continue;
         const Rgb color = node.color();
-        if (node.objectId >= 0 && cache) {
+        if (node.store >= 0 && cache) {
+            const TileScratch::NodeStore& st = s.stores[static_cast<std::size_t>(node.store)];
             std::optional<RayTreeRecord> tree;
-            if (s.trackTrees) tree = RayTreeRecord{s.nodeBounds[i], node.origin, node.direction, node.depth, node.pathWeight};
-            cache_->store(node.objectId, node.origin, node.direction, color, node.hitDistance, *cache, node.storeTexel,
+            if (s.trackTrees) tree = RayTreeRecord{s.nodeBounds[i], st.origin, st.direction, st.depth, st.pathWeight};
+            cache_->store(st.objectId, st.origin, st.direction, color, st.hitDistance, *cache, st.storeTexel,
                           tree ? &*tree : nullptr, node.tracedRays);
         }
         s.nodes[static_cast<std::size_t>(node.parent)].tracedRays += node.tracedRays;

@@ -118,12 +118,11 @@ private:
         Rgb secondary;
         int parent = -1;            // -1: a pixel or texel of the caller's
         float weightInParent = 0.0f;
-        int objectId = -1;          // a caching object whose cache missed this ray: stored when done
-        int storeTexel = -1;        // where, when the lookup already knows (RayCache::lookupBatch)
-        Vec3 origin, direction;     // that ray, for the store
-        float hitDistance = 0.0f;   // distance to its first hit, infinity for a miss
-        int depth = 0;              // that ray's depth and path weight, for the store's RayTreeRecord
-        float pathWeight = 0.0f;
+        // A ray leaving a caching object whose cache missed it: its store
+        // record (an index into TileScratch::stores), stored when done; -1
+        // for every other node. Apart, so that the node every ray gets stays
+        // small (GCC filled the 84-byte node with a `rep stos` per ray).
+        int store = -1;
         // trackTrees: a ray leaving a caching object, or below one (its bounds
         // matter); 0 or 1. Four bytes, not a bool: with a one-byte field last,
         // GCC 12 filled each tile's nodes (80 bytes a pixel) with overlapping
@@ -134,6 +133,15 @@ private:
         // tells the cache policy a hit spares (cache/CachePolicy.h).
         std::uint32_t tracedRays = 0;
         Rgb color() const { return direct + secondary; }
+    };
+    // What a traced leaving ray stores once its tree is resolved.
+    struct NodeStore {
+        int objectId;               // the caching object it left
+        int storeTexel;             // where, when the lookup already knows (RayCache::lookupBatch), else -1
+        Vec3 origin, direction;     // the ray
+        float hitDistance = 0.0f;   // distance to its first hit, infinity for a miss
+        int depth;                  // its depth and path weight, for the store's RayTreeRecord
+        float pathWeight;
     };
 
     // Sixteen rays of a wave and their hits in lanes, from the tracer's
@@ -160,6 +168,7 @@ private:
     enum class FirstWave : unsigned char { Hits, Surfaces, Reshade, Spawned };
 
     std::vector<Node> nodes;
+    std::vector<NodeStore> stores;
     // The waves in lanes (RenderSettings::waveLanes): the wave's packets,
     // packet p's view of light l at p * lights + l, and one packet's
     // secondary rays and triangles.

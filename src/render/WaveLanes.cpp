@@ -163,7 +163,9 @@ void TileKernel::traceSecondaryRaysInLanes(TileScratch& s) const {
             TileScratch::Node& node = s.nodes[static_cast<std::size_t>(ray.node)];
             ++node.tracedRays;
             const float t = packet.rays.ray.tFar[k];
-            if (node.objectId >= 0) node.hitDistance = hit ? t : std::numeric_limits<float>::infinity();
+            if (node.store >= 0)
+                s.stores[static_cast<std::size_t>(node.store)].hitDistance =
+                    hit ? t : std::numeric_limits<float>::infinity();
             if (node.tracked) {
                 RayTreeBounds& bounds = s.nodeBounds[static_cast<std::size_t>(ray.node)];
                 if (hit) bounds.addSegment(ray.ray.origin, ray.ray.origin + ray.ray.direction * t);
