@@ -38,15 +38,16 @@ const char* cachePolicyModeName(CachePolicyMode mode);
 // What one operation costs, in units of one traced ray (a secondary or shadow
 // ray with the shading of its hit); ratios of CPU times, so roughly
 // machine-independent. Calibrated with `scripts/calibrate-cache-policy.sh`
-// (grid-32 orbit, 384², one thread) on 2026-11-26 at 5689969, quiet, the
-// median of three runs: one traced ray 97.7 ns (93.9-116.0), a lookup 39.0 ns
-// (0.36-0.42 rays), a store 70.6 ns (0.62-0.75 rays), a CDCT texel sampled
-// 163.8 ns (1.41-1.79 rays; that figure carries the whole CDCT lookup: its
-// search, own-surface test and error control).
+// (grid-32 orbit, 384², one thread) on 2026-11-27 with the waves in lanes,
+// quiet, the median of three runs: one traced ray 70.6 ns (70.5-71.9), a
+// lookup 36.8 ns (0.51-0.53 rays), a store 67.8 ns (0.87-1.01 rays), a CDCT
+// texel sampled 162.9 ns (2.28-2.31 rays; that figure carries the whole CDCT
+// lookup: its search, own-surface test and error control). docs/caching.md
+// has the earlier calibration.
 struct CachePolicyCosts {
-    double lookup = 0.38;     // one lookup: address, validity, texel read
-    double store = 0.71;      // one queued store: queue, merge, dependency record
-    double cdctStep = 1.68;   // one texel a CDCT search sampled
+    double lookup = 0.52;     // one lookup: address, validity, texel read
+    double store = 0.94;      // one queued store: queue, merge, dependency record
+    double cdctStep = 2.30;   // one texel a CDCT search sampled
     // A traced tree is at least its own ray: the saving of one hit when a
     // cube has never traced one (no evidence yet) is not assumed larger.
     static constexpr double kMinimumTree = 1.0;
