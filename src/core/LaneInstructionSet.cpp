@@ -2,6 +2,9 @@
 
 #include "core/LaneLevels.h"
 
+#include <cstdlib>
+#include <string_view>
+
 namespace raycache {
 
 namespace {
@@ -35,9 +38,12 @@ std::string laneInstructionSet() {
     return "x86-64 (baseline; built with RAYCACHE_BASELINE_LANES)";
 #elif defined(__x86_64__)
     __builtin_cpu_init();
-    if (cpuHasLevel4()) return "x86-64-v4 (AVX-512)";
-    if (cpuHasLevel3()) return "x86-64-v3 (AVX2)";
-    return "x86-64 (baseline)";
+    const std::string widest = cpuHasLevel4()   ? "x86-64-v4 (AVX-512)"
+                               : cpuHasLevel3() ? "x86-64-v3 (AVX2)"
+                                                : "x86-64 (baseline)";
+    if (std::getenv("RAYCACHE_LANES"))
+        return widest + "; hit lanes " + laneLevelName(laneLevel()) + " (RAYCACHE_LANES)";
+    return widest;
 #else
     return "the target's baseline (no clones off x86-64)";
 #endif
@@ -49,12 +55,34 @@ LaneLevel laneLevel() {
 #else
     static const LaneLevel level = [] {
         __builtin_cpu_init();
-        if (cpuHasLevel4()) return LaneLevel::Avx512;
-        if (cpuHasLevel3()) return LaneLevel::Avx2;
-        return LaneLevel::Baseline;
+        const LaneLevel widest = cpuHasLevel4()   ? LaneLevel::Avx512
+                                 : cpuHasLevel3() ? LaneLevel::Avx2
+                                                  : LaneLevel::Baseline;
+        // RAYCACHE_LANES narrows it (never widens it past the processor):
+        // how the tests compare every level's bits on one machine.
+        const std::optional<LaneLevel> asked = parseLaneLevel(std::getenv("RAYCACHE_LANES"));
+        return asked && *asked < widest ? *asked : widest;
     }();
     return level;
 #endif
+}
+
+std::optional<LaneLevel> parseLaneLevel(const char* name) {
+    if (!name) return std::nullopt;
+    const std::string_view n(name);
+    if (n == "avx512") return LaneLevel::Avx512;
+    if (n == "avx2") return LaneLevel::Avx2;
+    if (n == "baseline") return LaneLevel::Baseline;
+    return std::nullopt;
+}
+
+const char* laneLevelName(LaneLevel level) {
+    switch (level) {
+    case LaneLevel::Avx512: return "avx512";
+    case LaneLevel::Avx2: return "avx2";
+    case LaneLevel::Baseline: return "baseline";
+    }
+    return "baseline";
 }
 
 bool builtWithBaselineLanes() {

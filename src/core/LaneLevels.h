@@ -20,14 +20,22 @@
 //
 // A build with RAYCACHE_BASELINE_LANES (the sanitizer and fuzz presets; see
 // core/LaneClones.h) includes the baseline copy alone.
+#include <optional>
 
 namespace raycache {
 
+// Ordered: a wider level compares greater.
 enum class LaneLevel { Baseline, Avx2, Avx512 };
 
 // The widest level this processor runs (decided once per process), or
-// Baseline in a build with RAYCACHE_BASELINE_LANES.
+// Baseline in a build with RAYCACHE_BASELINE_LANES. The environment
+// variable RAYCACHE_LANES (avx512, avx2 or baseline) narrows it, never past
+// what the processor runs: the images are the same at every level, and
+// tests/app/LaneLevelsCliTest.cpp holds the program to that.
 LaneLevel laneLevel();
+// "avx512", "avx2", "baseline" and back (nothing for another name or null).
+std::optional<LaneLevel> parseLaneLevel(const char* name);
+const char* laneLevelName(LaneLevel level);
 
 }  // namespace raycache
 
