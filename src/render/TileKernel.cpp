@@ -100,6 +100,34 @@ void TileKernel::renderGBufferTile(const CameraRays& cameraRays, const GBufferVi
     const auto n = static_cast<std::size_t>(tileWidth) * static_cast<std::size_t>(tile.y1 - tile.y0);
     s.beginTile(n);
     if (levels) beginLevelRecord(s, n);
+    const auto firstBounceBefore = s.firstBounce;
+    if (tracesCameraRaysInLanes()) {
+        beginWaves(s, cache);
+        readGBufferInLanes(cameraRays, gbuffer, tile, s, cache);
+        shadePackets(s, cache && cache_ ? cache : nullptr, /*surfacesKnown=*/true);
+        // The G-buffer read, the first hits' shading and the spawn of their rays.
+        s.firstBounce += Clock::now() - t0;
+        runWaves(s, cache, FirstWave::Spawned, true);
+    } else {
+        readGBufferTile(cameraRays, gbuffer, tile, s, cache);
+        s.firstBounce += Clock::now() - t0;  // reading the G-buffer belongs to the first bounce
+        runWaves(s, cache, FirstWave::Surfaces, true);
+    }
+    resolveNodes(s, cache, tileKey);
+    fillFromVisiblePoints(s, cache, cameraRays.ray(tile.x0, tile.y0).origin);
+    const auto t1 = Clock::now();
+    {
+        StageTimer timer(settings_.stageTimes, s.stages.compose);
+        composeTile(s, tile, film);
+        if (levels) writeLevelRecord(s, tile, *levels);
+    }
+    s.compose += Clock::now() - t1;
+    // The first bounce was timed as it ran; the rest is the secondary phase.
+    s.laterBounces += (t1 - t0) - (s.firstBounce - firstBounceBefore);
+}
+
+void TileKernel::readGBufferTile(const CameraRays& cameraRays, const GBufferView& gbuffer, const TileRange& tile,
+                                 TileScratch& s, CacheWorker* cache) const {
     {
         StageTimer timer(settings_.stageTimes, s.stages.firstHits);
         const RayCone pixel{0.0f, cameraRays.pixelSpread()};
@@ -123,20 +151,6 @@ void TileKernel::renderGBufferTile(const CameraRays& cameraRays, const GBufferVi
                     noteVisiblePoint(s, static_cast<int>(k), hit.objectId, s.surfaces.back().position);
             }
     }
-    const auto firstBounceBefore = s.firstBounce;
-    s.firstBounce += Clock::now() - t0;  // reading the G-buffer belongs to the first bounce
-    runWaves(s, cache, FirstWave::Surfaces, true);
-    resolveNodes(s, cache, tileKey);
-    fillFromVisiblePoints(s, cache, cameraRays.ray(tile.x0, tile.y0).origin);
-    const auto t1 = Clock::now();
-    {
-        StageTimer timer(settings_.stageTimes, s.stages.compose);
-        composeTile(s, tile, film);
-        if (levels) writeLevelRecord(s, tile, *levels);
-    }
-    s.compose += Clock::now() - t1;
-    // The first bounce was timed as it ran; the rest is the secondary phase.
-    s.laterBounces += (t1 - t0) - (s.firstBounce - firstBounceBefore);
 }
 
 void TileKernel::renderFromInside(int objectId, std::span<const Ray> rays, int depth,

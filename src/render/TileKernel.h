@@ -292,20 +292,28 @@ private:
     void reshadeDirect(TileScratch& s) const;
     // The waves in lanes (RenderSettings::waveLanes, render/WaveLanes.cpp):
     // a wave is s.packets, each stage runs over all of them, and every lane
-    // gets the general path's bits. The camera rays of a tile go in lanes
-    // with the Embree accelerator only (the grids answer them their own way).
+    // gets the general path's bits. A tile's first hits (camera rays, or the
+    // G-buffer's surfaces) go in lanes with the Embree accelerator only: the
+    // grids answer camera rays and their shadow rays their own way.
     bool tracesCameraRaysInLanes() const;
     void traceCameraRaysInLanes(const CameraRays& cameraRays, const TileRange& tile, TileScratch& s,
                                 CacheWorker* cache) const;
     // s.pending traced as packets in spawn order: the next wave.
     void traceSecondaryRaysInLanes(TileScratch& s) const;
-    // Surfaces, shadow rays, direct light, then the secondary rays into
-    // s.leaving and s.pending.
-    void shadePackets(TileScratch& s, CacheWorker* cache) const;
+    // Surfaces (unless `surfacesKnown`: the G-buffer gave them), shadow
+    // rays, direct light, then the secondary rays into s.leaving and s.pending.
+    void shadePackets(TileScratch& s, CacheWorker* cache, bool surfacesKnown = false) const;
     void packetSurfaces(TileScratch::HitPacket& packet, MeshHitLanes& meshLanes) const;
     void packetShadowRays(TileScratch& s, std::size_t p) const;
     void packetDirect(TileScratch& s, std::size_t p) const;
     void packetSpawn(TileScratch& s, const TileScratch::HitPacket& packet, CacheWorker* cache) const;
+    // The hybrid pipeline's first hits from the G-buffer, as packets whose
+    // surfaces are already known (shadePackets with surfacesKnown).
+    void readGBufferInLanes(const CameraRays& cameraRays, const GBufferView& gbuffer, const TileRange& tile,
+                            TileScratch& s, CacheWorker* cache) const;
+    // The general path's first stage of a G-buffer tile: one record per hit.
+    void readGBufferTile(const CameraRays& cameraRays, const GBufferView& gbuffer, const TileRange& tile,
+                         TileScratch& s, CacheWorker* cache) const;
     // The general path's first stage of a camera tile: rays, packets, one
     // record per hit.
     void traceCameraTile(const CameraRays& cameraRays, const TileRange& tile, TileScratch& s, CacheWorker* cache) const;

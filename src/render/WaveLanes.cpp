@@ -130,6 +130,55 @@ void TileKernel::traceCameraRaysInLanes(const CameraRays& cameraRays, const Tile
     s.stages.hitsShaded += hits;
 }
 
+void TileKernel::readGBufferInLanes(const CameraRays& cameraRays, const GBufferView& gbuffer, const TileRange& tile,
+                                    TileScratch& s, CacheWorker* cache) const {
+    StageTimer timer(settings_.stageTimes, s.stages.firstHits);
+    const int tileWidth = tile.x1 - tile.x0;
+    const int packetsPerRow = (tileWidth + kFloatLanes - 1) / kFloatLanes;
+    s.packets.resize(static_cast<std::size_t>(packetsPerRow) * static_cast<std::size_t>(tile.y1 - tile.y0));
+    const float pixelSpread = cameraRays.pixelSpread();
+    std::uint64_t hits = 0;
+    std::size_t p = 0;
+    int root = 0;
+    for (int y = tile.y0; y < tile.y1; ++y)
+        for (int x = tile.x0; x < tile.x1; x += kFloatLanes, ++p) {
+            TileScratch::HitPacket& packet = s.packets[p];
+            packet.count = std::min(kFloatLanes, tile.x1 - x);
+            cameraRays.rowOfRays(x, y, packet.rays.ray);
+            for (int k = 0; k < kFloatLanes; ++k) {
+                packet.node[k] = root + k;
+                packet.pathWeight[k] = 1.0f;
+                packet.depth[k] = 1;
+                packet.coneWidth[k] = 0.0f;
+                packet.coneSpread[k] = pixelSpread;
+                packet.hits.valid[k] = 0;
+                packet.objectId[k] = -1;
+                if (k >= packet.count) continue;
+                // The general path's readGBufferTile, lane by lane.
+                const std::size_t i = gbuffer.index(x + k, y);
+                const Ray ray = laneRay(packet.rays.ray, k);
+                const auto node = static_cast<std::size_t>(packet.node[k]);
+                if (!gbuffer.hasSurface(i)) {
+                    s.nodes[node].direct = shading_.background(ray);
+                    continue;
+                }
+                packet.hits.valid[k] = -1;
+                packet.objectId[k] = gbuffer.objectId(i);
+                packet.rays.hit.primitiveId[k] = static_cast<std::uint32_t>(gbuffer.primitiveId(i));
+                const SurfacePoint sp = surfacePointFromGBuffer(scene_, gbuffer, i, ray.direction);
+                setLaneSurface(packet.surface, k, sp);
+                packet.rays.ray.tFar[k] = length(sp.position - ray.origin);
+                const Rgb albedo = gbuffer.albedoAt(i);
+                packet.surface.albedoR[k] = albedo.r, packet.surface.albedoG[k] = albedo.g;
+                packet.surface.albedoB[k] = albedo.b;
+                ++hits;
+                if (cache && fill_.active()) noteVisiblePoint(s, static_cast<int>(node), packet.objectId[k], sp.position);
+            }
+            root += packet.count;
+        }
+    s.stages.hitsShaded += hits;
+}
+
 void TileKernel::traceSecondaryRaysInLanes(TileScratch& s) const {
     StageTimer timer(settings_.stageTimes, s.stages.traceSecondary);
     const std::size_t n = s.pending.size();
@@ -178,8 +227,8 @@ void TileKernel::traceSecondaryRaysInLanes(TileScratch& s) const {
     s.stages.hitsShaded += hits;
 }
 
-void TileKernel::shadePackets(TileScratch& s, CacheWorker* cache) const {
-    {
+void TileKernel::shadePackets(TileScratch& s, CacheWorker* cache, bool surfacesKnown) const {
+    if (!surfacesKnown) {
         StageTimer timer(settings_.stageTimes, s.stages.surfaces);
         for (TileScratch::HitPacket& packet : s.packets) packetSurfaces(packet, s.meshLanes);
     }

@@ -1,10 +1,10 @@
 // The tile kernel's waves in lanes (RenderSettings::waveLanes,
 // render/WaveLanes.cpp) against its general path, one record per hit: every
 // lane does the general path's arithmetic, so images, ray counts and caches
-// must be the same bit for bit. Scenes cover spheres and meshes in one packet, textured spheres
-// and meshes, point, spot and directional lights, glass, concave mirrors,
-// animation, and tiles cut by the image's edge (83x61: neither side a
-// multiple of 16).
+// must be the same bit for bit, in the ray and the hybrid pipelines. Scenes
+// cover spheres and meshes in one packet, textured spheres and meshes,
+// point, spot and directional lights, glass, concave mirrors, animation,
+// and tiles cut by the image's edge (83x61: neither side a multiple of 16).
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -29,8 +29,11 @@ struct Frames {
     std::vector<FrameStats> stats;
 };
 
-Frames renderFrames(const Scene& scene, bool lanes, CacheTechnique technique, int frames) {
+Frames renderFrames(const Scene& scene, bool lanes, CacheTechnique technique, int frames,
+                    PipelineKind pipeline = PipelineKind::Ray) {
     RenderSettings settings;
+    settings.pipeline = pipeline;
+    settings.gbuffer = GBufferSource::Packets;
     settings.width = kWidth;
     settings.height = kHeight;
     settings.threads = 2;
@@ -53,9 +56,10 @@ bool sameBits(const Image& a, const Image& b) {
            std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size() * sizeof(Rgb)) == 0;
 }
 
-void expectLanesEqualGeneralPath(const Scene& scene, const std::string& name, CacheTechnique technique, int frames) {
-    const Frames lanes = renderFrames(scene, true, technique, frames);
-    const Frames general = renderFrames(scene, false, technique, frames);
+void expectLanesEqualGeneralPath(const Scene& scene, const std::string& name, CacheTechnique technique, int frames,
+                                 PipelineKind pipeline = PipelineKind::Ray) {
+    const Frames lanes = renderFrames(scene, true, technique, frames, pipeline);
+    const Frames general = renderFrames(scene, false, technique, frames, pipeline);
     for (int f = 0; f < frames; ++f) {
         const auto i = static_cast<std::size_t>(f);
         EXPECT_TRUE(sameBits(lanes.images[i], general.images[i])) << name << " frame " << f;
@@ -91,6 +95,17 @@ TEST(WaveLanes, CachedFramesEqualTheGeneralPath) {
         ASSERT_TRUE(scene.has_value()) << name;
         expectLanesEqualGeneralPath(*scene, name, CacheTechnique::Cct, 3);
         expectLanesEqualGeneralPath(*scene, name, CacheTechnique::Cdct, 2);
+    }
+}
+
+TEST(WaveLanes, HybridPipelineEqualsTheGeneralPath) {
+    // First hits from a G-buffer (made of primary-ray packets, so the test
+    // needs no OpenGL): their surfaces come in, shading starts at the shadow rays.
+    for (const char* name : {"room", "glass", "behind-8", "shapes", "orbit"}) {
+        const auto scene = makeBuiltinScene(name);
+        ASSERT_TRUE(scene.has_value()) << name;
+        expectLanesEqualGeneralPath(*scene, name, CacheTechnique::None, 1, PipelineKind::Hybrid);
+        expectLanesEqualGeneralPath(*scene, name, CacheTechnique::Cct, 2, PipelineKind::Hybrid);
     }
 }
 
