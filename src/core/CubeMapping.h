@@ -33,9 +33,12 @@ inline float flushSubnormal(float v) {
 // a * b rounded to float on its own. llvmpipe emits a separate multiply and
 // add; GCC would fuse `a * b + c` into one FMA (one rounding) wherever FMA is
 // enabled (-march=native), even across statements, and change the answer.
-// The volatile round trip forbids that on every compiler.
+// An empty asm that takes and gives back the product in a register forbids
+// that on GCC and clang alike (the compiler cannot see through it), without
+// the memory round trip a volatile variable costs every cache lookup.
 inline float roundedProduct(float a, float b) {
-    volatile float product = a * b;
+    float product = a * b;
+    asm("" : "+x"(product));
     return product;
 }
 
@@ -56,7 +59,9 @@ inline CubeCoord cubeCoordFromDirection(const Vec3& direction) {
     const float az = std::fabs(d.z);
     CubeFace face;
     float sc, tc, ma;
-    if (az >= std::fmax(ax, ay)) {
+    // max(|x|, |y|) of non-NaN magnitudes: std::fmax's answer, without its
+    // call into libm (GCC keeps fmaxf a call for the sake of NaNs).
+    if (az >= (ax < ay ? ay : ax)) {
         ma = d.z;
         face = std::signbit(ma) ? CubeFace::NegZ : CubeFace::PosZ;
         sc = std::signbit(ma) ? -d.x : d.x;
