@@ -10,13 +10,10 @@
 // calls them through RAYCACHE_LANE_DISPATCH. Every copy is the same source,
 // so the same IEEE operations: the same bits on every level.
 //
-//   #define RAYCACHE_LANE_LEVEL avx512
-//   #pragma GCC push_options
-//   #pragma GCC target("arch=x86-64-v4")
-//   #include "FileKernels.inc"   // namespace RAYCACHE_LANE_LEVEL { ... }
-//   #pragma GCC pop_options
-//   #undef RAYCACHE_LANE_LEVEL
-//   ... avx2 with "arch=x86-64-v3", then baseline without a pragma ...
+//   namespace raycache {
+//   #define RAYCACHE_LANE_KERNELS "render/FileKernels.inc"  // namespace RAYCACHE_LANE_LEVEL { ... }
+//   #include "core/LaneLevelsInclude.h"                       // the three copies
+//   void f(...) { RAYCACHE_LANE_DISPATCH(fLanes, ...); }
 //
 // A build with RAYCACHE_BASELINE_LANES (the sanitizer and fuzz presets; see
 // core/LaneClones.h) includes the baseline copy alone.

@@ -8,25 +8,8 @@
 
 namespace raycache {
 
-#if !defined(RAYCACHE_BASELINE_LANES)
-#define RAYCACHE_LANE_LEVEL avx512
-#pragma GCC push_options
-#pragma GCC target("arch=x86-64-v4")
-#include "render/HitLaneKernels.inc"
-#pragma GCC pop_options
-#undef RAYCACHE_LANE_LEVEL
-
-#define RAYCACHE_LANE_LEVEL avx2
-#pragma GCC push_options
-#pragma GCC target("arch=x86-64-v3")
-#include "render/HitLaneKernels.inc"
-#pragma GCC pop_options
-#undef RAYCACHE_LANE_LEVEL
-#endif
-
-#define RAYCACHE_LANE_LEVEL baseline
-#include "render/HitLaneKernels.inc"
-#undef RAYCACHE_LANE_LEVEL
+#define RAYCACHE_LANE_KERNELS "render/HitLaneKernels.inc"
+#include "core/LaneLevelsInclude.h"
 
 void meshSurfaces16(const MeshHitLanes& hits, int count, SurfacePoint* out) {
     RAYCACHE_LANE_DISPATCH(meshSurfaceLanes, hits, count, out);

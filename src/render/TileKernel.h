@@ -296,6 +296,9 @@ private:
     // G-buffer's surfaces) go in lanes with the Embree accelerator only: the
     // grids answer camera rays and their shadow rays their own way.
     bool tracesCameraRaysInLanes() const;
+    // s.packets for a tile's pixels: their camera rays and what each lane
+    // carries (root, weight 1, depth 1, the pixel's cone).
+    static void startTilePackets(const CameraRays& cameraRays, const TileRange& tile, TileScratch& s);
     void traceCameraRaysInLanes(const CameraRays& cameraRays, const TileRange& tile, TileScratch& s,
                                 CacheWorker* cache) const;
     // s.pending traced as packets in spawn order: the next wave.

@@ -82,15 +82,12 @@ bool TileKernel::tracesCameraRaysInLanes() const {
     return settings_.waveLanes && tracer_.accelerator() == Accelerator::Embree;
 }
 
-void TileKernel::traceCameraRaysInLanes(const CameraRays& cameraRays, const TileRange& tile, TileScratch& s,
-                                        CacheWorker* cache) const {
-    StageTimer timer(settings_.stageTimes, s.stages.firstHits);
-    const int tileWidth = tile.x1 - tile.x0;
-    // One packet per sixteen pixels of a row.
-    const int packetsPerRow = (tileWidth + kFloatLanes - 1) / kFloatLanes;
+void TileKernel::startTilePackets(const CameraRays& cameraRays, const TileRange& tile, TileScratch& s) {
+    // One packet per sixteen pixels of a row, row after row: lane k of a
+    // packet is the pixel of root firstRoot + k, its camera ray as ray() has it.
+    const int packetsPerRow = (tile.x1 - tile.x0 + kFloatLanes - 1) / kFloatLanes;
     s.packets.resize(static_cast<std::size_t>(packetsPerRow) * static_cast<std::size_t>(tile.y1 - tile.y0));
     const float pixelSpread = cameraRays.pixelSpread();
-    std::uint64_t hits = 0;
     std::size_t p = 0;
     int root = 0;
     for (int y = tile.y0; y < tile.y1; ++y)
@@ -98,9 +95,7 @@ void TileKernel::traceCameraRaysInLanes(const CameraRays& cameraRays, const Tile
             TileScratch::HitPacket& packet = s.packets[p];
             packet.count = std::min(kFloatLanes, tile.x1 - x);
             cameraRays.rowOfRays(x, y, packet.rays.ray);
-            PacketLanes traced;
             for (int k = 0; k < kFloatLanes; ++k) {
-                traced.valid[k] = k < packet.count ? -1 : 0;
                 packet.node[k] = root + k;
                 packet.pathWeight[k] = 1.0f;
                 packet.depth[k] = 1;
@@ -108,74 +103,71 @@ void TileKernel::traceCameraRaysInLanes(const CameraRays& cameraRays, const Tile
                 packet.coneSpread[k] = pixelSpread;
             }
             root += packet.count;
-            tracer_.intersectPacket(packet.rays, traced, packet.objectId);
-            s.counts.primary += static_cast<std::uint64_t>(packet.count);
-            for (int k = 0; k < kFloatLanes; ++k) {
-                const bool hit = k < packet.count && packet.objectId[k] >= 0;
-                packet.hits.valid[k] = hit ? -1 : 0;
-                if (k >= packet.count) continue;
-                const auto node = static_cast<std::size_t>(packet.node[k]);
-                if (!hit) {
-                    s.nodes[node].direct = shading_.background(laneRay(packet.rays.ray, k));
-                    continue;
-                }
-                ++hits;
-                if (cache && fill_.active()) {
-                    const Ray ray = laneRay(packet.rays.ray, k);
-                    noteVisiblePoint(s, static_cast<int>(node), packet.objectId[k],
-                                     ray.origin + ray.direction * packet.rays.ray.tFar[k]);
-                }
+        }
+}
+
+void TileKernel::traceCameraRaysInLanes(const CameraRays& cameraRays, const TileRange& tile, TileScratch& s,
+                                        CacheWorker* cache) const {
+    StageTimer timer(settings_.stageTimes, s.stages.firstHits);
+    startTilePackets(cameraRays, tile, s);
+    std::uint64_t hits = 0;
+    for (TileScratch::HitPacket& packet : s.packets) {
+        PacketLanes traced;
+        for (int k = 0; k < kFloatLanes; ++k) traced.valid[k] = k < packet.count ? -1 : 0;
+        tracer_.intersectPacket(packet.rays, traced, packet.objectId);
+        s.counts.primary += static_cast<std::uint64_t>(packet.count);
+        for (int k = 0; k < kFloatLanes; ++k) {
+            const bool hit = k < packet.count && packet.objectId[k] >= 0;
+            packet.hits.valid[k] = hit ? -1 : 0;
+            if (k >= packet.count) continue;
+            const auto node = static_cast<std::size_t>(packet.node[k]);
+            if (!hit) {
+                s.nodes[node].direct = shading_.background(laneRay(packet.rays.ray, k));
+                continue;
+            }
+            ++hits;
+            if (cache && fill_.active()) {
+                const Ray ray = laneRay(packet.rays.ray, k);
+                noteVisiblePoint(s, static_cast<int>(node), packet.objectId[k],
+                                 ray.origin + ray.direction * packet.rays.ray.tFar[k]);
             }
         }
+    }
     s.stages.hitsShaded += hits;
 }
 
 void TileKernel::readGBufferInLanes(const CameraRays& cameraRays, const GBufferView& gbuffer, const TileRange& tile,
                                     TileScratch& s, CacheWorker* cache) const {
     StageTimer timer(settings_.stageTimes, s.stages.firstHits);
+    startTilePackets(cameraRays, tile, s);
     const int tileWidth = tile.x1 - tile.x0;
-    const int packetsPerRow = (tileWidth + kFloatLanes - 1) / kFloatLanes;
-    s.packets.resize(static_cast<std::size_t>(packetsPerRow) * static_cast<std::size_t>(tile.y1 - tile.y0));
-    const float pixelSpread = cameraRays.pixelSpread();
     std::uint64_t hits = 0;
-    std::size_t p = 0;
-    int root = 0;
-    for (int y = tile.y0; y < tile.y1; ++y)
-        for (int x = tile.x0; x < tile.x1; x += kFloatLanes, ++p) {
-            TileScratch::HitPacket& packet = s.packets[p];
-            packet.count = std::min(kFloatLanes, tile.x1 - x);
-            cameraRays.rowOfRays(x, y, packet.rays.ray);
-            for (int k = 0; k < kFloatLanes; ++k) {
-                packet.node[k] = root + k;
-                packet.pathWeight[k] = 1.0f;
-                packet.depth[k] = 1;
-                packet.coneWidth[k] = 0.0f;
-                packet.coneSpread[k] = pixelSpread;
-                packet.hits.valid[k] = 0;
-                packet.objectId[k] = -1;
-                if (k >= packet.count) continue;
-                // The general path's readGBufferTile, lane by lane.
-                const std::size_t i = gbuffer.index(x + k, y);
-                const Ray ray = laneRay(packet.rays.ray, k);
-                const auto node = static_cast<std::size_t>(packet.node[k]);
-                if (!gbuffer.hasSurface(i)) {
-                    s.nodes[node].direct = shading_.background(ray);
-                    continue;
-                }
-                packet.hits.valid[k] = -1;
-                packet.objectId[k] = gbuffer.objectId(i);
-                packet.rays.hit.primitiveId[k] = static_cast<std::uint32_t>(gbuffer.primitiveId(i));
-                const SurfacePoint sp = surfacePointFromGBuffer(scene_, gbuffer, i, ray.direction);
-                setLaneSurface(packet.surface, k, sp);
-                packet.rays.ray.tFar[k] = length(sp.position - ray.origin);
-                const Rgb albedo = gbuffer.albedoAt(i);
-                packet.surface.albedoR[k] = albedo.r, packet.surface.albedoG[k] = albedo.g;
-                packet.surface.albedoB[k] = albedo.b;
-                ++hits;
-                if (cache && fill_.active()) noteVisiblePoint(s, static_cast<int>(node), packet.objectId[k], sp.position);
+    for (TileScratch::HitPacket& packet : s.packets) {
+        for (int k = 0; k < kFloatLanes; ++k) {
+            packet.hits.valid[k] = 0;
+            packet.objectId[k] = -1;
+            if (k >= packet.count) continue;
+            // The general path's readGBufferTile, lane by lane.
+            const int root = packet.node[k];
+            const std::size_t i = gbuffer.index(tile.x0 + root % tileWidth, tile.y0 + root / tileWidth);
+            const Ray ray = laneRay(packet.rays.ray, k);
+            if (!gbuffer.hasSurface(i)) {
+                s.nodes[static_cast<std::size_t>(root)].direct = shading_.background(ray);
+                continue;
             }
-            root += packet.count;
+            packet.hits.valid[k] = -1;
+            packet.objectId[k] = gbuffer.objectId(i);
+            packet.rays.hit.primitiveId[k] = static_cast<std::uint32_t>(gbuffer.primitiveId(i));
+            const SurfacePoint sp = surfacePointFromGBuffer(scene_, gbuffer, i, ray.direction);
+            setLaneSurface(packet.surface, k, sp);
+            packet.rays.ray.tFar[k] = length(sp.position - ray.origin);
+            const Rgb albedo = gbuffer.albedoAt(i);
+            packet.surface.albedoR[k] = albedo.r, packet.surface.albedoG[k] = albedo.g;
+            packet.surface.albedoB[k] = albedo.b;
+            ++hits;
+            if (cache && fill_.active()) noteVisiblePoint(s, root, packet.objectId[k], sp.position);
         }
+    }
     s.stages.hitsShaded += hits;
 }
 
