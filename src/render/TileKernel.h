@@ -7,6 +7,13 @@
 //   reuse lookups (one batch) -> misses traced together -> their hits are the
 //   next wave ... -> stores queued -> compose
 //
+// A wave is held as packets of sixteen rays in the tracer's own layout,
+// each lane carrying its node, path weight, depth and cone, and every stage
+// runs in lanes over them (render/WaveLanes.cpp, RenderSettings::waveLanes).
+// The general path, one record per hit (PathVertex), gives the same bits; it
+// still makes the first wave of the Render Cache's samples, of reshading, of
+// the CDCT pre-fill and of camera rays under the grids accelerator.
+//
 // Whitted's recursion becomes a loop over bounces. Every ray carries the node
 // its colour adds to and its weight there; a node is a pixel (or a pre-fill
 // texel), or a ray leaving a caching object that the cache could not answer,
