@@ -37,8 +37,12 @@ inline float flushSubnormal(float v) {
 // that on GCC and clang alike (the compiler cannot see through it), without
 // the memory round trip a volatile variable costs every cache lookup.
 inline float roundedProduct(float a, float b) {
+#if defined(__x86_64__)
     float product = a * b;
     asm("" : "+x"(product));
+#else
+    volatile float product = a * b;
+#endif
     return product;
 }
 

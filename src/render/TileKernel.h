@@ -352,6 +352,10 @@ private:
     static void noteRootLevel(TileScratch& s, int node, float pathWeight, std::int8_t level);
     static void writeLevelRecord(const TileScratch& s, const TileRange& tile, CacheLevelImage& levels);
     void traceSecondaryRays(TileScratch& s) const;
+    // What either path records of a traced secondary ray: its count, its
+    // node's traced rays, a store's hit distance, a tracked tree's segment,
+    // and the background where it hit nothing (`hit` false; `t` its distance otherwise).
+    void recordTracedRay(TileScratch& s, const TileScratch::PendingRay& ray, bool hit, float t) const;
     // Adds every node's colour to its parent's, children first, queueing the
     // cache stores of the nodes that stand for traced leaving rays.
     void resolveNodes(TileScratch& s, CacheWorker* cache, std::uint64_t tileKey) const;

@@ -10,7 +10,6 @@
 // operation (render/HitLanes.h), so the image is the same bit for bit.
 #include <algorithm>
 #include <cstring>
-#include <limits>
 
 #include "core/FloatLanes.h"
 #include "render/StageTimer.h"
@@ -60,20 +59,6 @@ void setLaneSurface(SurfaceLanes16& s, int k, const SurfacePoint& sp) {
     s.u[k] = sp.u;
     s.v[k] = sp.v;
     s.frontFace[k] = sp.frontFace ? 1 : 0;
-}
-
-// Lane k of a packet from a ray of the caller's: the ray (tNear 0, tFar
-// infinite, as every ray the kernel spawns) and what the packet's lanes carry.
-void setLaneRay(RayLanes16& rays, int k, const Ray& ray) {
-    rays.originX[k] = ray.origin.x, rays.originY[k] = ray.origin.y, rays.originZ[k] = ray.origin.z;
-    rays.directionX[k] = ray.direction.x, rays.directionY[k] = ray.direction.y;
-    rays.directionZ[k] = ray.direction.z;
-    rays.tNear[k] = ray.tNear;
-    rays.tFar[k] = ray.tFar;
-    rays.time[k] = 0.0f;
-    rays.mask[k] = 0xFFFFFFFFu;
-    rays.id[k] = 0;
-    rays.flags[k] = 0;
 }
 
 }  // namespace
@@ -193,27 +178,12 @@ void TileKernel::traceSecondaryRaysInLanes(TileScratch& s) const {
             packet.coneSpread[k] = ray.cone.spread;
         }
         tracer_.intersectPacket(packet.rays, traced, packet.objectId);
-        // What the general path's traceSecondaryRays records of each ray.
         for (int k = 0; k < kFloatLanes; ++k) {
             const bool hit = k < packet.count && packet.objectId[k] >= 0;
             packet.hits.valid[k] = hit ? -1 : 0;
             if (k >= packet.count) continue;
-            const TileScratch::PendingRay& ray = s.pending[base + static_cast<std::size_t>(k)];
-            if (ray.kind == TileScratch::Kind::Reflection) ++s.counts.reflection;
-            else ++s.counts.refraction;
-            TileScratch::Node& node = s.nodes[static_cast<std::size_t>(ray.node)];
-            ++node.tracedRays;
-            const float t = packet.rays.ray.tFar[k];
-            if (node.store >= 0)
-                s.stores[static_cast<std::size_t>(node.store)].hitDistance =
-                    hit ? t : std::numeric_limits<float>::infinity();
-            if (node.tracked) {
-                RayTreeBounds& bounds = s.nodeBounds[static_cast<std::size_t>(ray.node)];
-                if (hit) bounds.addSegment(ray.ray.origin, ray.ray.origin + ray.ray.direction * t);
-                else bounds.addEscape(ray.ray.origin, ray.ray.direction);
-            }
+            recordTracedRay(s, s.pending[base + static_cast<std::size_t>(k)], hit, packet.rays.ray.tFar[k]);
             if (hit) ++hits;
-            else node.direct = shading_.background(ray.ray);
         }
     }
     s.stages.hitsShaded += hits;

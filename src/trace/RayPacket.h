@@ -6,6 +6,8 @@
 // src/trace/ sees this header only, never Embree's.
 #include <cstdint>
 
+#include "core/Ray.h"
+
 namespace raycache {
 
 struct RayLanes16 {
@@ -30,5 +32,18 @@ struct RayHitLanes16 {
 struct PacketLanes {
     alignas(64) int valid[16];
 };
+
+// Lane k of a packet: `ray`, traced at time 0 against every geometry mask.
+inline void setLaneRay(RayLanes16& rays, int k, const Ray& ray) {
+    rays.originX[k] = ray.origin.x, rays.originY[k] = ray.origin.y, rays.originZ[k] = ray.origin.z;
+    rays.directionX[k] = ray.direction.x, rays.directionY[k] = ray.direction.y;
+    rays.directionZ[k] = ray.direction.z;
+    rays.tNear[k] = ray.tNear;
+    rays.tFar[k] = ray.tFar;
+    rays.time[k] = 0.0f;
+    rays.mask[k] = 0xFFFFFFFFu;
+    rays.id[k] = 0;
+    rays.flags[k] = 0;
+}
 
 }  // namespace raycache

@@ -167,25 +167,15 @@ constexpr std::size_t kPacketWidth = 16;
 using RayPacket = RTCRay16;
 using RayHitPacket = RTCRayHit16;
 
-// Loads up to kPacketWidth rays into a packet; lanes past rays.size() repeat
-// the last ray and are masked off in `valid`.
+// Loads up to kPacketWidth rays into a packet (RayLanes16 is RTCRay16
+// under our names; the static_asserts below check it); lanes past
+// rays.size() repeat the last ray and are masked off in `valid`.
 void fillPacket(std::span<const Ray> rays, int* valid, RayPacket& packet) {
     const std::size_t count = rays.size();
+    auto& lanes = reinterpret_cast<RayLanes16&>(packet);
     for (std::size_t k = 0; k < kPacketWidth; ++k) {
         valid[k] = k < count ? -1 : 0;
-        const Ray& ray = rays[std::min(k, count - 1)];
-        packet.org_x[k] = ray.origin.x;
-        packet.org_y[k] = ray.origin.y;
-        packet.org_z[k] = ray.origin.z;
-        packet.dir_x[k] = ray.direction.x;
-        packet.dir_y[k] = ray.direction.y;
-        packet.dir_z[k] = ray.direction.z;
-        packet.tnear[k] = ray.tNear;
-        packet.tfar[k] = ray.tFar;
-        packet.time[k] = 0.0f;
-        packet.mask[k] = 0xFFFFFFFFu;
-        packet.id[k] = 0;
-        packet.flags[k] = 0;
+        setLaneRay(lanes, static_cast<int>(k), rays[std::min(k, count - 1)]);
     }
 }
 
