@@ -113,6 +113,8 @@ public:
         return (run * 2654435761u) >> (32 - kSampleBits) == 0;
     }
     // Whether a ray addressed to `texel` is looked up (and stored) this frame.
+    // Whether every texel is looked up (the cube caches).
+    bool admitsEveryTexel() const { return state_ == CubeState::Caching; }
     bool admitsTexel(int texel) const {
         return state_ == CubeState::Caching || (state_ == CubeState::Sampling && sampledTexel(texel));
     }

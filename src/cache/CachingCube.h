@@ -71,6 +71,8 @@ public:
     int inheritedLevels(int index) const {
         return inherited_.empty() ? 0 : inherited_[static_cast<std::size_t>(index)];
     }
+    // Whether any texel may be inherited (false: inheritedLevels is 0 everywhere).
+    bool mayInherit() const { return !inherited_.empty(); }
     // Writes `packed` (and, in a CDCT cube, `depth`) if the texel is still
     // invalid or only inherited; returns whether it wrote.
     bool writeIfInvalid(int index, std::uint32_t packed, float depth = kInvalidDepth);

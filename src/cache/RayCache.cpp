@@ -977,7 +977,7 @@ void RayCache::lookupBatchAs(std::span<const Query> queries, std::span<Rgb> colo
                 continue;
             }
             if (e.technique != CacheTechnique::Cct) continue;
-            texel[k] = e.cube.texelIndexFor(q.direction);
+            texel[k] = q.texel >= 0 ? q.texel : e.cube.texelIndexFor(q.direction);
             if (!e.policy.admitsTexel(texel[k])) {  // out of a sampling cube's sample
                 texel[k] = kBypassedQuery;
                 continue;

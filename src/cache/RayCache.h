@@ -269,6 +269,9 @@ public:
         // of objectsSeenPastThemselves): the cube cannot answer it, so it is
         // a miss, counted as ownSurface.
         bool meetsOwnSurface = false;
+        // The CCT texel `direction` addresses, when the caller addressed it
+        // already (see laneAddressedFaceSize); -1: the lookup addresses it.
+        int texel = -1;
     };
     // lookup() for a batch: found[i] = 1 and colors[i] set when queries[i]
     // is answered, found[i] = 0 otherwise. The same answers and counters as
@@ -290,6 +293,47 @@ public:
     void lookupBatch(std::span<const Query> queries, std::span<Rgb> colors, std::span<unsigned char> found,
                      std::span<int> storeTexels, CacheWorker& worker, std::span<int> answerTexels = {},
                      std::span<std::int8_t> answerLevels = {}) const;
+    // Whether `objectId`'s lookups this frame may go through lookupLanes16:
+    // a CCT cube that caches every texel (not sampling, not standing aside)
+    // at one level, with no inherited colours, not resized from the view,
+    // no oracle. Its lookups then read a validity bit and a texel, nothing
+    // more, and the tile kernel asks them while it spawns the rays.
+    bool looksUpInLanes(int objectId) const {
+        const int c = cubeIndexOf(objectId);
+        if (c < 0 || oracle_) return false;
+        const Entry& e = cubes_[static_cast<std::size_t>(c)];
+        return e.technique == CacheTechnique::Cct && e.policy.admitsEveryTexel() && e.coarse.levelCount() <= 1 &&
+               e.view.fullSize() == 0 && !e.cube.mayInherit();
+    }
+    // lookupBatch for one ray leaving `objectId` (looksUpInLanes) whose
+    // direction addresses `texel`: the same answer and counters. Returns 1
+    // with `color` set when answered (in ideal mode a miss is answered
+    // black), else 0: the ray is traced and stored at `texel`.
+    int lookupAddressed(int objectId, int texel, Rgb& color, CacheWorker& worker) const {
+        const auto c = static_cast<std::size_t>(cubeIndexOf(objectId));
+        const CachingCube& cube = cubes_[c].cube;
+        CacheWorker::Counters& counters = worker.counters_[c];
+        ++counters.lookups;
+        // cctAnswer's first case: a valid texel, never inherited here.
+        if (cube.isValid(texel)) {
+            ++counters.hits;
+            ++counters.levelHits[0];
+            color = cube.readValid(texel);
+            return 1;
+        }
+        ++counters.misses;
+        if (ideal_) color = Rgb{};
+        return ideal_ ? 1 : 0;
+    }
+    // Starts fetching what lookupAddressed(objectId, texel) reads: the
+    // validity bit, and the texel too once most of the cube is valid.
+    // Always inlined: GCC 12 takes a function whose only effect is a
+    // prefetch for one without effects, and drops the calls to it.
+    [[gnu::always_inline]] void prefetchLookup(int objectId, int texel) const {
+        const CachingCube& cube = cubes_[static_cast<std::size_t>(cubeIndexOf(objectId))].cube;
+        __builtin_prefetch(cube.validWordOf(texel));
+        if (2 * cube.validCount() > cube.texelCount()) __builtin_prefetch(cube.texelWordOf(texel));
+    }
     // Improved CDCT (technique Cdct with prefill on): the objects whose cubes
     // were asked for during this frame (by `workers`) and are not filled yet.
     // The renderer fills them after the frame's pixels, before endFrame
@@ -344,10 +388,23 @@ public:
     // frame: always while its cube caches, never while it stands aside, and
     // while it samples only when the ray's texel is in the sample
     // (cache/CachePolicy.h). The tile kernel traces the others directly.
-    bool admits(int objectId, const Vec3& direction) const {
+    // `knownTexel`: the texel `direction` addresses, or -1 if not known yet.
+    bool admits(int objectId, const Vec3& direction, int knownTexel = -1) const {
         const Entry& e = cubes_[static_cast<std::size_t>(cubeIndexOf(objectId))];
         // The texel is addressed only for a sampling cube.
-        return e.policy.sampling() ? e.policy.admitsTexel(e.cube.texelIndexFor(direction)) : !e.policy.bypassed();
+        if (!e.policy.sampling()) return !e.policy.bypassed();
+        return e.policy.admitsTexel(knownTexel >= 0 ? knownTexel : e.cube.texelIndexFor(direction));
+    }
+    // The face size of `objectId`'s cube when this frame's lookups of the
+    // rays leaving it address CCT texels (a CCT cube that does not stand
+    // aside), else 0. A caller that spawns many such rays at once may
+    // address them itself (cache/CubeAddressingLanes.h) and hand each
+    // texel over in Query::texel and admits().
+    int laneAddressedFaceSize(int objectId) const {
+        const int c = cubeIndexOf(objectId);
+        if (c < 0) return 0;
+        const Entry& e = cubes_[static_cast<std::size_t>(c)];
+        return e.technique == CacheTechnique::Cct && !e.policy.bypassed() ? e.cube.size() : 0;
     }
     // Counts a ray that left `objectId` while its cube stood aside (or out of
     // its sample), traced without asking the cube (the tile kernel routes such rays around the

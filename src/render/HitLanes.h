@@ -148,6 +148,13 @@ struct SecondaryRayLanes16 {
     alignas(64) float reflectWeight[16];  // kr, plus kt where the light is totally reflected
     alignas(64) float coneWidth[16], coneSpread[16];
     alignas(64) int reflects[16], refracts[16];  // 1: the ray is spawned
+    // The CCT texel each ray addresses on its object's cube, where the tile
+    // kernel addressed it (RayCache::laneAddressedFaceSize); -1 elsewhere.
+    alignas(64) int reflectedTexel[16], refractedTexel[16];
+    // 2 where the tile kernel looks the ray up itself when it emits it
+    // (RayCache::looksUpInLanes, lookupAddressed); -1 where the lookup batch
+    // asks, or no cache does.
+    alignas(64) int reflectedAnswered[16], refractedAnswered[16];
 };
 
 // The rays surfaces k (selected by `lanes`) of `material` spawn, hit by

@@ -506,7 +506,8 @@ void TileKernel::shadeDirect(TileScratch& s) const {
 
 void TileKernel::emitSecondaryRay(TileScratch& s, CacheWorker* cache, int parent, float parentPathWeight,
                                   int parentDepth, int objectId, const Ray& ray, const RayCone& cone,
-                                  TileScratch::Kind kind, float share, bool leavesObject) const {
+                                  TileScratch::Kind kind, float share, bool leavesObject,
+                                  const SpawnedRayLookup& lookup) const {
     // Every secondary ray gets a node of its own, whether a cache answers it
     // or not, so caching never changes how the colours are summed.
     const int node = static_cast<int>(s.nodes.size());
@@ -520,8 +521,33 @@ void TileKernel::emitSecondaryRay(TileScratch& s, CacheWorker* cache, int parent
     // to tracing, as without a cache, and cost no lookup, no miss
     // bookkeeping and no store.
     const bool cached = leavesObject && cache && cache_->cachesObject(objectId);
-    if (cached && cache_->admits(objectId, ray.direction)) {
-        s.leaving.push_back({ray, objectId, node, pathWeight, parentDepth + 1, kind, cone});
+    if (cached && lookup.answered >= 0) {
+        // Looked up already, in lanes: what the lookup batch would have done.
+        added.tracked = s.trackTrees;
+        if (lookup.answered) {
+            added.direct = lookup.color;
+            return;
+        }
+        added.store = static_cast<int>(s.stores.size());
+        s.stores.push_back({objectId, lookup.texel, ray.origin, ray.direction, 0.0f, parentDepth + 1, pathWeight});
+        s.pending.push_back({ray, node, pathWeight, parentDepth + 1, kind, cone});
+        return;
+    }
+    if (cached && cache_->admits(objectId, ray.direction, lookup.texel)) {
+        s.leaving.push_back({node, pathWeight, parentDepth + 1, kind, cone});
+        // Field by field: a whole-struct assignment was built on the stack
+        // with narrow stores and copied with wide loads, a store-forwarding
+        // stall per query.
+        RayCache::Query& q = s.cacheQueries.emplace_back();
+        q.objectId = objectId;
+        q.origin = ray.origin;
+        q.direction = ray.direction;
+        q.spread = cone.spread;
+        // A cube that sees past its object's surface would answer a ray that
+        // meets that surface (a concave mirror seeing itself) with what lies
+        // behind it: such a ray is traced.
+        q.meetsOwnSurface = cache_->seesPastOwnSurface(objectId) && tracer_.meetsObject(objectId, ray);
+        q.texel = lookup.texel;
         added.tracked = s.trackTrees;
     } else {
         if (cached) {
@@ -537,6 +563,7 @@ void TileKernel::emitSecondaryRay(TileScratch& s, CacheWorker* cache, int parent
 void TileKernel::spawnSecondaryRays(TileScratch& s, CacheWorker* cache) const {
     StageTimer timer(settings_.stageTimes, s.stages.secondaryRays);
     s.leaving.clear();
+    s.cacheQueries.clear();
     s.pending.clear();
     const auto emit = [&](const TileScratch::PathVertex& v, const Ray& ray, const RayCone& cone,
                           TileScratch::Kind kind, float share, bool leavesObject) {
@@ -586,26 +613,10 @@ void TileKernel::lookupReuse(TileScratch& s, CacheWorker& cache) const {
     StageTimer timer(settings_.stageTimes, s.stages.reuseLookups);
     const std::size_t n = s.leaving.size();
     if (n == 0) return;
-    s.cacheQueries.resize(n);
     s.cachedColors.resize(n);
     s.cacheFound.resize(n);
     s.storeTexels.resize(n);
     s.answerTexels.resize(s.trackTrees ? n : 0);
-    for (std::size_t i = 0; i < n; ++i) {
-        const TileScratch::LeavingRay& l = s.leaving[i];
-        // A cube that sees past its object's surface would answer a ray that
-        // meets that surface (a concave mirror seeing itself) with what lies
-        // behind it: such a ray is traced.
-        // Field by field: a whole-struct assignment was built on the stack
-        // with narrow stores and copied with wide loads, a store-forwarding
-        // stall per query (most of this loop's time in perf).
-        RayCache::Query& q = s.cacheQueries[i];
-        q.objectId = l.objectId;
-        q.origin = l.ray.origin;
-        q.direction = l.ray.direction;
-        q.spread = l.cone.spread;
-        q.meetsOwnSurface = cache_->seesPastOwnSurface(l.objectId) && tracer_.meetsObject(l.objectId, l.ray);
-    }
     // Without the cache-level record the batch is looked up exactly as before:
     // an empty span, and one branch here and one after.
     std::span<std::int8_t> answerLevels;
@@ -618,6 +629,7 @@ void TileKernel::lookupReuse(TileScratch& s, CacheWorker& cache) const {
     if (s.recordLevels) recordLookupLevels(s);
     for (std::size_t i = 0; i < n; ++i) {
         const TileScratch::LeavingRay& l = s.leaving[i];
+        const RayCache::Query& q = s.cacheQueries[i];
         TileScratch::Node& node = s.nodes[static_cast<std::size_t>(l.node)];
         if (s.cacheFound[i]) {
             node.direct = s.cachedColors[i];
@@ -625,14 +637,14 @@ void TileKernel::lookupReuse(TileScratch& s, CacheWorker& cache) const {
             // one does. Only a tree that is stored asks (the answered node's
             // bounds go nowhere unless its parent's do).
             if (s.trackTrees && s.nodes[static_cast<std::size_t>(node.parent)].tracked)
-                cache_->addAnswerDependencies(l.objectId, s.answerTexels[i], s.nodeBounds[static_cast<std::size_t>(l.node)]);
+                cache_->addAnswerDependencies(q.objectId, s.answerTexels[i], s.nodeBounds[static_cast<std::size_t>(l.node)]);
             continue;
         }
         // A miss: the ray is traced, and what its whole tree brings back is
         // stored once the tile is done.
         node.store = static_cast<int>(s.stores.size());
-        s.stores.push_back({l.objectId, s.storeTexels[i], l.ray.origin, l.ray.direction, 0.0f, l.depth, l.pathWeight});
-        s.pending.push_back({l.ray, l.node, l.pathWeight, l.depth, l.kind, l.cone});
+        s.stores.push_back({q.objectId, s.storeTexels[i], q.origin, q.direction, 0.0f, l.depth, l.pathWeight});
+        s.pending.push_back({Ray{q.origin, q.direction}, l.node, l.pathWeight, l.depth, l.kind, l.cone});
     }
 }
 

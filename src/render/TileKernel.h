@@ -107,9 +107,10 @@ private:
         Kind kind;
         RayCone cone{};
     };
-    struct LeavingRay {  // a secondary ray leaving a caching object: the cache is asked first
-        Ray ray;
-        int objectId;
+    // A secondary ray leaving a caching object: the cache is asked first.
+    // The ray itself and its object are its query (cacheQueries, same index),
+    // written where the ray is spawned, so the lookup reads them in place.
+    struct LeavingRay {
         int node;
         float pathWeight;
         int depth;
@@ -177,11 +178,11 @@ private:
     std::vector<Node> nodes;
     std::vector<NodeStore> stores;
     // The waves in lanes (RenderSettings::waveLanes): the wave's packets,
-    // packet p's view of light l at p * lights + l, and one packet's
-    // secondary rays and triangles.
+    // packet p's view of light l at p * lights + l, packet p's secondary
+    // rays at p (TileKernel::packetSpawnLanes), and one packet's triangles.
     std::vector<HitPacket> packets;
     std::vector<LightLanes16> packetLights;
-    SecondaryRayLanes16 spawnLanes;
+    std::vector<SecondaryRayLanes16> spawnLanes;
     MeshHitLanes meshLanes;
     std::vector<PathVertex> vertices, nextVertices;
     std::vector<SurfacePoint> surfaces;
@@ -197,7 +198,7 @@ private:
     std::vector<Ray> byLightRays;
     std::vector<unsigned char> byLightOccluded;
     std::vector<LeavingRay> leaving;
-    std::vector<RayCache::Query> cacheQueries;
+    std::vector<RayCache::Query> cacheQueries;  // one per leaving ray
     std::vector<Rgb> cachedColors;
     std::vector<unsigned char> cacheFound;
     std::vector<int> storeTexels;
@@ -228,6 +229,14 @@ private:
     std::vector<Vec3> fillPositions;
     std::vector<VisiblePoint> visiblePoints;
     VisibleFillScratch fill;
+};
+
+// What the tile kernel's lanes learned of a spawned ray's cache texel
+// (render/WaveLanes.cpp), handed to TileKernel::emitSecondaryRay.
+struct SpawnedRayLookup {
+    int texel = -1;     // the CCT texel its direction addresses; -1: not addressed
+    int answered = -1;  // 1: the cache answered `color`; 0: it missed; -1: not asked yet
+    Rgb color;
 };
 
 class TileKernel {
@@ -316,7 +325,15 @@ private:
     void packetSurfaces(TileScratch::HitPacket& packet, MeshHitLanes& meshLanes) const;
     void packetShadowRays(TileScratch& s, std::size_t p) const;
     void packetDirect(TileScratch& s, std::size_t p) const;
-    void packetSpawn(TileScratch& s, const TileScratch::HitPacket& packet, CacheWorker* cache) const;
+    // A packet's secondary rays in two steps, the first for every packet of
+    // the wave before the second for any, so that the memory the lookups
+    // read arrives meanwhile. First: the rays in lanes, the texels of those
+    // leaving CCT objects, and a prefetch of what their lookups read.
+    // Second: the lookups, then each ray's node, hit by hit.
+    void packetSpawnLanes(const TileScratch::HitPacket& packet, SecondaryRayLanes16& spawned, CacheWorker* cache,
+                          bool lookUpInLanes) const;
+    void packetEmit(TileScratch& s, const TileScratch::HitPacket& packet, SecondaryRayLanes16& spawned,
+                    CacheWorker* cache) const;
     // The hybrid pipeline's first hits from the G-buffer, as packets whose
     // surfaces are already known (shadePackets with surfacesKnown).
     void readGBufferInLanes(const CameraRays& cameraRays, const GBufferView& gbuffer, const TileRange& tile,
@@ -338,7 +355,7 @@ private:
     // or the rays to trace.
     void emitSecondaryRay(TileScratch& s, CacheWorker* cache, int parent, float parentPathWeight, int parentDepth,
                           int objectId, const Ray& ray, const RayCone& cone, TileScratch::Kind kind, float share,
-                          bool leavesObject) const;
+                          bool leavesObject, const SpawnedRayLookup& lookup = {}) const;
     void lookupReuse(TileScratch& s, CacheWorker& cache) const;
     // The cache-level record: every root starts with no caching ray; each
     // batch of lookups may replace a root's value (CacheLevelImage says which

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "cache/CubeAddressingLanes.h"
 #include "core/FloatLanes.h"
 #include "render/StageTimer.h"
 #include "render/TileKernel.h"
@@ -205,8 +206,19 @@ void TileKernel::shadePackets(TileScratch& s, CacheWorker* cache, bool surfacesK
     }
     StageTimer timer(settings_.stageTimes, s.stages.secondaryRays);
     s.leaving.clear();
+    s.cacheQueries.clear();
     s.pending.clear();
-    for (const TileScratch::HitPacket& packet : s.packets) packetSpawn(s, packet, cache);
+    // Trees tracked for animated scenes and the cache-level record take the
+    // lookup batch.
+    const bool lookUpInLanes = cache && !s.trackTrees && !s.recordLevels;
+    // Every packet's rays first, then their nodes and lookups: the memory
+    // the lookups read is fetched for the whole wave at once, its latencies
+    // overlapping (packet by packet they added up: 11 % of grid-32's ideal
+    // frame stalled on the validity bits).
+    const std::size_t packets = s.packets.size();
+    if (s.spawnLanes.size() < packets) s.spawnLanes.resize(packets);
+    for (std::size_t p = 0; p < packets; ++p) packetSpawnLanes(s.packets[p], s.spawnLanes[p], cache, lookUpInLanes);
+    for (std::size_t p = 0; p < packets; ++p) packetEmit(s, s.packets[p], s.spawnLanes[p], cache);
     if (s.trackTrees) s.nodeBounds.resize(s.nodes.size());
 }
 
@@ -322,27 +334,55 @@ void TileKernel::packetDirect(TileScratch& s, std::size_t p) const {
                 Rgb{packet.directR[k], packet.directG[k], packet.directB[k]};
 }
 
-void TileKernel::packetSpawn(TileScratch& s, const TileScratch::HitPacket& packet, CacheWorker* cache) const {
-    SecondaryRayLanes16& spawned = s.spawnLanes;
+void TileKernel::packetSpawnLanes(const TileScratch::HitPacket& packet, SecondaryRayLanes16& spawned,
+                                  CacheWorker* cache, bool lookUpInLanes) const {
     // Hits whose path may go on (the rest are done: their light is all they bring).
     alignas(64) int remaining[kFloatLanes], selected[kFloatLanes];
     bool any = false;
     for (int k = 0; k < kFloatLanes; ++k) {
         remaining[k] = packet.hits.valid[k] && packet.depth[k] < settings_.maxDepth ? -1 : 0;
         spawned.reflects[k] = spawned.refracts[k] = 0;
+        spawned.reflectedTexel[k] = spawned.refractedTexel[k] = -1;
+        spawned.reflectedAnswered[k] = spawned.refractedAnswered[k] = -1;
         any |= remaining[k] != 0;
     }
     if (!any) return;
-    any = false;
     for (int id; (id = takeObjectLanes(packet.objectId, remaining, selected)) >= 0;) {
         const SceneObject& object = scene_.objects[static_cast<std::size_t>(id)];
         const Material& material = object.material;
         if (!material.reflects() && !material.refracts()) continue;
-        any = true;
         secondaryRayLanes16(material, coneCurvature(object), settings_.minWeight, packet.surface, packet.rays.ray,
                             packet.pathWeight, packet.coneWidth, packet.coneSpread, selected, spawned);
+        // The texels that rays leaving a CCT object address on its cube,
+        // sixteen at a time (the lookup batch addresses one at a time).
+        const int faceSize = cache ? cache_->laneAddressedFaceSize(id) : 0;
+        if (faceSize == 0) continue;
+        cubeTexelIndices16(spawned.reflectedX, spawned.reflectedY, spawned.reflectedZ, faceSize, selected,
+                           spawned.reflectedTexel);
+        if (material.refracts())
+            cubeTexelIndices16(spawned.refractedX, spawned.refractedY, spawned.refractedZ, faceSize, selected,
+                               spawned.refractedTexel);
+        // Where a lookup reads one validity bit and one texel, packetEmit
+        // asks it: the rays reflected off the outside and refracted out from
+        // the inside leave the object. What they read is fetched meanwhile.
+        if (!lookUpInLanes || !cache_->looksUpInLanes(id)) continue;
+        for (int k = 0; k < kFloatLanes; ++k) {
+            if (!selected[k]) continue;
+            const bool front = packet.surface.frontFace[k] != 0;
+            if (spawned.reflects[k] && front) {
+                spawned.reflectedAnswered[k] = 2;
+                cache_->prefetchLookup(id, spawned.reflectedTexel[k]);
+            }
+            if (spawned.refracts[k] && !front) {
+                spawned.refractedAnswered[k] = 2;
+                cache_->prefetchLookup(id, spawned.refractedTexel[k]);
+            }
+        }
     }
-    if (!any) return;
+}
+
+void TileKernel::packetEmit(TileScratch& s, const TileScratch::HitPacket& packet, SecondaryRayLanes16& spawned,
+                            CacheWorker* cache) const {
     // Hit by hit, the reflected ray before the refracted one, as the
     // general path spawns them.
     for (int k = 0; k < packet.count; ++k) {
@@ -350,17 +390,22 @@ void TileKernel::packetSpawn(TileScratch& s, const TileScratch::HitPacket& packe
         const int objectId = packet.objectId[k];
         const RayCone cone{spawned.coneWidth[k], spawned.coneSpread[k]};
         const bool frontFace = packet.surface.frontFace[k] != 0;
-        if (spawned.reflects[k])
+        if (spawned.reflects[k]) {
+            SpawnedRayLookup lookup{spawned.reflectedTexel[k], spawned.reflectedAnswered[k], {}};
+            if (lookup.answered == 2) lookup.answered = cache_->lookupAddressed(objectId, lookup.texel, lookup.color, *cache);
             emitSecondaryRay(s, cache, packet.node[k], packet.pathWeight[k], packet.depth[k], objectId,
                              Ray{{spawned.aboveX[k], spawned.aboveY[k], spawned.aboveZ[k]},
                                  {spawned.reflectedX[k], spawned.reflectedY[k], spawned.reflectedZ[k]}},
-                             cone, TileScratch::Kind::Reflection, spawned.reflectWeight[k], frontFace);
+                             cone, TileScratch::Kind::Reflection, spawned.reflectWeight[k], frontFace, lookup);
+        }
         if (spawned.refracts[k]) {
+            SpawnedRayLookup lookup{spawned.refractedTexel[k], spawned.refractedAnswered[k], {}};
+            if (lookup.answered == 2) lookup.answered = cache_->lookupAddressed(objectId, lookup.texel, lookup.color, *cache);
             const Material& material = scene_.objects[static_cast<std::size_t>(objectId)].material;
             emitSecondaryRay(s, cache, packet.node[k], packet.pathWeight[k], packet.depth[k], objectId,
                              Ray{{spawned.belowX[k], spawned.belowY[k], spawned.belowZ[k]},
                                  {spawned.refractedX[k], spawned.refractedY[k], spawned.refractedZ[k]}},
-                             cone, TileScratch::Kind::Refraction, material.transmissivity, !frontFace);
+                             cone, TileScratch::Kind::Refraction, material.transmissivity, !frontFace, lookup);
         }
     }
 }

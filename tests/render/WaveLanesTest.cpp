@@ -30,7 +30,7 @@ struct Frames {
 };
 
 Frames renderFrames(const Scene& scene, bool lanes, CacheTechnique technique, int frames,
-                    PipelineKind pipeline = PipelineKind::Ray) {
+                    PipelineKind pipeline = PipelineKind::Ray, bool idealCache = false) {
     RenderSettings settings;
     settings.pipeline = pipeline;
     settings.gbuffer = GBufferSource::Packets;
@@ -40,6 +40,7 @@ Frames renderFrames(const Scene& scene, bool lanes, CacheTechnique technique, in
     settings.waveLanes = lanes;
     settings.cache.techniqueOverride = technique;
     settings.cache.resolutionOverride = 64;
+    settings.cache.ideal = idealCache;
     RenderSession session(scene, settings);
     Frames out;
     for (int f = 0; f < frames; ++f) {
@@ -57,9 +58,9 @@ bool sameBits(const Image& a, const Image& b) {
 }
 
 void expectLanesEqualGeneralPath(const Scene& scene, const std::string& name, CacheTechnique technique, int frames,
-                                 PipelineKind pipeline = PipelineKind::Ray) {
-    const Frames lanes = renderFrames(scene, true, technique, frames, pipeline);
-    const Frames general = renderFrames(scene, false, technique, frames, pipeline);
+                                 PipelineKind pipeline = PipelineKind::Ray, bool idealCache = false) {
+    const Frames lanes = renderFrames(scene, true, technique, frames, pipeline, idealCache);
+    const Frames general = renderFrames(scene, false, technique, frames, pipeline, idealCache);
     for (int f = 0; f < frames; ++f) {
         const auto i = static_cast<std::size_t>(f);
         EXPECT_TRUE(sameBits(lanes.images[i], general.images[i])) << name << " frame " << f;
@@ -71,7 +72,14 @@ void expectLanesEqualGeneralPath(const Scene& scene, const std::string& name, Ca
         EXPECT_EQ(a.refraction, b.refraction) << name << " frame " << f;
         ASSERT_EQ(lanes.stats[i].cache.has_value(), general.stats[i].cache.has_value());
         if (lanes.stats[i].cache) {
+            // The lanes look CCT rays up as they spawn them
+            // (RayCache::lookupAddressed), the general path in batches.
+            EXPECT_EQ(lanes.stats[i].cache->lookups(), general.stats[i].cache->lookups()) << name << " frame " << f;
             EXPECT_EQ(lanes.stats[i].cache->hits(), general.stats[i].cache->hits()) << name << " frame " << f;
+            EXPECT_EQ(lanes.stats[i].cache->misses(), general.stats[i].cache->misses()) << name << " frame " << f;
+            for (std::size_t o = 0; o < lanes.stats[i].cache->objects.size(); ++o)
+                EXPECT_EQ(lanes.stats[i].cache->objects[o].hitsByLevel, general.stats[i].cache->objects[o].hitsByLevel)
+                    << name << " frame " << f << " cube " << o;
             EXPECT_EQ(lanes.stats[i].cache->stores(), general.stats[i].cache->stores()) << name << " frame " << f;
         }
     }
@@ -95,6 +103,15 @@ TEST(WaveLanes, CachedFramesEqualTheGeneralPath) {
         ASSERT_TRUE(scene.has_value()) << name;
         expectLanesEqualGeneralPath(*scene, name, CacheTechnique::Cct, 3);
         expectLanesEqualGeneralPath(*scene, name, CacheTechnique::Cdct, 2);
+    }
+}
+
+TEST(WaveLanes, IdealCacheFramesEqualTheGeneralPath) {
+    // An ideal cache answers its misses black (core_speed's ideal frame).
+    for (const char* name : {"grid-8", "glass"}) {
+        const auto scene = makeBuiltinScene(name);
+        ASSERT_TRUE(scene.has_value()) << name;
+        expectLanesEqualGeneralPath(*scene, name, CacheTechnique::Cct, 2, PipelineKind::Ray, true);
     }
 }
 
