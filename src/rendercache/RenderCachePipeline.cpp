@@ -208,30 +208,40 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     const CameraRays centreRays(camera, width, height);
     parallel_.forEachIndex(height, [&](int y, int) {
         std::int64_t rowHoles = 0, rowCulled = 0, rowReprojected = 0;
+        // Addresses and sizes in locals (through the members the compiler
+        // reloaded them after every store).
+        const auto stride = static_cast<std::size_t>(image_.stride());
+        const std::size_t rowSlot = image_.pixelIndex(0, y);
+        const std::uint32_t* const keys = image_.keyData() + rowSlot;
+        SampleLook* const looks = pool_.look.data() + rowSlot;
+        const SamplePoint* const points = pool_.point.data() + rowSlot;
+        const SampleTexturing* const texturings = pool_.texturing.data() + rowSlot;
+        PixelState* const rowState = state.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
+        float* const rowPriority = priority.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
+        const float threshold = rc.depthCullThreshold;
         for (int x = 0; x < width; ++x) {
-            const auto i = static_cast<std::size_t>(y * width + x);
-            if (!image_.hasSample(x, y)) {
-                state[i] = PixelState::Hole;
-                priority[i] = 1.0f;
+            const auto i = static_cast<std::size_t>(x);
+            if (keys[x] == PointImage::emptyKey()) {
+                rowState[i] = PixelState::Hole;
+                rowPriority[i] = 1.0f;
                 ++rowHoles;
-            } else if (cull && hiddenByNearerNeighbours(image_, x, y, rc.depthCullThreshold)) {
-                state[i] = PixelState::Culled;
-                priority[i] = 1.0f;
+            } else if (cull && hiddenByNearerKeys(keys + x - stride, keys + x, keys + x + stride, threshold)) {
+                rowState[i] = PixelState::Culled;
+                rowPriority[i] = 1.0f;
                 ++rowCulled;
             } else {
-                state[i] = PixelState::Reprojected;
-                const std::size_t slot = image_.pixelIndex(x, y);
-                SampleLook& look = pool_.look[slot];
-                priority[i] = agePriority * static_cast<float>(look.age);
+                rowState[i] = PixelState::Reprojected;
+                SampleLook& look = looks[i];
+                rowPriority[i] = agePriority * static_cast<float>(look.age);
                 if (retexture && look.textured) {
-                    const int object = pool_.point[slot].objectId;
+                    const int object = points[i].objectId;
                     const SceneObject& sceneObject = scene_.objects[static_cast<std::size_t>(object)];
-                    const float distance = length(sceneObject.origin + pool_.point[slot].position - camera.position);
+                    const float distance = length(sceneObject.origin + points[i].position - camera.position);
                     // Where the centre misses the sample's primitive (its
                     // edge, a silhouette), the stored colour, and a ray sooner.
-                    if (!retexturedColor(sceneObject, object, pool_.texturing[slot], centreRays.ray(x, y), distance,
+                    if (!retexturedColor(sceneObject, object, texturings[i], centreRays.ray(x, y), distance,
                                          look.color))
-                        priority[i] = std::max(priority[i], kMissedPrimitivePriority);
+                        rowPriority[i] = std::max(rowPriority[i], kMissedPrimitivePriority);
                 }
                 ++rowReprojected;
             }
