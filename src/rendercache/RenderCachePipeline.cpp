@@ -219,6 +219,7 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
         PixelState* const rowState = state.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
         float* const rowPriority = priority.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
         const float threshold = rc.depthCullThreshold;
+        CentreRetexturing retexturing(scene_.objects);
         for (int x = 0; x < width; ++x) {
             const auto i = static_cast<std::size_t>(x);
             if (keys[x] == PointImage::emptyKey()) {
@@ -235,12 +236,13 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
                 rowPriority[i] = agePriority * static_cast<float>(look.age);
                 if (retexture && look.textured) {
                     const int object = points[i].objectId;
-                    const SceneObject& sceneObject = scene_.objects[static_cast<std::size_t>(object)];
-                    const float distance = length(sceneObject.origin + points[i].position - camera.position);
+                    const auto distance = [&] {
+                        return length(scene_.objects[static_cast<std::size_t>(object)].origin + points[i].position -
+                                      camera.position);
+                    };
                     // Where the centre misses the sample's primitive (its
                     // edge, a silhouette), the stored colour, and a ray sooner.
-                    if (!retexturedColor(sceneObject, object, texturings[i], centreRays.ray(x, y), distance,
-                                         look.color))
+                    if (!retexturing.color(object, texturings[i], centreRays.ray(x, y), distance, look.color))
                         rowPriority[i] = std::max(rowPriority[i], kMissedPrimitivePriority);
                 }
                 ++rowReprojected;
@@ -446,6 +448,7 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     // a grey that neither square has). Where it misses, the filter's mean.
     if (rc.textureRefetch && filled.filled3x3 + filled.filled7x7 > 0)
         parallel_.forEachIndex(height, [&](int y, int) {
+            CentreRetexturing retexturing(scene_.objects);
             for (int x = 0; x < width; ++x) {
                 const auto i = static_cast<std::size_t>(y * width + x);
                 if (state[i] != PixelState::Filled3x3 && state[i] != PixelState::Filled7x7) continue;
@@ -453,9 +456,11 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
                 const std::size_t slot = image_.pixelIndex(source % width, source / width);
                 if (!pool_.look[slot].textured) continue;
                 const int object = pool_.point[slot].objectId;
-                const SceneObject& sceneObject = scene_.objects[static_cast<std::size_t>(object)];
-                const float distance = length(sceneObject.origin + pool_.point[slot].position - camera.position);
-                retexturedColor(sceneObject, object, pool_.texturing[slot], rays.ray(x, y), distance, film.at(x, y));
+                const auto distance = [&] {
+                    return length(scene_.objects[static_cast<std::size_t>(object)].origin + pool_.point[slot].position -
+                                  camera.position);
+                };
+                retexturing.color(object, pool_.texturing[slot], rays.ray(x, y), distance, film.at(x, y));
             }
         });
     stats.filled3x3 = filled.filled3x3;
