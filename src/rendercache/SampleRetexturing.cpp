@@ -24,6 +24,9 @@ void CentreRetexturing::prepare(const SceneObject& object, int objectId, int pri
     e1_ = mesh.positions[tri[1]] - p0_;
     e2_ = mesh.positions[tri[2]] - p0_;
     edgeOn_ = 1e-7f * length(e1_) * length(e2_);
+    hasUvs_ = !mesh.uvs.empty();
+    if (hasUvs_)
+        for (int corner = 0; corner < 3; ++corner) uv_[static_cast<std::size_t>(corner)] = mesh.uvs[tri[static_cast<std::size_t>(corner)]];
 }
 
 }  // namespace raycache

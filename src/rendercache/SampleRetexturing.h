@@ -8,6 +8,7 @@
 // albedo fetched there, and multiplied back. The lighting and the rest vary
 // slowly over a surface and stay as traced (the rest is shaded again from
 // the new eye anyway where reflections are reshaded).
+#include <array>
 #include <cmath>
 #include <variant>
 #include <vector>
@@ -36,13 +37,15 @@ bool retexturedColor(const SceneObject& object, int objectId, const SampleTextur
 
 // retexturedColor() for the pixels of one pass, one thread: the same
 // colours bit for bit, at a third of the instructions on a mesh. Of the
-// centre ray's hit on the sample's triangle, render/HitOnPrimitive computes
-// per call what depends on the triangle alone (its corners, two edges and
-// their lengths, two square roots); neighbouring pixels mostly meet one
-// triangle, so this keeps the last triangle's and does the rest with the
-// same operations in the same order (tests/rendercache/RenderCacheTextureTest
-// compares the two). A mesh hit needs no distance to the sample
-// (HitOnPrimitive uses it for spheres only), so it is asked for only there.
+// centre ray's hit on the sample's triangle and the albedo there,
+// render/HitOnPrimitive and render/SurfacePoint's albedoAtHit compute per
+// call what depends on the triangle alone (its corners, two edges and their
+// lengths: two square roots; the corners' texture coordinates);
+// neighbouring pixels mostly meet one triangle, so this keeps the last
+// triangle's and does the rest with the same operations in the same order
+// (tests/rendercache/RenderCacheTextureTest compares the two). A mesh hit
+// needs no distance to the sample (HitOnPrimitive uses it for spheres
+// only), so it is asked for only there.
 class CentreRetexturing {
 public:
     explicit CentreRetexturing(const std::vector<SceneObject>& objects) : objects_(objects) {}
@@ -69,8 +72,19 @@ public:
         const float t = dot(e2_, q) * inverse;
         if (!(t > 0.0f) || !(u >= -kTriangleSlack) || !(v >= -kTriangleSlack) || !(1.0f - u - v >= -kTriangleSlack))
             return false;
-        color = albedoAtHit(object, centreRay, TraceHit{t, objectId, primitive_, u, v}) * texturing.lighting +
-                texturing.rest;
+        // render/SurfacePoint's albedoAtHit() for a mesh hit, the corners'
+        // texture coordinates kept with the triangle.
+        Rgb albedo = object.material.diffuse;
+        if (object.material.diffuseTexture) {
+            float texU = 0.0f, texV = 0.0f;
+            if (hasUvs_) {
+                const float w = 1.0f - u - v;
+                texU = uv_[0][0] * w + uv_[1][0] * u + uv_[2][0] * v;
+                texV = uv_[0][1] * w + uv_[1][1] * u + uv_[2][1] * v;
+            }
+            albedo = object.material.diffuseTexture->sample(texU, texV);
+        }
+        color = albedo * texturing.lighting + texturing.rest;
         return true;
     }
 
@@ -82,6 +96,8 @@ private:
     bool valid_ = false;  // the primitive exists
     Vec3 p0_, e1_, e2_;
     float edgeOn_ = 0.0f;  // |det| at or below it: the plane seen edge-on, or a degenerate triangle
+    bool hasUvs_ = false;
+    std::array<std::array<float, 2>, 3> uv_{};  // the corners' texture coordinates
 };
 
 }  // namespace raycache

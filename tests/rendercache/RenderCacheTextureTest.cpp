@@ -160,7 +160,8 @@ TEST(RenderCacheTexture, RefetchGivesTheSameImagesOnOneAndTwoThreads) {
 namespace {
 
 // A textured mesh of a few triangles (one of them degenerate, one seen
-// nearly edge-on from the rays below) and a textured sphere.
+// nearly edge-on from the rays below), a textured sphere, the mesh without
+// texture coordinates, the mesh untextured and the mesh under an image.
 std::vector<SceneObject> retexturedObjects() {
     Material checker;
     checker.diffuseTexture = Texture::checkerboard({Rgb{0.9f, 0.8f, 0.2f}, Rgb{0.1f, 0.2f, 0.7f}, 7.0f});
@@ -177,7 +178,24 @@ std::vector<SceneObject> retexturedObjects() {
     ball.shape = Sphere{{0.5f, 0.5f, -1.0f}, 1.2f};
     ball.material = checker;
     ball.origin = {0.5f, 0.5f, -1.0f};
-    return {wall, ball};
+    // The same triangles without texture coordinates (the texture's
+    // colour at (0, 0) everywhere), and untextured.
+    auto bare = std::make_shared<TriangleMesh>(*mesh);
+    bare->uvs.clear();
+    SceneObject bareWall = wall;
+    bareWall.shape = MeshShape{bare};
+    SceneObject plainWall = wall;
+    plainWall.material.diffuseTexture.reset();
+    plainWall.material.diffuse = Rgb{0.3f, 0.6f, 0.9f};
+    // An image texture, filtered: its colour follows every bit of (u, v).
+    auto pixels = std::make_shared<Image>(5, 3);
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 5; ++x)
+            pixels->at(x, y) = Rgb{0.1f + 0.17f * static_cast<float>(x), 0.2f + 0.3f * static_cast<float>(y),
+                                   0.9f - 0.13f * static_cast<float>(x + y)};
+    SceneObject imageWall = wall;
+    imageWall.material.diffuseTexture = Texture::image(pixels);
+    return {wall, ball, bareWall, plainWall, imageWall};
 }
 
 }  // namespace
@@ -195,7 +213,8 @@ TEST(RenderCacheTexture, CentreRetexturingMatchesRetexturedColourBitForBit) {
     };
     int hits = 0, misses = 0;
     for (int i = 0; i < 20000; ++i) {
-        const int object = uniform(0.0f, 1.0f) < 0.8f ? 0 : 1;
+        const float pick = uniform(0.0f, 1.0f);
+        const int object = pick < 0.4f ? 0 : pick < 0.5f ? 1 : pick < 0.6f ? 2 : pick < 0.7f ? 3 : 4;
         // Runs of one primitive, as along an image row, and some out of range.
         const int primitive = object == 1 ? 0 : static_cast<int>(uniform(0.0f, 5.0f)) - (i % 97 == 0 ? 7 : 0);
         SampleTexturing texturing{Rgb{uniform(0.0f, 2.0f), uniform(0.0f, 2.0f), uniform(0.0f, 2.0f)},
