@@ -15,20 +15,31 @@
 
 namespace raycache {
 
-// Whether the sample at pixel (x, y) of `image` (which must hold one; the
-// margin must be at least 1) is hidden by the rule above.
-inline bool hiddenByNearerNeighbours(const PointImage& image, int x, int y, float threshold) {
+// The rule above on a sample's key `row[0]` and its neighbours' keys:
+// `above`, `row` and `below` point at its column in three consecutive rows
+// of a PointImage's keys (PointImage::keyData()), each readable one pixel
+// to either side.
+inline bool hiddenByNearerKeys(const std::uint32_t* above, const std::uint32_t* row, const std::uint32_t* below,
+                               float threshold) {
     // Compared as packed keys: no float decoding, empty pixels never nearer.
-    const std::uint32_t nearerKey = PointImage::nearerThan(image.depthAt(x, y) * (1.0f - threshold));
+    const std::uint32_t nearerKey = PointImage::nearerThan(PointImage::depthOf(row[0]) * (1.0f - threshold));
     int nearer = 0, occupied = 0;
-    for (int dy = -1; dy <= 1; ++dy)
+    for (const std::uint32_t* keys : {above, row, below})
         for (int dx = -1; dx <= 1; ++dx) {
-            const std::uint32_t key = image.keyAt(x + dx, y + dy);  // the margin is at least 1 pixel
+            const std::uint32_t key = keys[dx];
             nearer += key <= nearerKey ? 1 : 0;
             occupied += key != PointImage::emptyKey() ? 1 : 0;
         }
     const int notNearer = occupied - 1 - nearer;  // the centre is occupied and not nearer than itself
     return nearer >= 3 && nearer > notNearer;
+}
+
+// Whether the sample at pixel (x, y) of `image` (which must hold one; the
+// margin must be at least 1) is hidden by the rule above.
+inline bool hiddenByNearerNeighbours(const PointImage& image, int x, int y, float threshold) {
+    const std::uint32_t* row = image.keyData() + image.pixelIndex(x, y);  // the margin is at least 1 pixel
+    const auto stride = static_cast<std::size_t>(image.stride());
+    return hiddenByNearerKeys(row - stride, row, row + stride, threshold);
 }
 
 // Turns Reprojected pixels of `state` (width x height of `image`, whose

@@ -48,9 +48,25 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
         FillCounts row;
         int wanting = 0;
         bool holes = false;
+        // Addresses and sizes in locals: through the vectors and the image
+        // the compiler reloaded them after every store to the film.
+        const PixelState* const stateData = state.data();
+        Rgb* const filmData = film.pixels().data();
+        unsigned char* const outcomeData = outcome.data();
+        std::int32_t* const sourceData = fillSource && surfaces ? fillSource->data() : nullptr;
+        const SampleLook* const looks = samples ? samples->looks + samples->origin : nullptr;
+        const std::size_t lookStride = samples ? samples->stride : 0;
+        const PointImage* const depths = surfaces ? surfaces->depths : nullptr;
+        const std::uint32_t* const keys = depths ? depths->keyData() + depths->pixelIndex(0, 0) : nullptr;
+        const std::size_t keyStride = depths ? static_cast<std::size_t>(depths->stride()) : 0;
+        const SamplePoint* const points = surfaces ? surfaces->points + surfaces->origin : nullptr;
+        const std::size_t surfaceStride = surfaces ? surfaces->stride : 0;
+        const std::size_t rowStart = at(0, y);
         for (int x = 0; x < width; ++x) {
-            const PixelState s = state[at(x, y)];
-            if (samples && showsSample(s)) film.at(x, y) = samples->at(x, y);
+            const PixelState s = stateData[rowStart + static_cast<std::size_t>(x)];
+            if (looks && showsSample(s))
+                filmData[rowStart + static_cast<std::size_t>(x)] =
+                    looks[static_cast<std::size_t>(y) * lookStride + static_cast<std::size_t>(x)].color;
             if (!isHole(s)) continue;
             holes = true;
             SurfaceClusters groups;
@@ -59,18 +75,28 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
                 if (ny < 0 || ny >= height) continue;
                 for (int dx = -1; dx <= 1; ++dx) {
                     const int nx = x + dx;
-                    if (nx < 0 || nx >= width || !showsSample(state[at(nx, ny)])) continue;
+                    if (nx < 0 || nx >= width || !showsSample(stateData[at(nx, ny)])) continue;
                     const float w = (dx == 0 || dy == 0) ? 2.0f : 1.0f;
-                    addSample(groups, nx, ny, w);
+                    const Rgb& color = looks ? looks[static_cast<std::size_t>(ny) * lookStride +
+                                                     static_cast<std::size_t>(nx)].color
+                                             : filmData[at(nx, ny)];
+                    if (surfaces) {
+                        const auto column = static_cast<std::size_t>(nx), line = static_cast<std::size_t>(ny);
+                        groups.add(color, w, PointImage::depthOf(keys[line * keyStride + column]),
+                                   points[line * surfaceStride + column].objectId, ny * width + nx);
+                    } else {
+                        groups.add(color, w, 0.0f, 0);
+                    }
                 }
             }
+            const std::size_t i = rowStart + static_cast<std::size_t>(x);
             if (!groups.empty()) {
-                film.at(x, y) = groups.mean();
-                recordSource(x, y, groups);
-                outcome[at(x, y)] = k3x3;
+                filmData[i] = groups.mean();
+                if (sourceData) sourceData[i] = groups.chosenSource();
+                outcomeData[i] = k3x3;
                 ++row.filled3x3;
             } else {
-                outcome[at(x, y)] = kWants7x7;
+                outcomeData[i] = kWants7x7;
                 ++wanting;
             }
         }

@@ -66,6 +66,12 @@ public:
     int rows() const { return height_ + 2 * margin_; }
     std::size_t pixelCount() const { return keys_.size(); }
 
+    // The keys, pixelIndex() order, for loops that keep the address in a
+    // register (through the member the compiler reloads it after every store
+    // it cannot tell apart from one into this object).
+    std::uint32_t* keyData() { return keys_.data(); }
+    const std::uint32_t* keyData() const { return keys_.data(); }
+
     float depthAt(int x, int y) const { return depthOf(keys_[index(x, y)]); }
     bool hasSample(int x, int y) const { return keys_[index(x, y)] != kEmptyKey; }
 

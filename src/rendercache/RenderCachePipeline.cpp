@@ -208,30 +208,42 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     const CameraRays centreRays(camera, width, height);
     parallel_.forEachIndex(height, [&](int y, int) {
         std::int64_t rowHoles = 0, rowCulled = 0, rowReprojected = 0;
+        // Addresses and sizes in locals (through the members the compiler
+        // reloaded them after every store).
+        const auto stride = static_cast<std::size_t>(image_.stride());
+        const std::size_t rowSlot = image_.pixelIndex(0, y);
+        const std::uint32_t* const keys = image_.keyData() + rowSlot;
+        SampleLook* const looks = pool_.look.data() + rowSlot;
+        const SamplePoint* const points = pool_.point.data() + rowSlot;
+        const SampleTexturing* const texturings = pool_.texturing.data() + rowSlot;
+        PixelState* const rowState = state.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
+        float* const rowPriority = priority.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
+        const float threshold = rc.depthCullThreshold;
+        CentreRetexturing retexturing(scene_.objects);
         for (int x = 0; x < width; ++x) {
-            const auto i = static_cast<std::size_t>(y * width + x);
-            if (!image_.hasSample(x, y)) {
-                state[i] = PixelState::Hole;
-                priority[i] = 1.0f;
+            const auto i = static_cast<std::size_t>(x);
+            if (keys[x] == PointImage::emptyKey()) {
+                rowState[i] = PixelState::Hole;
+                rowPriority[i] = 1.0f;
                 ++rowHoles;
-            } else if (cull && hiddenByNearerNeighbours(image_, x, y, rc.depthCullThreshold)) {
-                state[i] = PixelState::Culled;
-                priority[i] = 1.0f;
+            } else if (cull && hiddenByNearerKeys(keys + x - stride, keys + x, keys + x + stride, threshold)) {
+                rowState[i] = PixelState::Culled;
+                rowPriority[i] = 1.0f;
                 ++rowCulled;
             } else {
-                state[i] = PixelState::Reprojected;
-                const std::size_t slot = image_.pixelIndex(x, y);
-                SampleLook& look = pool_.look[slot];
-                priority[i] = agePriority * static_cast<float>(look.age);
+                rowState[i] = PixelState::Reprojected;
+                SampleLook& look = looks[i];
+                rowPriority[i] = agePriority * static_cast<float>(look.age);
                 if (retexture && look.textured) {
-                    const int object = pool_.point[slot].objectId;
-                    const SceneObject& sceneObject = scene_.objects[static_cast<std::size_t>(object)];
-                    const float distance = length(sceneObject.origin + pool_.point[slot].position - camera.position);
+                    const int object = points[i].objectId;
+                    const auto distance = [&] {
+                        return length(scene_.objects[static_cast<std::size_t>(object)].origin + points[i].position -
+                                      camera.position);
+                    };
                     // Where the centre misses the sample's primitive (its
                     // edge, a silhouette), the stored colour, and a ray sooner.
-                    if (!retexturedColor(sceneObject, object, pool_.texturing[slot], centreRays.ray(x, y), distance,
-                                         look.color))
-                        priority[i] = std::max(priority[i], kMissedPrimitivePriority);
+                    if (!retexturing.color(object, texturings[i], centreRays.ray(x, y), distance, look.color))
+                        rowPriority[i] = std::max(rowPriority[i], kMissedPrimitivePriority);
                 }
                 ++rowReprojected;
             }
@@ -436,6 +448,7 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     // a grey that neither square has). Where it misses, the filter's mean.
     if (rc.textureRefetch && filled.filled3x3 + filled.filled7x7 > 0)
         parallel_.forEachIndex(height, [&](int y, int) {
+            CentreRetexturing retexturing(scene_.objects);
             for (int x = 0; x < width; ++x) {
                 const auto i = static_cast<std::size_t>(y * width + x);
                 if (state[i] != PixelState::Filled3x3 && state[i] != PixelState::Filled7x7) continue;
@@ -443,9 +456,11 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
                 const std::size_t slot = image_.pixelIndex(source % width, source / width);
                 if (!pool_.look[slot].textured) continue;
                 const int object = pool_.point[slot].objectId;
-                const SceneObject& sceneObject = scene_.objects[static_cast<std::size_t>(object)];
-                const float distance = length(sceneObject.origin + pool_.point[slot].position - camera.position);
-                retexturedColor(sceneObject, object, pool_.texturing[slot], rays.ray(x, y), distance, film.at(x, y));
+                const auto distance = [&] {
+                    return length(scene_.objects[static_cast<std::size_t>(object)].origin + pool_.point[slot].position -
+                                  camera.position);
+                };
+                retexturing.color(object, pool_.texturing[slot], rays.ray(x, y), distance, film.at(x, y));
             }
         });
     stats.filled3x3 = filled.filled3x3;

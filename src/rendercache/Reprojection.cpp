@@ -69,23 +69,36 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
     losers.resize(static_cast<std::size_t>(bands) + 1);
     for (std::vector<Landed>& list : far) list.clear();
     for (std::vector<Landed>& list : losers) list.clear();
-    // Offers `sample` to pixel (x, y); the one that loses goes to the list
-    // of `band` (which reached the pixel, so also reaches its neighbours),
-    // a sample it pushed out projected again.
-    const auto offer = [&](int x, int y, const Landed& sample, int band) {
+    // What the depth test reads and writes, in locals: through the image
+    // and the vectors the compiler reloaded every address and size after
+    // each store (it cannot tell a store into the image from one into a
+    // vector's own fields), a third of the first round's instructions.
+    std::uint32_t* const keys = image.keyData();
+    const Vec3* const originData = origins.data();
+    const SamplePoint* const fromPoint = from.point.data();
+    const SampleLook* const fromLook = from.look.data();
+    const int coverX0 = -margin, coverX1 = image.width() + margin, coverY1 = image.height() + margin;
+    const auto pixelOfImage = [stride, margin](int x, int y) {
+        return static_cast<std::size_t>(y + margin) * stride + static_cast<std::size_t>(x + margin);
+    };
+    // Offers `sample` to pixel (x, y); the one that loses goes to `list`
+    // (of the band that reached the pixel, so also reaches its
+    // neighbours), a sample it pushed out projected again.
+    const auto offer = [keys, winner, fromPoint, originData, &projection, pixelOfImage](
+                           int x, int y, const Landed& sample, std::vector<Landed>& list) {
         const std::uint32_t key = PointImage::key(sample.depth);
-        std::uint32_t held;
-        const std::size_t pixel = image.pixelIndex(x, y);
-        std::vector<Landed>& list = losers[band < 0 ? losers.size() - 1 : static_cast<std::size_t>(band)];
-        if (!image.offerUnshared(x, y, key, held) && !(held == key && sample.slot < winner[pixel])) {
+        const std::size_t pixel = pixelOfImage(x, y);
+        const std::uint32_t held = keys[pixel];
+        if (key > held || (key == held && sample.slot > winner[pixel])) {
             list.push_back(sample);
             return;
         }
+        keys[pixel] = key;
         const std::uint32_t loser = winner[pixel];
         winner[pixel] = sample.slot;
         if (held == PointImage::emptyKey()) return;
         Landed pushedOut{loser, 0.0f, 0.0f, 0.0f};
-        projectSample(from, loser, origins, projection, pushedOut.x, pushedOut.y, pushedOut.depth);
+        projectPoint(fromPoint[loser], originData, projection, pushedOut.x, pushedOut.y, pushedOut.depth);
         list.push_back(pushedOut);
     };
     // Whether band `band` may test a sample that landed in image row `row`
@@ -101,49 +114,56 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
         std::int64_t live = 0, evicted = 0;
     };
     std::vector<Counts> perBand(static_cast<std::size_t>(bands) + 1);
-    // Runs body(slot, band, counts) over every band's slots, every other
-    // band at a time, then body(slot, -1, counts) over the overflow slots
-    // on this thread.
+    // Runs body(begin, end, band, counts) over every band's slots, every
+    // other band at a time, then body(begin, end, -1, counts) over the
+    // overflow slots on this thread.
     const auto forEachBand = [&](const auto& body) {
         for (int phase = 0; phase < 2; ++phase)
             parallel.forEachIndex((bands - phase + 1) / 2, [&](int i, int) {
                 const int band = 2 * i + phase;
                 Counts counts = perBand[static_cast<std::size_t>(band)];
                 const std::size_t end = static_cast<std::size_t>(std::min(rows, (band + 1) * kBandRows)) * stride;
-                for (std::size_t slot = static_cast<std::size_t>(band) * kBandRows * stride; slot < end; ++slot)
-                    body(slot, band, counts);
+                body(static_cast<std::size_t>(band) * kBandRows * stride, end, band, counts);
                 perBand[static_cast<std::size_t>(band)] = counts;
             });
-        Counts& counts = perBand.back();
-        for (std::size_t slot = from.pixelSlots; slot < from.used(); ++slot) body(slot, -1, counts);
+        body(from.pixelSlots, from.used(), -1, perBand.back());
     };
 
     // First round: project every live sample once and offer it to its
     // pixel; the depth test picks each pixel's winner.
-    const SamplePoint* fromPoint = from.point.data();
-    const SampleLook* fromLook = from.look.data();
-    forEachBand([&](std::size_t slot, int band, Counts& counts) {
-        if (fromPoint[slot].objectId == SamplePool::kEmpty) return;
-        ++counts.live;
-        if (fromLook[slot].age >= maxAge) {
-            ++counts.evicted;
-            return;
+    const int width = image.width(), height = image.height();
+    forEachBand([&](std::size_t begin, std::size_t end, int band, Counts& bandCounts) {
+        Counts counts = bandCounts;
+        std::vector<Landed>& lost = losers[band < 0 ? losers.size() - 1 : static_cast<std::size_t>(band)];
+        std::vector<Landed>& tooFar = far[band < 0 ? 0 : static_cast<std::size_t>(band)];
+        // Copies the stores cannot touch.
+        const ScreenProjection through = projection;
+        const ScreenProjection nextThrough = next ? *next : projection;
+        for (std::size_t slot = begin; slot < end; ++slot) {
+            const SamplePoint& point = fromPoint[slot];
+            if (point.objectId == SamplePool::kEmpty) continue;
+            ++counts.live;
+            if (fromLook[slot].age >= maxAge) {
+                ++counts.evicted;
+                continue;
+            }
+            Landed sample{static_cast<std::uint32_t>(slot), 0.0f, 0.0f, 0.0f};
+            if (!projectPoint(point, originData, through, sample.x, sample.y, sample.depth)) continue;
+            const int x = ScreenProjection::pixelOf(sample.x), y = ScreenProjection::pixelOf(sample.y);
+            if (x < coverX0 || y < coverX0 || x >= coverX1 || y >= coverY1) continue;
+            if (next) nextOfSource[slot] = imagePixelOf(point, originData, nextThrough, width, height);
+            if (band < 0 || withinReach(band, y + margin)) offer(x, y, sample, lost);
+            else tooFar.push_back(sample);
         }
-        Landed sample{static_cast<std::uint32_t>(slot), 0.0f, 0.0f, 0.0f};
-        if (!projectSample(from, slot, origins, projection, sample.x, sample.y, sample.depth)) return;
-        const int x = ScreenProjection::pixelOf(sample.x), y = ScreenProjection::pixelOf(sample.y);
-        if (!image.covers(x, y)) return;
-        if (next) nextOfSource[slot] = imagePixelThrough(from, slot, origins, *next, image.width(), image.height());
-        if (band < 0 || withinReach(band, y + margin)) offer(x, y, sample, band);
-        else far[static_cast<std::size_t>(band)].push_back(sample);
+        bandCounts = counts;
     });
     for (const std::vector<Landed>& list : far)
         for (const Landed& sample : list)
-            offer(ScreenProjection::pixelOf(sample.x), ScreenProjection::pixelOf(sample.y), sample, -1);
+            offer(ScreenProjection::pixelOf(sample.x), ScreenProjection::pixelOf(sample.y), sample, losers.back());
 
     // Second chance: a loser offers itself to the nearest neighbouring pixel
     // that the first round left empty (first-round winners stay).
-    const auto secondChance = [&](const Landed& l) {
+    const auto secondChance = [keys, winner, pixelOfImage, coverX0, coverX1, coverY1](const Landed& l) {
         const int x = ScreenProjection::pixelOf(l.x), y = ScreenProjection::pixelOf(l.y);
         // The nearest empty neighbour by distance to its centre; among
         // equals the first in row order (a fixed order).
@@ -154,7 +174,9 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
             for (int dx = -1; dx <= 1; ++dx) {
                 if (dx == 0 && dy == 0) continue;
                 const int nx = x + dx, ny = y + dy;
-                if (!image.covers(nx, ny) || !emptyAfterFirstRound(image.keyAt(nx, ny))) continue;
+                if (nx < coverX0 || ny < coverX0 || nx >= coverX1 || ny >= coverY1 ||
+                    !emptyAfterFirstRound(keys[pixelOfImage(nx, ny)]))
+                    continue;
                 const float ex = static_cast<float>(dx) - fx, ey = static_cast<float>(dy) - fy;
                 const float distance = ex * ex + ey * ey;
                 if (distance < nearest) {
@@ -165,9 +187,12 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
             }
         if (nearest == std::numeric_limits<float>::infinity()) return;
         const std::uint32_t key = PointImage::key(l.depth) | kSecondChanceTag;
-        std::uint32_t held;
-        std::uint32_t& holder = winner[image.pixelIndex(bestX, bestY)];
-        if (image.offerUnshared(bestX, bestY, key, held) || (held == key && l.slot < holder)) holder = l.slot;
+        const std::size_t pixel = pixelOfImage(bestX, bestY);
+        const std::uint32_t held = keys[pixel];
+        if (key < held || (key == held && l.slot < winner[pixel])) {
+            keys[pixel] = key;
+            winner[pixel] = l.slot;
+        }
     };
     for (int phase = 0; phase < 2; ++phase)
         parallel.forEachIndex((bands - phase + 1) / 2, [&](int i, int) {
@@ -192,11 +217,10 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
         const SampleTexturing* fromTexturing = from.texturing.data();
         SampleTexturing* toTexturing = to.texturing.data();
         std::int32_t* nextOfPixel = next ? nextPixel->data() : nullptr;
-        const int y = row - margin;
         std::int64_t placed = 0, moved = 0;
-        for (int x = -margin; x < image.width() + margin; ++x) {
-            const std::size_t pixel = image.pixelIndex(x, y);
-            const std::uint32_t key = image.keyAt(x, y);
+        const std::size_t rowEnd = (static_cast<std::size_t>(row) + 1) * stride;
+        for (std::size_t pixel = static_cast<std::size_t>(row) * stride; pixel < rowEnd; ++pixel) {
+            const std::uint32_t key = keys[pixel];
             if (key == PointImage::emptyKey()) {
                 toPoint[pixel].objectId = SamplePool::kEmpty;
                 if (nextOfPixel) nextOfPixel[pixel] = -1;
@@ -204,7 +228,7 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
             }
             const std::size_t source = winner[pixel];
             if (key & kSecondChanceTag) {
-                image.setKey(x, y, key & ~kSecondChanceTag);
+                keys[pixel] = key & ~kSecondChanceTag;
                 ++moved;
             }
             if (nextOfPixel) nextOfPixel[pixel] = nextOfSource[source];

@@ -62,9 +62,8 @@ std::vector<Vec3> objectOrigins(const Scene& scene);
 // Misses (SamplePool::kBackground) are infinitely far: their depth is
 // +infinity, so any surface wins over them.
 // `px`, `py`: the continuous position, whose floor is the pixel.
-inline bool projectSample(const SamplePool& pool, std::size_t slot, const std::vector<Vec3>& origins,
-                          const ScreenProjection& projection, float& px, float& py, float& depth) {
-    const SamplePoint& sample = pool.point[slot];
+inline bool projectPoint(const SamplePoint& sample, const Vec3* origins, const ScreenProjection& projection,
+                         float& px, float& py, float& depth) {
     const bool background = sample.objectId == SamplePool::kBackground;
     const ScreenProjection::Projected p =
         background ? projection.direction(sample.position)
@@ -76,6 +75,21 @@ inline bool projectSample(const SamplePool& pool, std::size_t slot, const std::v
     px = p.x;
     py = p.y;
     return true;
+}
+
+inline bool projectSample(const SamplePool& pool, std::size_t slot, const std::vector<Vec3>& origins,
+                          const ScreenProjection& projection, float& px, float& py, float& depth) {
+    return projectPoint(pool.point[slot], origins.data(), projection, px, py, depth);
+}
+
+// imagePixelThrough() for a sample given by its point.
+inline std::int32_t imagePixelOf(const SamplePoint& sample, const Vec3* origins, const ScreenProjection& projection,
+                                 int width, int height) {
+    float px, py, depth;
+    if (!projectPoint(sample, origins, projection, px, py, depth)) return -1;
+    const int x = ScreenProjection::pixelOf(px), y = ScreenProjection::pixelOf(py);
+    if (x < 0 || y < 0 || x >= width || y >= height) return -1;
+    return y * width + x;
 }
 
 inline bool projectSample(const SamplePool& pool, std::size_t slot, const std::vector<Vec3>& origins,

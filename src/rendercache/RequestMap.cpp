@@ -33,14 +33,20 @@ void buildRequestMap(std::span<const float> priority, int width, int height, int
         return static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
     };
 
-    // The priority map.
-    parallel.forEachIndex(static_cast<int>(tiles), [&](int t, int) {
-        int x0, y0, x1, y1;
-        tileRect(static_cast<std::size_t>(t), x0, y0, x1, y1);
-        double q = 0.0;  // per tile in double, then one float: the same sum on any thread
-        for (int y = y0; y < y1; ++y)
-            for (int x = x0; x < x1; ++x) q += priority[pixelIndex(x, y)];
-        out.tilePriority[static_cast<std::size_t>(t)] = static_cast<float>(q);
+    // The priority map, a row of tiles per task (a task per 8x8 tile cost
+    // about as much as summing it).
+    parallel.forEachIndex(out.tilesY, [&](int tileRow, int) {
+        const float* const values = priority.data();
+        float* const sums = out.tilePriority.data();
+        for (auto t = static_cast<std::size_t>(tileRow) * static_cast<std::size_t>(out.tilesX);
+             t < static_cast<std::size_t>(tileRow + 1) * static_cast<std::size_t>(out.tilesX); ++t) {
+            int x0, y0, x1, y1;
+            tileRect(t, x0, y0, x1, y1);
+            double q = 0.0;  // per tile in double, then one float: the same sum on any thread
+            for (int y = y0; y < y1; ++y)
+                for (int x = x0; x < x1; ++x) q += values[pixelIndex(x, y)];
+            sums[t] = static_cast<float>(q);
+        }
     });
     if (budget <= 0) return;
     double totalPriority = 0.0;
@@ -71,8 +77,8 @@ void buildRequestMap(std::span<const float> priority, int width, int height, int
     out.pixels.resize(firstRequest[tiles]);
     const std::uint64_t frameSeed = mixBits(seed ^ mixBits(frame));
     std::vector<std::vector<unsigned char>> levelsPerWorker(static_cast<std::size_t>(parallel.threadCount()));
-    parallel.forEachIndex(static_cast<int>(tiles), [&](int tile, int worker) {
-        const auto t = static_cast<std::size_t>(tile);
+    // A row of tiles per task, as the priority map.
+    const auto requestsOfTile = [&](std::size_t t, std::vector<unsigned char>& levels) {
         const int wanted = out.tileRequests[t];
         if (wanted == 0) return;
         int x0, y0, x1, y1;
@@ -81,7 +87,6 @@ void buildRequestMap(std::span<const float> priority, int width, int height, int
         const int n = tileWidth * (y1 - y0);
         // Priorities in kLevels steps; holes (1) on the top one.
         constexpr int kLevels = 33;
-        std::vector<unsigned char>& levels = levelsPerWorker[static_cast<std::size_t>(worker)];
         levels.resize(static_cast<std::size_t>(n));
         std::array<int, kLevels> perLevel{};
         std::size_t k = 0;
@@ -114,6 +119,12 @@ void buildRequestMap(std::span<const float> priority, int width, int height, int
             at += stride;
             if (at >= n) at -= n;
         }
+    };
+    parallel.forEachIndex(out.tilesY, [&](int tileRow, int worker) {
+        std::vector<unsigned char>& levels = levelsPerWorker[static_cast<std::size_t>(worker)];
+        for (auto t = static_cast<std::size_t>(tileRow) * static_cast<std::size_t>(out.tilesX);
+             t < static_cast<std::size_t>(tileRow + 1) * static_cast<std::size_t>(out.tilesX); ++t)
+            requestsOfTile(t, levels);
     });
 }
 

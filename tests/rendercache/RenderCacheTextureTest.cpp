@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <numbers>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "render/AnalyticScene.h"
 #include "render/FrameRenderer.h"
 #include "rendercache/RenderCachePipeline.h"
+#include "rendercache/SampleRetexturing.h"
 #include "scene/Texture.h"
 #include "trace/TraceScene.h"
 
@@ -153,4 +155,85 @@ TEST(RenderCacheTexture, RefetchGivesTheSameImagesOnOneAndTwoThreads) {
     for (int frame = 0; frame < kTextureFrames; ++frame)
         EXPECT_TRUE(sameTextureImage(one.frames[static_cast<std::size_t>(frame)], two.frames[static_cast<std::size_t>(frame)]))
             << "frame " << frame;
+}
+
+namespace {
+
+// A textured mesh of a few triangles (one of them degenerate, one seen
+// nearly edge-on from the rays below), a textured sphere, the mesh without
+// texture coordinates, the mesh untextured and the mesh under an image.
+std::vector<SceneObject> retexturedObjects() {
+    Material checker;
+    checker.diffuseTexture = Texture::checkerboard({Rgb{0.9f, 0.8f, 0.2f}, Rgb{0.1f, 0.2f, 0.7f}, 7.0f});
+    auto mesh = std::make_shared<TriangleMesh>();
+    mesh->positions = {{-2.0f, -1.0f, 0.0f}, {2.0f, -1.0f, 0.3f}, {-1.5f, 2.0f, -0.2f}, {2.5f, 2.5f, 0.1f},
+                       {0.0f, 0.0f, -3.0f}, {0.0f, 0.0f, 3.0f},  {0.0f, 0.1f, 3.0f},   {1.0f, 1.0f, 1.0f}};
+    mesh->uvs = {{0.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, 1.0f}, {1.0f, 1.0f},
+                 {0.3f, 0.2f}, {0.7f, 0.9f}, {0.1f, 0.5f}, {0.5f, 0.5f}};
+    mesh->triangles = {{0, 1, 2}, {1, 3, 2}, {4, 5, 6}, {7, 7, 7}};
+    SceneObject wall;
+    wall.shape = MeshShape{mesh};
+    wall.material = checker;
+    SceneObject ball;
+    ball.shape = Sphere{{0.5f, 0.5f, -1.0f}, 1.2f};
+    ball.material = checker;
+    ball.origin = {0.5f, 0.5f, -1.0f};
+    // The same triangles without texture coordinates (the texture's
+    // colour at (0, 0) everywhere), and untextured.
+    auto bare = std::make_shared<TriangleMesh>(*mesh);
+    bare->uvs.clear();
+    SceneObject bareWall = wall;
+    bareWall.shape = MeshShape{bare};
+    SceneObject plainWall = wall;
+    plainWall.material.diffuseTexture.reset();
+    plainWall.material.diffuse = Rgb{0.3f, 0.6f, 0.9f};
+    // An image texture, filtered: its colour follows every bit of (u, v).
+    auto pixels = std::make_shared<Image>(5, 3);
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 5; ++x)
+            pixels->at(x, y) = Rgb{0.1f + 0.17f * static_cast<float>(x), 0.2f + 0.3f * static_cast<float>(y),
+                                   0.9f - 0.13f * static_cast<float>(x + y)};
+    SceneObject imageWall = wall;
+    imageWall.material.diffuseTexture = Texture::image(pixels);
+    return {wall, ball, bareWall, plainWall, imageWall};
+}
+
+}  // namespace
+
+// CentreRetexturing keeps the last triangle's edges between calls; it must
+// give retexturedColor()'s answer bit for bit, hit or miss, whatever the
+// order of primitives it is asked about (the same one in a row, then others).
+TEST(RenderCacheTexture, CentreRetexturingMatchesRetexturedColourBitForBit) {
+    const std::vector<SceneObject> objects = retexturedObjects();
+    CentreRetexturing retexturing(objects);
+    std::uint64_t state = 12345;
+    const auto uniform = [&state](float lo, float hi) {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return lo + (hi - lo) * static_cast<float>(state >> 40) * 0x1.0p-24f;
+    };
+    int hits = 0, misses = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const float pick = uniform(0.0f, 1.0f);
+        const int object = pick < 0.4f ? 0 : pick < 0.5f ? 1 : pick < 0.6f ? 2 : pick < 0.7f ? 3 : 4;
+        // Runs of one primitive, as along an image row, and some out of range.
+        const int primitive = object == 1 ? 0 : static_cast<int>(uniform(0.0f, 5.0f)) - (i % 97 == 0 ? 7 : 0);
+        SampleTexturing texturing{Rgb{uniform(0.0f, 2.0f), uniform(0.0f, 2.0f), uniform(0.0f, 2.0f)},
+                                  Rgb{uniform(0.0f, 0.3f), uniform(0.0f, 0.3f), uniform(0.0f, 0.3f)}, primitive};
+        const Vec3 eye{uniform(-3.0f, 3.0f), uniform(-3.0f, 3.0f), uniform(4.0f, 8.0f)};
+        const Vec3 target{uniform(-4.0f, 4.0f), uniform(-4.0f, 4.0f), uniform(-2.0f, 2.0f)};
+        const Ray ray{eye, normalize(target - eye)};
+        const float distance = length(target - eye);
+        for (int repeat = 0; repeat < 3; ++repeat) {
+            Rgb expected{-1.0f}, got{-1.0f};
+            const bool expectedHit = retexturedColor(objects[static_cast<std::size_t>(object)], object, texturing,
+                                                     ray, distance, expected);
+            const bool gotHit = retexturing.color(object, texturing, ray, [&] { return distance; }, got);
+            ASSERT_EQ(gotHit, expectedHit) << "ray " << i;
+            ASSERT_EQ(std::memcmp(&got, &expected, sizeof(Rgb)), 0) << "ray " << i;
+            (expectedHit ? hits : misses) += 1;
+        }
+    }
+    // Both outcomes were tried.
+    EXPECT_GT(hits, 1000);
+    EXPECT_GT(misses, 1000);
 }
