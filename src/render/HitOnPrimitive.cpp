@@ -22,29 +22,40 @@ std::optional<TraceHit> hitOnSphere(const Sphere& sphere, int objectId, const Ra
 }
 
 std::optional<TraceHit> hitOnTriangle(const TriangleMesh& mesh, int objectId, int primitiveId, const Ray& ray) {
-    if (primitiveId < 0 || static_cast<std::size_t>(primitiveId) >= mesh.triangles.size()) return std::nullopt;
-    const auto& tri = mesh.triangles[static_cast<std::size_t>(primitiveId)];
-    const Vec3& p0 = mesh.positions[tri[0]];
-    const Vec3 e1 = mesh.positions[tri[1]] - p0, e2 = mesh.positions[tri[2]] - p0;
-    // Möller-Trumbore without its range tests: the ray against the plane, in
-    // the triangle's barycentrics.
-    const Vec3 p = cross(ray.direction, e2);
-    const float det = dot(e1, p);
-    // det = |e1||e2| sin(angle between the ray and the plane) sin(the triangle's angle):
-    // near zero the plane is seen edge-on or the triangle is degenerate.
-    if (!(std::fabs(det) > 1e-7f * length(e1) * length(e2))) return std::nullopt;
-    const float inverse = 1.0f / det;
-    const Vec3 s = ray.origin - p0;
-    const float u = dot(s, p) * inverse;
-    const Vec3 q = cross(s, e1);
-    const float v = dot(ray.direction, q) * inverse;
-    const float t = dot(e2, q) * inverse;
-    if (!(t > 0.0f) || !(u >= -kTriangleSlack) || !(v >= -kTriangleSlack) || !(1.0f - u - v >= -kTriangleSlack))
-        return std::nullopt;
+    const TriangleOnItsPlane triangle(mesh, primitiveId);
+    float t, u, v;
+    if (!triangle.valid || !triangle.meet(ray, t, u, v)) return std::nullopt;
     return TraceHit{t, objectId, primitiveId, u, v};
 }
 
 }  // namespace
+
+TriangleOnItsPlane::TriangleOnItsPlane(const TriangleMesh& mesh, int primitiveId) {
+    valid = primitiveId >= 0 && static_cast<std::size_t>(primitiveId) < mesh.triangles.size();
+    if (!valid) return;
+    const auto& tri = mesh.triangles[static_cast<std::size_t>(primitiveId)];
+    p0 = mesh.positions[tri[0]];
+    e1 = mesh.positions[tri[1]] - p0;
+    e2 = mesh.positions[tri[2]] - p0;
+    // det = |e1||e2| sin(angle between the ray and the plane) sin(the triangle's angle):
+    // near zero the plane is seen edge-on or the triangle is degenerate.
+    edgeOn = 1e-7f * length(e1) * length(e2);
+}
+
+bool TriangleOnItsPlane::meet(const Ray& ray, float& t, float& u, float& v) const {
+    // Möller-Trumbore without its range tests: the ray against the plane, in
+    // the triangle's barycentrics.
+    const Vec3 p = cross(ray.direction, e2);
+    const float det = dot(e1, p);
+    if (!(std::fabs(det) > edgeOn)) return false;
+    const float inverse = 1.0f / det;
+    const Vec3 s = ray.origin - p0;
+    u = dot(s, p) * inverse;
+    const Vec3 q = cross(s, e1);
+    v = dot(ray.direction, q) * inverse;
+    t = dot(e2, q) * inverse;
+    return t > 0.0f && u >= -kTriangleSlack && v >= -kTriangleSlack && 1.0f - u - v >= -kTriangleSlack;
+}
 
 std::optional<TraceHit> hitOnPrimitive(const SceneObject& object, int objectId, int primitiveId, const Ray& ray,
                                        float expectedT) {

@@ -24,4 +24,20 @@ std::optional<TraceHit> hitOnPrimitive(const SceneObject& object, int objectId, 
 
 inline constexpr float kTriangleSlack = 0.5f;
 
+// hitOnPrimitive's triangle test with what depends on the triangle alone
+// (its corner, two edges and the edge-on threshold: two square roots) made
+// once, for callers that meet many rays with one triangle.
+struct TriangleOnItsPlane {
+    TriangleOnItsPlane() = default;  // no triangle
+    // Triangle `primitiveId` of `mesh`; `valid` false when there is none.
+    TriangleOnItsPlane(const TriangleMesh& mesh, int primitiveId);
+    bool valid = false;
+    Vec3 p0, e1, e2;
+    float edgeOn = 0.0f;  // |det| at or below it: the plane seen edge-on, or a degenerate triangle
+
+    // Where `ray` meets the triangle's plane within kTriangleSlack of its
+    // edges: distance t and barycentrics (u, v); false where it does not.
+    bool meet(const Ray& ray, float& t, float& u, float& v) const;
+};
+
 }  // namespace raycache

@@ -15,18 +15,13 @@ bool retexturedColor(const SceneObject& object, int objectId, const SampleTextur
 
 void CentreRetexturing::prepare(const SceneObject& object, int objectId, int primitiveId) {
     object_ = objectId;
-    primitive_ = primitiveId;
     const TriangleMesh& mesh = *std::get<MeshShape>(object.shape).mesh;
-    valid_ = primitiveId >= 0 && static_cast<std::size_t>(primitiveId) < mesh.triangles.size();
-    if (!valid_) return;
+    triangle_.primitive = primitiveId;
+    triangle_.plane = TriangleOnItsPlane(mesh, primitiveId);
+    triangle_.hasUvs = triangle_.plane.valid && !mesh.uvs.empty();
+    if (!triangle_.hasUvs) return;
     const auto& tri = mesh.triangles[static_cast<std::size_t>(primitiveId)];
-    p0_ = mesh.positions[tri[0]];
-    e1_ = mesh.positions[tri[1]] - p0_;
-    e2_ = mesh.positions[tri[2]] - p0_;
-    edgeOn_ = 1e-7f * length(e1_) * length(e2_);
-    hasUvs_ = !mesh.uvs.empty();
-    if (hasUvs_)
-        for (int corner = 0; corner < 3; ++corner) uv_[static_cast<std::size_t>(corner)] = mesh.uvs[tri[static_cast<std::size_t>(corner)]];
+    for (std::size_t corner = 0; corner < 3; ++corner) triangle_.uv[corner] = mesh.uvs[tri[corner]];
 }
 
 }  // namespace raycache

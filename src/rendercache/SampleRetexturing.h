@@ -39,11 +39,10 @@ bool retexturedColor(const SceneObject& object, int objectId, const SampleTextur
 // colours bit for bit, at a third of the instructions on a mesh. Of the
 // centre ray's hit on the sample's triangle and the albedo there,
 // render/HitOnPrimitive and render/SurfacePoint's albedoAtHit compute per
-// call what depends on the triangle alone (its corners, two edges and their
-// lengths: two square roots; the corners' texture coordinates);
-// neighbouring pixels mostly meet one triangle, so this keeps the last
-// triangle's and does the rest with the same operations in the same order
-// (tests/rendercache/RenderCacheTextureTest compares the two). A mesh hit
+// call what depends on the triangle alone (TriangleOnItsPlane; the corners'
+// texture coordinates); neighbouring pixels mostly meet one triangle, so
+// this keeps the last triangle's and does the rest with the same operations
+// in the same order (tests/rendercache/RenderCacheTextureTest compares the two). A mesh hit
 // needs no distance to the sample (HitOnPrimitive uses it for spheres
 // only), so it is asked for only there.
 class CentreRetexturing {
@@ -58,29 +57,19 @@ public:
         const SceneObject& object = objects_[static_cast<std::size_t>(objectId)];
         if (!std::holds_alternative<MeshShape>(object.shape))
             return retexturedColor(object, objectId, texturing, centreRay, sampleDistance(), color);
-        if (objectId != object_ || texturing.primitiveId != primitive_) prepare(object, objectId, texturing.primitiveId);
-        if (!valid_) return false;
-        // render/HitOnPrimitive's hitOnTriangle from here on, operation for operation.
-        const Vec3 p = cross(centreRay.direction, e2_);
-        const float det = dot(e1_, p);
-        if (!(std::fabs(det) > edgeOn_)) return false;
-        const float inverse = 1.0f / det;
-        const Vec3 s = centreRay.origin - p0_;
-        const float u = dot(s, p) * inverse;
-        const Vec3 q = cross(s, e1_);
-        const float v = dot(centreRay.direction, q) * inverse;
-        const float t = dot(e2_, q) * inverse;
-        if (!(t > 0.0f) || !(u >= -kTriangleSlack) || !(v >= -kTriangleSlack) || !(1.0f - u - v >= -kTriangleSlack))
-            return false;
+        if (objectId != object_ || texturing.primitiveId != triangle_.primitive) prepare(object, objectId, texturing.primitiveId);
+        float t, u, v;
+        if (!triangle_.plane.valid || !triangle_.plane.meet(centreRay, t, u, v)) return false;
         // render/SurfacePoint's albedoAtHit() for a mesh hit, the corners'
         // texture coordinates kept with the triangle.
         Rgb albedo = object.material.diffuse;
         if (object.material.diffuseTexture) {
             float texU = 0.0f, texV = 0.0f;
-            if (hasUvs_) {
+            if (triangle_.hasUvs) {
                 const float w = 1.0f - u - v;
-                texU = uv_[0][0] * w + uv_[1][0] * u + uv_[2][0] * v;
-                texV = uv_[0][1] * w + uv_[1][1] * u + uv_[2][1] * v;
+                const auto& uv = triangle_.uv;
+                texU = uv[0][0] * w + uv[1][0] * u + uv[2][0] * v;
+                texV = uv[0][1] * w + uv[1][1] * u + uv[2][1] * v;
             }
             albedo = object.material.diffuseTexture->sample(texU, texV);
         }
@@ -91,13 +80,17 @@ public:
 private:
     void prepare(const SceneObject& object, int objectId, int primitiveId);
 
+    // The last triangle met, and its corners' texture coordinates.
+    struct Triangle {
+        int primitive = -1;
+        TriangleOnItsPlane plane;
+        bool hasUvs = false;
+        std::array<std::array<float, 2>, 3> uv{};
+    };
+
     const std::vector<SceneObject>& objects_;
-    int object_ = -1, primitive_ = -1;
-    bool valid_ = false;  // the primitive exists
-    Vec3 p0_, e1_, e2_;
-    float edgeOn_ = 0.0f;  // |det| at or below it: the plane seen edge-on, or a degenerate triangle
-    bool hasUvs_ = false;
-    std::array<std::array<float, 2>, 3> uv_{};  // the corners' texture coordinates
+    int object_ = -1;
+    Triangle triangle_;
 };
 
 }  // namespace raycache
