@@ -155,6 +155,7 @@ struct SecondaryRayLanes16 {
     // (RayCache::looksUpInLanes, lookupAddressed); -1 where the lookup batch
     // asks, or no cache does.
     alignas(64) int reflectedAnswered[16], refractedAnswered[16];
+    bool any = false;  // whether any lane spawns a ray
 };
 
 // The rays surfaces k (selected by `lanes`) of `material` spawn, hit by

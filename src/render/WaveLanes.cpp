@@ -211,14 +211,24 @@ void TileKernel::shadePackets(TileScratch& s, CacheWorker* cache, bool surfacesK
     // Trees tracked for animated scenes and the cache-level record take the
     // lookup batch.
     const bool lookUpInLanes = cache && !s.trackTrees && !s.recordLevels;
-    // Every packet's rays first, then their nodes and lookups: the memory
-    // the lookups read is fetched for the whole wave at once, its latencies
-    // overlapping (packet by packet they added up: 11 % of grid-32's ideal
-    // frame stalled on the validity bits).
     const std::size_t packets = s.packets.size();
-    if (s.spawnLanes.size() < packets) s.spawnLanes.resize(packets);
-    for (std::size_t p = 0; p < packets; ++p) packetSpawnLanes(s.packets[p], s.spawnLanes[p], cache, lookUpInLanes);
-    for (std::size_t p = 0; p < packets; ++p) packetEmit(s, s.packets[p], s.spawnLanes[p], cache);
+    if (!lookUpInLanes) {
+        // Packet by packet, its rays still in the cache when their nodes are made.
+        if (s.spawnLanes.empty()) s.spawnLanes.resize(1);
+        for (const TileScratch::HitPacket& packet : s.packets) {
+            packetSpawnLanes(packet, s.spawnLanes[0], cache, false);
+            packetEmit(s, packet, s.spawnLanes[0], cache);
+        }
+    } else {
+        // Every packet's rays first, then their nodes and lookups: the memory
+        // the lookups read is fetched for the whole wave at once, its
+        // latencies overlapping (packet by packet they added up: 11 % of
+        // grid-32's ideal frame stalled on the validity bits). Without
+        // lookups the detour cost the uncached frame 5-8 %.
+        if (s.spawnLanes.size() < packets) s.spawnLanes.resize(packets);
+        for (std::size_t p = 0; p < packets; ++p) packetSpawnLanes(s.packets[p], s.spawnLanes[p], cache, true);
+        for (std::size_t p = 0; p < packets; ++p) packetEmit(s, s.packets[p], s.spawnLanes[p], cache);
+    }
     if (s.trackTrees) s.nodeBounds.resize(s.nodes.size());
 }
 
@@ -346,11 +356,13 @@ void TileKernel::packetSpawnLanes(const TileScratch::HitPacket& packet, Secondar
         spawned.reflectedAnswered[k] = spawned.refractedAnswered[k] = -1;
         any |= remaining[k] != 0;
     }
+    spawned.any = false;
     if (!any) return;
     for (int id; (id = takeObjectLanes(packet.objectId, remaining, selected)) >= 0;) {
         const SceneObject& object = scene_.objects[static_cast<std::size_t>(id)];
         const Material& material = object.material;
         if (!material.reflects() && !material.refracts()) continue;
+        spawned.any = true;
         secondaryRayLanes16(material, coneCurvature(object), settings_.minWeight, packet.surface, packet.rays.ray,
                             packet.pathWeight, packet.coneWidth, packet.coneSpread, selected, spawned);
         // The texels that rays leaving a CCT object address on its cube,
@@ -383,6 +395,7 @@ void TileKernel::packetSpawnLanes(const TileScratch::HitPacket& packet, Secondar
 
 void TileKernel::packetEmit(TileScratch& s, const TileScratch::HitPacket& packet, SecondaryRayLanes16& spawned,
                             CacheWorker* cache) const {
+    if (!spawned.any) return;
     // Hit by hit, the reflected ray before the refracted one, as the
     // general path spawns them.
     for (int k = 0; k < packet.count; ++k) {
