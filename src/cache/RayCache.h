@@ -325,14 +325,17 @@ public:
         if (ideal_) color = Rgb{};
         return ideal_ ? 1 : 0;
     }
-    // Starts fetching what lookupAddressed(objectId, texel) reads: the
-    // validity bit, and the texel too once most of the cube is valid.
-    // Always inlined: GCC 12 takes a function whose only effect is a
-    // prefetch for one without effects, and drops the calls to it.
-    [[gnu::always_inline]] void prefetchLookup(int objectId, int texel) const {
+    // What lookupAddressed(objectId, texel) reads, fetched ahead in two
+    // steps, as lookupBatch does: the validity bit first, then (once it has
+    // arrived) the texel of a valid one. Always inlined: GCC 12 takes a
+    // function whose only effect is a prefetch for one without effects, and
+    // drops the calls to it.
+    [[gnu::always_inline]] void prefetchValidity(int objectId, int texel) const {
+        __builtin_prefetch(cubes_[static_cast<std::size_t>(cubeIndexOf(objectId))].cube.validWordOf(texel));
+    }
+    [[gnu::always_inline]] void prefetchTexelIfValid(int objectId, int texel) const {
         const CachingCube& cube = cubes_[static_cast<std::size_t>(cubeIndexOf(objectId))].cube;
-        __builtin_prefetch(cube.validWordOf(texel));
-        if (2 * cube.validCount() > cube.texelCount()) __builtin_prefetch(cube.texelWordOf(texel));
+        if (cube.isValid(texel)) __builtin_prefetch(cube.texelWordOf(texel));
     }
     // Improved CDCT (technique Cdct with prefill on): the objects whose cubes
     // were asked for during this frame (by `workers`) and are not filled yet.
