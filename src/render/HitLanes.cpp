@@ -44,6 +44,10 @@ void directLightLanes16(const Material& material, std::span<const Light> lights,
     RAYCACHE_LANE_DISPATCH(directLightLanesSoa, material, lights, seen, surfaces, viewRays, lanes, outR, outG, outB);
 }
 
+void checkerAlbedoLanes16(const Checkerboard& pattern, const int* lanes, SurfaceLanes16& surfaces) {
+    RAYCACHE_LANE_DISPATCH(checkerAlbedoLanes, pattern, lanes, surfaces);
+}
+
 void secondaryRayLanes16(const Material& material, float curvature, float minWeight, const SurfaceLanes16& surfaces,
                          const RayLanes16& rays, const float* pathWeight, const float* coneWidth,
                          const float* coneSpread, const int* lanes, SecondaryRayLanes16& out) {

@@ -138,6 +138,10 @@ void directLightLanes16(const Material& material, std::span<const Light> lights,
                         const SurfaceLanes16& surfaces, const RayLanes16& viewRays, const int* lanes, float* outR,
                         float* outG, float* outB);
 
+// The albedo of `pattern` (Texture::sample's checkerboard) at the texture
+// coordinates of the surfaces k selected by `lanes`, into their albedo lanes.
+void checkerAlbedoLanes16(const Checkerboard& pattern, const int* lanes, SurfaceLanes16& surfaces);
+
 // The secondary rays of sixteen hits of one material:
 // TileKernel::spawnSecondaryRays' arithmetic.
 struct SecondaryRayLanes16 {

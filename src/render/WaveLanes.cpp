@@ -275,7 +275,9 @@ void TileKernel::packetSurfaces(TileScratch::HitPacket& packet, MeshHitLanes& me
             meshSurfaceLanes16(packet.rays.ray, meshLanes, selected, surface);
         }
         // The albedo once the lanes' texture coordinates are known.
-        if (material.diffuseTexture) {
+        if (const Checkerboard* checker = material.diffuseTexture ? material.diffuseTexture->checkerboardPattern() : nullptr) {
+            checkerAlbedoLanes16(*checker, selected, surface);
+        } else if (material.diffuseTexture) {
             for (int k = 0; k < kFloatLanes; ++k)
                 if (selected[k]) {
                     const Rgb albedo = material.diffuseTexture->sample(surface.u[k], surface.v[k]);

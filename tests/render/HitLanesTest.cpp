@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -240,4 +241,39 @@ TEST(HitLanes, MeshSurfacesEqualSurfacePointAt) {
         if (HasFailure()) return;
     }
     EXPECT_GT(back, 1000);  // both sides of triangles were seen
+}
+
+TEST(HitLanes, CheckerAlbedoEqualsTextureSample) {
+    // Texture::sample's checkerboard: floor, parity, every scale of
+    // coordinate (negative, exact integers, past 2^24 where floats are even,
+    // past 1e15 and NaN, which count as square 0); lanes left out keep their albedo.
+    const Checkerboard pattern{Rgb{0.9f, 0.2f, 0.1f}, Rgb{0.1f, 0.3f, 0.7f}, 3.0f};
+    const Texture texture = Texture::checkerboard(pattern);
+    std::mt19937 rng(7);
+    std::normal_distribution<float> normal;
+    std::uniform_int_distribution<int> exponent(-10, 60);
+    std::vector<float> values{0.0f, -0.0f, 1.0f, -1.0f, 1.0f / 3.0f, -1.0f / 3.0f, 16777216.0f, -16777218.0f,
+                              16777215.0f, 33554432.0f, 1.0e15f, -2.0e15f, std::nanf(""),
+                              std::numeric_limits<float>::infinity()};
+    for (int i = 0; i < 4000; ++i) values.push_back(normal(rng) * std::ldexp(1.0f, exponent(rng)));
+    int wrong = 0;
+    for (std::size_t base = 0; base + 16 <= values.size(); base += 16) {
+        SurfaceLanes16 surfaces{};
+        alignas(64) int lanes[16];
+        for (int k = 0; k < 16; ++k) {
+            surfaces.u[k] = values[base + static_cast<std::size_t>(k)];
+            surfaces.v[k] = values[(base * 7 + static_cast<std::size_t>(k) * 13) % values.size()];
+            surfaces.albedoR[k] = surfaces.albedoG[k] = surfaces.albedoB[k] = -1.0f;
+            lanes[k] = k % 5 == 0 ? 0 : -1;
+        }
+        checkerAlbedoLanes16(pattern, lanes, surfaces);
+        for (int k = 0; k < 16; ++k) {
+            const Rgb expected = lanes[k] ? texture.sample(surfaces.u[k], surfaces.v[k]) : Rgb{-1.0f};
+            if ((bits(surfaces.albedoR[k]) != bits(expected.r) || bits(surfaces.albedoG[k]) != bits(expected.g) ||
+                 bits(surfaces.albedoB[k]) != bits(expected.b)) &&
+                ++wrong <= 5)
+                ADD_FAILURE() << "u " << surfaces.u[k] << " v " << surfaces.v[k] << " lane " << k;
+        }
+    }
+    EXPECT_EQ(wrong, 0);
 }
