@@ -112,9 +112,9 @@ public:
         const auto run = static_cast<std::uint32_t>(texel) >> kSampleRunBits;
         return (run * 2654435761u) >> (32 - kSampleBits) == 0;
     }
-    // Whether a ray addressed to `texel` is looked up (and stored) this frame.
     // Whether every texel is looked up (the cube caches).
     bool admitsEveryTexel() const { return state_ == CubeState::Caching; }
+    // Whether a ray addressed to `texel` is looked up (and stored) this frame.
     bool admitsTexel(int texel) const {
         return state_ == CubeState::Caching || (state_ == CubeState::Sampling && sampledTexel(texel));
     }

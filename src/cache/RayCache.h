@@ -293,7 +293,7 @@ public:
     void lookupBatch(std::span<const Query> queries, std::span<Rgb> colors, std::span<unsigned char> found,
                      std::span<int> storeTexels, CacheWorker& worker, std::span<int> answerTexels = {},
                      std::span<std::int8_t> answerLevels = {}) const;
-    // Whether `objectId`'s lookups this frame may go through lookupLanes16:
+    // Whether `objectId`'s lookups this frame may go through lookupAddressed:
     // a CCT cube that caches every texel (not sampling, not standing aside)
     // at one level, with no inherited colours, not resized from the view,
     // no oracle. Its lookups then read a validity bit and a texel, nothing

@@ -155,9 +155,10 @@ struct SecondaryRayLanes16 {
     // The CCT texel each ray addresses on its object's cube, where the tile
     // kernel addressed it (RayCache::laneAddressedFaceSize); -1 elsewhere.
     alignas(64) int reflectedTexel[16], refractedTexel[16];
-    // 2 where the tile kernel looks the ray up itself when it emits it
-    // (RayCache::looksUpInLanes, lookupAddressed); -1 where the lookup batch
-    // asks, or no cache does.
+    // kAskedAtEmit where the tile kernel looks the ray up itself when it
+    // emits it (RayCache::looksUpInLanes, lookupAddressed); -1 where the
+    // lookup batch asks, or no cache does.
+    static constexpr int kAskedAtEmit = 2;
     alignas(64) int reflectedAnswered[16], refractedAnswered[16];
     bool any = false;  // whether any lane spawns a ray
 };

@@ -536,9 +536,7 @@ void TileKernel::emitSecondaryRay(TileScratch& s, CacheWorker* cache, int parent
             added.direct = lookup.color;
             return;
         }
-        added.store = static_cast<int>(s.stores.size());
-        s.stores.push_back({objectId, lookup.texel, ray.origin, ray.direction, 0.0f, parentDepth + 1, pathWeight});
-        s.pending.push_back({ray, node, pathWeight, parentDepth + 1, kind, cone});
+        queueMissedLeavingRay(s, objectId, lookup.texel, {ray, node, pathWeight, parentDepth + 1, kind, cone});
         return;
     }
     if (cached && cache_->admits(objectId, ray.direction, lookup.texel)) {
@@ -648,12 +646,15 @@ void TileKernel::lookupReuse(TileScratch& s, CacheWorker& cache) const {
                 cache_->addAnswerDependencies(q.objectId, s.answerTexels[i], s.nodeBounds[static_cast<std::size_t>(l.node)]);
             continue;
         }
-        // A miss: the ray is traced, and what its whole tree brings back is
-        // stored once the tile is done.
-        node.store = static_cast<int>(s.stores.size());
-        s.stores.push_back({q.objectId, s.storeTexels[i], q.origin, q.direction, 0.0f, l.depth, l.pathWeight});
-        s.pending.push_back({Ray{q.origin, q.direction}, l.node, l.pathWeight, l.depth, l.kind, l.cone});
+        queueMissedLeavingRay(s, q.objectId, s.storeTexels[i],
+                              {Ray{q.origin, q.direction}, l.node, l.pathWeight, l.depth, l.kind, l.cone});
     }
+}
+
+void TileKernel::queueMissedLeavingRay(TileScratch& s, int objectId, int texel, const TileScratch::PendingRay& ray) {
+    s.nodes[static_cast<std::size_t>(ray.node)].store = static_cast<int>(s.stores.size());
+    s.stores.push_back({objectId, texel, ray.ray.origin, ray.ray.direction, 0.0f, ray.depth, ray.pathWeight});
+    s.pending.push_back(ray);
 }
 
 void TileKernel::beginLevelRecord(TileScratch& s, std::size_t roots) {

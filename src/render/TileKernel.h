@@ -325,11 +325,12 @@ private:
     void packetSurfaces(TileScratch::HitPacket& packet, MeshHitLanes& meshLanes) const;
     void packetShadowRays(TileScratch& s, std::size_t p) const;
     void packetDirect(TileScratch& s, std::size_t p) const;
-    // A packet's secondary rays in two steps, the first for every packet of
-    // the wave before the second for any, so that the memory the lookups
-    // read arrives meanwhile. First: the rays in lanes, the texels of those
-    // leaving CCT objects, and a prefetch of what their lookups read.
-    // Second: the lookups, then each ray's node, hit by hit.
+    // A packet's secondary rays in two steps. packetSpawnLanes: the rays in
+    // lanes, the texels of those leaving CCT objects, and a prefetch of
+    // their validity bits. packetEmit: the lookups, then each ray's node,
+    // hit by hit. Where lookups are asked at emission, the first step runs
+    // for every packet of the wave, then the texels behind valid bits are
+    // prefetched, then the second step, so that the memory arrives meanwhile.
     void packetSpawnLanes(const TileScratch::HitPacket& packet, SecondaryRayLanes16& spawned, CacheWorker* cache,
                           bool lookUpInLanes) const;
     void packetEmit(TileScratch& s, const TileScratch::HitPacket& packet, SecondaryRayLanes16& spawned,
@@ -373,6 +374,9 @@ private:
     // node's traced rays, a store's hit distance, a tracked tree's segment,
     // and the background where it hit nothing (`hit` false; `t` its distance otherwise).
     void recordTracedRay(TileScratch& s, const TileScratch::PendingRay& ray, bool hit, float t) const;
+    // A leaving ray its cube did not answer: traced, and what its tree
+    // brings back stored at `texel` (-1: the store addresses it) once the tile is done.
+    static void queueMissedLeavingRay(TileScratch& s, int objectId, int texel, const TileScratch::PendingRay& ray);
     // Adds every node's colour to its parent's, children first, queueing the
     // cache stores of the nodes that stand for traced leaving rays.
     void resolveNodes(TileScratch& s, CacheWorker* cache, std::uint64_t tileKey) const;

@@ -234,9 +234,9 @@ void TileKernel::shadePackets(TileScratch& s, CacheWorker* cache, bool surfacesK
             const SecondaryRayLanes16& spawned = s.spawnLanes[p];
             if (!spawned.any) continue;
             for (int k = 0; k < kFloatLanes; ++k) {
-                if (spawned.reflectedAnswered[k] == 2)
+                if (spawned.reflectedAnswered[k] == SecondaryRayLanes16::kAskedAtEmit)
                     cache_->prefetchTexelIfValid(s.packets[p].objectId[k], spawned.reflectedTexel[k]);
-                if (spawned.refractedAnswered[k] == 2)
+                if (spawned.refractedAnswered[k] == SecondaryRayLanes16::kAskedAtEmit)
                     cache_->prefetchTexelIfValid(s.packets[p].objectId[k], spawned.refractedTexel[k]);
             }
         }
@@ -397,11 +397,11 @@ void TileKernel::packetSpawnLanes(const TileScratch::HitPacket& packet, Secondar
             if (!selected[k]) continue;
             const bool front = packet.surface.frontFace[k] != 0;
             if (spawned.reflects[k] && front) {
-                spawned.reflectedAnswered[k] = 2;
+                spawned.reflectedAnswered[k] = SecondaryRayLanes16::kAskedAtEmit;
                 cache_->prefetchValidity(id, spawned.reflectedTexel[k]);
             }
             if (spawned.refracts[k] && !front) {
-                spawned.refractedAnswered[k] = 2;
+                spawned.refractedAnswered[k] = SecondaryRayLanes16::kAskedAtEmit;
                 cache_->prefetchValidity(id, spawned.refractedTexel[k]);
             }
         }
@@ -420,7 +420,7 @@ void TileKernel::packetEmit(TileScratch& s, const TileScratch::HitPacket& packet
         const bool frontFace = packet.surface.frontFace[k] != 0;
         if (spawned.reflects[k]) {
             SpawnedRayLookup lookup{spawned.reflectedTexel[k], spawned.reflectedAnswered[k], {}};
-            if (lookup.answered == 2) lookup.answered = cache_->lookupAddressed(objectId, lookup.texel, lookup.color, *cache);
+            if (lookup.answered == SecondaryRayLanes16::kAskedAtEmit) lookup.answered = cache_->lookupAddressed(objectId, lookup.texel, lookup.color, *cache);
             emitSecondaryRay(s, cache, packet.node[k], packet.pathWeight[k], packet.depth[k], objectId,
                              Ray{{spawned.aboveX[k], spawned.aboveY[k], spawned.aboveZ[k]},
                                  {spawned.reflectedX[k], spawned.reflectedY[k], spawned.reflectedZ[k]}},
@@ -428,7 +428,7 @@ void TileKernel::packetEmit(TileScratch& s, const TileScratch::HitPacket& packet
         }
         if (spawned.refracts[k]) {
             SpawnedRayLookup lookup{spawned.refractedTexel[k], spawned.refractedAnswered[k], {}};
-            if (lookup.answered == 2) lookup.answered = cache_->lookupAddressed(objectId, lookup.texel, lookup.color, *cache);
+            if (lookup.answered == SecondaryRayLanes16::kAskedAtEmit) lookup.answered = cache_->lookupAddressed(objectId, lookup.texel, lookup.color, *cache);
             const Material& material = scene_.objects[static_cast<std::size_t>(objectId)].material;
             emitSecondaryRay(s, cache, packet.node[k], packet.pathWeight[k], packet.depth[k], objectId,
                              Ray{{spawned.belowX[k], spawned.belowY[k], spawned.belowZ[k]},
