@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (the `fuzz` preset: clang, ASan + UBSan) and runs
 # each for a bounded time from its committed seed corpus (tests/fuzz/corpus/).
-# Fails on the first crash, sanitizer report, leak, timeout or out-of-memory;
+# Fails on any crash, sanitizer report, leak, timeout or out-of-memory;
 # the input that caused it is left in build/fuzz/artifacts/<target>/ and its
 # command to reproduce is printed. New interesting inputs go to
 # build/fuzz/corpus/<target>/, never into the repository.
 #
 #   scripts/fuzz.sh                 every target, 60 s each
 #   FUZZ_SECONDS=20 scripts/fuzz.sh scene_file   one target, 20 s
+#   FUZZ_JOBS=1 scripts/fuzz.sh     one target at a time (default: one per core)
 #   FUZZ_FIXED=1 scripts/fuzz.sh    the test suite's run (scripts/test.sh): a
 #                                   fixed seed and a fixed number of inputs per
 #                                   target (about a minute each here), from the
@@ -22,7 +23,8 @@ cd "$(dirname "$0")/.."
 seconds="${FUZZ_SECONDS:-60}"
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
-  targets=(scene_file mesh_loader image_loader render_command)
+  # The longest fixed runs first, so that the two cores finish together.
+  targets=(render_command image_loader scene_file mesh_loader)
 fi
 
 scripts/install-deps.sh
@@ -40,7 +42,11 @@ sanitizerOptions=(
 # Inputs per target in the fixed run: 10-100 s each on the quiet 2-core machine
 # (scene files: 2 200 inputs/s on a quiet machine, 270/s seen on a busy one).
 declare -A fixedRuns=([scene_file]=50000 [mesh_loader]=6000 [image_loader]=100000 [render_command]=20000)
-for target in "${targets[@]}"; do
+# One libFuzzer process is single-threaded: targets run side by side, one per
+# core, each writing only its own log and directories.
+runTarget() {
+  local target="$1" work binary corpus artifacts log
+  local -a budget launch
   # Each target runs inside its own working directory, build/fuzz/work/<target>,
   # where it keeps its scratch files (tests/fuzz/FuzzScratchDir.h); every path
   # below is relative to it.
@@ -75,8 +81,22 @@ for target in "${targets[@]}"; do
     tail -n 60 "$log"
     echo "fuzz: ${target} FAILED; the input is in build/fuzz/artifacts/${target}/;" \
       "reproduce with: build/fuzz/tests/fuzz/fuzz_${target} <that file>" >&2
-    exit 1
+    return 1
   fi
   # The last status line says how many inputs ran and how fast.
   grep -E '^#[0-9]+.*(DONE|pulse)' "$log" | tail -n 1 | sed "s/^/fuzz: ${target}: /"
+}
+
+# A target that fails leaves a mark, read once every target has ended.
+sideBySide="${FUZZ_JOBS:-$(nproc)}"
+mkdir -p build/fuzz/logs
+rm -f build/fuzz/logs/*.failed
+for target in "${targets[@]}"; do
+  while [ "$(jobs -rp | wc -l)" -ge "$sideBySide" ]; do wait -n || true; done
+  (runTarget "$target" || touch "build/fuzz/logs/${target}.failed") &
 done
+wait
+if compgen -G "build/fuzz/logs/*.failed" >/dev/null; then
+  echo "fuzz: failed: $(basename -s .failed build/fuzz/logs/*.failed | tr '\n' ' ')" >&2
+  exit 1
+fi
