@@ -7,6 +7,9 @@
 // Inside, RAYCACHE_LANE_BYTES is the level's vector register width in bytes
 // (64, 32, 16), for kernels that work in pieces of that width: GCC lowers a
 // 16-lane mask's logic well only where 16 lanes fill one register.
+// core/LanePieces.inc, included first in each level, gives such kernels the
+// level's Piece, Floats and Mask and its mask helpers (the including file
+// includes core/FloatLanes.h).
 #if !defined(RAYCACHE_LANE_KERNELS)
 #error "define RAYCACHE_LANE_KERNELS before including core/LaneLevelsInclude.h"
 #endif
@@ -16,6 +19,7 @@
 #define RAYCACHE_LANE_BYTES 64
 #pragma GCC push_options
 #pragma GCC target("arch=x86-64-v4")
+#include "core/LanePieces.inc"
 #include RAYCACHE_LANE_KERNELS
 #pragma GCC pop_options
 #undef RAYCACHE_LANE_BYTES
@@ -25,6 +29,7 @@
 #define RAYCACHE_LANE_BYTES 32
 #pragma GCC push_options
 #pragma GCC target("arch=x86-64-v3")
+#include "core/LanePieces.inc"
 #include RAYCACHE_LANE_KERNELS
 #pragma GCC pop_options
 #undef RAYCACHE_LANE_BYTES
@@ -33,6 +38,7 @@
 
 #define RAYCACHE_LANE_LEVEL baseline
 #define RAYCACHE_LANE_BYTES 16
+#include "core/LanePieces.inc"
 #include RAYCACHE_LANE_KERNELS
 #undef RAYCACHE_LANE_BYTES
 #undef RAYCACHE_LANE_LEVEL
