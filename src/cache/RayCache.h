@@ -553,6 +553,11 @@ private:
     // Triangles per part of a mesh's bounds: a moving or deforming mesh is
     // tested part by part once its whole box is reached.
     static constexpr int kTrianglesPerPart = 256;
+    // Changed objects' regions are grown by this share of their coordinates
+    // (relativeMargin): hit points are computed in float, and ray origins sit a
+    // surface offset (render/LocalShading.h, 1e-4 of the coordinates) off their
+    // surfaces. Also grows wholeBounds_.
+    static constexpr float kRegionGrowth = 1e-3f;
     std::vector<Light> lights_;
     // RayCacheSettings::skipStoresReachingChanges (never under the oracle),
     // and what the sceneChanged before this frame reached (emptied by
@@ -568,8 +573,13 @@ private:
     // Whether a store into `cachingObject`'s cube with `bounds` reaches the
     // last change (the skip's test).
     bool reachesLastChange(const RayTreeBounds& bounds, int cachingObject) const;
-    // Empties the record of the last change (lastChange*).
-    void forgetLastChange();
+    // Empties the record of the last change (lastChange*). Here, not in a
+    // .cpp: sceneChanged and endFrame, in files of their own, both inline it.
+    void forgetLastChange() {
+        lastChangeRegions_.clear();
+        lastChangeTranslated_.clear();
+        lastChangeLit_ = false;
+    }
 
     // A caching sphere that moves keeps the texels whose trees are single
     // rays escaping to the environment, as long as those rays, moved along

@@ -130,6 +130,11 @@ private:
         int i0, i1, j0, j1, k0, k1;  // inclusive; i1 < i0 when the primitive has no cell
     };
     static constexpr CellRange kNoCells{0, -1, 0, -1, 0, -1};
+    static constexpr double kFrustumInfinity = std::numeric_limits<double>::infinity();
+    // A camera packet's key: its column (i, j), whether it crosses the near
+    // zone, and its shear axes (kz, then kx; ky follows), in one integer.
+    static constexpr int kColumnBits = 24;
+    static constexpr std::uint64_t kColumnMask = (std::uint64_t{1} << kColumnBits) - 1;
     // A binned primitive's planar box: its projected box (margin included)
     // within the rectangle, rounded outward to float. A packet skips a
     // primitive whose box misses every lane's planar range.
@@ -192,7 +197,7 @@ private:
     static std::uint64_t cameraKey(const ApexColumn& column, const Vec3& direction);
     static ApexColumn unpackCameraKey(std::uint64_t key);
     // The packets are compiled for AVX2 and for baseline x86-64, the CPU
-    // choosing at load time (FrustumGrid.cpp). The attribute must be on the
+    // choosing at load time (FrustumGridTraversal.cpp). The attribute must be on the
     // first declaration for clang. `lanesPlanar`: the union of the lanes'
     // planar ranges in the grid part; null for rays from the apex
     // (apexWalk), whose planar coordinates are their directions'.

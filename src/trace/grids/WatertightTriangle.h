@@ -77,7 +77,7 @@ inline bool intersectWatertight(const WatertightRay& r, const Vec3& p0, const Ve
 }
 
 // The test's float path without a branch, for one lane of a packet (the
-// grids vectorise loops over it, trace/grids/FrustumGrid.cpp): the corners
+// grids vectorise loops over it, trace/grids/FrustumGridTraversal.cpp): the corners
 // a, b, c relative to the lane's origin, already in its (kx, ky, kz) order,
 // and the lane's shear and segment. The same operations as
 // intersectWatertight, so a lane's answer is bit for bit the ray's, except
