@@ -3,7 +3,9 @@
 #include <iostream>
 #include <optional>
 #include <ostream>
+#include <ranges>
 
+#include "ChoiceOption.h"
 #include "app/BenchCommand.h"
 #include "app/CacheViewCommand.h"
 #include "app/DiffCommand.h"
@@ -35,9 +37,12 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
     command.add_option("--max-depth", job.maxDepth, "Longest ray path (primary ray = 1)")->capture_default_str();
     command.add_option("--min-weight", job.minWeight, "Stop a path when its kr/kt product falls below this")
         ->capture_default_str();
-    command.add_option("--technique", job.technique,
-                       "Secondary-ray caching for every mirror/glass object: " + raycache::cacheTechniqueNameList() +
-                           " (default: each material's own setting; see docs/caching.md)");
+    raycache::addChoiceOption(
+        command, "--technique", job.technique,
+        raycache::kCacheTechniques | std::views::transform(&raycache::CacheTechniqueInfo::technique),
+        raycache::cacheTechniqueName,
+        "Secondary-ray caching for every mirror/glass object: " + raycache::cacheTechniqueNameList() +
+            " (default: each material's own setting; see docs/caching.md)");
     command.add_option("--cdct-step", job.cdctStep,
                        "CDCT parity linear-search step along the ray, scene units (default: each material's own, 0.4)");
     command.add_option("--cdct-epsilon", job.cdctEpsilon,
@@ -88,14 +93,15 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
                      "Benchmark switch: cache misses return black instead of being traced");
     command.add_flag("--stage-times", job.stageTimes,
                      "Time every stage of the tile kernel (CPU ms summed over threads) and print them per frame");
-    command.add_option("--pipeline", job.pipeline,
-                       "ray: primary rays per tile; hybrid: G-buffer (OpenGL or primary-ray packets), then "
-                       "deferred shadow and secondary rays; render-cache: reproject earlier frames' samples and "
-                       "trace a budget of pixels (docs/render-cache.md); default: the scene file's, else ray");
-    command.add_option("--accel", job.accel,
-                       "embree: primary and shadow rays through Embree's BVH; grids: a perspective grid for "
-                       "primary rays and a light-space grid per light for their shadow rays, rebuilt every frame "
-                       "(docs/grids.md); default: the scene file's, else embree");
+    raycache::addChoiceOption(command, "--pipeline", job.pipeline, raycache::kPipelineKinds, raycache::pipelineKindName,
+                              "ray: primary rays per tile; hybrid: G-buffer (OpenGL or primary-ray packets), then "
+                              "deferred shadow and secondary rays; render-cache: reproject earlier frames' samples and "
+                              "trace a budget of pixels (docs/render-cache.md); default: the scene file's, else ray");
+    raycache::addChoiceOption(
+        command, "--accel", job.accel, raycache::kAccelerators, raycache::acceleratorName,
+        "embree: primary and shadow rays through Embree's BVH; grids: a perspective grid for "
+        "primary rays and a light-space grid per light for their shadow rays, rebuilt every frame "
+        "(docs/grids.md); default: the scene file's, else embree");
     command.add_option("--rc-budget", job.renderCache.budget, "Render cache: share of the pixels traced per frame, (0, 1] (default 0.05)");
     command.add_option("--rc-target-ms", job.renderCache.targetFrameMs,
                        "Render cache: choose the budget each frame to hold this frame time, ms (0 = off; images "
@@ -123,12 +129,12 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
                        "Hybrid G-buffer source: auto (OpenGL if a 4.5 context can be made, else packets), gl or "
                        "packets")
         ->capture_default_str();
-    command.add_option("--tile-balance", job.tileBalance,
-                       "MPI jobs (mpirun -np N raycache render ...): static deals tile i to process i mod N; dynamic "
-                       "(from the second frame) deals tiles by the previous frame's cost of each tile; claim lets "
-                       "every thread take the next tile from a counter on process 0 when it is free. Images do "
-                       "not depend on it (docs/cluster.md)")
-        ->capture_default_str();
+    raycache::addChoiceOption(
+        command, "--tile-balance", job.tileBalance, raycache::kTileBalances, raycache::tileBalanceName,
+        "MPI jobs (mpirun -np N raycache render ...): static deals tile i to process i mod N; dynamic "
+        "(from the second frame) deals tiles by the previous frame's cost of each tile; claim lets "
+        "every thread take the next tile from a counter on process 0 when it is free. Images do "
+        "not depend on it (docs/cluster.md)");
 }
 
 // main() proper, once the process knows its place in an MPI job (if any).

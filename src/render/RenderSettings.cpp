@@ -12,7 +12,7 @@ const char* pipelineKindName(PipelineKind kind) {
 }
 
 std::optional<PipelineKind> parsePipelineKind(const std::string& name) {
-    for (PipelineKind kind : {PipelineKind::Ray, PipelineKind::Hybrid, PipelineKind::RenderCache})
+    for (const PipelineKind kind : kPipelineKinds)
         if (name == pipelineKindName(kind)) return kind;
     return std::nullopt;
 }

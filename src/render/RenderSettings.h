@@ -1,4 +1,5 @@
 #pragma once
+#include <array>
 #include <optional>
 #include <string>
 
@@ -13,6 +14,8 @@ namespace raycache {
 // deferred shadow and secondary passes (Hybrid, SPEC §4); or reprojected
 // samples of earlier frames plus a budget of new rays (RenderCache, SPEC §6).
 enum class PipelineKind { Ray, Hybrid, RenderCache };
+// Every pipeline, in the order messages and help texts list them.
+inline constexpr std::array kPipelineKinds{PipelineKind::Ray, PipelineKind::Hybrid, PipelineKind::RenderCache};
 // "ray", "hybrid", "render-cache", and back (nothing for another name).
 const char* pipelineKindName(PipelineKind kind);
 std::optional<PipelineKind> parsePipelineKind(const std::string& name);

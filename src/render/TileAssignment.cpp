@@ -15,9 +15,8 @@ const char* tileBalanceName(TileBalance balance) {
 }
 
 std::optional<TileBalance> parseTileBalance(const std::string& name) {
-    if (name == "static") return TileBalance::Static;
-    if (name == "dynamic") return TileBalance::Dynamic;
-    if (name == "claim") return TileBalance::Claim;
+    for (const TileBalance balance : kTileBalances)
+        if (name == tileBalanceName(balance)) return balance;
     return std::nullopt;
 }
 

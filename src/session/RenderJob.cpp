@@ -50,8 +50,6 @@ std::optional<VisibleFill> parseVisibleFill(const std::string& name) {
     return std::nullopt;
 }
 
-std::optional<CacheTechnique> parseTechnique(const std::string& name) { return parseCacheTechnique(name); }
-
 void validateRenderJobOptions(const RenderJobOptions& o) {
     if (o.width < 1 || o.height < 1 || o.width > kMaxImageSide || o.height > kMaxImageSide)
         throw InputError("--width/--height must be between 1 and " + std::to_string(kMaxImageSide));
@@ -65,8 +63,6 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
     if (o.maxDepth < 1 || o.maxDepth > 64) throw InputError("--max-depth must be between 1 and 64");
     if (!(o.minWeight >= 0.0f && o.minWeight <= 1.0f)) throw InputError("--min-weight must be in [0, 1]");
     if (o.threads < 0 || o.threads > 1024) throw InputError("--threads must be between 0 (all) and 1024");
-    if (o.technique && !parseTechnique(*o.technique))
-        throw InputError("--technique must be " + cacheTechniqueNameList() + " (got '" + *o.technique + "')");
     const auto positive = [](const std::optional<float>& v, const char* flag) {
         if (v && !(std::isfinite(*v) && *v > 0.0f))
             throw InputError(std::string(flag) + " must be a finite number > 0");
@@ -94,10 +90,6 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
         throw InputError("--cache-level-error must be a finite number in (0, 1000]");
     if (o.cacheBudgetMiB && !(std::isfinite(*o.cacheBudgetMiB) && *o.cacheBudgetMiB > 0.0 && *o.cacheBudgetMiB <= 1e9))
         throw InputError("--cache-budget must be a finite number of MiB in (0, 1e9]");
-    if (o.accel && !parseAccelerator(*o.accel))
-        throw InputError("--accel must be embree or grids (got '" + *o.accel + "')");
-    if (o.pipeline && !parsePipelineKind(*o.pipeline))
-        throw InputError("--pipeline must be ray, hybrid or render-cache (got '" + *o.pipeline + "')");
     // The --rc-* values alone, over the defaults: each error names its option.
     RenderCacheSettings rc;
     applyRenderCacheOverrides(o.renderCache, rc);
@@ -107,8 +99,6 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
         throw InputError("--rc-reflections must be reshade or reproject (got '" + *o.renderCache.reflections + "')");
     if (o.renderCache.texture && *o.renderCache.texture != "refetch" && *o.renderCache.texture != "reproject")
         throw InputError("--rc-texture must be refetch or reproject (got '" + *o.renderCache.texture + "')");
-    if (!parseTileBalance(o.tileBalance))
-        throw InputError("--tile-balance must be static, dynamic or claim (got '" + o.tileBalance + "')");
     if (o.gbuffer != "auto" && o.gbuffer != "gl" && o.gbuffer != "packets")
         throw InputError("--gbuffer must be auto, gl or packets (got '" + o.gbuffer + "')");
     if (o.path && *o.path != "static" && *o.path != "orbit" && *o.path != "pan")
@@ -129,7 +119,7 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     settings.maxDepth = options.maxDepth;
     settings.minWeight = options.minWeight;
     settings.threads = options.threads;
-    if (options.technique) settings.cache.techniqueOverride = parseTechnique(*options.technique);
+    settings.cache.techniqueOverride = options.technique;
     settings.cache.cdctStepOverride = options.cdctStep;
     settings.cache.cdctEpsilonOverride = options.cdctEpsilon;
     settings.cache.cdctMaxDepthOverride = options.cdctMaxDepth;
@@ -144,11 +134,14 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     settings.cache.skipStoresReachingChanges = !options.cacheStoreChanging;
     settings.cache.policy = *parseCachePolicyMode(options.cachePolicy);
     settings.stageTimes = options.stageTimes;
-    settings.tileBalance = *parseTileBalance(options.tileBalance);
+    settings.tileBalance = options.tileBalance;
     // Command-line options win over the scene file's, which win over the defaults.
     const SceneRenderDefaults& fromScene = job.scene.render;
-    settings.pipeline = *parsePipelineKind(options.pipeline.value_or(fromScene.pipeline.value_or("ray")));
-    settings.trace.accelerator = *parseAccelerator(options.accel.value_or(fromScene.accel.value_or("embree")));
+    // The scene file's names were checked when it was read.
+    if (fromScene.pipeline) settings.pipeline = *parsePipelineKind(*fromScene.pipeline);
+    if (fromScene.accel) settings.trace.accelerator = *parseAccelerator(*fromScene.accel);
+    if (options.pipeline) settings.pipeline = *options.pipeline;
+    if (options.accel) settings.trace.accelerator = *options.accel;
     applyRenderCacheOverrides(fromScene.renderCache, settings.renderCache);
     applyRenderCacheOverrides(options.renderCache, settings.renderCache);
     settings.gbuffer = options.gbuffer == "gl"        ? GBufferSource::OpenGl

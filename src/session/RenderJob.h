@@ -25,7 +25,7 @@ struct RenderJobOptions {
     int threads = 0;
     int maxDepth = 6;
     float minWeight = 0.01f;
-    std::optional<std::string> technique;  // none | cct | cdct | cdct-parity; default: each material's own setting
+    std::optional<CacheTechnique> technique;  // default: each material's own setting
     std::optional<float> cdctStep;         // CDCT search parameters; default: each material's own
     std::optional<float> cdctEpsilon;
     std::optional<float> cdctMaxDepth;
@@ -43,10 +43,10 @@ struct RenderJobOptions {
     bool cacheStoreChanging = false;       // RayCacheSettings::skipStoresReachingChanges off
     std::string cachePolicy = "auto";      // RayCacheSettings::policy: auto | always
     bool stageTimes = false;               // time the tile kernel's stages (RenderSettings::stageTimes)
-    std::optional<std::string> pipeline;   // ray | hybrid | render-cache; default: the scene file's, else ray
-    std::optional<std::string> accel;      // embree | grids; default: the scene file's, else embree
+    std::optional<PipelineKind> pipeline;  // default: the scene file's, else ray
+    std::optional<Accelerator> accel;      // default: the scene file's, else embree
     std::string gbuffer = "auto";          // hybrid G-buffer source: auto | gl | packets
-    std::string tileBalance = "dynamic";   // MPI jobs: static | dynamic | claim tile assignment (docs/cluster.md)
+    TileBalance tileBalance = TileBalance::Dynamic;  // MPI jobs' tile assignment (docs/cluster.md)
     // The Render Cache's --rc-* options; default: the scene file's, else RenderCacheSettings'.
     RenderCacheOverrides renderCache;
 };
@@ -60,9 +60,6 @@ struct RenderJob {
     std::string cacheBudgetNote;  // what the cubes' memory budget lowered (RayCache::budgetNote), or empty
 };
 
-// The technique a --technique name stands for (none, cct, cdct,
-// cdct-parity), or nothing for an unknown name.
-std::optional<CacheTechnique> parseTechnique(const std::string& name);
 // The visible-surface fill a --cache-fill name stands for (off, exact,
 // approximate), or nothing for an unknown name.
 std::optional<VisibleFill> parseVisibleFill(const std::string& name);

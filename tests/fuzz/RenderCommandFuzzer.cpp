@@ -1,7 +1,8 @@
 // libFuzzer target: the `render` command's library function (runRenderCommand)
 // on fuzzed option values, as main() would pass them after parsing argv. The
 // input is decoded field by field (FuzzedDataProvider): out-of-range numbers,
-// NaNs, unknown names and odd frame-name patterns all reach the validation.
+// NaNs, unknown names and odd frame-name patterns all reach the validation
+// (options held as enums get one of their values: main() has refused other names).
 // Sizes, frames (at most 3, never the scene's own count), threads and cache
 // resolutions are kept small so an input costs milliseconds; --out and
 // --stats always name files inside the scratch directory (no '/' can get
@@ -38,6 +39,12 @@ std::string pickName(FuzzedDataProvider& fdp, std::initializer_list<const char*>
     return fileNameChars(fdp.ConsumeRandomLengthString(12), "abcdefghijklmnopqrstuvwxyz-0123456789");
 }
 
+// One of `values`.
+template <class T, std::size_t N>
+T pickValue(FuzzedDataProvider& fdp, const std::array<T, N>& values) {
+    return values[fdp.ConsumeIntegralInRange<std::size_t>(0, N - 1)];
+}
+
 std::optional<float> maybeFloat(FuzzedDataProvider& fdp) {
     if (!fdp.ConsumeBool()) return std::nullopt;
     return fdp.ConsumeFloatingPoint<float>();
@@ -71,7 +78,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
     job.threads = fdp.ConsumeIntegralInRange(-1, 2);
     job.maxDepth = fdp.ConsumeIntegralInRange(-1, 8);
     job.minWeight = fdp.ConsumeFloatingPoint<float>();
-    if (fdp.ConsumeBool()) job.technique = pickName(fdp, {"none", "cct", "cdct", "cdct-parity"});
+    if (fdp.ConsumeBool()) job.technique = pickValue(fdp, raycache::kCacheTechniques).technique;
     job.cdctStep = maybeFloat(fdp);
     job.cdctEpsilon = maybeFloat(fdp);
     job.cdctMaxDepth = maybeFloat(fdp);
@@ -81,7 +88,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
     // 512² CDCT faces under the sanitizers and run past the 30 s timeout.
     job.cacheResolution = fdp.ConsumeIntegralInRange(-1, 64);
     job.cacheIdeal = fdp.ConsumeBool();
-    job.pipeline = pickName(fdp, {"ray", "hybrid"});
+    job.pipeline = pickValue(fdp, std::array{raycache::PipelineKind::Ray, raycache::PipelineKind::Hybrid});
     // No "gl" or "auto": making an OpenGL context per input would cost far more
     // than the parsing under test, and driver leaks would drown real findings.
     job.gbuffer = pickName(fdp, {"packets"});
