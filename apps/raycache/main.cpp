@@ -17,6 +17,7 @@
 #include "cluster/ClusterRuntime.h"
 #include "core/Errors.h"
 #include "core/ProcessAgreement.h"
+#include "render/VisibleSurfaceFill.h"
 #include "scene/CacheTechnique.h"
 
 namespace {
@@ -28,7 +29,8 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
     command.add_option("--width", job.width, "Image width in pixels")->capture_default_str();
     command.add_option("--height", job.height, "Image height in pixels")->capture_default_str();
     command.add_option("--frames", job.frames, "Frames to render (default: the scene's path length)");
-    command.add_option("--path", job.path, "Camera path: static, orbit or pan (default: the scene's own)");
+    raycache::addChoiceOption(command, "--path", job.path, raycache::kPathOptionKinds, raycache::cameraPathKindName,
+                              "Camera path: static, orbit or pan (default: the scene's own)");
     command.add_option("--time", job.time,
                        "Animated scenes: the time in seconds the first frame shows; frame f shows time + f / fps")
         ->capture_default_str();
@@ -69,11 +71,10 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
     command.add_flag("--cache-res-from-view", job.cacheResFromView,
                      "CCT cubes take the coarsest face resolution their lookups' pixel footprints allow within "
                      "--cache-level-error, re-chosen after every frame, up to --cache-res (docs/caching.md)");
-    command.add_option("--cache-fill", job.cacheFill,
-                       "Fill CCT cubes from the surfaces the camera sees, one visibility ray per texel: off, exact "
-                       "(surfaces without highlights, mirrors or glass), approximate (also with highlights) "
-                       "(docs/caching.md)")
-        ->capture_default_str();
+    raycache::addChoiceOption(
+        command, "--cache-fill", job.cacheFill, raycache::kVisibleFills, raycache::visibleFillName,
+        "Fill CCT cubes from the surfaces the camera sees, one visibility ray per texel: off, exact "
+        "(surfaces without highlights, mirrors or glass), approximate (also with highlights) (docs/caching.md)");
     command.add_option("--cache-budget", job.cacheBudgetMiB,
                        "Most memory the caching cubes may take, MiB: over it, cube resolutions are lowered "
                        "(smallest objects' first) and a note says so; a scene that cannot fit even at 16² faces "
@@ -82,13 +83,13 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
                      "Animated scenes: also store what reached the objects and lights the last change moved, and "
                      "pre-fill CDCT cubes in frames that follow a change (by default both are skipped: the next "
                      "change would drop them; docs/dynamic-scenes.md)");
-    command.add_option("--cache-policy", job.cachePolicy,
-                       "auto: a cube whose lookups would cost more than they save (judged every frame from its hit, "
-                       "lookup and store counts, never the clock) stands aside, its rays traced directly, and "
-                       "probes again after 8, 16, ... 64 frames; a CCT cube judges on a sample of 1 texel in 16 "
-                       "first and caches fully only when the sample pays; always: every cube caches every frame, "
-                       "as the documents did (docs/caching.md)")
-        ->capture_default_str();
+    raycache::addChoiceOption(
+        command, "--cache-policy", job.cachePolicy, raycache::kCachePolicyModes, raycache::cachePolicyModeName,
+        "auto: a cube whose lookups would cost more than they save (judged every frame from its hit, "
+        "lookup and store counts, never the clock) stands aside, its rays traced directly, and "
+        "probes again after 8, 16, ... 64 frames; a CCT cube judges on a sample of 1 texel in 16 "
+        "first and caches fully only when the sample pays; always: every cube caches every frame, "
+        "as the documents did (docs/caching.md)");
     command.add_flag("--cache-ideal", job.cacheIdeal,
                      "Benchmark switch: cache misses return black instead of being traced");
     command.add_flag("--stage-times", job.stageTimes,
@@ -114,9 +115,10 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
     command.add_option("--rc-reflections", job.renderCache.reflections,
                        "Render cache: reprojected mirror/glass/glossy samples: reshade (highlights and "
                        "reflections from the new eye, through the caching cubes; the default) or reproject (as traced)");
-    command.add_option("--rc-texture", job.renderCache.texture,
-                       "Render cache: reprojected textured samples: refetch (the albedo where the pixel's centre "
-                       "meets the sample's primitive; the default) or reproject (as traced)");
+    raycache::addChoiceOption(command, "--rc-texture", job.renderCache.textureRefetch, raycache::kTextureRefetchValues,
+                              raycache::textureRefetchName,
+                              "Render cache: reprojected textured samples: refetch (the albedo where the pixel's "
+                              "centre meets the sample's primitive; the default) or reproject (as traced)");
     command.add_option("--rc-seed", job.renderCache.seed, "Render cache: seed of the request map's random choices (default 1)");
     command.add_option("--rc-margin", job.renderCache.margin,
                        "Render cache: samples kept past each image edge, share of the side, [0, 0.5] (default 0.05)");
@@ -125,10 +127,9 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
                        "depth, [0, 1] (0 = off; default 0.1)");
     command.add_option("--rc-tile", job.renderCache.requestTileSize,
                        "Render cache: side of the hole-detection and request-map tiles, pixels, 1..256 (default 8)");
-    command.add_option("--gbuffer", job.gbuffer,
-                       "Hybrid G-buffer source: auto (OpenGL if a 4.5 context can be made, else packets), gl or "
-                       "packets")
-        ->capture_default_str();
+    raycache::addChoiceOption(command, "--gbuffer", job.gbuffer, raycache::kGBufferSources, raycache::gbufferSourceName,
+                              "Hybrid G-buffer source: auto (OpenGL if a 4.5 context can be made, else packets), "
+                              "gl or packets");
     raycache::addChoiceOption(
         command, "--tile-balance", job.tileBalance, raycache::kTileBalances, raycache::tileBalanceName,
         "MPI jobs (mpirun -np N raycache render ...): static deals tile i to process i mod N; dynamic "
@@ -251,11 +252,11 @@ int run(int argc, char** argv, const raycache::ClusterRuntime& cluster) {
     benchCmd->add_flag("--tiny", bench.tiny, "A few dozen pixels, seconds: a smoke test, numbers meaningless");
     benchCmd->add_option("--threads", bench.threads, "Worker threads, 0 = all cores")->capture_default_str();
     benchCmd->add_option("--out", bench.outDir, "Results directory")->capture_default_str();
-    benchCmd->add_option("--cache-policy", bench.cachePolicy,
-                         "always: every cube caches every frame (the documents' protocol, comparable tables); auto: "
-                         "the cache policy of `raycache render` (docs/caching.md) in dynamic and parallax; the other "
-                         "experiments always cache (docs/bench.md)")
-        ->capture_default_str();
+    raycache::addChoiceOption(
+        *benchCmd, "--cache-policy", bench.cachePolicy, raycache::kCachePolicyModes, raycache::cachePolicyModeName,
+        "always: every cube caches every frame (the documents' protocol, comparable tables); auto: "
+        "the cache policy of `raycache render` (docs/caching.md) in dynamic and parallax; the other "
+        "experiments always cache (docs/bench.md)");
     benchCmd->add_flag("--list", bench.list, "List the experiments and exit");
 
     // Every process parses the same arguments, so they all agree on the outcome.

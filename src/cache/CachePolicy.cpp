@@ -5,8 +5,8 @@
 namespace raycache {
 
 std::optional<CachePolicyMode> parseCachePolicyMode(std::string_view text) {
-    if (text == "always") return CachePolicyMode::Always;
-    if (text == "auto") return CachePolicyMode::Auto;
+    for (const CachePolicyMode mode : kCachePolicyModes)
+        if (text == cachePolicyModeName(mode)) return mode;
     return std::nullopt;
 }
 

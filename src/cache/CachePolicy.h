@@ -20,6 +20,7 @@
 // Never the clock: the counts are integers summed over every worker (and every
 // process), so the decision, and the image, are the same on any thread count
 // and in any cluster job.
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string_view>
@@ -31,7 +32,9 @@ enum class CachePolicyMode : unsigned char {
     Auto,    // a cube steps aside while caching would cost more than it saves
 };
 
-// "always" / "auto"; nullopt for anything else.
+// Every mode, in the order messages list them.
+inline constexpr std::array kCachePolicyModes{CachePolicyMode::Auto, CachePolicyMode::Always};
+// "always" / "auto", and back (nullopt for anything else).
 std::optional<CachePolicyMode> parseCachePolicyMode(std::string_view text);
 const char* cachePolicyModeName(CachePolicyMode mode);
 

@@ -44,6 +44,8 @@ const char* reprojectedReflectionsName(ReprojectedReflections mode) {
     return mode == ReprojectedReflections::Reshade ? "reshade" : "reproject";
 }
 
+const char* textureRefetchName(bool textureRefetch) { return textureRefetch ? "refetch" : "reproject"; }
+
 bool parseReprojectedReflections(const std::string& name, ReprojectedReflections& out) {
     if (name == "reshade") out = ReprojectedReflections::Reshade;
     else if (name == "reproject") out = ReprojectedReflections::Reproject;

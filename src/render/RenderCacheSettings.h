@@ -3,6 +3,7 @@
 // how many rays a frame may trace, how requests are spread, how long a
 // reprojected sample lives, and whether view-dependent colour is shaded
 // again from the new eye. Plain data; validateRenderCacheSettings() checks it.
+#include <array>
 #include <cstdint>
 #include <string>
 
@@ -54,5 +55,10 @@ void validateRenderCacheSettings(const RenderCacheSettings& settings);
 // "reproject" / "reshade", and back (nothing for an unknown name).
 const char* reprojectedReflectionsName(ReprojectedReflections mode);
 bool parseReprojectedReflections(const std::string& name, ReprojectedReflections& out);
+
+// RenderCacheSettings::textureRefetch's two values, in the order messages
+// list them, under their `--rc-texture` names: "refetch" (true), "reproject".
+inline constexpr std::array kTextureRefetchValues{true, false};
+const char* textureRefetchName(bool textureRefetch);
 
 }  // namespace raycache

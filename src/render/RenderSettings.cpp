@@ -11,6 +11,15 @@ const char* pipelineKindName(PipelineKind kind) {
     return "ray";
 }
 
+const char* gbufferSourceName(GBufferSource source) {
+    switch (source) {
+        case GBufferSource::Auto: return "auto";
+        case GBufferSource::OpenGl: return "gl";
+        case GBufferSource::Packets: return "packets";
+    }
+    return "auto";
+}
+
 std::optional<PipelineKind> parsePipelineKind(const std::string& name) {
     for (const PipelineKind kind : kPipelineKinds)
         if (name == pipelineKindName(kind)) return kind;

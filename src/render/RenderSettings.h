@@ -22,6 +22,10 @@ std::optional<PipelineKind> parsePipelineKind(const std::string& name);
 // Where the hybrid pipeline's G-buffer comes from: OpenGL when a context can
 // be made, else primary-ray packets (Auto); or forced either way.
 enum class GBufferSource { Auto, OpenGl, Packets };
+// Every source, in the order messages and help texts list them.
+inline constexpr std::array kGBufferSources{GBufferSource::Auto, GBufferSource::OpenGl, GBufferSource::Packets};
+// "auto", "gl", "packets" (`--gbuffer`).
+const char* gbufferSourceName(GBufferSource source);
 
 // What one frame is rendered with. Plain data, passed down explicitly.
 struct RenderSettings {

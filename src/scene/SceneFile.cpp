@@ -147,10 +147,15 @@ struct Choice {
     E value;
 };
 
-constexpr std::array<Choice<CameraPathKind>, 4> kPathKinds{{{"static", CameraPathKind::Static},
-                                                           {"orbit", CameraPathKind::Orbit},
-                                                           {"pan", CameraPathKind::Pan},
-                                                           {"keyframes", CameraPathKind::Keyframes}}};
+// The choices of `values` under the names `name` gives them, for tables
+// whose names the command line shares (CameraPath.h, ...).
+template <class E, std::size_t N, class Name>
+constexpr std::array<Choice<E>, N> choicesOf(const std::array<E, N>& values, Name name) {
+    std::array<Choice<E>, N> choices{};
+    for (std::size_t i = 0; i < N; ++i) choices[i] = {name(values[i]), values[i]};
+    return choices;
+}
+constexpr auto kPathKinds = choicesOf(kCameraPathKinds, cameraPathKindName);
 enum class EnvironmentKind { Color, Equirect, Cube };
 constexpr std::array<Choice<EnvironmentKind>, 3> kEnvironmentKinds{{{"color", EnvironmentKind::Color},
                                                                     {"equirect", EnvironmentKind::Equirect},

@@ -15,7 +15,7 @@ struct RenderCacheOverrides {
     std::optional<int> maxAge, requestTileSize;
     std::optional<std::uint64_t> seed;
     std::optional<std::string> reflections;  // reshade | reproject
-    std::optional<std::string> texture;      // refetch | reproject (command line only)
+    std::optional<bool> textureRefetch;      // RenderCacheSettings::textureRefetch (command line only)
 };
 
 struct SceneRenderDefaults {

@@ -1,5 +1,6 @@
 #include "session/RenderJob.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -14,11 +15,11 @@ namespace {
 constexpr int kMaxImageSide = 16384;
 constexpr int kMaxJobFrames = 1000000;
 
-CameraPath chooseCameraPath(const Scene& scene, const std::optional<std::string>& override) {
+CameraPath chooseCameraPath(const Scene& scene, const std::optional<CameraPathKind>& override) {
     if (!override) return scene.cameraPath;
     CameraPath path;
-    if (*override == "static") return path;
-    path.kind = *override == "orbit" ? CameraPathKind::Orbit : CameraPathKind::Pan;
+    if (*override == CameraPathKind::Static) return path;
+    path.kind = *override;
     // Keep the scene's own centre and speed when it already orbits or pans.
     const bool sceneTurns =
         scene.cameraPath.kind == CameraPathKind::Orbit || scene.cameraPath.kind == CameraPathKind::Pan;
@@ -40,14 +41,7 @@ void applyRenderCacheOverrides(const RenderCacheOverrides& o, RenderCacheSetting
     if (o.depthCullThreshold) rc.depthCullThreshold = *o.depthCullThreshold;
     if (o.requestTileSize) rc.requestTileSize = *o.requestTileSize;
     if (o.reflections) parseReprojectedReflections(*o.reflections, rc.reflections);
-    if (o.texture) rc.textureRefetch = *o.texture == "refetch";
-}
-
-std::optional<VisibleFill> parseVisibleFill(const std::string& name) {
-    if (name == "off") return VisibleFill::Off;
-    if (name == "exact") return VisibleFill::Exact;
-    if (name == "approximate") return VisibleFill::Approximate;
-    return std::nullopt;
+    if (o.textureRefetch) rc.textureRefetch = *o.textureRefetch;
 }
 
 void validateRenderJobOptions(const RenderJobOptions& o) {
@@ -82,10 +76,6 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
     if (o.cacheLevels < 1 || o.cacheLevels > kMaxCubeLevels)
         throw InputError("--cache-levels must be between 1 and " + std::to_string(kMaxCubeLevels) + " (got " +
                          std::to_string(o.cacheLevels) + ")");
-    if (!parseCachePolicyMode(o.cachePolicy))
-        throw InputError("--cache-policy must be auto or always (got '" + o.cachePolicy + "')");
-    if (!parseVisibleFill(o.cacheFill))
-        throw InputError("--cache-fill must be off, exact or approximate (got '" + o.cacheFill + "')");
     if (!(std::isfinite(o.cacheLevelError) && o.cacheLevelError > 0.0f && o.cacheLevelError <= 1000.0f))
         throw InputError("--cache-level-error must be a finite number in (0, 1000]");
     if (o.cacheBudgetMiB && !(std::isfinite(*o.cacheBudgetMiB) && *o.cacheBudgetMiB > 0.0 && *o.cacheBudgetMiB <= 1e9))
@@ -97,12 +87,9 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
     ReprojectedReflections reflections;
     if (o.renderCache.reflections && !parseReprojectedReflections(*o.renderCache.reflections, reflections))
         throw InputError("--rc-reflections must be reshade or reproject (got '" + *o.renderCache.reflections + "')");
-    if (o.renderCache.texture && *o.renderCache.texture != "refetch" && *o.renderCache.texture != "reproject")
-        throw InputError("--rc-texture must be refetch or reproject (got '" + *o.renderCache.texture + "')");
-    if (o.gbuffer != "auto" && o.gbuffer != "gl" && o.gbuffer != "packets")
-        throw InputError("--gbuffer must be auto, gl or packets (got '" + o.gbuffer + "')");
-    if (o.path && *o.path != "static" && *o.path != "orbit" && *o.path != "pan")
-        throw InputError("--path must be static, orbit or pan (got '" + *o.path + "')");
+    if (o.path && std::ranges::find(kPathOptionKinds, *o.path) == kPathOptionKinds.end())
+        throw InputError(std::string("--path ") + cameraPathKindName(*o.path) +
+                         ": a keyframed path comes from a scene file");
 }
 
 RenderJob prepareRenderJob(const RenderJobOptions& options) {
@@ -129,10 +116,10 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     settings.cache.cubeLevels = options.cacheLevels;
     settings.cache.levelErrorBound = options.cacheLevelError;
     settings.cache.resolutionFromView = options.cacheResFromView;
-    settings.cache.visibleFill = *parseVisibleFill(options.cacheFill);
+    settings.cache.visibleFill = options.cacheFill;
     settings.cache.ideal = options.cacheIdeal;
     settings.cache.skipStoresReachingChanges = !options.cacheStoreChanging;
-    settings.cache.policy = *parseCachePolicyMode(options.cachePolicy);
+    settings.cache.policy = options.cachePolicy;
     settings.stageTimes = options.stageTimes;
     settings.tileBalance = options.tileBalance;
     // Command-line options win over the scene file's, which win over the defaults.
@@ -144,9 +131,7 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     if (options.accel) settings.trace.accelerator = *options.accel;
     applyRenderCacheOverrides(fromScene.renderCache, settings.renderCache);
     applyRenderCacheOverrides(options.renderCache, settings.renderCache);
-    settings.gbuffer = options.gbuffer == "gl"        ? GBufferSource::OpenGl
-                       : options.gbuffer == "packets" ? GBufferSource::Packets
-                                                      : GBufferSource::Auto;
+    settings.gbuffer = options.gbuffer;
     // The cubes' budget: the option, else the scene file's, else half the machine's memory.
     const double budgetMiB = options.cacheBudgetMiB.value_or(
         fromScene.cacheBudgetMiB.value_or(static_cast<double>(physicalMemoryBytes()) / 2.0 / (1024.0 * 1024.0)));

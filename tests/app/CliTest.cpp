@@ -275,8 +275,15 @@ TEST_F(Cli, BadNamesAreOneLineListingTheNames) {
         {"--pipeline foo", "--pipeline: must be ray, hybrid or render-cache (got 'foo')"},
         {"--accel foo", "--accel: must be embree or grids (got 'foo')"},
         {"--tile-balance foo", "--tile-balance: must be static, dynamic or claim (got 'foo')"},
+        {"--path foo", "--path: must be static, orbit or pan (got 'foo')"},
+        {"--path keyframes", "--path: must be static, orbit or pan (got 'keyframes')"},
+        {"--cache-fill foo", "--cache-fill: must be off, exact or approximate (got 'foo')"},
+        {"--cache-policy foo", "--cache-policy: must be auto or always (got 'foo')"},
+        {"--gbuffer foo", "--gbuffer: must be auto, gl or packets (got 'foo')"},
+        {"--rc-texture foo", "--rc-texture: must be refetch or reproject (got 'foo')"},
         {"--technique CCT", "--technique: must be none, cct, cdct or cdct-parity (got 'CCT')"},
         {"--pipeline 1", "--pipeline: must be ray, hybrid or render-cache (got '1')"},
+        {"--rc-texture 1", "--rc-texture: must be refetch or reproject (got '1')"},
     };
     for (const auto& c : cases) {
         for (const std::string& command :

@@ -74,7 +74,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
     // shorter. The flag is still drawn, so the other bytes of every input
     // keep their meaning; without it, 3 frames.
     job.frames = fdp.ConsumeBool() ? fdp.ConsumeIntegralInRange(-1, 3) : 3;
-    if (fdp.ConsumeBool()) job.path = pickName(fdp, {"static", "orbit", "pan"});
+    if (fdp.ConsumeBool()) job.path = pickValue(fdp, raycache::kCameraPathKinds);  // keyframes: refused
     job.threads = fdp.ConsumeIntegralInRange(-1, 2);
     job.maxDepth = fdp.ConsumeIntegralInRange(-1, 8);
     job.minWeight = fdp.ConsumeFloatingPoint<float>();
@@ -89,10 +89,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
     job.cacheResolution = fdp.ConsumeIntegralInRange(-1, 64);
     job.cacheIdeal = fdp.ConsumeBool();
     job.pipeline = pickValue(fdp, std::array{raycache::PipelineKind::Ray, raycache::PipelineKind::Hybrid});
-    // No "gl" or "auto": making an OpenGL context per input would cost far more
+    // Never gl or auto: making an OpenGL context per input would cost far more
     // than the parsing under test, and driver leaks would drown real findings.
-    job.gbuffer = pickName(fdp, {"packets"});
-    if (job.gbuffer == "gl" || job.gbuffer == "auto") job.gbuffer = "packets";
+    job.gbuffer = raycache::GBufferSource::Packets;
     if (fdp.ConsumeBool()) {
         const std::string ext = pickName(fdp, {".png", ".exr", ".jpg", ""});
         const std::string stem = fileNameChars(fdp.ConsumeRandomLengthString(10), "abcdefghij0123456789%d_.");
