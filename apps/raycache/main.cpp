@@ -112,9 +112,11 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
     command.add_option("--rc-max-age", job.renderCache.maxAge, "Render cache: frames a sample lives (default 32)");
     command.add_option("--rc-predict", job.renderCache.predictShare,
                        "Render cache: share of the budget for holes the predicted next camera will see, [0, 0.9] (default 0.2)");
-    command.add_option("--rc-reflections", job.renderCache.reflections,
-                       "Render cache: reprojected mirror/glass/glossy samples: reshade (highlights and "
-                       "reflections from the new eye, through the caching cubes; the default) or reproject (as traced)");
+    raycache::addChoiceOption(command, "--rc-reflections", job.renderCache.reflections,
+                              raycache::kReprojectedReflections, raycache::reprojectedReflectionsName,
+                              "Render cache: reprojected mirror/glass/glossy samples: reshade (highlights and "
+                              "reflections from the new eye, through the caching cubes; the default) or reproject "
+                              "(as traced)");
     raycache::addChoiceOption(command, "--rc-texture", job.renderCache.textureRefetch, raycache::kTextureRefetchValues,
                               raycache::textureRefetchName,
                               "Render cache: reprojected textured samples: refetch (the albedo where the pixel's "

@@ -40,7 +40,7 @@ void applyRenderCacheOverrides(const RenderCacheOverrides& o, RenderCacheSetting
     if (o.margin) rc.margin = *o.margin;
     if (o.depthCullThreshold) rc.depthCullThreshold = *o.depthCullThreshold;
     if (o.requestTileSize) rc.requestTileSize = *o.requestTileSize;
-    if (o.reflections) parseReprojectedReflections(*o.reflections, rc.reflections);
+    if (o.reflections) rc.reflections = *o.reflections;
     if (o.textureRefetch) rc.textureRefetch = *o.textureRefetch;
 }
 
@@ -84,9 +84,6 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
     RenderCacheSettings rc;
     applyRenderCacheOverrides(o.renderCache, rc);
     validateRenderCacheSettings(rc);
-    ReprojectedReflections reflections;
-    if (o.renderCache.reflections && !parseReprojectedReflections(*o.renderCache.reflections, reflections))
-        throw InputError("--rc-reflections must be reshade or reproject (got '" + *o.renderCache.reflections + "')");
     if (o.path && std::ranges::find(kPathOptionKinds, *o.path) == kPathOptionKinds.end())
         throw InputError(std::string("--path ") + cameraPathKindName(*o.path) +
                          ": a keyframed path comes from a scene file");
@@ -124,11 +121,8 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     settings.tileBalance = options.tileBalance;
     // Command-line options win over the scene file's, which win over the defaults.
     const SceneRenderDefaults& fromScene = job.scene.render;
-    // The scene file's names were checked when it was read.
-    if (fromScene.pipeline) settings.pipeline = *parsePipelineKind(*fromScene.pipeline);
-    if (fromScene.accel) settings.trace.accelerator = *parseAccelerator(*fromScene.accel);
-    if (options.pipeline) settings.pipeline = *options.pipeline;
-    if (options.accel) settings.trace.accelerator = *options.accel;
+    settings.pipeline = options.pipeline.value_or(fromScene.pipeline.value_or(PipelineKind::Ray));
+    settings.trace.accelerator = options.accel.value_or(fromScene.accel.value_or(Accelerator::Embree));
     applyRenderCacheOverrides(fromScene.renderCache, settings.renderCache);
     applyRenderCacheOverrides(options.renderCache, settings.renderCache);
     settings.gbuffer = options.gbuffer;

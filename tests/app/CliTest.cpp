@@ -281,6 +281,7 @@ TEST_F(Cli, BadNamesAreOneLineListingTheNames) {
         {"--cache-policy foo", "--cache-policy: must be auto or always (got 'foo')"},
         {"--gbuffer foo", "--gbuffer: must be auto, gl or packets (got 'foo')"},
         {"--rc-texture foo", "--rc-texture: must be refetch or reproject (got 'foo')"},
+        {"--rc-reflections foo", "--rc-reflections: must be reshade or reproject (got 'foo')"},
         {"--technique CCT", "--technique: must be none, cct, cdct or cdct-parity (got 'CCT')"},
         {"--pipeline 1", "--pipeline: must be ray, hybrid or render-cache (got '1')"},
         {"--rc-texture 1", "--rc-texture: must be refetch or reproject (got '1')"},

@@ -1,10 +1,10 @@
 #pragma once
 // Which structure answers primary rays and the shadow rays of primary hits
 // (`--accel`, the scene key "accel"): Embree's BVH, or the per-frame grids
-// of trace/grids/ (docs/grids.md). Secondary rays always use Embree.
+// of trace/grids/ (docs/grids.md). Secondary rays always use Embree. Here,
+// below the tracer, because the scene format names it too: the scene file,
+// the command line and the viewer read the names from here.
 #include <array>
-#include <optional>
-#include <string>
 
 namespace raycache {
 
@@ -12,15 +12,8 @@ enum class Accelerator { Embree, Grids };
 // Every accelerator, in the order messages, help texts and the viewer list them.
 inline constexpr std::array kAccelerators{Accelerator::Embree, Accelerator::Grids};
 
-inline const char* acceleratorName(Accelerator accelerator) {
+constexpr const char* acceleratorName(Accelerator accelerator) {
     return accelerator == Accelerator::Grids ? "grids" : "embree";
-}
-
-// "embree" or "grids"; nothing for any other name.
-inline std::optional<Accelerator> parseAccelerator(const std::string& name) {
-    for (const Accelerator accelerator : kAccelerators)
-        if (name == acceleratorName(accelerator)) return accelerator;
-    return std::nullopt;
 }
 
 }  // namespace raycache
