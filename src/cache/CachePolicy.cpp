@@ -4,12 +4,6 @@
 
 namespace raycache {
 
-std::optional<CachePolicyMode> parseCachePolicyMode(std::string_view text) {
-    for (const CachePolicyMode mode : kCachePolicyModes)
-        if (text == cachePolicyModeName(mode)) return mode;
-    return std::nullopt;
-}
-
 const char* cachePolicyModeName(CachePolicyMode mode) { return mode == CachePolicyMode::Auto ? "auto" : "always"; }
 
 const char* cubeStateName(CubeState state) {

@@ -22,8 +22,6 @@
 // and in any cluster job.
 #include <array>
 #include <cstdint>
-#include <optional>
-#include <string_view>
 
 namespace raycache {
 
@@ -34,8 +32,7 @@ enum class CachePolicyMode : unsigned char {
 
 // Every mode, in the order messages list them.
 inline constexpr std::array kCachePolicyModes{CachePolicyMode::Auto, CachePolicyMode::Always};
-// "always" / "auto", and back (nullopt for anything else).
-std::optional<CachePolicyMode> parseCachePolicyMode(std::string_view text);
+// "auto" / "always".
 const char* cachePolicyModeName(CachePolicyMode mode);
 
 // What one operation costs, in units of one traced ray (a secondary or shadow

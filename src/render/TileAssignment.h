@@ -4,9 +4,7 @@
 // depends on the assignment (cache stores are merged by tile key), only the
 // time a frame takes does.
 #include <array>
-#include <optional>
 #include <span>
-#include <string>
 #include <vector>
 
 namespace raycache {
@@ -22,7 +20,6 @@ enum class TileBalance { Static, Dynamic, Claim };
 inline constexpr std::array kTileBalances{TileBalance::Static, TileBalance::Dynamic, TileBalance::Claim};
 
 const char* tileBalanceName(TileBalance balance);
-std::optional<TileBalance> parseTileBalance(const std::string& name);
 
 // owners[i] = i mod processes.
 std::vector<int> interleavedTileOwners(int tileCount, int processes);
