@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
 
     const auto scene = makeBuiltinScene(sceneName);
-    const auto parsedTechnique = parseTechnique(technique);
+    const auto parsedTechnique = parseCacheTechnique(technique);
     if (!scene || !parsedTechnique || frames < 2 || size < 1 || every < 1) {
         std::fprintf(stderr, "error: unknown scene or technique, or a non-positive count\n");
         return 2;

@@ -3,7 +3,9 @@
 #include <iostream>
 #include <optional>
 #include <ostream>
+#include <ranges>
 
+#include "ChoiceOption.h"
 #include "app/BenchCommand.h"
 #include "app/CacheViewCommand.h"
 #include "app/DiffCommand.h"
@@ -15,6 +17,7 @@
 #include "cluster/ClusterRuntime.h"
 #include "core/Errors.h"
 #include "core/ProcessAgreement.h"
+#include "render/VisibleSurfaceFill.h"
 #include "scene/CacheTechnique.h"
 
 namespace {
@@ -26,7 +29,8 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
     command.add_option("--width", job.width, "Image width in pixels")->capture_default_str();
     command.add_option("--height", job.height, "Image height in pixels")->capture_default_str();
     command.add_option("--frames", job.frames, "Frames to render (default: the scene's path length)");
-    command.add_option("--path", job.path, "Camera path: static, orbit or pan (default: the scene's own)");
+    raycache::addChoiceOption(command, "--path", job.path, raycache::kPathOptionKinds, raycache::cameraPathKindName,
+                              "Camera path: static, orbit or pan (default: the scene's own)");
     command.add_option("--time", job.time,
                        "Animated scenes: the time in seconds the first frame shows; frame f shows time + f / fps")
         ->capture_default_str();
@@ -35,9 +39,12 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
     command.add_option("--max-depth", job.maxDepth, "Longest ray path (primary ray = 1)")->capture_default_str();
     command.add_option("--min-weight", job.minWeight, "Stop a path when its kr/kt product falls below this")
         ->capture_default_str();
-    command.add_option("--technique", job.technique,
-                       "Secondary-ray caching for every mirror/glass object: " + raycache::cacheTechniqueNameList() +
-                           " (default: each material's own setting; see docs/caching.md)");
+    raycache::addChoiceOption(
+        command, "--technique", job.technique,
+        raycache::kCacheTechniques | std::views::transform(&raycache::CacheTechniqueInfo::technique),
+        raycache::cacheTechniqueName,
+        "Secondary-ray caching for every mirror/glass object: " + raycache::cacheTechniqueNameList() +
+            " (default: each material's own setting; see docs/caching.md)");
     command.add_option("--cdct-step", job.cdctStep,
                        "CDCT parity linear-search step along the ray, scene units (default: each material's own, 0.4)");
     command.add_option("--cdct-epsilon", job.cdctEpsilon,
@@ -64,11 +71,10 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
     command.add_flag("--cache-res-from-view", job.cacheResFromView,
                      "CCT cubes take the coarsest face resolution their lookups' pixel footprints allow within "
                      "--cache-level-error, re-chosen after every frame, up to --cache-res (docs/caching.md)");
-    command.add_option("--cache-fill", job.cacheFill,
-                       "Fill CCT cubes from the surfaces the camera sees, one visibility ray per texel: off, exact "
-                       "(surfaces without highlights, mirrors or glass), approximate (also with highlights) "
-                       "(docs/caching.md)")
-        ->capture_default_str();
+    raycache::addChoiceOption(
+        command, "--cache-fill", job.cacheFill, raycache::kVisibleFills, raycache::visibleFillName,
+        "Fill CCT cubes from the surfaces the camera sees, one visibility ray per texel: off, exact "
+        "(surfaces without highlights, mirrors or glass), approximate (also with highlights) (docs/caching.md)");
     command.add_option("--cache-budget", job.cacheBudgetMiB,
                        "Most memory the caching cubes may take, MiB: over it, cube resolutions are lowered "
                        "(smallest objects' first) and a note says so; a scene that cannot fit even at 16² faces "
@@ -77,25 +83,26 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
                      "Animated scenes: also store what reached the objects and lights the last change moved, and "
                      "pre-fill CDCT cubes in frames that follow a change (by default both are skipped: the next "
                      "change would drop them; docs/dynamic-scenes.md)");
-    command.add_option("--cache-policy", job.cachePolicy,
-                       "auto: a cube whose lookups would cost more than they save (judged every frame from its hit, "
-                       "lookup and store counts, never the clock) stands aside, its rays traced directly, and "
-                       "probes again after 8, 16, ... 64 frames; a CCT cube judges on a sample of 1 texel in 16 "
-                       "first and caches fully only when the sample pays; always: every cube caches every frame, "
-                       "as the documents did (docs/caching.md)")
-        ->capture_default_str();
+    raycache::addChoiceOption(
+        command, "--cache-policy", job.cachePolicy, raycache::kCachePolicyModes, raycache::cachePolicyModeName,
+        "auto: a cube whose lookups would cost more than they save (judged every frame from its hit, "
+        "lookup and store counts, never the clock) stands aside, its rays traced directly, and "
+        "probes again after 8, 16, ... 64 frames; a CCT cube judges on a sample of 1 texel in 16 "
+        "first and caches fully only when the sample pays; always: every cube caches every frame, "
+        "as the documents did (docs/caching.md)");
     command.add_flag("--cache-ideal", job.cacheIdeal,
                      "Benchmark switch: cache misses return black instead of being traced");
     command.add_flag("--stage-times", job.stageTimes,
                      "Time every stage of the tile kernel (CPU ms summed over threads) and print them per frame");
-    command.add_option("--pipeline", job.pipeline,
-                       "ray: primary rays per tile; hybrid: G-buffer (OpenGL or primary-ray packets), then "
-                       "deferred shadow and secondary rays; render-cache: reproject earlier frames' samples and "
-                       "trace a budget of pixels (docs/render-cache.md); default: the scene file's, else ray");
-    command.add_option("--accel", job.accel,
-                       "embree: primary and shadow rays through Embree's BVH; grids: a perspective grid for "
-                       "primary rays and a light-space grid per light for their shadow rays, rebuilt every frame "
-                       "(docs/grids.md); default: the scene file's, else embree");
+    raycache::addChoiceOption(command, "--pipeline", job.pipeline, raycache::kPipelineKinds, raycache::pipelineKindName,
+                              "ray: primary rays per tile; hybrid: G-buffer (OpenGL or primary-ray packets), then "
+                              "deferred shadow and secondary rays; render-cache: reproject earlier frames' samples and "
+                              "trace a budget of pixels (docs/render-cache.md); default: the scene file's, else ray");
+    raycache::addChoiceOption(
+        command, "--accel", job.accel, raycache::kAccelerators, raycache::acceleratorName,
+        "embree: primary and shadow rays through Embree's BVH; grids: a perspective grid for "
+        "primary rays and a light-space grid per light for their shadow rays, rebuilt every frame "
+        "(docs/grids.md); default: the scene file's, else embree");
     command.add_option("--rc-budget", job.renderCache.budget, "Render cache: share of the pixels traced per frame, (0, 1] (default 0.05)");
     command.add_option("--rc-target-ms", job.renderCache.targetFrameMs,
                        "Render cache: choose the budget each frame to hold this frame time, ms (0 = off; images "
@@ -105,12 +112,15 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
     command.add_option("--rc-max-age", job.renderCache.maxAge, "Render cache: frames a sample lives (default 32)");
     command.add_option("--rc-predict", job.renderCache.predictShare,
                        "Render cache: share of the budget for holes the predicted next camera will see, [0, 0.9] (default 0.2)");
-    command.add_option("--rc-reflections", job.renderCache.reflections,
-                       "Render cache: reprojected mirror/glass/glossy samples: reshade (highlights and "
-                       "reflections from the new eye, through the caching cubes; the default) or reproject (as traced)");
-    command.add_option("--rc-texture", job.renderCache.texture,
-                       "Render cache: reprojected textured samples: refetch (the albedo where the pixel's centre "
-                       "meets the sample's primitive; the default) or reproject (as traced)");
+    raycache::addChoiceOption(command, "--rc-reflections", job.renderCache.reflections,
+                              raycache::kReprojectedReflections, raycache::reprojectedReflectionsName,
+                              "Render cache: reprojected mirror/glass/glossy samples: reshade (highlights and "
+                              "reflections from the new eye, through the caching cubes; the default) or reproject "
+                              "(as traced)");
+    raycache::addChoiceOption(command, "--rc-texture", job.renderCache.textureRefetch, raycache::kTextureRefetchValues,
+                              raycache::textureRefetchName,
+                              "Render cache: reprojected textured samples: refetch (the albedo where the pixel's "
+                              "centre meets the sample's primitive; the default) or reproject (as traced)");
     command.add_option("--rc-seed", job.renderCache.seed, "Render cache: seed of the request map's random choices (default 1)");
     command.add_option("--rc-margin", job.renderCache.margin,
                        "Render cache: samples kept past each image edge, share of the side, [0, 0.5] (default 0.05)");
@@ -119,16 +129,15 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
                        "depth, [0, 1] (0 = off; default 0.1)");
     command.add_option("--rc-tile", job.renderCache.requestTileSize,
                        "Render cache: side of the hole-detection and request-map tiles, pixels, 1..256 (default 8)");
-    command.add_option("--gbuffer", job.gbuffer,
-                       "Hybrid G-buffer source: auto (OpenGL if a 4.5 context can be made, else packets), gl or "
-                       "packets")
-        ->capture_default_str();
-    command.add_option("--tile-balance", job.tileBalance,
-                       "MPI jobs (mpirun -np N raycache render ...): static deals tile i to process i mod N; dynamic "
-                       "(from the second frame) deals tiles by the previous frame's cost of each tile; claim lets "
-                       "every thread take the next tile from a counter on process 0 when it is free. Images do "
-                       "not depend on it (docs/cluster.md)")
-        ->capture_default_str();
+    raycache::addChoiceOption(command, "--gbuffer", job.gbuffer, raycache::kGBufferSources, raycache::gbufferSourceName,
+                              "Hybrid G-buffer source: auto (OpenGL if a 4.5 context can be made, else packets), "
+                              "gl or packets");
+    raycache::addChoiceOption(
+        command, "--tile-balance", job.tileBalance, raycache::kTileBalances, raycache::tileBalanceName,
+        "MPI jobs (mpirun -np N raycache render ...): static deals tile i to process i mod N; dynamic "
+        "(from the second frame) deals tiles by the previous frame's cost of each tile; claim lets "
+        "every thread take the next tile from a counter on process 0 when it is free. Images do "
+        "not depend on it (docs/cluster.md)");
 }
 
 // main() proper, once the process knows its place in an MPI job (if any).
@@ -245,11 +254,11 @@ int run(int argc, char** argv, const raycache::ClusterRuntime& cluster) {
     benchCmd->add_flag("--tiny", bench.tiny, "A few dozen pixels, seconds: a smoke test, numbers meaningless");
     benchCmd->add_option("--threads", bench.threads, "Worker threads, 0 = all cores")->capture_default_str();
     benchCmd->add_option("--out", bench.outDir, "Results directory")->capture_default_str();
-    benchCmd->add_option("--cache-policy", bench.cachePolicy,
-                         "always: every cube caches every frame (the documents' protocol, comparable tables); auto: "
-                         "the cache policy of `raycache render` (docs/caching.md) in dynamic and parallax; the other "
-                         "experiments always cache (docs/bench.md)")
-        ->capture_default_str();
+    raycache::addChoiceOption(
+        *benchCmd, "--cache-policy", bench.cachePolicy, raycache::kCachePolicyModes, raycache::cachePolicyModeName,
+        "always: every cube caches every frame (the documents' protocol, comparable tables); auto: "
+        "the cache policy of `raycache render` (docs/caching.md) in dynamic and parallax; the other "
+        "experiments always cache (docs/bench.md)");
     benchCmd->add_flag("--list", bench.list, "List the experiments and exit");
 
     // Every process parses the same arguments, so they all agree on the outcome.

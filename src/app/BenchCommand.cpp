@@ -50,15 +50,13 @@ void runBenchCommand(const BenchCommandOptions& options, std::ostream& out, cons
         if (options.threads < 0 || options.threads > 1024)
             throw InputError("--threads must be between 0 (all) and 1024");
         if (options.outDir.empty()) throw InputError("--out must name a directory");
-        const std::optional<CachePolicyMode> policy = parseCachePolicyMode(options.cachePolicy);
-        if (!policy) throw InputError("--cache-policy must be auto or always (got '" + options.cachePolicy + "')");
         experiments = selectExperiments(options.experiments);
         wholeReport =
             std::find(options.experiments.begin(), options.experiments.end(), "all") != options.experiments.end();
         settings.size = options.full ? BenchSize::Full : options.tiny ? BenchSize::Tiny : BenchSize::Quick;
         settings.threads = options.threads;
         settings.outDir = options.outDir;
-        settings.cachePolicy = *policy;
+        settings.cachePolicy = options.cachePolicy;
         if (!group.isRoot()) return;
         std::error_code ec;
         std::filesystem::create_directories(settings.outDir, ec);

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "cache/CachePolicy.h"
 #include "core/ProcessGroup.h"
 
 namespace raycache {
@@ -17,9 +18,9 @@ struct BenchCommandOptions {
     bool tiny = false;
     int threads = 0;
     std::string outDir = "results";
-    // always | auto: the cached renders of the experiments that honour it
-    // (dynamic, parallax); the others keep always (BenchSettings::cachePolicy).
-    std::string cachePolicy = "always";
+    // The cached renders of the experiments that honour it (dynamic,
+    // parallax); the others keep always (BenchSettings::cachePolicy).
+    CachePolicyMode cachePolicy = CachePolicyMode::Always;
     bool list = false;  // print the experiments and exit
     // Progress bar on a terminal, plain lines otherwise; tests force plain lines.
     bool interactive = false;

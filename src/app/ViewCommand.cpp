@@ -30,8 +30,7 @@ void runViewCommand(const ViewCommandOptions& options, std::ostream& out, std::o
             std::max<std::int64_t>(1, static_cast<std::int64_t>(job.settings.width) * job.settings.height / 2);
     ViewerRenderConfig config;
     // The command line's choices become the panel's starting values.
-    config.technique = techniqueChoiceIndex(options.job.technique.value_or(""));
-    if (config.technique < 0) throw InputError("--technique: the viewer has no '" + *options.job.technique + "'");
+    config.technique = techniqueChoiceIndex(options.job.technique);
     config.cacheResolution = options.job.cacheResolution;
     config.cdctStep = options.job.cdctStep;
     config.cdctEpsilon = options.job.cdctEpsilon;

@@ -4,12 +4,6 @@
 
 namespace raycache {
 
-std::optional<CachePolicyMode> parseCachePolicyMode(std::string_view text) {
-    if (text == "always") return CachePolicyMode::Always;
-    if (text == "auto") return CachePolicyMode::Auto;
-    return std::nullopt;
-}
-
 const char* cachePolicyModeName(CachePolicyMode mode) { return mode == CachePolicyMode::Auto ? "auto" : "always"; }
 
 const char* cubeStateName(CubeState state) {

@@ -20,9 +20,8 @@
 // Never the clock: the counts are integers summed over every worker (and every
 // process), so the decision, and the image, are the same on any thread count
 // and in any cluster job.
+#include <array>
 #include <cstdint>
-#include <optional>
-#include <string_view>
 
 namespace raycache {
 
@@ -31,8 +30,9 @@ enum class CachePolicyMode : unsigned char {
     Auto,    // a cube steps aside while caching would cost more than it saves
 };
 
-// "always" / "auto"; nullopt for anything else.
-std::optional<CachePolicyMode> parseCachePolicyMode(std::string_view text);
+// Every mode, in the order messages list them.
+inline constexpr std::array kCachePolicyModes{CachePolicyMode::Auto, CachePolicyMode::Always};
+// "auto" / "always".
 const char* cachePolicyModeName(CachePolicyMode mode);
 
 // What one operation costs, in units of one traced ray (a secondary or shadow

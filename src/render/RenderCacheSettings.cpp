@@ -40,15 +40,6 @@ void validateRenderCacheSettings(const RenderCacheSettings& s) {
         throw InputError("render cache refresh-all hole share must be in [0, 1]");
 }
 
-const char* reprojectedReflectionsName(ReprojectedReflections mode) {
-    return mode == ReprojectedReflections::Reshade ? "reshade" : "reproject";
-}
-
-bool parseReprojectedReflections(const std::string& name, ReprojectedReflections& out) {
-    if (name == "reshade") out = ReprojectedReflections::Reshade;
-    else if (name == "reproject") out = ReprojectedReflections::Reproject;
-    else return false;
-    return true;
-}
+const char* textureRefetchName(bool textureRefetch) { return textureRefetch ? "refetch" : "reproject"; }
 
 }  // namespace raycache

@@ -3,17 +3,12 @@
 // how many rays a frame may trace, how requests are spread, how long a
 // reprojected sample lives, and whether view-dependent colour is shaded
 // again from the new eye. Plain data; validateRenderCacheSettings() checks it.
+#include <array>
 #include <cstdint>
-#include <string>
+
+#include "scene/ReprojectedReflections.h"
 
 namespace raycache {
-
-// What a reprojected sample on a mirror, glass or glossy surface shows.
-enum class ReprojectedReflections {
-    Reproject,  // the colour seen when it was traced (the 2002 Render Cache: it smears as the eye moves)
-    Reshade,    // highlights and reflected/refracted colour evaluated again from the new eye,
-                // reflected/refracted rays answered by the object's caching cube when it has one
-};
 
 struct RenderCacheSettings {
     // Mix of the request map: weight of a screen tile = (1 - alpha) * uniform
@@ -51,8 +46,9 @@ struct RenderCacheSettings {
 // range: alpha outside [0, 1], budget outside (0, 1], negative target, ...
 void validateRenderCacheSettings(const RenderCacheSettings& settings);
 
-// "reproject" / "reshade", and back (nothing for an unknown name).
-const char* reprojectedReflectionsName(ReprojectedReflections mode);
-bool parseReprojectedReflections(const std::string& name, ReprojectedReflections& out);
+// RenderCacheSettings::textureRefetch's two values, in the order messages
+// list them, under their `--rc-texture` names: "refetch" (true), "reproject".
+inline constexpr std::array kTextureRefetchValues{true, false};
+const char* textureRefetchName(bool textureRefetch);
 
 }  // namespace raycache

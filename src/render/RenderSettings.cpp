@@ -2,19 +2,13 @@
 
 namespace raycache {
 
-const char* pipelineKindName(PipelineKind kind) {
-    switch (kind) {
-        case PipelineKind::Ray: return "ray";
-        case PipelineKind::Hybrid: return "hybrid";
-        case PipelineKind::RenderCache: return "render-cache";
+const char* gbufferSourceName(GBufferSource source) {
+    switch (source) {
+        case GBufferSource::Auto: return "auto";
+        case GBufferSource::OpenGl: return "gl";
+        case GBufferSource::Packets: return "packets";
     }
-    return "ray";
-}
-
-std::optional<PipelineKind> parsePipelineKind(const std::string& name) {
-    for (PipelineKind kind : {PipelineKind::Ray, PipelineKind::Hybrid, PipelineKind::RenderCache})
-        if (name == pipelineKindName(kind)) return kind;
-    return std::nullopt;
+    return "auto";
 }
 
 }  // namespace raycache

@@ -1,24 +1,23 @@
 #pragma once
+#include <array>
 #include <optional>
 #include <string>
 
 #include "cache/RayCache.h"
 #include "render/RenderCacheSettings.h"
 #include "render/TileAssignment.h"
+#include "scene/PipelineKind.h"
 #include "trace/TraceScene.h"
 
 namespace raycache {
 
-// How a frame is made: primary rays per tile (Ray); a G-buffer followed by
-// deferred shadow and secondary passes (Hybrid, SPEC §4); or reprojected
-// samples of earlier frames plus a budget of new rays (RenderCache, SPEC §6).
-enum class PipelineKind { Ray, Hybrid, RenderCache };
-// "ray", "hybrid", "render-cache", and back (nothing for another name).
-const char* pipelineKindName(PipelineKind kind);
-std::optional<PipelineKind> parsePipelineKind(const std::string& name);
 // Where the hybrid pipeline's G-buffer comes from: OpenGL when a context can
 // be made, else primary-ray packets (Auto); or forced either way.
 enum class GBufferSource { Auto, OpenGl, Packets };
+// Every source, in the order messages and help texts list them.
+inline constexpr std::array kGBufferSources{GBufferSource::Auto, GBufferSource::OpenGl, GBufferSource::Packets};
+// "auto", "gl", "packets" (`--gbuffer`).
+const char* gbufferSourceName(GBufferSource source);
 
 // What one frame is rendered with. Plain data, passed down explicitly.
 struct RenderSettings {

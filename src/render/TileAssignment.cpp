@@ -14,13 +14,6 @@ const char* tileBalanceName(TileBalance balance) {
     return "?";
 }
 
-std::optional<TileBalance> parseTileBalance(const std::string& name) {
-    if (name == "static") return TileBalance::Static;
-    if (name == "dynamic") return TileBalance::Dynamic;
-    if (name == "claim") return TileBalance::Claim;
-    return std::nullopt;
-}
-
 std::vector<int> interleavedTileOwners(int tileCount, int processes) {
     std::vector<int> owners(static_cast<std::size_t>(std::max(0, tileCount)));
     for (std::size_t i = 0; i < owners.size(); ++i) owners[i] = static_cast<int>(i % static_cast<std::size_t>(processes));

@@ -3,9 +3,8 @@
 // (core/ProcessGroup.h). Pure functions of their inputs: the image never
 // depends on the assignment (cache stores are merged by tile key), only the
 // time a frame takes does.
+#include <array>
 #include <span>
-#include <string>
-#include <optional>
 #include <vector>
 
 namespace raycache {
@@ -17,9 +16,10 @@ namespace raycache {
 // next tile from a counter on process 0 (ProcessGroup::drawTickets) when it
 // is free, so the processes finish together whatever the tiles cost.
 enum class TileBalance { Static, Dynamic, Claim };
+// Every balance, in the order messages and help texts list them.
+inline constexpr std::array kTileBalances{TileBalance::Static, TileBalance::Dynamic, TileBalance::Claim};
 
 const char* tileBalanceName(TileBalance balance);
-std::optional<TileBalance> parseTileBalance(const std::string& name);
 
 // owners[i] = i mod processes.
 std::vector<int> interleavedTileOwners(int tileCount, int processes);

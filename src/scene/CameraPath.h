@@ -1,5 +1,6 @@
 #pragma once
 // How the camera moves from frame to frame.
+#include <array>
 #include <vector>
 
 #include "scene/Camera.h"
@@ -12,6 +13,20 @@ enum class CameraPathKind {
     Pan,        // the camera stays put and turns (yaws) about the world y axis
     Keyframes,  // linear interpolation through a list of cameras
 };
+// Every kind, in the order messages list them.
+inline constexpr std::array kCameraPathKinds{CameraPathKind::Static, CameraPathKind::Orbit, CameraPathKind::Pan,
+                                             CameraPathKind::Keyframes};
+
+// The name a kind has in scene files ("type") and on the command line.
+constexpr const char* cameraPathKindName(CameraPathKind kind) {
+    switch (kind) {
+        case CameraPathKind::Static: return "static";
+        case CameraPathKind::Orbit: return "orbit";
+        case CameraPathKind::Pan: return "pan";
+        case CameraPathKind::Keyframes: return "keyframes";
+    }
+    return "static";
+}
 
 struct CameraPath {
     CameraPathKind kind = CameraPathKind::Static;

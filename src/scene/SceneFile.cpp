@@ -147,10 +147,21 @@ struct Choice {
     E value;
 };
 
-constexpr std::array<Choice<CameraPathKind>, 4> kPathKinds{{{"static", CameraPathKind::Static},
-                                                           {"orbit", CameraPathKind::Orbit},
-                                                           {"pan", CameraPathKind::Pan},
-                                                           {"keyframes", CameraPathKind::Keyframes}}};
+// The choices of `values` under the names `name` gives them, for tables
+// whose names the command line shares (CameraPath.h, PipelineKind.h, ...).
+template <class E, std::size_t N, class Name>
+constexpr std::array<Choice<E>, N> choicesOf(const std::array<E, N>& values, Name name) {
+    std::array<Choice<E>, N> choices{};
+    for (std::size_t i = 0; i < N; ++i) choices[i] = {name(values[i]), values[i]};
+    return choices;
+}
+constexpr auto kPathKinds = choicesOf(kCameraPathKinds, cameraPathKindName);
+constexpr auto kPipelineChoices = choicesOf(kPipelineKinds, pipelineKindName);
+constexpr auto kAcceleratorChoices = choicesOf(kAccelerators, acceleratorName);
+constexpr auto kReflectionChoices = choicesOf(kReprojectedReflections, reprojectedReflectionsName);
+constexpr std::array<Choice<Interpolation>, 2> kInterpolations{
+    {{"linear", Interpolation::Linear}, {"smooth", Interpolation::Smooth}}};
+constexpr std::array<Choice<Wrap>, 2> kWraps{{{"loop", Wrap::Loop}, {"clamp", Wrap::Clamp}}};
 enum class EnvironmentKind { Color, Equirect, Cube };
 constexpr std::array<Choice<EnvironmentKind>, 3> kEnvironmentKinds{{{"color", EnvironmentKind::Color},
                                                                     {"equirect", EnvironmentKind::Equirect},
@@ -249,9 +260,8 @@ public:
         }
         scene.defaultFrames = pathFrames;
         if (const Node n = child(r, "frames")) scene.defaultFrames = integer(n, 1, kMaxFrames);
-        if (const Node n = child(r, "pipeline"))
-            scene.render.pipeline = oneOf(n, {"ray", "hybrid", "render-cache"});
-        if (const Node n = child(r, "accel")) scene.render.accel = oneOf(n, {"embree", "grids"});
+        if (const Node n = child(r, "pipeline")) scene.render.pipeline = oneOf(n, kPipelineChoices);
+        if (const Node n = child(r, "accel")) scene.render.accel = oneOf(n, kAcceleratorChoices);
         if (const Node n = child(r, "cacheBudget")) scene.render.cacheBudgetMiB = number(n, {0.0, 1e9, false, true});
         if (const Node n = child(r, "renderCache")) renderCache(n, scene.render.renderCache);
 
@@ -381,12 +391,13 @@ private:
         return static_cast<int>(d);
     }
 
-    std::string oneOf(const Node& n, std::initializer_list<const char*> names) const {
+    template <class E, std::size_t N>
+    E oneOf(const Node& n, const std::array<Choice<E>, N>& choices) const {
         const std::string s = nonEmptyString(n);
         std::string list;
-        for (const char* name : names) {
-            if (s == name) return s;
-            list += list.empty() ? std::string(name) : std::string(", ") + name;
+        for (const Choice<E>& c : choices) {
+            if (s == c.name) return c.value;
+            list += (list.empty() ? "" : ", ") + std::string(c.name);
         }
         fail(n, "must be one of " + list + " (got '" + s + "')");
     }
@@ -401,7 +412,7 @@ private:
         if (const Node v = child(n, "alpha")) out.alpha = number(v, closed(0.0, 1.0));
         if (const Node v = child(n, "predict")) out.predictShare = number(v, closed(0.0, 0.9));
         if (const Node v = child(n, "maxAge")) out.maxAge = integer(v, 1, 65000);
-        if (const Node v = child(n, "reflections")) out.reflections = oneOf(v, {"reshade", "reproject"});
+        if (const Node v = child(n, "reflections")) out.reflections = oneOf(v, kReflectionChoices);
     }
 
     std::string nonEmptyString(const Node& n) const {
@@ -688,9 +699,8 @@ private:
 
     // "interpolation" and "wrap" of an animation object.
     void trackOptions(const Node& n, Interpolation& interpolation, Wrap& wrap) const {
-        if (const Node v = child(n, "interpolation"))
-            interpolation = oneOf(v, {"linear", "smooth"}) == "smooth" ? Interpolation::Smooth : Interpolation::Linear;
-        if (const Node v = child(n, "wrap")) wrap = oneOf(v, {"loop", "clamp"}) == "clamp" ? Wrap::Clamp : Wrap::Loop;
+        if (const Node v = child(n, "interpolation")) interpolation = oneOf(v, kInterpolations);
+        if (const Node v = child(n, "wrap")) wrap = oneOf(v, kWraps);
     }
 
     // The "keys" array: at least one, times finite and strictly increasing.
@@ -796,7 +806,7 @@ private:
         float fps = 24.0f;
         if (const Node v = child(n, "fps")) fps = number(v, {0.0, 1000.0, false, true});
         Wrap wrap = Wrap::Loop;
-        if (const Node v = child(n, "wrap")) wrap = oneOf(v, {"loop", "clamp"}) == "clamp" ? Wrap::Clamp : Wrap::Loop;
+        if (const Node v = child(n, "wrap")) wrap = oneOf(v, kWraps);
         std::vector<std::vector<Vec3>> frames;
         framesReach_ = 0.0;
         for (const Node& f : elements(required(n, "files"), 1, kMaxKeyframes, "files")) {

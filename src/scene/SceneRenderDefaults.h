@@ -4,7 +4,10 @@
 // Plain values, checked when the file is read.
 #include <cstdint>
 #include <optional>
-#include <string>
+
+#include "scene/Accelerator.h"
+#include "scene/PipelineKind.h"
+#include "scene/ReprojectedReflections.h"
 
 namespace raycache {
 
@@ -14,13 +17,13 @@ struct RenderCacheOverrides {
     std::optional<float> budget, targetFrameMs, alpha, predictShare, margin, depthCullThreshold;
     std::optional<int> maxAge, requestTileSize;
     std::optional<std::uint64_t> seed;
-    std::optional<std::string> reflections;  // reshade | reproject
-    std::optional<std::string> texture;      // refetch | reproject (command line only)
+    std::optional<ReprojectedReflections> reflections;
+    std::optional<bool> textureRefetch;      // RenderCacheSettings::textureRefetch (command line only)
 };
 
 struct SceneRenderDefaults {
-    std::optional<std::string> pipeline;  // ray | hybrid | render-cache
-    std::optional<std::string> accel;     // embree | grids (docs/grids.md)
+    std::optional<PipelineKind> pipeline;
+    std::optional<Accelerator> accel;      // docs/grids.md
     std::optional<double> cacheBudgetMiB;  // the caching cubes' memory budget (cache/CubeBudget.h)
     RenderCacheOverrides renderCache;
 };

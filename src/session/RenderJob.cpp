@@ -1,5 +1,6 @@
 #include "session/RenderJob.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -14,11 +15,11 @@ namespace {
 constexpr int kMaxImageSide = 16384;
 constexpr int kMaxJobFrames = 1000000;
 
-CameraPath chooseCameraPath(const Scene& scene, const std::optional<std::string>& override) {
+CameraPath chooseCameraPath(const Scene& scene, const std::optional<CameraPathKind>& override) {
     if (!override) return scene.cameraPath;
     CameraPath path;
-    if (*override == "static") return path;
-    path.kind = *override == "orbit" ? CameraPathKind::Orbit : CameraPathKind::Pan;
+    if (*override == CameraPathKind::Static) return path;
+    path.kind = *override;
     // Keep the scene's own centre and speed when it already orbits or pans.
     const bool sceneTurns =
         scene.cameraPath.kind == CameraPathKind::Orbit || scene.cameraPath.kind == CameraPathKind::Pan;
@@ -39,18 +40,9 @@ void applyRenderCacheOverrides(const RenderCacheOverrides& o, RenderCacheSetting
     if (o.margin) rc.margin = *o.margin;
     if (o.depthCullThreshold) rc.depthCullThreshold = *o.depthCullThreshold;
     if (o.requestTileSize) rc.requestTileSize = *o.requestTileSize;
-    if (o.reflections) parseReprojectedReflections(*o.reflections, rc.reflections);
-    if (o.texture) rc.textureRefetch = *o.texture == "refetch";
+    if (o.reflections) rc.reflections = *o.reflections;
+    if (o.textureRefetch) rc.textureRefetch = *o.textureRefetch;
 }
-
-std::optional<VisibleFill> parseVisibleFill(const std::string& name) {
-    if (name == "off") return VisibleFill::Off;
-    if (name == "exact") return VisibleFill::Exact;
-    if (name == "approximate") return VisibleFill::Approximate;
-    return std::nullopt;
-}
-
-std::optional<CacheTechnique> parseTechnique(const std::string& name) { return parseCacheTechnique(name); }
 
 void validateRenderJobOptions(const RenderJobOptions& o) {
     if (o.width < 1 || o.height < 1 || o.width > kMaxImageSide || o.height > kMaxImageSide)
@@ -65,8 +57,6 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
     if (o.maxDepth < 1 || o.maxDepth > 64) throw InputError("--max-depth must be between 1 and 64");
     if (!(o.minWeight >= 0.0f && o.minWeight <= 1.0f)) throw InputError("--min-weight must be in [0, 1]");
     if (o.threads < 0 || o.threads > 1024) throw InputError("--threads must be between 0 (all) and 1024");
-    if (o.technique && !parseTechnique(*o.technique))
-        throw InputError("--technique must be " + cacheTechniqueNameList() + " (got '" + *o.technique + "')");
     const auto positive = [](const std::optional<float>& v, const char* flag) {
         if (v && !(std::isfinite(*v) && *v > 0.0f))
             throw InputError(std::string(flag) + " must be a finite number > 0");
@@ -86,33 +76,17 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
     if (o.cacheLevels < 1 || o.cacheLevels > kMaxCubeLevels)
         throw InputError("--cache-levels must be between 1 and " + std::to_string(kMaxCubeLevels) + " (got " +
                          std::to_string(o.cacheLevels) + ")");
-    if (!parseCachePolicyMode(o.cachePolicy))
-        throw InputError("--cache-policy must be auto or always (got '" + o.cachePolicy + "')");
-    if (!parseVisibleFill(o.cacheFill))
-        throw InputError("--cache-fill must be off, exact or approximate (got '" + o.cacheFill + "')");
     if (!(std::isfinite(o.cacheLevelError) && o.cacheLevelError > 0.0f && o.cacheLevelError <= 1000.0f))
         throw InputError("--cache-level-error must be a finite number in (0, 1000]");
     if (o.cacheBudgetMiB && !(std::isfinite(*o.cacheBudgetMiB) && *o.cacheBudgetMiB > 0.0 && *o.cacheBudgetMiB <= 1e9))
         throw InputError("--cache-budget must be a finite number of MiB in (0, 1e9]");
-    if (o.accel && !parseAccelerator(*o.accel))
-        throw InputError("--accel must be embree or grids (got '" + *o.accel + "')");
-    if (o.pipeline && !parsePipelineKind(*o.pipeline))
-        throw InputError("--pipeline must be ray, hybrid or render-cache (got '" + *o.pipeline + "')");
     // The --rc-* values alone, over the defaults: each error names its option.
     RenderCacheSettings rc;
     applyRenderCacheOverrides(o.renderCache, rc);
     validateRenderCacheSettings(rc);
-    ReprojectedReflections reflections;
-    if (o.renderCache.reflections && !parseReprojectedReflections(*o.renderCache.reflections, reflections))
-        throw InputError("--rc-reflections must be reshade or reproject (got '" + *o.renderCache.reflections + "')");
-    if (o.renderCache.texture && *o.renderCache.texture != "refetch" && *o.renderCache.texture != "reproject")
-        throw InputError("--rc-texture must be refetch or reproject (got '" + *o.renderCache.texture + "')");
-    if (!parseTileBalance(o.tileBalance))
-        throw InputError("--tile-balance must be static, dynamic or claim (got '" + o.tileBalance + "')");
-    if (o.gbuffer != "auto" && o.gbuffer != "gl" && o.gbuffer != "packets")
-        throw InputError("--gbuffer must be auto, gl or packets (got '" + o.gbuffer + "')");
-    if (o.path && *o.path != "static" && *o.path != "orbit" && *o.path != "pan")
-        throw InputError("--path must be static, orbit or pan (got '" + *o.path + "')");
+    if (o.path && std::ranges::find(kPathOptionKinds, *o.path) == kPathOptionKinds.end())
+        throw InputError(std::string("--path ") + cameraPathKindName(*o.path) +
+                         ": a keyframed path comes from a scene file");
 }
 
 RenderJob prepareRenderJob(const RenderJobOptions& options) {
@@ -129,7 +103,7 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     settings.maxDepth = options.maxDepth;
     settings.minWeight = options.minWeight;
     settings.threads = options.threads;
-    if (options.technique) settings.cache.techniqueOverride = parseTechnique(*options.technique);
+    settings.cache.techniqueOverride = options.technique;
     settings.cache.cdctStepOverride = options.cdctStep;
     settings.cache.cdctEpsilonOverride = options.cdctEpsilon;
     settings.cache.cdctMaxDepthOverride = options.cdctMaxDepth;
@@ -139,21 +113,19 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     settings.cache.cubeLevels = options.cacheLevels;
     settings.cache.levelErrorBound = options.cacheLevelError;
     settings.cache.resolutionFromView = options.cacheResFromView;
-    settings.cache.visibleFill = *parseVisibleFill(options.cacheFill);
+    settings.cache.visibleFill = options.cacheFill;
     settings.cache.ideal = options.cacheIdeal;
     settings.cache.skipStoresReachingChanges = !options.cacheStoreChanging;
-    settings.cache.policy = *parseCachePolicyMode(options.cachePolicy);
+    settings.cache.policy = options.cachePolicy;
     settings.stageTimes = options.stageTimes;
-    settings.tileBalance = *parseTileBalance(options.tileBalance);
+    settings.tileBalance = options.tileBalance;
     // Command-line options win over the scene file's, which win over the defaults.
     const SceneRenderDefaults& fromScene = job.scene.render;
-    settings.pipeline = *parsePipelineKind(options.pipeline.value_or(fromScene.pipeline.value_or("ray")));
-    settings.trace.accelerator = *parseAccelerator(options.accel.value_or(fromScene.accel.value_or("embree")));
+    settings.pipeline = options.pipeline.value_or(fromScene.pipeline.value_or(PipelineKind::Ray));
+    settings.trace.accelerator = options.accel.value_or(fromScene.accel.value_or(Accelerator::Embree));
     applyRenderCacheOverrides(fromScene.renderCache, settings.renderCache);
     applyRenderCacheOverrides(options.renderCache, settings.renderCache);
-    settings.gbuffer = options.gbuffer == "gl"        ? GBufferSource::OpenGl
-                       : options.gbuffer == "packets" ? GBufferSource::Packets
-                                                      : GBufferSource::Auto;
+    settings.gbuffer = options.gbuffer;
     // The cubes' budget: the option, else the scene file's, else half the machine's memory.
     const double budgetMiB = options.cacheBudgetMiB.value_or(
         fromScene.cacheBudgetMiB.value_or(static_cast<double>(physicalMemoryBytes()) / 2.0 / (1024.0 * 1024.0)));

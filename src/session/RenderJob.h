@@ -2,11 +2,13 @@
 // What every rendering command needs before its first frame: a loaded scene,
 // the camera path, the render settings and the frame count, from the options
 // those commands share (scene, size, frames, path, threads, depth, caching).
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <ostream>
 #include <string>
 
+#include "cache/CachePolicy.h"
 #include "render/RenderSettings.h"
 #include "scene/CameraPath.h"
 #include "scene/Scene.h"
@@ -14,18 +16,22 @@
 
 namespace raycache {
 
+// The camera paths RenderJobOptions::path may ask for: those made from the
+// scene's own camera (keyframes come from a scene file).
+inline constexpr std::array kPathOptionKinds{CameraPathKind::Static, CameraPathKind::Orbit, CameraPathKind::Pan};
+
 struct RenderJobOptions {
     std::string scene = "room";
     int width = 512;
     int height = 512;
     std::optional<int> frames;        // default: the scene's path length
-    std::optional<std::string> path;  // static | orbit | pan; default: the scene's own path
+    std::optional<CameraPathKind> path;  // one of kPathOptionKinds; default: the scene's own path
     float time = 0.0f;                // seconds of an animated scene the first frame shows
     std::optional<float> fps;         // frames per second of animation time; default: the scene's
     int threads = 0;
     int maxDepth = 6;
     float minWeight = 0.01f;
-    std::optional<std::string> technique;  // none | cct | cdct | cdct-parity; default: each material's own setting
+    std::optional<CacheTechnique> technique;  // default: each material's own setting
     std::optional<float> cdctStep;         // CDCT search parameters; default: each material's own
     std::optional<float> cdctEpsilon;
     std::optional<float> cdctMaxDepth;
@@ -37,16 +43,16 @@ struct RenderJobOptions {
     int cacheLevels = 1;                   // CCT cubes' resolution levels (RayCacheSettings::cubeLevels)
     float cacheLevelError = 0.25f;         // RayCacheSettings::levelErrorBound
     bool cacheResFromView = false;         // RayCacheSettings::resolutionFromView
-    std::string cacheFill = "off";         // RayCacheSettings::visibleFill: off | exact | approximate
+    VisibleFill cacheFill = VisibleFill::Off;  // RayCacheSettings::visibleFill
     std::optional<double> cacheBudgetMiB;  // cubes' memory budget; default: the scene file's, else half the machine's memory
     bool cacheIdeal = false;               // benchmark switch, see RayCacheSettings::ideal
     bool cacheStoreChanging = false;       // RayCacheSettings::skipStoresReachingChanges off
-    std::string cachePolicy = "auto";      // RayCacheSettings::policy: auto | always
+    CachePolicyMode cachePolicy = CachePolicyMode::Auto;  // RayCacheSettings::policy
     bool stageTimes = false;               // time the tile kernel's stages (RenderSettings::stageTimes)
-    std::optional<std::string> pipeline;   // ray | hybrid | render-cache; default: the scene file's, else ray
-    std::optional<std::string> accel;      // embree | grids; default: the scene file's, else embree
-    std::string gbuffer = "auto";          // hybrid G-buffer source: auto | gl | packets
-    std::string tileBalance = "dynamic";   // MPI jobs: static | dynamic | claim tile assignment (docs/cluster.md)
+    std::optional<PipelineKind> pipeline;  // default: the scene file's, else ray
+    std::optional<Accelerator> accel;      // default: the scene file's, else embree
+    GBufferSource gbuffer = GBufferSource::Auto;     // the hybrid pipeline's G-buffer
+    TileBalance tileBalance = TileBalance::Dynamic;  // MPI jobs' tile assignment (docs/cluster.md)
     // The Render Cache's --rc-* options; default: the scene file's, else RenderCacheSettings'.
     RenderCacheOverrides renderCache;
 };
@@ -59,13 +65,6 @@ struct RenderJob {
     int frames = 1;
     std::string cacheBudgetNote;  // what the cubes' memory budget lowered (RayCache::budgetNote), or empty
 };
-
-// The technique a --technique name stands for (none, cct, cdct,
-// cdct-parity), or nothing for an unknown name.
-std::optional<CacheTechnique> parseTechnique(const std::string& name);
-// The visible-surface fill a --cache-fill name stands for (off, exact,
-// approximate), or nothing for an unknown name.
-std::optional<VisibleFill> parseVisibleFill(const std::string& name);
 
 // Puts the values that are set into `settings`.
 void applyRenderCacheOverrides(const RenderCacheOverrides& overrides, RenderCacheSettings& settings);

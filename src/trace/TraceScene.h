@@ -7,9 +7,9 @@
 
 #include "core/Parallel.h"
 #include "core/Ray.h"
+#include "scene/Accelerator.h"
 #include "scene/Camera.h"
 #include "scene/Scene.h"
-#include "trace/Accelerator.h"
 #include "trace/RayPacket.h"
 #include "trace/TraceHit.h"
 #include "trace/grids/GridAccelerator.h"

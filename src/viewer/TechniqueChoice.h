@@ -2,8 +2,6 @@
 // The caching techniques the viewer's combo offers, and what each sets.
 #include <array>
 #include <optional>
-#include <span>
-#include <string_view>
 
 #include "scene/Material.h"
 
@@ -23,13 +21,11 @@ inline constexpr auto kTechniqueChoices = [] {
     return choices;
 }();
 
-// Index of the choice labelled `label`, or of "scene" for an empty label;
-// -1 if there is no such choice.
-inline int techniqueChoiceIndex(std::string_view label) {
-    if (label.empty()) return 0;
+// Index of the choice that sets `technique`: "scene" for none.
+inline int techniqueChoiceIndex(std::optional<CacheTechnique> technique) {
     for (std::size_t i = 0; i < kTechniqueChoices.size(); ++i)
-        if (label == kTechniqueChoices[i].label) return static_cast<int>(i);
-    return -1;
+        if (kTechniqueChoices[i].technique == technique) return static_cast<int>(i);
+    return 0;
 }
 
 }  // namespace raycache

@@ -70,7 +70,7 @@ void drawRenderingSection(const ViewerPanelInput& in, ViewerUiState& state, View
         ImGui::EndCombo();
     }
     if (ImGui::BeginCombo("accelerator", acceleratorName(config.accelerator))) {
-        for (const Accelerator a : {Accelerator::Embree, Accelerator::Grids})
+        for (const Accelerator a : kAccelerators)
             if (ImGui::Selectable(acceleratorName(a), a == config.accelerator)) config.accelerator = a;
         ImGui::EndCombo();
     }

@@ -56,7 +56,7 @@ RenderJobOptions gridJob() {
     options.width = 32;
     options.height = 24;
     options.frames = 3;
-    options.technique = "none";
+    options.technique = CacheTechnique::None;
     return options;
 }
 const std::string kGridArgs = "render --scene grid-4 --width 32 --height 24 --frames 3 --technique none";

@@ -263,6 +263,43 @@ TEST_F(Cli, RenderRejectsBadCachingOptionsWithOneLine) {
     }
 }
 
+// A name an option does not know is refused while the arguments are parsed,
+// by every command that takes the option: one line naming the option and
+// every name it takes, exit 2, nothing written.
+TEST_F(Cli, BadNamesAreOneLineListingTheNames) {
+    const std::string png = (dir_ / "x.png").string();
+    const struct {
+        std::string options, says;
+    } cases[] = {
+        {"--technique foo", "--technique: must be none, cct, cdct or cdct-parity (got 'foo')"},
+        {"--pipeline foo", "--pipeline: must be ray, hybrid or render-cache (got 'foo')"},
+        {"--accel foo", "--accel: must be embree or grids (got 'foo')"},
+        {"--tile-balance foo", "--tile-balance: must be static, dynamic or claim (got 'foo')"},
+        {"--path foo", "--path: must be static, orbit or pan (got 'foo')"},
+        {"--path keyframes", "--path: must be static, orbit or pan (got 'keyframes')"},
+        {"--cache-fill foo", "--cache-fill: must be off, exact or approximate (got 'foo')"},
+        {"--cache-policy foo", "--cache-policy: must be auto or always (got 'foo')"},
+        {"--gbuffer foo", "--gbuffer: must be auto, gl or packets (got 'foo')"},
+        {"--rc-texture foo", "--rc-texture: must be refetch or reproject (got 'foo')"},
+        {"--rc-reflections foo", "--rc-reflections: must be reshade or reproject (got 'foo')"},
+        {"--technique CCT", "--technique: must be none, cct, cdct or cdct-parity (got 'CCT')"},
+        {"--pipeline 1", "--pipeline: must be ray, hybrid or render-cache (got '1')"},
+        {"--rc-texture 1", "--rc-texture: must be refetch or reproject (got '1')"},
+    };
+    for (const auto& c : cases) {
+        for (const std::string& command :
+             {"render --scene behind-1 --out " + png, "cache-view --scene behind-1 --object main --out " + png,
+              std::string("view --scene behind-1 --frames 1")}) {
+            const std::string args = command + " " + c.options;
+            const RunResult r = runRaycache(args, dir_);
+            EXPECT_EQ(r.exitCode, 2) << args;
+            EXPECT_EQ(lineCount(r.err), 1) << args << "\n" << r.err;
+            EXPECT_EQ(r.err.rfind("error: " + c.says, 0), 0u) << args << "\n" << r.err;
+            EXPECT_TRUE(outputs().empty()) << args;
+        }
+    }
+}
+
 TEST_F(Cli, RenderNotesWhatTheCacheBudgetLowered) {
     const RunResult r = runRaycache("render --scene grid-8 --width 16 --height 16 --frames 1 --cache-budget 1", dir_);
     ASSERT_EQ(r.exitCode, 0) << r.err;

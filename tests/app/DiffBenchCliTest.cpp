@@ -125,6 +125,8 @@ TEST_F(DiffBenchCli, BenchListsAndRejectsBadOptionsBeforeRunning) {
         EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << args << "\n" << r.err;
         EXPECT_FALSE(fs::exists(dir_ / "results")) << args;
     }
+    const RunResult policy = runRaycacheStderrBeside("bench fill-rate --cache-policy sometimes" + out, dir_);
+    EXPECT_EQ(policy.err.rfind("error: --cache-policy: must be auto or always (got 'sometimes')", 0), 0u) << policy.err;
 }
 
 TEST_F(DiffBenchCli, BenchRunsOneExperimentWithPlainProgressLines) {

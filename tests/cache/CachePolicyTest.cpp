@@ -41,11 +41,12 @@ CachePolicyCosts losingCosts() { return {1e6, 1e6, 1e6}; }
 
 }  // namespace
 
-TEST(CachePolicy, ParsesItsModes) {
-    EXPECT_EQ(parseCachePolicyMode("auto"), CachePolicyMode::Auto);
-    EXPECT_EQ(parseCachePolicyMode("always"), CachePolicyMode::Always);
-    EXPECT_FALSE(parseCachePolicyMode("sometimes").has_value());
+// The names --cache-policy takes, in the order its message lists them.
+TEST(CachePolicy, NamesItsModes) {
+    ASSERT_EQ(kCachePolicyModes.size(), 2u);
+    EXPECT_EQ(kCachePolicyModes[0], CachePolicyMode::Auto);
     EXPECT_STREQ(cachePolicyModeName(CachePolicyMode::Auto), "auto");
+    EXPECT_STREQ(cachePolicyModeName(CachePolicyMode::Always), "always");
 }
 
 TEST(CachePolicy, FirstFrameFillsAndIsNotJudged) {

@@ -1,7 +1,8 @@
 // libFuzzer target: the `render` command's library function (runRenderCommand)
 // on fuzzed option values, as main() would pass them after parsing argv. The
 // input is decoded field by field (FuzzedDataProvider): out-of-range numbers,
-// NaNs, unknown names and odd frame-name patterns all reach the validation.
+// NaNs, unknown names and odd frame-name patterns all reach the validation
+// (options held as enums get one of their values: main() has refused other names).
 // Sizes, frames (at most 3, never the scene's own count), threads and cache
 // resolutions are kept small so an input costs milliseconds; --out and
 // --stats always name files inside the scratch directory (no '/' can get
@@ -38,6 +39,12 @@ std::string pickName(FuzzedDataProvider& fdp, std::initializer_list<const char*>
     return fileNameChars(fdp.ConsumeRandomLengthString(12), "abcdefghijklmnopqrstuvwxyz-0123456789");
 }
 
+// One of `values`.
+template <class T, std::size_t N>
+T pickValue(FuzzedDataProvider& fdp, const std::array<T, N>& values) {
+    return values[fdp.ConsumeIntegralInRange<std::size_t>(0, N - 1)];
+}
+
 std::optional<float> maybeFloat(FuzzedDataProvider& fdp) {
     if (!fdp.ConsumeBool()) return std::nullopt;
     return fdp.ConsumeFloatingPoint<float>();
@@ -67,11 +74,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
     // shorter. The flag is still drawn, so the other bytes of every input
     // keep their meaning; without it, 3 frames.
     job.frames = fdp.ConsumeBool() ? fdp.ConsumeIntegralInRange(-1, 3) : 3;
-    if (fdp.ConsumeBool()) job.path = pickName(fdp, {"static", "orbit", "pan"});
+    if (fdp.ConsumeBool()) job.path = pickValue(fdp, raycache::kCameraPathKinds);  // keyframes: refused
     job.threads = fdp.ConsumeIntegralInRange(-1, 2);
     job.maxDepth = fdp.ConsumeIntegralInRange(-1, 8);
     job.minWeight = fdp.ConsumeFloatingPoint<float>();
-    if (fdp.ConsumeBool()) job.technique = pickName(fdp, {"none", "cct", "cdct", "cdct-parity"});
+    if (fdp.ConsumeBool()) job.technique = pickValue(fdp, raycache::kCacheTechniques).technique;
     job.cdctStep = maybeFloat(fdp);
     job.cdctEpsilon = maybeFloat(fdp);
     job.cdctMaxDepth = maybeFloat(fdp);
@@ -81,11 +88,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
     // 512² CDCT faces under the sanitizers and run past the 30 s timeout.
     job.cacheResolution = fdp.ConsumeIntegralInRange(-1, 64);
     job.cacheIdeal = fdp.ConsumeBool();
-    job.pipeline = pickName(fdp, {"ray", "hybrid"});
-    // No "gl" or "auto": making an OpenGL context per input would cost far more
+    job.pipeline = pickValue(fdp, std::array{raycache::PipelineKind::Ray, raycache::PipelineKind::Hybrid});
+    // Never gl or auto: making an OpenGL context per input would cost far more
     // than the parsing under test, and driver leaks would drown real findings.
-    job.gbuffer = pickName(fdp, {"packets"});
-    if (job.gbuffer == "gl" || job.gbuffer == "auto") job.gbuffer = "packets";
+    job.gbuffer = raycache::GBufferSource::Packets;
     if (fdp.ConsumeBool()) {
         const std::string ext = pickName(fdp, {".png", ".exr", ".jpg", ""});
         const std::string stem = fileNameChars(fdp.ConsumeRandomLengthString(10), "abcdefghij0123456789%d_.");

@@ -76,15 +76,10 @@ TEST(RenderCacheSettings, ValuesOutOfRangeNameTheirOption) {
     }
 }
 
+// The names the scene file and --rc-reflections take (and list, reshade first).
 TEST(RenderCacheSettings, ReflectionModesByName) {
-    ReprojectedReflections mode = ReprojectedReflections::Reproject;
-    EXPECT_TRUE(parseReprojectedReflections("reshade", mode));
-    EXPECT_EQ(mode, ReprojectedReflections::Reshade);
-    EXPECT_STREQ(reprojectedReflectionsName(mode), "reshade");
-    EXPECT_TRUE(parseReprojectedReflections("reproject", mode));
-    EXPECT_EQ(mode, ReprojectedReflections::Reproject);
-    EXPECT_STREQ(reprojectedReflectionsName(mode), "reproject");
-    EXPECT_FALSE(parseReprojectedReflections("Reshade", mode));
-    EXPECT_FALSE(parseReprojectedReflections("", mode));
-    EXPECT_EQ(mode, ReprojectedReflections::Reproject) << "unchanged by a bad name";
+    ASSERT_EQ(kReprojectedReflections.size(), 2u);
+    EXPECT_STREQ(reprojectedReflectionsName(kReprojectedReflections[0]), "reshade");
+    EXPECT_STREQ(reprojectedReflectionsName(kReprojectedReflections[1]), "reproject");
+    EXPECT_EQ(kReprojectedReflections[0], ReprojectedReflections::Reshade);
 }

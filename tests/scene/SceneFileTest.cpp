@@ -167,13 +167,13 @@ TEST_F(SceneFileTest, RenderCacheKeysAreReadAndChecked) {
     const Scene scene = load(R"({"pipeline": "render-cache", "renderCache": {"budget": 0.1, "alpha": 0.5,
         "maxAge": 8, "predict": 0.3, "targetFrameMs": 20, "reflections": "reproject"}, "objects": []})");
     ASSERT_TRUE(scene.render.pipeline);
-    EXPECT_EQ(*scene.render.pipeline, "render-cache");
+    EXPECT_EQ(*scene.render.pipeline, PipelineKind::RenderCache);
     EXPECT_EQ(scene.render.renderCache.budget, 0.1f);
     EXPECT_EQ(scene.render.renderCache.alpha, 0.5f);
     EXPECT_EQ(scene.render.renderCache.maxAge, 8);
     EXPECT_EQ(scene.render.renderCache.predictShare, 0.3f);
     EXPECT_EQ(scene.render.renderCache.targetFrameMs, 20.0f);
-    EXPECT_EQ(scene.render.renderCache.reflections, std::optional<std::string>("reproject"));
+    EXPECT_EQ(scene.render.renderCache.reflections, ReprojectedReflections::Reproject);
     expectError("{\"pipeline\": @\"raster\", \"objects\": []}", "/pipeline",
                 "must be one of ray, hybrid, render-cache (got 'raster')");
     expectError("{\"renderCache\": {\"budget\": @0}, \"objects\": []}", "/renderCache/budget", "(0, 1]");
@@ -183,7 +183,7 @@ TEST_F(SceneFileTest, RenderCacheKeysAreReadAndChecked) {
 
 TEST_F(SceneFileTest, AccelKeyIsReadAndChecked) {
     const Scene scene = load(R"({"accel": "grids", "objects": []})");
-    EXPECT_EQ(scene.render.accel, std::optional<std::string>("grids"));
+    EXPECT_EQ(scene.render.accel, Accelerator::Grids);
     EXPECT_FALSE(load(R"({"objects": []})").render.accel);
     expectError("{\"objects\": [],\n \"accel\": @\"bvh\"}", "/accel", "must be one of embree, grids (got 'bvh')");
 }

@@ -83,7 +83,7 @@ TEST(RenderWorker, ScriptedRunShowsEveryPathFrameAsTheOfflineRendererDoes) {
     RenderRequest request;
     request.width = settings.width;
     request.height = settings.height;
-    request.config.technique = techniqueChoiceIndex("cct");
+    request.config.technique = techniqueChoiceIndex(CacheTechnique::Cct);
     request.inspectObject = 1;  // the mirror ball
     request.inspectorFaceSize = 16;
     worker.submit(request);
@@ -123,7 +123,7 @@ TEST(RenderWorker, ScriptedRunOfAnAnimatedSceneShowsEachFramesMomentAsTheOffline
     RenderRequest request;
     request.width = settings.width;
     request.height = settings.height;
-    request.config.technique = techniqueChoiceIndex("cct");
+    request.config.technique = techniqueChoiceIndex(CacheTechnique::Cct);
     request.time = 7.0f;  // ignored by a scripted run: the path frame sets the moment
     worker.submit(request);
     int next = 0;
@@ -149,7 +149,7 @@ TEST(RenderWorker, DifferenceToTheUncachedImageIsZeroWithoutCaching) {
     request.camera = scene.camera;
     request.width = 48;
     request.height = 32;
-    request.config.technique = techniqueChoiceIndex("none");
+    request.config.technique = techniqueChoiceIndex(CacheTechnique::None);
     request.difference = true;
     worker.submit(request);
     takeFrames(handoff, worker, [&](const DisplayFrame& f) {
@@ -173,11 +173,11 @@ TEST(RenderWorker, RejectedSettingsKeepTheLastGoodOnesAndSayWhy) {
     request.camera = scene.camera;
     request.width = 32;
     request.height = 32;
-    request.config.technique = techniqueChoiceIndex("cct");
+    request.config.technique = techniqueChoiceIndex(CacheTechnique::Cct);
     request.continuous = false;
     worker.submit(request);
     takeFrames(handoff, worker, [&](const DisplayFrame& f) { return f.configError.empty() && f.stats.cache; });
-    request.config.technique = techniqueChoiceIndex("cdct");
+    request.config.technique = techniqueChoiceIndex(CacheTechnique::Cdct);
     request.config.cdctStep = 0.1f;
     request.config.cdctEpsilon = 0.2f;  // not below the step
     worker.submit(request);
@@ -204,7 +204,7 @@ TEST(RenderWorker, RenderCacheFramesAreTheOfflineRenderCachesFrames) {
     RenderRequest request;
     request.width = settings.width;
     request.height = settings.height;
-    request.config.technique = techniqueChoiceIndex("cct");
+    request.config.technique = techniqueChoiceIndex(CacheTechnique::Cct);
     request.config.pipeline = kRenderCacheChoice;
     worker.submit(request);
     int next = 0;
@@ -239,7 +239,7 @@ TEST(RenderWorker, DifferenceViewIgnoresTheRenderCacheOverlay) {
         RenderRequest request;
         request.width = 48;
         request.height = 32;
-        request.config.technique = techniqueChoiceIndex("cct");
+        request.config.technique = techniqueChoiceIndex(CacheTechnique::Cct);
         request.config.pipeline = kRenderCacheChoice;
         request.renderCacheOverlay = static_cast<int>(overlay);
         request.difference = true;
@@ -287,7 +287,7 @@ TEST(RenderWorker, CubeLevelOverlayIsTheOfflineRecordPaintedOverTheOfflineFrame)
     RenderRequest request;
     request.width = settings.width;
     request.height = settings.height;
-    request.config.technique = techniqueChoiceIndex("cct");
+    request.config.technique = techniqueChoiceIndex(CacheTechnique::Cct);
     request.cacheLevels = true;
     worker.submit(request);
     int next = 0;

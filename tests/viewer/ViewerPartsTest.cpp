@@ -160,13 +160,16 @@ TEST(FrameHandoff, LosslessPublishWaitsUntilTakenAndCloseReleasesIt) {
     EXPECT_FALSE(result);
 }
 
-TEST(TechniqueChoice, LabelsMapToTechniques) {
-    EXPECT_EQ(techniqueChoiceIndex(""), 0);
+TEST(TechniqueChoice, EveryTechniqueHasAChoiceLabelledWithItsName) {
+    EXPECT_EQ(techniqueChoiceIndex(std::nullopt), 0);
     EXPECT_FALSE(kTechniqueChoices[0].technique.has_value());
-    EXPECT_EQ(kTechniqueChoices[static_cast<std::size_t>(techniqueChoiceIndex("cct"))].technique, CacheTechnique::Cct);
-    EXPECT_EQ(kTechniqueChoices[static_cast<std::size_t>(techniqueChoiceIndex("cdct"))].technique, CacheTechnique::Cdct);
-    EXPECT_EQ(kTechniqueChoices[static_cast<std::size_t>(techniqueChoiceIndex("none"))].technique, CacheTechnique::None);
-    EXPECT_EQ(techniqueChoiceIndex("bogus"), -1);
+    EXPECT_STREQ(kTechniqueChoices[0].label, "scene");
+    for (const CacheTechniqueInfo& info : kCacheTechniques) {
+        const TechniqueChoice& choice =
+            kTechniqueChoices[static_cast<std::size_t>(techniqueChoiceIndex(info.technique))];
+        EXPECT_EQ(choice.technique, info.technique);
+        EXPECT_EQ(choice.label, info.name);
+    }
 }
 
 TEST(ViewerRenderConfig, AppliesChoicesAndRejectsInvalidOnes) {
@@ -174,7 +177,7 @@ TEST(ViewerRenderConfig, AppliesChoicesAndRejectsInvalidOnes) {
     RenderSettings base;
     base.width = 77;
     ViewerRenderConfig config;
-    config.technique = techniqueChoiceIndex("cdct");
+    config.technique = techniqueChoiceIndex(CacheTechnique::Cdct);
     config.cacheResolution = 64;
     config.cdctStep = 0.2f;
     config.cdctEpsilon = 0.02f;
