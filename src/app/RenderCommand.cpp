@@ -42,13 +42,14 @@ nlohmann::json cacheJson(const FrameCacheStats& c) {
                            {"policy", {{"state", cubeStateName(o.state)},
                                        {"next", cubeStateName(o.next)},
                                        {"bypassed_rays", o.bypassedRays}, {"stores_queued", o.queuedStores},
+                                       {"region_tests", o.regionTests},
                                        {"frames_caching", o.framesCaching}, {"frames_sampling", o.framesSampling},
                                        {"frames_bypassed", o.framesBypassed},
                                        {"mean_tree_rays", o.meanTree}, {"saving_rays", o.policySaving},
                                        {"cost_rays", o.policyCost}}}});
     return {{"lookups", c.lookups()}, {"hits", c.hits()}, {"misses", c.misses()}, {"rejected", c.rejected()},
             {"own_surface", c.ownSurface()}, {"view_dependent", c.viewDependent()}, {"stores", c.stores()}, {"stores_skipped", c.skippedStores()}, {"prefilled_texels", c.prefilledTexels()},
-            {"bypassed_cubes", c.bypassedCubes()}, {"sampling_cubes", c.samplingCubes()}, {"bypassed_rays", c.bypassedRays()},
+            {"bypassed_cubes", c.bypassedCubes()}, {"sampling_cubes", c.samplingCubes()}, {"bypassed_rays", c.bypassedRays()}, {"traced_as_uncached", c.tracedAsUncached},
             {"invalid_percent_before", c.invalidPercentBefore()}, {"bytes", c.bytes()}, {"objects", objects}};
 }
 

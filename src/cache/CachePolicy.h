@@ -48,6 +48,22 @@ struct CachePolicyCosts {
     double lookup = 0.52;     // one lookup: address, validity, texel read
     double store = 0.94;      // one queued store: queue, merge, dependency record
     double cdctStep = 2.30;   // one texel a CDCT search sampled
+    // What tracking dependencies adds in an animated scene
+    // (RayCache::tracksDependencies), calibrated on orbit: a lookup's ray
+    // trees bounded through the waves; a store's tree record queued and
+    // merged into its block; and one test of a block's tree bounds against
+    // one region a change reached (RayCache::sceneChanged), which the cube's
+    // texels cost every frame of a change whether they are read or not.
+    double trackedLookup = 0.25;
+    double trackedStore = 2.10;
+    double regionTest = 0.28;
+    // The costs of a cube whose dependencies are tracked.
+    CachePolicyCosts tracked() const {
+        CachePolicyCosts c = *this;
+        c.lookup += trackedLookup;
+        c.store += trackedStore;
+        return c;
+    }
     // A traced tree is at least its own ray: the saving of one hit when a
     // cube has never traced one (no evidence yet) is not assumed larger.
     static constexpr double kMinimumTree = 1.0;
@@ -61,6 +77,10 @@ struct CubeFrameCounts {
     std::uint64_t tracedTrees = 0;   // trees traced for misses whose size was counted
     std::uint64_t treeRays = 0;      // rays those trees traced, in all
     std::uint64_t cdctSteps = 0;
+    // Block-against-region tests the scene change before the frame made for
+    // the cube's texels; a sampling cube's scaled to the sample's share of
+    // full caching (RayCache::endFrame).
+    std::uint64_t regionTests = 0;
     // Of the hits of a sampling frame, those on texels that recorded the
     // tree they hold, and the rays of those trees: the mean tree a hit
     // spares, measured on the hits themselves and kept for the frames that
@@ -82,6 +102,8 @@ const char* cubeStateName(CubeState state);
 class CubePolicy {
 public:
     // Frames bypassed before the first probe, and the most between probes.
+    // A sample turns full caching on only if its net gain repays, within
+    // kFirstBackoff frames, the first full frame's lookups and stores.
     // A probe costs two sampled frames (on grid-32's orbit at 384², +1.3
     // and +1.8 ms over uncached frames of 17.7 and 14.8 ms) or one full
     // frame for a CDCT cube.
@@ -89,6 +111,7 @@ public:
     static constexpr int kLongestBackoff = 64;
     // The sample: 1 run of texels in 2^kSampleBits.
     static constexpr int kSampleBits = 4;
+    static constexpr double kSampledShare = 1.0 / (1 << kSampleBits);
 
     CubePolicy() = default;
     // `samplesTexels`: whether the cube's evidence may come from a sample of

@@ -67,6 +67,9 @@ struct ObjectCacheStats {
     std::uint64_t framesSampling = 0;
     std::uint64_t framesBypassed = 0;
     std::uint64_t queuedStores = 0;     // stores asked for this frame (before merge)
+    // Animated scenes: tests of the cube's blocks against the regions the
+    // change before this frame reached (CubeFrameCounts::regionTests).
+    std::uint64_t regionTests = 0;
     double meanTree = 0.0;              // rays of the traced tree a hit replaces (the last frame that traced one)
     // The policy's model of this frame, in traced rays: what the hits spared
     // and what the lookups, stores and searches cost (0 when bypassed).
@@ -76,6 +79,10 @@ struct ObjectCacheStats {
 
 struct FrameCacheStats {
     std::vector<ObjectCacheStats> objects;
+    // Every cube stood aside during the frame, so it was rendered exactly as
+    // without a cache (render/CacheFrame.h): no lookups, no stores, and the
+    // rays leaving the cubes' objects were not counted (bypassedRays 0).
+    bool tracedAsUncached = false;
 
     std::uint64_t lookups() const { return sum(&ObjectCacheStats::lookups); }
     std::uint64_t hits() const { return sum(&ObjectCacheStats::hits); }

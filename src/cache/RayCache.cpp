@@ -164,7 +164,8 @@ RayCache::RayCache(const Scene& scene, const RayCacheSettings& settings)
         const bool mayStepAside = !settings.ideal && !settings.invalidationOracle;
         // A CCT lookup reads the one texel its store would write, so a sample
         // of texels shows what full caching would hit; a CDCT search does not.
-        e.policy = CubePolicy(mayStepAside ? settings.policy : CachePolicyMode::Always, settings.policyCosts,
+        e.policy = CubePolicy(mayStepAside ? settings.policy : CachePolicyMode::Always,
+                              tracksDependencies_ ? settings.policyCosts.tracked() : settings.policyCosts,
                               technique == CacheTechnique::Cct);
         if (mayStepAside && settings.policy == CachePolicyMode::Auto && technique == CacheTechnique::Cct)
             e.treeRays.assign(e.cube.texelCount(), 0);

@@ -4,6 +4,7 @@
 #include "cache/RayCache.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <variant>
 
@@ -212,26 +213,33 @@ std::int64_t RayCache::sceneChanged(const Scene& posed, const SceneChanges& chan
         const bool cubeTranslated = translated[static_cast<std::size_t>(e.objectId)] != 0;
         const Vec3 movedBy = cubeMovedBy[static_cast<std::size_t>(&e - cubes_.data())];
         // Values of `reached`: 0 kept, 1 dropped, 2 kept with its rays moved along.
-        const auto decide = [&](std::size_t begin, std::size_t end) {
+        // `tests`: blocks tested times the regions (or boxes) each was tested
+        // against, what the cache policy charges the cube for (regionTests).
+        constexpr int kChunks = 16;
+        std::array<std::uint64_t, kChunks> tests{};
+        const auto decide = [&](std::size_t begin, std::size_t end, std::uint64_t& tested) {
             for (std::size_t b = begin; b < end; ++b) {
                 const RayTreeBounds& bounds = e.blocks[b];
                 if (bounds.empty()) continue;  // no valid texel
                 if (cubeTranslated && escapesOnly(bounds)) {
+                    tested += std::max<std::size_t>(wholeBounds_.size(), 1);
                     reached[b] = stillEscapes(bounds, movedBy, e.objectId) ? 2 : 1;
                     continue;
                 }
+                tested += std::max<std::size_t>(changedRegions.size(), 1);
                 reached[b] = reaches(bounds, changedRegions, lightChanged, lights_) ? 1 : 0;
             }
         };
-        constexpr int kChunks = 16;
         const std::size_t perChunk = (e.blocks.size() + kChunks - 1) / kChunks;
         if (runPartitions)
             runPartitions(kChunks, [&](int chunk) {
                 const std::size_t begin = static_cast<std::size_t>(chunk) * perChunk;
-                decide(std::min(begin, e.blocks.size()), std::min(begin + perChunk, e.blocks.size()));
+                decide(std::min(begin, e.blocks.size()), std::min(begin + perChunk, e.blocks.size()),
+                       tests[static_cast<std::size_t>(chunk)]);
             });
         else
-            decide(0, e.blocks.size());
+            decide(0, e.blocks.size(), tests[0]);
+        for (const std::uint64_t t : tests) e.regionTests += t;
         for (std::size_t b = 0; b < e.blocks.size(); ++b) {
             if (reached[b] == 1) dropped += dropBlock(e, static_cast<int>(b));
             if (reached[b] == 2) {

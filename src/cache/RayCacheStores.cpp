@@ -223,12 +223,30 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
         s.state = e.policy.state();
         s.bypassedRays = all.bypassed;
         s.queuedStores = all.queuedStores;
-        const CubePolicy::Judgement judged =
-            e.policy.afterFrame({all.lookups, all.hits, all.queuedStores, all.tracedTrees, all.treeRays, all.cdctSteps,
-                                 all.recordedHits, all.recordedHitRays});
+        s.regionTests = e.regionTests;
+        // A sample's texels spread over more blocks than a sixteenth of them:
+        // its tests, scaled to the sample's share of full caching's.
+        const std::uint64_t judgedRegionTests =
+            e.policy.sampling() ? static_cast<std::uint64_t>(std::llround(static_cast<double>(e.regionTests) *
+                                                                          sampleRegionTestScale(e)))
+                                : e.regionTests;
+        e.regionTests = 0;
+        const CubePolicy::Judgement judged = e.policy.afterFrame({.lookups = all.lookups,
+                                                                  .hits = all.hits,
+                                                                  .queuedStores = all.queuedStores,
+                                                                  .tracedTrees = all.tracedTrees,
+                                                                  .treeRays = all.treeRays,
+                                                                  .cdctSteps = all.cdctSteps,
+                                                                  .regionTests = judgedRegionTests,
+                                                                  .recordedHits = all.recordedHits,
+                                                                  .recordedHitRays = all.recordedHitRays});
         s.policySaving = judged.saving;
         s.policyCost = judged.cost;
         s.next = e.policy.state();
+        // In an animated scene a cube standing aside empties itself: its
+        // texels, unread until a probe refreshes them anyway, would cost the
+        // region tests of every change (docs/caching.md, "Animated scenes").
+        if (tracksDependencies_ && s.next == CubeState::Bypassed && s.state != CubeState::Bypassed) clearEntry(e);
         s.framesCaching = e.policy.framesCaching();
         s.framesSampling = e.policy.framesSampling();
         s.framesBypassed = e.policy.framesBypassed();
@@ -256,6 +274,27 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
         w.batches_.clear();
     }
     return stats;
+}
+
+double RayCache::sampleRegionTestScale(Entry& e) const {
+    const int n = e.cube.size();
+    if (e.blocks.empty()) return 1.0;
+    if (e.sampleScaleSize != n) {
+        // Texels in the sample, and blocks holding at least one of them.
+        std::vector<unsigned char> blockSampled(e.blocks.size(), 0);
+        std::uint64_t sampledTexels = 0;
+        for (int t = 0; t < static_cast<int>(e.cube.texelCount()); ++t)
+            if (CubePolicy::sampledTexel(t)) {
+                ++sampledTexels;
+                blockSampled[static_cast<std::size_t>(blockOf(e, t))] = 1;
+            }
+        const auto sampledBlocks = static_cast<double>(std::count(blockSampled.begin(), blockSampled.end(), 1));
+        const double texelShare = static_cast<double>(sampledTexels) / static_cast<double>(e.cube.texelCount());
+        const double blockShare = sampledBlocks / static_cast<double>(e.blocks.size());
+        e.sampleScale = blockShare > 0.0 ? texelShare / blockShare : 1.0;
+        e.sampleScaleSize = n;
+    }
+    return e.sampleScale;
 }
 
 void RayCache::resizeEntry(Entry& e, int size) {

@@ -12,13 +12,16 @@ bool distributed(const ProcessGroup* group) { return group && group->size() > 1;
 
 }  // namespace
 
-CacheFrame::CacheFrame(RayCache* cache, int workerCount, const ProcessGroup* group, StoreExchangeBuffers* buffers)
+CacheFrame::CacheFrame(RayCache* cache, int workerCount, const ProcessGroup* group, StoreExchangeBuffers* buffers,
+                       bool recordsLevels)
     : cache_(cache && !cache->empty() ? cache : nullptr), group_(group), buffers_(buffers), localWorkers_(workerCount) {
     if (!cache_) return;
     if (distributed(group_) && !buffers_) throw std::logic_error("CacheFrame: a cluster frame needs exchange buffers");
     const int remote = distributed(group_) ? group_->size() - 1 : 0;
     workers_ = cache_->reusableWorkers(workerCount + remote);
     cache_->beginFrame(workers_);
+    // Every process holds the same policy states, so all decide alike.
+    asks_ = recordsLevels || cache_->anyCubeAsks();
 }
 
 CacheFrame::~CacheFrame() {
@@ -45,12 +48,14 @@ std::optional<FrameCacheStats> CacheFrame::finish(const TileKernel& kernel, cons
         prefillCaches(*cache_, workers_, kernel, parallel, distributed(group_) ? group_ : nullptr);
     rays += prefill.rays;
     prefillBytes_ = prefill.exchangedBytes;
-    return cache_->endFrame(
+    FrameCacheStats stats = cache_->endFrame(
         workers_,
         [&](int count, const std::function<void(int)>& body) {
             parallel.forEachIndex(count, [&](int part, int) { body(part); });
         },
         parallel.threadCount());
+    stats.tracedAsUncached = !asks_;  // (a frame recording levels counts its bypassed rays)
+    return stats;
 }
 
 }  // namespace raycache

@@ -33,16 +33,25 @@ public:
     // `cache` null or empty: an inactive frame, whose workers are null.
     // `group` (may be null: one process) and `buffers` (needed only with a
     // group of several processes) must outlive the frame.
+    // `recordsLevels`: the frame records what the cache did per pixel
+    // (render/CacheLevelImage.h), which must see the rays leaving caching
+    // objects even when every cube stands aside: its workers are kept.
     CacheFrame(RayCache* cache, int workerCount, const ProcessGroup* group = nullptr,
-               StoreExchangeBuffers* buffers = nullptr);
+               StoreExchangeBuffers* buffers = nullptr, bool recordsLevels = false);
     // A frame left unfinished (an exception in the middle) is ended without
     // its statistics, so the cache is ready for the next frame.
     ~CacheFrame();
     CacheFrame(const CacheFrame&) = delete;
     CacheFrame& operator=(const CacheFrame&) = delete;
 
-    // Worker `index`'s view of the frame, null when the frame is inactive.
-    CacheWorker* worker(int index) { return cache_ ? &workers_[static_cast<std::size_t>(index)] : nullptr; }
+    // Worker `index`'s view of the frame, null when the frame is inactive or
+    // when every cube stands aside (RayCache::anyCubeAsks; unless it records
+    // levels): the kernel then
+    // renders the frame exactly as without a cache. Its other paths (lookups
+    // in lanes, dependency tracking in animated scenes, bypass counting) cost
+    // a frame 2-30 % (docs/log/2026-11-27-policy-that-never-costs.md) for
+    // rays no cube would look at.
+    CacheWorker* worker(int index) { return asks_ ? &workers_[static_cast<std::size_t>(index)] : nullptr; }
 
     // Exchanges the queued stores with the other processes (if any),
     // pre-fills the cubes the frame asked for on any process (adding the
@@ -63,6 +72,7 @@ private:
     const ProcessGroup* group_;
     StoreExchangeBuffers* buffers_;
     int localWorkers_ = 0;
+    bool asks_ = false;  // some cube looks up this frame
     // The local workers first, then one per other process, filled by the exchange.
     std::span<CacheWorker> workers_;
     std::size_t exchangedBytes_ = 0;

@@ -35,7 +35,7 @@ void DeferredShading::shade(const Camera& camera, const GBufferView& gbuffer, Im
     std::vector<TileScratch>& scratch = scratch_;
     scratch.resize(static_cast<std::size_t>(parallel_.threadCount()));
     for (TileScratch& s : scratch) s.beginFrame();
-    CacheFrame cacheFrame(cache_, parallel_.threadCount());
+    CacheFrame cacheFrame(cache_, parallel_.threadCount(), nullptr, nullptr, levels != nullptr);
     parallel_.forEachTile(width, height, settings_.tileSize, [&](const TileRange& tile, int worker) {
         kernel_.renderGBufferTile(cameraRays, gbuffer, tile, tileKey(tile, width, settings_.tileSize),
                                   scratch[static_cast<std::size_t>(worker)], cacheFrame.worker(worker), film, levels);

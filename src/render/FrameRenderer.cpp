@@ -60,7 +60,7 @@ FrameStats FrameRenderer::render(const Camera& camera, Image& film, CacheLevelIm
     std::vector<TileScratch>& scratch = scratch_;
     scratch.resize(static_cast<std::size_t>(parallel_.threadCount()));
     for (TileScratch& s : scratch) s.beginFrame();
-    CacheFrame cacheFrame(cache_, parallel_.threadCount());
+    CacheFrame cacheFrame(cache_, parallel_.threadCount(), nullptr, nullptr, levels != nullptr);
     parallel_.forEachTile(settings_.width, settings_.height, settings_.tileSize, [&](const TileRange& tile, int worker) {
         kernel_.renderCameraTile(cameraRays, tile, tileKey(tile, settings_.width, settings_.tileSize),
                                  scratch[static_cast<std::size_t>(worker)], cacheFrame.worker(worker), film,

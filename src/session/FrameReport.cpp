@@ -33,7 +33,8 @@ std::string formatFrameLine(const FrameResult& r, int frameCount) {
         if (sampling) line << ", sampling " << sampling << "/" << c->objects.size();
         // The cache policy stepped these cubes aside or had them sample: the
         // rays they did not look up were traced.
-        if (aside || sampling) line << " (" << c->bypassedRays() << " rays traced)";
+        if (c->tracedAsUncached) line << " (rendered as uncached)";
+        else if (aside || sampling) line << " (" << c->bypassedRays() << " rays traced)";
         {
             // The cache policy's model of the frame, in traced rays.
             double saving = 0.0, cost = 0.0;

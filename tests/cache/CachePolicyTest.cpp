@@ -196,6 +196,67 @@ TEST(CachePolicy, ACctCubeSamplesFirstAndCachesFullyOnlyWhenTheSamplePays) {
     EXPECT_EQ(p.framesCaching(), 2u);
 }
 
+// A sample that pays only a little cannot repay the first full frame (every
+// ray looked up, the misses of the unsampled texels stored): full caching
+// would lose along the way, so the cube stands aside. One that pays well
+// turns full caching on.
+TEST(CachePolicy, ASampleMustRepayTheFillOfFullCachingWithinTheFirstBackoff) {
+    const CachePolicyCosts costs{0.5, 1.0, 0.0};
+    // 100 lookups, all hits of 1-ray trees: 100 saved, 50 spent, 50 gained;
+    // the fill would cost 100 x (0.5 + 15/16 x 1.0) = 143.75, repaid in 2.9
+    // frames, within 8.
+    CubePolicy pays(CachePolicyMode::Auto, costs, true);
+    pays.afterFrame(policyFrame(100, 0, 1));
+    EXPECT_TRUE(pays.afterFrame(policyFrame(100, 100, 1)).judged);
+    EXPECT_EQ(pays.state(), CubeState::Caching);
+    // 100 lookups, 52 hits of trees of 1 ray and 48 misses of trees of 1 ray:
+    // 52 saved, 50 + 48 stores = 98 spent: a loss already.
+    CubePolicy loses(CachePolicyMode::Auto, costs, true);
+    loses.afterFrame(policyFrame(100, 0, 1));
+    loses.afterFrame(policyFrame(100, 52, 1));
+    EXPECT_TRUE(loses.bypassed());
+    // 100 lookups, all hits, no stores, hits valued at 0.6 rays: 60 saved, 50
+    // spent, 10 gained; 8 frames of it (80) do not repay the fill (143.75).
+    CubePolicy marginal(CachePolicyMode::Auto, costs, true);
+    marginal.afterFrame(policyFrame(100, 0, 1));
+    CubeFrameCounts small = policyFrame(100, 100, 1);
+    small.recordedHits = 10;
+    small.recordedHitRays = 6;  // a recorded hit spares 0.6 rays
+    const auto j = marginal.afterFrame(small);
+    EXPECT_TRUE(j.judged);
+    EXPECT_GT(j.saving, j.cost);
+    EXPECT_TRUE(marginal.bypassed());
+    // A cube that caches in full is judged on the frame alone: the fill is behind it.
+    CubePolicy full(CachePolicyMode::Auto, costs, false);
+    full.afterFrame(policyFrame(100, 0, 1));
+    CubeFrameCounts same = policyFrame(100, 100, 1);
+    same.recordedHits = 10;
+    same.recordedHitRays = 6;
+    full.afterFrame(same);
+    EXPECT_EQ(full.state(), CubeState::Caching);
+}
+
+// In an animated scene the region tests of a cube's blocks count against it,
+// and a cube whose dependencies are tracked pays more per lookup and store.
+TEST(CachePolicy, TrackedCubesPayForLookupsStoresAndRegionTests) {
+    const CachePolicyCosts costs{0.5, 1.0, 0.0, 0.25, 2.0, 0.5};
+    const CachePolicyCosts tracked = costs.tracked();
+    EXPECT_DOUBLE_EQ(tracked.lookup, 0.75);
+    EXPECT_DOUBLE_EQ(tracked.store, 3.0);
+    EXPECT_DOUBLE_EQ(tracked.regionTest, 0.5);
+    CubePolicy p(CachePolicyMode::Auto, tracked);
+    p.afterFrame(policyFrame(100, 0, 1));
+    CubeFrameCounts counts = policyFrame(100, 90, 4);  // 360 saved
+    counts.regionTests = 200;
+    const auto j = p.afterFrame(counts);
+    EXPECT_DOUBLE_EQ(j.saving, 90 * 4.0);
+    EXPECT_DOUBLE_EQ(j.cost, 100 * 0.75 + 10 * 3.0 + 200 * 0.5);
+    EXPECT_FALSE(p.bypassed());
+    counts.regionTests = 600;  // 75 + 30 + 300 > 360
+    EXPECT_GT(p.afterFrame(counts).cost, 360.0);
+    EXPECT_TRUE(p.bypassed());
+}
+
 TEST(CachePolicy, ALosingSampleStandsAsideAndProbesOnTheSampleOverTwoFrames) {
     CubePolicy p(CachePolicyMode::Auto, kPolicyTestCosts, true);
     p.afterFrame(policyFrame(100, 0, 3));
@@ -266,10 +327,12 @@ TEST(CachePolicyRender, BypassedFramesAreTheUncachedRender) {
         const FrameCacheStats& c = *cached.stats[static_cast<std::size_t>(f)].cache;
         const bool aside = bypassedFrame(f);
         EXPECT_EQ(c.bypassedCubes(), aside ? static_cast<int>(c.objects.size()) : 0) << "frame " << f;
+        // With every cube aside the frame runs the kernel without a cache.
+        EXPECT_EQ(c.tracedAsUncached, aside) << "frame " << f;
         if (!aside) continue;
         EXPECT_EQ(c.lookups(), 0u);
         EXPECT_EQ(c.stores(), 0u);
-        EXPECT_GT(c.bypassedRays(), 0u);
+        EXPECT_EQ(c.bypassedRays(), 0u);
         EXPECT_EQ(cached.stats[static_cast<std::size_t>(f)].rays.reflection,
                   plain.stats[static_cast<std::size_t>(f)].rays.reflection);
         EXPECT_TRUE(policyImagesMatch(cached.frames[static_cast<std::size_t>(f)], plain.frames[static_cast<std::size_t>(f)]))
@@ -399,6 +462,42 @@ TEST(CachePolicyRender, AnimatedSceneBypassedFramesAreTheUncachedRender) {
         EXPECT_EQ(sa.cache->bypassedCubes() > 0, aside) << "frame " << f;
         if (aside) {
             EXPECT_TRUE(policyImagesMatch(a, b)) << "frame " << f;
+            // Stepping aside emptied the cube: no change tests its blocks.
+            for (const ObjectCacheStats& o : sa.cache->objects) EXPECT_EQ(o.regionTests, 0u) << "frame " << f;
+        } else if (f > 0) {
+            // The sample's texels are tested against every change.
+            std::uint64_t tests = 0;
+            for (const ObjectCacheStats& o : sa.cache->objects) tests += o.regionTests;
+            EXPECT_GT(tests, 0u) << "frame " << f;
         }
+    }
+}
+
+// In an animated scene a cube that steps aside empties itself; the frames
+// that follow, every cube aside, are the uncached render, and a later probe
+// starts from an empty sample.
+TEST(CachePolicyRender, AnimatedSceneCubeEmptiesItselfWhenItStepsAside) {
+    const auto scene = makeBuiltinScene("orbit");
+    ASSERT_TRUE(scene.has_value());
+    RenderSettings settings;
+    settings.width = settings.height = 48;
+    settings.threads = 2;
+    settings.cache.techniqueOverride = CacheTechnique::Cct;
+    settings.cache.resolutionOverride = 64;
+    settings.cache.policy = CachePolicyMode::Auto;
+    settings.cache.policyCosts = losingCosts();
+    RenderSession cached(*scene, settings);
+    for (int f = 0; f < 3; ++f) {
+        cached.setTime(static_cast<float>(f) / 30.0f);
+        Image a;
+        const FrameStats stats = cached.render(scene->camera, a);
+        ASSERT_TRUE(stats.cache.has_value());
+        EXPECT_EQ(stats.cache->tracedAsUncached, f == 2) << "frame " << f;
+    }
+    const RayCache& cache = cached.cache();
+    ASSERT_FALSE(cache.empty());
+    for (const SceneObject& object : scene->objects) {
+        const int id = static_cast<int>(&object - scene->objects.data());
+        if (cache.cachesObject(id)) EXPECT_EQ(cache.cube(id).validCount(), 0u) << object.name;
     }
 }
