@@ -207,6 +207,10 @@ std::int64_t RayCache::sceneChanged(const Scene& posed, const SceneChanges& chan
             clearEntry(e);
             continue;
         }
+        // A cube holding nothing (one standing aside empties itself) has
+        // nothing to drop: its blocks (168 bytes each, 6144 at 256² faces)
+        // are not read; light-sweep's eight empty cubes cost 0.35 ms a change.
+        if (e.cube.validCount() == 0 && e.coarse.validCount() == 0) continue;
         // Deciding reads only; dropping writes validity words that blocks
         // share, so it runs after, on one thread.
         reached.assign(e.blocks.size(), 0);
