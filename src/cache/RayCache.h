@@ -26,6 +26,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cache/CachePolicy.h"
@@ -479,14 +480,13 @@ private:
         // Block-against-region tests the last scene change made for this
         // cube's texels (CubeFrameCounts::regionTests), until endFrame.
         std::uint64_t regionTests = 0;
-        // sampleRegionTestScale's figure, for a cube of sampleScaleSize².
-        double sampleScale = 1.0;
-        int sampleScaleSize = 0;
     };
     // A sampling cube's region tests times this estimate what full caching's
     // would be, at the sample's share: the sample's share of texels over its
     // share of blocks (1 in 16 runs of 64 texels touch about 2 in 5 blocks).
-    double sampleRegionTestScale(Entry& e) const;
+    // Depends on the face size only: worked out once per size.
+    double sampleRegionTestScale(const Entry& e);
+    std::vector<std::pair<int, double>> sampleRegionScales_;  // face size, scale
     // Invalidates texel `texel`; if it was valid, marks it dropped. Returns whether it was valid.
     static bool dropTexel(Entry& e, int texel);
     int blockOf(const Entry& e, int texel) const {

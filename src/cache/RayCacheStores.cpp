@@ -276,25 +276,30 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
     return stats;
 }
 
-double RayCache::sampleRegionTestScale(Entry& e) const {
+double RayCache::sampleRegionTestScale(const Entry& e) {
     const int n = e.cube.size();
     if (e.blocks.empty()) return 1.0;
-    if (e.sampleScaleSize != n) {
-        // Texels in the sample, and blocks holding at least one of them.
-        std::vector<unsigned char> blockSampled(e.blocks.size(), 0);
-        std::uint64_t sampledTexels = 0;
-        for (int t = 0; t < static_cast<int>(e.cube.texelCount()); ++t)
-            if (CubePolicy::sampledTexel(t)) {
-                ++sampledTexels;
-                blockSampled[static_cast<std::size_t>(blockOf(e, t))] = 1;
-            }
-        const auto sampledBlocks = static_cast<double>(std::count(blockSampled.begin(), blockSampled.end(), 1));
-        const double texelShare = static_cast<double>(sampledTexels) / static_cast<double>(e.cube.texelCount());
-        const double blockShare = sampledBlocks / static_cast<double>(e.blocks.size());
-        e.sampleScale = blockShare > 0.0 ? texelShare / blockShare : 1.0;
-        e.sampleScaleSize = n;
+    for (const auto& [size, scale] : sampleRegionScales_)
+        if (size == n) return scale;
+    // Texels in the sample, and blocks holding at least one of them: the
+    // sampled runs' texels only (a sixteenth of the cube).
+    constexpr int kRun = 1 << CubePolicy::kSampleRunBits;
+    std::vector<unsigned char> blockSampled(e.blocks.size(), 0);
+    std::uint64_t sampledTexels = 0;
+    const auto texels = static_cast<int>(e.cube.texelCount());
+    for (int first = 0; first < texels; first += kRun) {
+        if (!CubePolicy::sampledTexel(first)) continue;
+        for (int t = first; t < std::min(first + kRun, texels); ++t) {
+            ++sampledTexels;
+            blockSampled[static_cast<std::size_t>(blockOf(e, t))] = 1;
+        }
     }
-    return e.sampleScale;
+    const auto sampledBlocks = static_cast<double>(std::count(blockSampled.begin(), blockSampled.end(), 1));
+    const double texelShare = static_cast<double>(sampledTexels) / static_cast<double>(texels);
+    const double blockShare = sampledBlocks / static_cast<double>(e.blocks.size());
+    const double scale = blockShare > 0.0 ? texelShare / blockShare : 1.0;
+    sampleRegionScales_.emplace_back(n, scale);
+    return scale;
 }
 
 void RayCache::resizeEntry(Entry& e, int size) {
