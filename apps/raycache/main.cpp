@@ -230,6 +230,20 @@ int run(int argc, char** argv, const raycache::ClusterRuntime& cluster) {
     viewCmd->add_option("--moving-scale", view.movingScale,
                         "Resolution factor while the camera moves, 0.1..1")
         ->capture_default_str();
+    raycache::addChoiceOption(
+        *viewCmd, "--render-cache-display", view.renderCacheDisplay, raycache::kRenderCacheDisplays,
+        raycache::renderCacheDisplayName,
+        "--pipeline render-cache: async reconstructs at the display's own rate while tracer threads feed it "
+        "samples (default when interactive; images depend on timing); sync traces one request map per "
+        "frame, the frames of `raycache render` (default with --frames). Scenes that move are always sync");
+    viewCmd->add_option("--render-cache-trace-threads", view.renderCacheTraceThreads,
+                        "Async Render Cache: threads that trace samples (0 = half of --threads, at least 1); the "
+                        "display reconstructs on the others (at least 1)")
+        ->capture_default_str();
+    viewCmd->add_option("--render-cache-display-threads", view.renderCacheDisplayThreads,
+                        "Async Render Cache: threads that reconstruct the display (0 = those the tracer leaves of "
+                        "--threads, at least 1; more share cores with the tracer)")
+        ->capture_default_str();
 
     // raycache diff: image difference metrics and heat map.
     raycache::DiffCommandOptions diff;
