@@ -20,6 +20,9 @@ void runViewCommand(const ViewCommandOptions& options, std::ostream& out, std::o
         throw InputError("--moving-scale must be between 0.1 and 1");
     if (options.renderCacheTraceThreads < 0) throw InputError("--render-cache-trace-threads must be >= 0");
     if (options.renderCacheDisplayThreads < 0) throw InputError("--render-cache-display-threads must be >= 0");
+    if (!(std::isfinite(options.renderCacheRequestFrames) && options.renderCacheRequestFrames >= 0.0 &&
+          options.renderCacheRequestFrames <= 100.0))
+        throw InputError("--render-cache-request-frames must be between 0 and 100");
     if (options.job.cacheIdeal) throw InputError("--cache-ideal is a benchmark switch; the viewer does not take it");
 
     RenderJob job = prepareRenderJob(options.job);
@@ -60,6 +63,7 @@ void runViewCommand(const ViewCommandOptions& options, std::ostream& out, std::o
         options.renderCacheDisplay.value_or(viewer.scriptedFrames ? RenderCacheDisplay::Sync : RenderCacheDisplay::Async);
     viewer.renderCacheTraceThreads = options.renderCacheTraceThreads;
     viewer.renderCacheDisplayThreads = options.renderCacheDisplayThreads;
+    viewer.renderCacheRequestFrames = options.renderCacheRequestFrames;
     if (!options.inspectObject.empty()) {
         const auto& objects = job.scene.objects;
         const auto found = std::find_if(objects.begin(), objects.end(),

@@ -23,7 +23,8 @@ struct ViewCommandOptions {
     // --render-cache-display; empty: async when interactive, sync for --frames.
     std::optional<RenderCacheDisplay> renderCacheDisplay;
     int renderCacheTraceThreads = 0;    // --render-cache-trace-threads, 0 = half of --threads
-    int renderCacheDisplayThreads = 0;  // --render-cache-display-threads, 0 = the rest
+    int renderCacheDisplayThreads = 0;  // --render-cache-display-threads, 0 = --threads
+    double renderCacheRequestFrames = 2.0;  // --render-cache-request-frames
 };
 
 // Checks every option (InputError) before opening a window, then runs the

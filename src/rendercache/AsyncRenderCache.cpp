@@ -16,10 +16,6 @@ using Clock = std::chrono::steady_clock;
 // Pixels traced between two hand-overs: small enough that a first frame
 // fills in visibly, large enough for full waves on every trace thread.
 constexpr std::size_t kBatchPixels = 4096;
-// A request asks for what the tracer traces in this many display frames:
-// it is idle from the end of one request until the next display frame has
-// merged it and issued the next.
-constexpr double kRequestFrames = 2.0;
 // Samples age by the requests completed since the last display frame; more
 // than this at once (a very slow display) ages them no further.
 constexpr int kMaxAgeStep = 64;
@@ -45,7 +41,7 @@ AsyncRenderCacheThreads splitRenderCacheThreads(int threads, int traceThreads, i
     const int all = threads > 0 ? threads : Parallel::hardwareThreads();
     AsyncRenderCacheThreads split;
     split.trace = traceThreads > 0 ? traceThreads : std::max(1, all / 2);
-    split.display = displayThreads > 0 ? displayThreads : std::max(1, all - split.trace);
+    split.display = displayThreads > 0 ? displayThreads : all;
     return split;
 }
 
@@ -96,12 +92,12 @@ FrameStats AsyncRenderCache::reconstruct(const Camera& camera, Image& film) {
             ++completed;
             requestOutstanding_ = false;
         }
-    // What the tracer traces in kRequestFrames display frames, at least the
+    // What the tracer traces in requestFrames_ display frames, at least the
     // settings' budget (0 leaves the choice to the pipeline: before the
     // first measurement).
     int budget = 0;
-    if (raysPerSecond > 0.0 && reconstructSeconds_ > 0.0) {
-        const double wanted = raysPerSecond * reconstructSeconds_ * kRequestFrames;
+    if (raysPerSecond > 0.0 && reconstructSeconds_ > 0.0 && requestFrames_ > 0.0) {
+        const double wanted = raysPerSecond * reconstructSeconds_ * requestFrames_;
         budget = static_cast<int>(std::clamp(wanted, static_cast<double>(minimumShare_) * pixels_,
                                              static_cast<double>(pixels_)));
     }

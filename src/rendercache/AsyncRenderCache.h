@@ -17,10 +17,11 @@
 //   frame: a display faster than the tracer does not age samples out before
 //   new ones come (as rendering one request per frame does in render()).
 //
-// A request asks for what the tracer traces in about two display frames
-// (its measured rays per second times the display's reconstruction time),
-// at least the settings' budget: a faster tracer gets more to do, instead
-// of idling.
+// A request asks for what the tracer traces in about `requestFrames`
+// display frames (its measured rays per second times the display's
+// reconstruction time; 2 by default), at least the settings' budget: a
+// faster tracer gets more to do, instead of idling. 0 asks for the budget
+// alone: the tracer then idles more and leaves the cores to the display.
 //
 // Images depend on timing: this mode is for the interactive viewer. Runs
 // that must repeat (`raycache render`, `bench`, scripted viewer runs) use
@@ -46,12 +47,13 @@ struct AsyncRenderCacheThreads {
     int trace = 1;
 };
 
-// `threads` in all (0: the machine's), of which `traceThreads` trace (0:
-// half, at least one); the display gets the rest, at least one, unless
-// `displayThreads` (> 0) says how many (more than the rest share cores
-// with the tracer). On two cores: one each, so that neither waits for the
-// other's work.
-AsyncRenderCacheThreads splitRenderCacheThreads(int threads, int traceThreads, int displayThreads = 0);
+// `threads` (0: the machine's): the display reconstructs on `displayThreads`
+// (0: all of them) and `traceThreads` trace (0: half, at least one), sharing
+// the cores. oneTBB's one pool of workers serves both: the display's loops
+// take the cores the tracer leaves (while it waits for a request, say). On
+// two cores this beat one display and one trace thread in display rate and
+// in samples per second alike (docs/viewer.md).
+AsyncRenderCacheThreads splitRenderCacheThreads(int threads, int traceThreads = 0, int displayThreads = 0);
 
 // What the tracer did since it started.
 struct AsyncTraceCounts {
@@ -87,6 +89,8 @@ public:
     const RenderCacheOverlays* overlays() const { return pipeline_.renderCacheOverlays(); }
     std::string description() const;
     AsyncRenderCacheThreads threads() const { return threads_; }
+    // Display thread: see above; >= 0.
+    void setRequestFrames(double frames) { requestFrames_ = frames; }
     // Keeps the tracer out of the caches while held (it merges its stores
     // into them between batches): for reading them on another thread.
     std::unique_lock<std::mutex> holdCaches() { return std::unique_lock<std::mutex>(pipeline_.cacheMutex()); }
@@ -108,6 +112,7 @@ private:
     bool requestOutstanding_ = false;  // issued, not yet merged to its end
     std::vector<SampleBatch> merging_;
     double reconstructSeconds_ = 0.0;  // the last display frame's
+    double requestFrames_ = 2.0;
 
     // Tracer thread only.
     std::vector<TileScratch> traceScratch_;

@@ -138,6 +138,7 @@ void RenderWorker::reconstructAsync(const RenderRequest& request, const Camera& 
                                                         }
                                                         wake_.notify_all();
                                                     });
+        async_->setRequestFrames(setup_.renderCacheRequestFrames);
         for (RateMeter* meter : {&displayRate_, &sampleRate_, &batchRate_, &requestRate_, &busyRate_}) meter->clear();
         lastMerged_ = 0;
         film_ = Image(request.width, request.height);

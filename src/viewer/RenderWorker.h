@@ -41,11 +41,12 @@ struct RenderWorkerSetup {
     std::function<void()> onPublished;    // called after each handed-over frame (wakes the UI loop)
     // How the Render Cache pipeline is shown (still scenes; a scene that
     // moves is always shown synchronously), and the threads the async mode's
-    // tracer takes (0: half of `base.threads`) and its display (0: the rest);
+    // tracer takes (0: half of `base.threads`) and its display (0: all);
     // see splitRenderCacheThreads.
     RenderCacheDisplay renderCacheDisplay = RenderCacheDisplay::Sync;
     int renderCacheTraceThreads = 0;
     int renderCacheDisplayThreads = 0;
+    double renderCacheRequestFrames = 2.0;  // AsyncRenderCache::setRequestFrames
 };
 
 class RenderWorker {

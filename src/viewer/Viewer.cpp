@@ -169,6 +169,7 @@ void Viewer::run(std::ostream& out) {
     setup.renderCacheDisplay = options_.renderCacheDisplay;
     setup.renderCacheTraceThreads = options_.renderCacheTraceThreads;
     setup.renderCacheDisplayThreads = options_.renderCacheDisplayThreads;
+    setup.renderCacheRequestFrames = options_.renderCacheRequestFrames;
     setup.onPublished = &ViewerWindow::wake;
     RenderWorker worker(std::move(setup), handoff);
 
@@ -392,7 +393,9 @@ void Viewer::run(std::ostream& out) {
                 << formatFixed(uiTimes.presentMs, 2) << " ms";
             if (shown.asyncRenderCache)
                 out << " | async: merged " << shown.mergedSamples << " samples, tracer "
-                    << formatFixed(shown.samplesPerSecond / 1.0e6, 3) << " Msamples/s";
+                    << formatFixed(shown.samplesPerSecond / 1.0e6, 3) << " Msamples/s, busy "
+                    << formatFixed(100.0 * shown.traceBusyShare, 0) << " %, request map " << shown.stats.renderCache->budget
+                    << " rays";
             out << std::endl;
             if (lastScriptedFrame) break;
         }

@@ -24,7 +24,8 @@ struct ViewerOptions {
     // (docs/viewer.md), and the async mode's tracer threads (0: half).
     RenderCacheDisplay renderCacheDisplay = RenderCacheDisplay::Sync;
     int renderCacheTraceThreads = 0;
-    int renderCacheDisplayThreads = 0;  // 0: the threads the tracer leaves
+    int renderCacheDisplayThreads = 0;  // 0: all
+    double renderCacheRequestFrames = 2.0;  // display frames of tracing one request asks for
 };
 
 }  // namespace raycache

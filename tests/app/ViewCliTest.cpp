@@ -178,7 +178,8 @@ TEST_F(ViewCli, BadInputIsOneLineAndExitTwoWithoutAWindow) {
           std::string("view --scene room --moving-scale 0"), std::string("view --scene room --max-depth 0"),
           std::string("view --scene room --render-cache-display fast"),
           std::string("view --scene room --render-cache-trace-threads -1"),
-          std::string("view --scene room --render-cache-display-threads -1")}) {
+          std::string("view --scene room --render-cache-display-threads -1"),
+          std::string("view --scene room --render-cache-request-frames -1")}) {
         const RunResult r = run("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(RAYCACHE_BINARY) + " " + args, dir_);
         EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.err;
         EXPECT_EQ(lineCount(r.err), 1) << args << "\n" << r.err;
@@ -202,6 +203,7 @@ TEST_F(ViewCli, HelpListsTheViewerOptions) {
     EXPECT_EQ(r.exitCode, 0);
     for (const char* option :
          {"--screenshot", "--frames", "--hide-ui", "--technique", "--moving-scale", "--level-overlay",
-          "--render-cache-display", "--render-cache-trace-threads", "--render-cache-display-threads"})
+          "--render-cache-display", "--render-cache-trace-threads", "--render-cache-display-threads",
+          "--render-cache-request-frames"})
         EXPECT_NE(r.out.find(option), std::string::npos) << option;
 }

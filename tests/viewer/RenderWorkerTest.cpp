@@ -366,7 +366,7 @@ TEST(RenderWorker, AsyncRenderCacheWithAStillCameraConvergesToTheFullRender) {
     int frames = 0;
     takeFrames(handoff, worker, [&](const DisplayFrame& f) {
         EXPECT_TRUE(f.asyncRenderCache);
-        EXPECT_EQ(f.displayThreads, 1);
+        EXPECT_EQ(f.displayThreads, 2);
         EXPECT_EQ(f.traceThreads, 1);
         EXPECT_TRUE(f.stats.renderCache.has_value());
         if (f.stats.renderCache) {
