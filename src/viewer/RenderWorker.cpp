@@ -193,8 +193,8 @@ void RenderWorker::renderOne(const RenderRequest& request, DisplayFrame& frame) 
     // The one place a frame is rendered, by the pipeline the settings ask
     // for; the Render Cache at its own rate when asked and the scene is still
     // (a scene that moves would move under its tracer).
-    const bool async = setup_.renderCacheDisplay == RenderCacheDisplay::Async &&
-                       session_->settings().pipeline == PipelineKind::RenderCache && setup_.scene->animation.empty();
+    const bool async = request.renderCacheAsync && session_->settings().pipeline == PipelineKind::RenderCache &&
+                       setup_.scene->animation.empty();
     auto start = std::chrono::steady_clock::now();
     frame.asyncRenderCache = async;
     if (async) {

@@ -23,7 +23,6 @@
 #include "rendercache/AsyncRenderCache.h"
 #include "viewer/FrameHandoff.h"
 #include "viewer/RateMeter.h"
-#include "viewer/RenderCacheDisplay.h"
 #include "viewer/RenderRequest.h"
 #include "viewer/Srgb8Encoder.h"
 
@@ -39,11 +38,9 @@ struct RenderWorkerSetup {
     // one handed over (lossless), then stop. Empty: interactive.
     std::optional<int> scriptedFrames;
     std::function<void()> onPublished;    // called after each handed-over frame (wakes the UI loop)
-    // How the Render Cache pipeline is shown (still scenes; a scene that
-    // moves is always shown synchronously), and the threads the async mode's
-    // tracer takes (0: half of `base.threads`) and its display (0: all);
-    // see splitRenderCacheThreads.
-    RenderCacheDisplay renderCacheDisplay = RenderCacheDisplay::Sync;
+    // The threads the async Render Cache's tracer takes (0: half of
+    // `base.threads`) and its display (0: all), see splitRenderCacheThreads
+    // (RenderRequest::renderCacheAsync asks for that mode).
     int renderCacheTraceThreads = 0;
     int renderCacheDisplayThreads = 0;
     double renderCacheRequestFrames = 2.0;  // AsyncRenderCache::setRequestFrames

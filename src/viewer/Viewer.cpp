@@ -138,6 +138,7 @@ void Viewer::run(std::ostream& out) {
     state.playPath = scripted;
     state.difference = options_.difference;
     state.cacheLevels = options_.cacheLevels;
+    state.renderCacheAsync = options_.renderCacheDisplay == RenderCacheDisplay::Async;
     if (options_.inspectObject) {
         state.inspectObject = *options_.inspectObject;
         state.showInspector = true;
@@ -166,7 +167,6 @@ void Viewer::run(std::ostream& out) {
     setup.timeline = job_.timeline;
     setup.base = base;
     setup.scriptedFrames = options_.scriptedFrames;
-    setup.renderCacheDisplay = options_.renderCacheDisplay;
     setup.renderCacheTraceThreads = options_.renderCacheTraceThreads;
     setup.renderCacheDisplayThreads = options_.renderCacheDisplayThreads;
     setup.renderCacheRequestFrames = options_.renderCacheRequestFrames;
@@ -341,6 +341,7 @@ void Viewer::run(std::ostream& out) {
         request.difference = state.difference;
         request.differenceGain = state.differenceGain;
         request.renderCacheOverlay = state.renderCacheOverlay;
+        request.renderCacheAsync = state.renderCacheAsync;
         request.cacheLevels = state.cacheLevels;
         request.inspectObject = state.showInspector ? state.inspectObject : -1;
         request.inspectorFaceSize = state.inspectorFaceSize;

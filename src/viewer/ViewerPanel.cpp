@@ -215,6 +215,7 @@ void drawRenderCacheSection(const ViewerPanelInput& in, ViewerUiState& state) {
     if (!f.stats.renderCache || !ImGui::CollapsingHeader("Render cache", ImGuiTreeNodeFlags_DefaultOpen)) return;
     const RenderCacheStats& c = *f.stats.renderCache;
     const double pixels = static_cast<double>(std::max<std::int64_t>(1, c.pixels));
+    ImGui::Checkbox("display at its own rate (async; scenes that move: sync)", &state.renderCacheAsync);
     // Both rates: how often the display makes an image, and how fast the
     // samples it is made of come.
     if (f.asyncRenderCache) {

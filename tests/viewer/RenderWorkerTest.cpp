@@ -353,8 +353,7 @@ TEST(RenderWorker, AsyncRenderCacheWithAStillCameraConvergesToTheFullRender) {
     const std::vector<std::uint8_t> expected = srgb8(reference);
 
     FrameHandoff handoff;
-    RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, {}, smallSettings(), std::nullopt, {},
-                            RenderCacheDisplay::Async, 0};
+    RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, {}, smallSettings(), std::nullopt, {}};
     RenderWorker worker(setup, handoff);
     RenderRequest request;
     request.camera = scene.camera;
@@ -362,6 +361,7 @@ TEST(RenderWorker, AsyncRenderCacheWithAStillCameraConvergesToTheFullRender) {
     request.height = settings.height;
     request.config.technique = techniqueChoiceIndex(CacheTechnique::None);
     request.config.pipeline = kRenderCacheChoice;
+    request.renderCacheAsync = true;
     worker.submit(request);
     int frames = 0;
     takeFrames(handoff, worker, [&](const DisplayFrame& f) {
