@@ -230,6 +230,23 @@ int run(int argc, char** argv, const raycache::ClusterRuntime& cluster) {
     viewCmd->add_option("--moving-scale", view.movingScale,
                         "Resolution factor while the camera moves, 0.1..1")
         ->capture_default_str();
+    raycache::addChoiceOption(
+        *viewCmd, "--render-cache-display", view.renderCacheDisplay, raycache::kRenderCacheDisplays,
+        raycache::renderCacheDisplayName,
+        "--pipeline render-cache: async reconstructs at the display's own rate while tracer threads feed it "
+        "samples (default when interactive; images depend on timing); sync traces one request map per "
+        "frame, the frames of `raycache render` (default with --frames). Scenes that move are always sync");
+    viewCmd->add_option("--render-cache-trace-threads", view.renderCacheTraceThreads,
+                        "Async Render Cache: threads that trace samples (0 = half of --threads, at least 1)")
+        ->capture_default_str();
+    viewCmd->add_option("--render-cache-display-threads", view.renderCacheDisplayThreads,
+                        "Async Render Cache: threads that reconstruct the display (0 = --threads; they share the "
+                        "cores with the tracer's)")
+        ->capture_default_str();
+    viewCmd->add_option("--render-cache-request-frames", view.renderCacheRequestFrames,
+                        "Async Render Cache: a request map asks for what the tracer traces in this many display "
+                        "frames (at least --rc-budget); 0: --rc-budget alone, leaving more of the cores to the display")
+        ->capture_default_str();
 
     // raycache diff: image difference metrics and heat map.
     raycache::DiffCommandOptions diff;

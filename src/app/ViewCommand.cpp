@@ -18,6 +18,11 @@ void runViewCommand(const ViewCommandOptions& options, std::ostream& out, std::o
     if (options.warmupFrames < 0) throw InputError("--warmup must be >= 0");
     if (!(std::isfinite(options.movingScale) && options.movingScale >= 0.1f && options.movingScale <= 1.0f))
         throw InputError("--moving-scale must be between 0.1 and 1");
+    if (options.renderCacheTraceThreads < 0) throw InputError("--render-cache-trace-threads must be >= 0");
+    if (options.renderCacheDisplayThreads < 0) throw InputError("--render-cache-display-threads must be >= 0");
+    if (!(std::isfinite(options.renderCacheRequestFrames) && options.renderCacheRequestFrames >= 0.0 &&
+          options.renderCacheRequestFrames <= 100.0))
+        throw InputError("--render-cache-request-frames must be between 0 and 100");
     if (options.job.cacheIdeal) throw InputError("--cache-ideal is a benchmark switch; the viewer does not take it");
 
     RenderJob job = prepareRenderJob(options.job);
@@ -53,6 +58,12 @@ void runViewCommand(const ViewCommandOptions& options, std::ostream& out, std::o
     viewer.movingScale = options.movingScale;
     viewer.difference = options.difference;
     viewer.cacheLevels = options.levelOverlay;
+    // Scripted runs repeat `raycache render`'s frames unless asked otherwise.
+    viewer.renderCacheDisplay =
+        options.renderCacheDisplay.value_or(viewer.scriptedFrames ? RenderCacheDisplay::Sync : RenderCacheDisplay::Async);
+    viewer.renderCacheTraceThreads = options.renderCacheTraceThreads;
+    viewer.renderCacheDisplayThreads = options.renderCacheDisplayThreads;
+    viewer.renderCacheRequestFrames = options.renderCacheRequestFrames;
     if (!options.inspectObject.empty()) {
         const auto& objects = job.scene.objects;
         const auto found = std::find_if(objects.begin(), objects.end(),

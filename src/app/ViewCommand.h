@@ -2,9 +2,11 @@
 // `raycache view`: walk through a scene in a window, or (--frames) play its
 // camera path in the window, print per-frame timings, write a screenshot and exit.
 #include <iosfwd>
+#include <optional>
 #include <string>
 
 #include "session/RenderJob.h"
+#include "viewer/RenderCacheDisplay.h"
 
 namespace raycache {
 
@@ -18,6 +20,11 @@ struct ViewCommandOptions {
     bool difference = false;     // --difference
     bool levelOverlay = false;   // --level-overlay
     std::string inspectObject;   // --inspect: object name
+    // --render-cache-display; empty: async when interactive, sync for --frames.
+    std::optional<RenderCacheDisplay> renderCacheDisplay;
+    int renderCacheTraceThreads = 0;    // --render-cache-trace-threads, 0 = half of --threads
+    int renderCacheDisplayThreads = 0;  // --render-cache-display-threads, 0 = --threads
+    double renderCacheRequestFrames = 2.0;  // --render-cache-request-frames
 };
 
 // Checks every option (InputError) before opening a window, then runs the

@@ -141,12 +141,66 @@ std::uint64_t RenderCachePipeline::trace(const Camera& camera, const std::vector
     return firstKey + static_cast<std::uint64_t>(chunkCount(pixels.size()));
 }
 
-FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
+std::int64_t RenderCachePipeline::merge(std::span<const SampleBatch> batches) {
+    std::int64_t merged = 0;
+    const std::size_t overflowCapacity = pool_.capacity() - pool_.pixelSlots;
+    for (const SampleBatch& batch : batches) {
+        // The pool is laid out for the last frame's camera: a sample traced
+        // through it belongs to its pixel's slot (and replaces what it held,
+        // as in render()); any other waits for reprojection to place it.
+        const bool inPlace = previousCamera_ && batch.camera == *previousCamera_;
+        const CameraRays rays(batch.camera, settings_.width, settings_.height);
+        for (std::size_t i = 0; i < batch.samples.size(); ++i) {
+            const PixelCoord p = batch.pixels[i];
+            std::size_t slot = 0;
+            if (inPlace) slot = image_.pixelIndex(p.x, p.y);
+            else if (pool_.overflowUsed < overflowCapacity) slot = pool_.takeOverflowSlot();
+            else continue;  // no room left this frame: its pixel will be asked for again
+            keep(slot, batch.samples[i], rays, p);
+            ++merged;
+        }
+    }
+    return merged;
+}
+
+RayCounts RenderCachePipeline::traceSamples(const Camera& camera, std::span<const PixelCoord> pixels,
+                                            const Parallel& parallel, std::vector<TileScratch>& scratch,
+                                            std::span<PrimarySample> out) {
+    scratch.resize(static_cast<std::size_t>(parallel.threadCount()));
+    for (TileScratch& s : scratch) s.beginFrame();
+    std::unique_lock<std::mutex> cacheLock(cacheMutex_, std::defer_lock);
+    if (cache_) cacheLock.lock();
+    CacheFrame cacheFrame(cache_, parallel.threadCount());
+    const CameraRays rays(camera, settings_.width, settings_.height);
+    forEachChunk(parallel, pixels.size(), [&](std::size_t begin, std::size_t end, int chunk, int worker) {
+        kernel_.renderCameraPixels(rays, pixels.subspan(begin, end - begin), static_cast<std::uint64_t>(chunk),
+                                   scratch[static_cast<std::size_t>(worker)], cacheFrame.worker(worker),
+                                   out.subspan(begin, end - begin));
+    });
+    RayCounts counts;
+    for (const TileScratch& s : scratch) counts += s.counts;
+    cacheFrame.finish(kernel_, parallel, counts);
+    return counts;
+}
+
+FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) { return frame(camera, film, nullptr); }
+
+FrameStats RenderCachePipeline::reconstruct(const Camera& camera, Image& film, std::span<const SampleBatch> batches,
+                                            int ageStep, int budget, SampleRequest* request, std::int64_t& merged) {
+    AsyncFrame async{batches, ageStep, budget, request, 0};
+    FrameStats stats = frame(camera, film, &async);
+    merged = async.merged;
+    return stats;
+}
+
+FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFrame* async) {
     const RenderCacheSettings& rc = settings_.renderCache;
     const int width = settings_.width, height = settings_.height;
     const int pixels = width * height;
     if (film.width() != width || film.height() != height) film = Image(width, height);
-    kernel_.prepareFrame();  // meshes that moved since the last frame
+    // Meshes that moved since the last frame. (Not while the asynchronous
+    // mode's tracer may be tracing: that mode takes only still scenes.)
+    if (!async) kernel_.prepareFrame();
     const auto frameStart = Clock::now();
     RenderCacheStats stats;
     stats.pixels = pixels;
@@ -164,7 +218,11 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
         spare_.reset(imageSlots, static_cast<std::size_t>(pixels));
         previousCamera_.reset();
     }
+    if (async) async->merged = merge(async->batches);
     const bool moved = previousCamera_ && !(*previousCamera_ == camera);
+    // The asynchronous mode asks for samples only when the last request is
+    // traced and merged; meanwhile it makes no request map.
+    const bool wantsRequests = !async || async->request;
     std::int64_t newSamples = 0;  // taking a slot no sample held: in a hole, or predicted
     scratch_.resize(static_cast<std::size_t>(parallel_.threadCount()));
     for (TileScratch& s : scratch_) s.beginFrame();
@@ -176,12 +234,12 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     image_.reset(width, height, margin);
     // The camera of the next frame, for predictive sampling: the samples
     // are projected through it in the same pass.
-    const bool predicts = moved && rc.predictShare > 0.0f;
+    const bool predicts = moved && rc.predictShare > 0.0f && wantsRequests;
     const Camera next = predicts ? predictNextCamera(*previousCamera_, camera) : camera;
     const ScreenProjection nextProjection(next, width, height);
     const ReprojectionCounts reprojected =
         reproject(pool_, spare_, scene_, projection, rc.maxAge, image_, parallel_, reprojectionScratch_,
-                  predicts ? &nextProjection : nullptr, &nextPixel_);
+                  predicts ? &nextProjection : nullptr, &nextPixel_, async ? async->ageStep : 1);
     std::swap(pool_, spare_);
     stats.evicted = reprojected.evicted;
     stats.lost = reprojected.lost;
@@ -258,14 +316,22 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     for (std::int64_t h : holesPerRow) holes += h;
     stats.holes = holes;
     stats.refreshedAll = !previousCamera_ || static_cast<double>(holes) > static_cast<double>(rc.refreshAllHoleShare) * pixels;
-    const int budget = stats.refreshedAll ? pixels : chooseBudget(pixels);
-    stats.budget = budget;
+    const int budget = stats.refreshedAll                  ? pixels
+                       : async && async->budget > 0 ? std::min(async->budget, pixels)
+                                                    : chooseBudget(pixels);
+    stats.budget = wantsRequests ? budget : 0;
     const int predictedBudget =
-        (moved && !stats.refreshedAll) ? static_cast<int>(std::lround(static_cast<double>(budget) * rc.predictShare)) : 0;
+        (moved && !stats.refreshedAll && wantsRequests)
+            ? static_cast<int>(std::lround(static_cast<double>(budget) * rc.predictShare))
+            : 0;
     RequestMap& requests = overlays_.requests;
     overlays_.width = width;
     overlays_.height = height;
-    if (stats.refreshedAll) {
+    if (!wantsRequests) {
+        requests.pixels.clear();
+        requests.tileRequests.clear();
+        requests.tilePriority.clear();
+    } else if (stats.refreshedAll) {
         allPixels(width, height, requests.pixels);
         requests.tileRequests.clear();
         requests.tilePriority.clear();
@@ -275,12 +341,26 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     }
     stats.mapsMs = millisecondsSince(start);
 
-    // New samples through this frame's camera, replacing what their pixels held.
+    // New samples through this frame's camera, replacing what their pixels
+    // held; the asynchronous mode hands the request to its tracer instead.
     start = Clock::now();
-    CacheFrame cacheFrame(cache_, parallel_.threadCount());
+    std::unique_lock<std::mutex> cacheLock(cacheMutex_, std::defer_lock);
+    std::optional<CacheFrame> cacheFrame;
     std::vector<PrimarySample>& traced = traced_;
-    std::uint64_t key = trace(camera, requests.pixels, 0, cacheFrame, traced);
-    {
+    std::uint64_t key = 0;
+    if (async) {
+        traced.clear();
+        if (async->request) {
+            async->request->camera = camera;
+            async->request->pixels = requests.pixels;
+            async->request->predicted.clear();
+            async->request->refreshesAll = stats.refreshedAll;
+        }
+    } else {
+        cacheFrame.emplace(cache_, parallel_.threadCount());
+        key = trace(camera, requests.pixels, 0, *cacheFrame, traced);
+    }
+    if (!async) {
         // On all threads: the requested pixels are distinct, and each one's
         // writes touch only its own slot, key and state. (On one thread
         // this loop's cache misses cost about 4 ms per frame at 1024².)
@@ -343,13 +423,24 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
         });
         stats.mapsMs += millisecondsSince(start);
         start = Clock::now();
-        key = trace(next, predictedRequests_.pixels, key, cacheFrame, traced);
-        const CameraRays rays(next, width, height);
-        for (std::size_t i = 0; i < traced.size(); ++i)
-            keep(pool_.takeOverflowSlot(), traced[i], rays, predictedRequests_.pixels[i]);
-        newSamples += static_cast<std::int64_t>(traced.size());
-        stats.predicted = static_cast<std::int64_t>(traced.size());
+        if (async) {
+            async->request->nextCamera = next;
+            async->request->predicted = predictedRequests_.pixels;
+        } else {
+            key = trace(next, predictedRequests_.pixels, key, *cacheFrame, traced);
+            const CameraRays rays(next, width, height);
+            for (std::size_t i = 0; i < traced.size(); ++i)
+                keep(pool_.takeOverflowSlot(), traced[i], rays, predictedRequests_.pixels[i]);
+            newSamples += static_cast<std::int64_t>(traced.size());
+            stats.predicted = static_cast<std::int64_t>(traced.size());
+        }
         stats.traceMs += millisecondsSince(start);
+    }
+    // The display's cache frame (its reshading's lookups and stores) waits
+    // for the tracer's to end.
+    if (async) {
+        if (cache_) cacheLock.lock();
+        cacheFrame.emplace(cache_, parallel_.threadCount());
     }
 
     // Reflections, refractions and highlights of reprojected samples, from the new eye.
@@ -412,7 +503,7 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
         forEachChunk(parallel_, reshade.size(), [&](std::size_t begin, std::size_t end, int chunk, int worker) {
             kernel_.reshadeSurfaces(std::span(reshade.data() + begin, end - begin),
                                     key + static_cast<std::uint64_t>(chunk), scratch_[static_cast<std::size_t>(worker)],
-                                    cacheFrame.worker(worker), std::span(colors.data() + begin, end - begin));
+                                    cacheFrame->worker(worker), std::span(colors.data() + begin, end - begin));
         });
         forEachChunk(parallel_, slots.size(), [&](std::size_t begin, std::size_t end, int, int) {
             for (std::size_t i = begin; i < end; ++i) pool_.look[slots[i]].color = colors[i];
@@ -424,7 +515,8 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     start = Clock::now();
     FrameStats frameStats;
     for (const TileScratch& s : scratch_) frameStats.rays += s.counts;
-    frameStats.cache = cacheFrame.finish(kernel_, parallel_, frameStats.rays);
+    frameStats.cache = cacheFrame->finish(kernel_, parallel_, frameStats.rays);
+    if (cacheLock.owns_lock()) cacheLock.unlock();
     stats.traceMs += millisecondsSince(start);
 
     // The image: samples where there are, the filters elsewhere, in one
@@ -477,7 +569,7 @@ FrameStats RenderCachePipeline::render(const Camera& camera, Image& film) {
     stats.liveSamples = reprojected.placed + newSamples;
 
     // The budget that would have held the target time, for the next frame.
-    if (rc.targetFrameMs > 0.0f && !stats.refreshedAll) {
+    if (!async && rc.targetFrameMs > 0.0f && !stats.refreshedAll) {
         const double total = millisecondsSince(frameStart);
         const double generation = stats.sampleGenerationMs();
         const double perRay = generation / static_cast<double>(std::max<std::int64_t>(1, stats.fresh + stats.predicted));

@@ -14,8 +14,15 @@
 // The first frame, and any frame with more than
 // RenderCacheSettings::refreshAllHoleShare of its pixels in holes, traces
 // every pixel. With a fixed budget images do not depend on the thread count.
+//
+// The asynchronous mode (rendercache/AsyncRenderCache.h) splits a frame in
+// two halves that run on two threads: reconstruct() (reprojection, maps,
+// reshading, hole filling: the image for the newest camera, and a request
+// for new samples) and traceSamples() (the requested camera rays).
 #include <cstdint>
+#include <mutex>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "render/FramePipeline.h"
@@ -23,7 +30,9 @@
 #include "rendercache/PointImage.h"
 #include "rendercache/RenderCacheOverlays.h"
 #include "rendercache/Reprojection.h"
+#include "rendercache/SampleBatch.h"
 #include "rendercache/SamplePool.h"
+#include "rendercache/SampleRequest.h"
 
 namespace raycache {
 
@@ -36,6 +45,29 @@ public:
                         const Parallel& parallel, RayCache* cache);
 
     FrameStats render(const Camera& camera, Image& film) override;
+
+    // The asynchronous mode's display half: a frame that traces no camera
+    // ray. First merges `batches` into the pool (samples traced through the
+    // camera of the last frame go to their pixels' slots, as render() keeps
+    // its new samples; the others wait in overflow slots, as predicted
+    // samples do, and are reprojected with the rest; returns how many in
+    // `merged`), ages the samples by `ageStep`, then reprojects, reshades
+    // and fills holes as render() does. With `request`, fills it with what
+    // this frame's maps ask for (`budget` rays, 0: the settings' budget);
+    // without, builds no request map (one is still being traced). Scenes
+    // that move are not for this mode: meshes are not refreshed.
+    FrameStats reconstruct(const Camera& camera, Image& film, std::span<const SampleBatch> batches, int ageStep,
+                           int budget, SampleRequest* request, std::int64_t& merged);
+    // The asynchronous mode's tracer half: traces the rays through `pixels`
+    // of `camera` on `parallel`'s threads, with `scratch` (resized to them),
+    // into `out`; returns the rays traced. May run on another thread while
+    // reconstruct() runs: the two share the scene, the tracer and the kernel
+    // (read only) and the caches, whose frames they take one at a time.
+    RayCounts traceSamples(const Camera& camera, std::span<const PixelCoord> pixels, const Parallel& parallel,
+                           std::vector<TileScratch>& scratch, std::span<PrimarySample> out);
+    // Held by reconstruct() and traceSamples() while they use the caches:
+    // whoever else reads the caches while they may run holds it too.
+    std::mutex& cacheMutex() { return cacheMutex_; }
     std::string description() const override;
     const RenderCacheOverlays* renderCacheOverlays() const override { return &overlays_; }
 
@@ -47,6 +79,17 @@ public:
     void sceneChanged(const SceneChanges& changes) override;
 
 private:
+    struct AsyncFrame {
+        std::span<const SampleBatch> batches;
+        int ageStep = 1;
+        int budget = 0;
+        SampleRequest* request = nullptr;
+        std::int64_t merged = 0;
+    };
+    // render() with `async` null; reconstruct() otherwise.
+    FrameStats frame(const Camera& camera, Image& film, AsyncFrame* async);
+    // Puts traced samples into the pool (see reconstruct()); returns how many.
+    std::int64_t merge(std::span<const SampleBatch> batches);
     // Traces the camera rays through `pixels` in fixed chunks (the chunk
     // index, offset by `firstKey`, orders the cache stores); returns the
     // next unused key.
@@ -87,6 +130,9 @@ private:
     std::optional<Camera> previousCamera_;
     std::uint64_t frame_ = 0;
     double adaptiveBudget_ = 0.0;  // rays, when a target frame time is set
+    // Asynchronous mode: the caches take one frame at a time (a CacheFrame
+    // begins and ends a cache frame), the tracer's or the display's.
+    std::mutex cacheMutex_;
 };
 
 }  // namespace raycache

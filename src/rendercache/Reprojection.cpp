@@ -43,7 +43,7 @@ std::vector<Vec3> objectOrigins(const Scene& scene) {
 ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene& scene,
                              const ScreenProjection& projection, int maxAge, PointImage& image,
                              const Parallel& parallel, ReprojectionScratch& scratch, const ScreenProjection* next,
-                             std::vector<std::int32_t>* nextPixel) {
+                             std::vector<std::int32_t>* nextPixel, int ageStep) {
     if (to.capacity() != from.capacity() || to.pixelSlots != image.pixelCount() ||
         from.pixelSlots != image.pixelCount() || (next && !nextPixel))
         throw RuntimeError("reproject: the pools do not fit the image");
@@ -234,7 +234,7 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
             if (nextOfPixel) nextOfPixel[pixel] = nextOfSource[source];
             toPoint[pixel] = fromPoint[source];
             SampleLook look = fromLook[source];
-            look.age = static_cast<std::uint16_t>(look.age + 1);
+            look.age = static_cast<std::uint16_t>(look.age + ageStep);
             toLook[pixel] = look;
             // What reshading needs, only where it means something.
             if (look.viewDependent) toReshade[pixel] = fromReshade[source];

@@ -112,7 +112,9 @@ inline std::int32_t imagePixelThrough(const SamplePool& pool, std::size_t slot, 
     return y * width + x;
 }
 
-// Ages every sample of `from` (its used slots) by one frame, drops those
+// Ages every sample of `from` (its used slots) by `ageStep` (one frame;
+// the asynchronous mode ages by the sample requests completed since the
+// last display frame, so samples do not age while no new ones come), drops those
 // older than `maxAge`, gives each pixel of `image` (reset by the caller to
 // the new size, and empty) the nearest sample that lands in it, then lets
 // the losers try a neighbour, and copies each pixel's winner into `to` at
@@ -129,6 +131,7 @@ inline std::int32_t imagePixelThrough(const SamplePool& pool, std::size_t slot, 
 ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene& scene,
                              const ScreenProjection& projection, int maxAge, PointImage& image,
                              const Parallel& parallel, ReprojectionScratch& scratch,
-                             const ScreenProjection* next = nullptr, std::vector<std::int32_t>* nextPixel = nullptr);
+                             const ScreenProjection* next = nullptr, std::vector<std::int32_t>* nextPixel = nullptr,
+                             int ageStep = 1);
 
 }  // namespace raycache

@@ -244,7 +244,8 @@ Representation representationOf(const Scene& scene, std::size_t object) {
 TraceScene::TraceScene(const Scene& scene, const TraceOptions& options) : impl_(std::make_unique<Impl>()) {
     impl_->accelerator = options.accelerator;
     if (options.accelerator == Accelerator::Grids) impl_->grids = std::make_unique<GridAccelerator>(options.grids);
-    impl_->device = rtcNewDevice(nullptr);
+    const std::string config = options.buildThreads > 0 ? "threads=" + std::to_string(options.buildThreads) : "";
+    impl_->device = rtcNewDevice(config.empty() ? nullptr : config.c_str());
     if (!impl_->device) throw RuntimeError("Embree could not create a device");
     impl_->scene = rtcNewScene(impl_->device);
     // A still scene gets one high-quality hierarchy. An animated one asks for

@@ -32,6 +32,11 @@ struct TraceOptions {
     // Primary rays and the shadow rays of primary hits: Embree or the grids.
     Accelerator accelerator = Accelerator::Embree;
     GridSettings grids;
+    // Threads Embree builds its hierarchies on; 0: all. 1 builds on the
+    // calling thread alone (Embree then starts no oneTBB worker, whose
+    // hand-overs ThreadSanitizer cannot see: the tests run under it use 1).
+    // Embree limits oneTBB process-wide while the device lives.
+    int buildThreads = 0;
 };
 
 // What the tracer did for one frame beyond Embree's own work: the grids'

@@ -46,6 +46,17 @@ struct DisplayFrame {
     bool showsCacheLevels = false;
     CacheLevelImage::Counts cacheLevelPixels{};
 
+    // The Render Cache displayed at its own rate (RenderCacheDisplay::Async;
+    // rendercache/AsyncRenderCache.h): rates over the last second.
+    bool asyncRenderCache = false;
+    int displayThreads = 0, traceThreads = 0;
+    double displayFps = 0.0;          // display frames reconstructed per second
+    double samplesPerSecond = 0.0;    // new samples (camera rays) the tracer traced per second
+    double batchesPerSecond = 0.0;    // batches it handed over per second
+    double requestsPerSecond = 0.0;   // request maps it traced to their end per second
+    double traceBusyShare = 0.0;      // share of the time the tracer was tracing
+    std::int64_t mergedSamples = 0;   // samples this frame merged into the pool
+
     std::string configError;  // why the last requested settings were rejected; empty if they were used
 };
 

@@ -23,6 +23,7 @@ struct RenderRequest {
     bool difference = false;             // show the heat map against the uncached render
     float differenceGain = 1.0f;
     int renderCacheOverlay = 0;          // RenderCacheOverlay: what to paint over a Render Cache frame
+    bool renderCacheAsync = false;       // the Render Cache at its own rate (still scenes; docs/viewer.md)
     bool cacheLevels = false;            // paint the cube level that answered each pixel (ray and hybrid pipelines)
     int inspectObject = -1;              // object whose cube to unfold, -1 = none
     int inspectorFaceSize = 128;

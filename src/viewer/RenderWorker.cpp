@@ -56,9 +56,12 @@ void RenderWorker::run() {
             RenderRequest request;
             {
                 std::unique_lock lock(mutex_);
-                // Render again when the request changed, or when asked to keep going.
+                // Render again when the request changed, or when asked to keep
+                // going: the async Render Cache then when new samples came
+                // (without them its image would not change).
                 wake_.wait(lock, [&] {
-                    return stop_ || (request_ && (requestSerial_ != renderedSerial || request_->continuous ||
+                    const bool keepGoing = request_ && request_->continuous && (async_ ? samplesArrived_ : true);
+                    return stop_ || (request_ && (requestSerial_ != renderedSerial || keepGoing ||
                                                   request_->playPath || setup_.scriptedFrames));
                 });
                 if (stop_) return;
@@ -80,6 +83,7 @@ void RenderWorker::run() {
         error_ = std::current_exception();
         finished_ = true;
     }
+    async_.reset();  // joins its tracer (a batch in flight is finished first)
     if (setup_.onPublished) setup_.onPublished();  // let the UI see finished_/error_
 }
 
@@ -94,6 +98,7 @@ void RenderWorker::applyConfig(const ViewerRenderConfig& config, DisplayFrame&) 
     configError_.clear();
     config_ = config;
     settings_ = applyViewerRenderConfig(setup_.base, config);
+    async_.reset();    // its tracer uses the session's caches
     session_.reset();  // free the old cubes before allocating the new ones
     RenderSettings uncached = settings_;
     uncached.cache.techniqueOverride = CacheTechnique::None;
@@ -117,10 +122,56 @@ void RenderWorker::encode(const Image& film, std::vector<std::uint8_t>& rgba) co
     });
 }
 
+void RenderWorker::reconstructAsync(const RenderRequest& request, const Camera& camera, DisplayFrame& frame) {
+    if (async_ && (film_.width() != request.width || film_.height() != request.height)) async_.reset();
+    if (!async_) {
+        RenderSettings settings = settings_;
+        settings.width = request.width;
+        settings.height = request.height;
+        const AsyncRenderCacheThreads threads = splitRenderCacheThreads(parallel_.threadCount(), setup_.renderCacheTraceThreads,
+                                                                        setup_.renderCacheDisplayThreads);
+        async_ = std::make_unique<AsyncRenderCache>(*setup_.scene, *setup_.tracer, settings, &session_->cache(), threads,
+                                                    [this] {
+                                                        {
+                                                            std::lock_guard lock(mutex_);
+                                                            samplesArrived_ = true;
+                                                        }
+                                                        wake_.notify_all();
+                                                    });
+        async_->setRequestFrames(setup_.renderCacheRequestFrames);
+        for (RateMeter* meter : {&displayRate_, &sampleRate_, &batchRate_, &requestRate_, &busyRate_}) meter->clear();
+        lastMerged_ = 0;
+        film_ = Image(request.width, request.height);
+    }
+    {
+        // Batches that come while this frame is made wake the next one.
+        std::lock_guard lock(mutex_);
+        samplesArrived_ = false;
+    }
+    frame.stats = async_->reconstruct(camera, film_);
+    const AsyncTraceCounts counts = async_->counts();
+    const auto now = RateMeter::Clock::now();
+    displayRate_.add(now, static_cast<double>(++displayFrames_));
+    sampleRate_.add(now, static_cast<double>(counts.samples));
+    batchRate_.add(now, static_cast<double>(counts.batches));
+    requestRate_.add(now, static_cast<double>(counts.requests));
+    busyRate_.add(now, counts.busySeconds);
+    frame.displayThreads = async_->threads().display;
+    frame.traceThreads = async_->threads().trace;
+    frame.displayFps = displayRate_.rate();
+    frame.samplesPerSecond = sampleRate_.rate();
+    frame.batchesPerSecond = batchRate_.rate();
+    frame.requestsPerSecond = requestRate_.rate();
+    frame.traceBusyShare = busyRate_.rate();
+    frame.mergedSamples = counts.merged - lastMerged_;
+    lastMerged_ = counts.merged;
+}
+
 void RenderWorker::renderOne(const RenderRequest& request, DisplayFrame& frame) {
     applyConfig(request.config, frame);
     if (request.clearCount != clearCount_) {
         clearCount_ = request.clearCount;
+        async_.reset();  // its tracer may be using the caches; its samples go too
         session_->cache().clear();
     }
     if (request.pathRestartCount != pathRestartCount_) {
@@ -139,16 +190,30 @@ void RenderWorker::renderOne(const RenderRequest& request, DisplayFrame& frame) 
     const bool showLevels = request.cacheLevels && !request.difference;
     session_->setRecordCacheLevels(showLevels && session_->settings().pipeline != PipelineKind::RenderCache);
 
-    // The one place a frame is rendered, by the pipeline the settings ask for.
-    session_->resize(request.width, request.height);
+    // The one place a frame is rendered, by the pipeline the settings ask
+    // for; the Render Cache at its own rate when asked and the scene is still
+    // (a scene that moves would move under its tracer).
+    const bool async = request.renderCacheAsync && session_->settings().pipeline == PipelineKind::RenderCache &&
+                       setup_.scene->animation.empty();
     auto start = std::chrono::steady_clock::now();
-    frame.stats = session_->render(camera, film_);
+    frame.asyncRenderCache = async;
+    if (async) {
+        reconstructAsync(request, camera, frame);
+    } else {
+        async_.reset();
+        session_->resize(request.width, request.height);
+        frame.stats = session_->render(camera, film_);
+    }
     frame.renderMs = millisecondsSince(start);
 
     start = std::chrono::steady_clock::now();
     encode(film_, frame.rgba);
     frame.inspectedObject = -1;
     frame.inspectorRgba.clear();
+    // The async Render Cache's tracer merges stores into the caches between
+    // its batches: kept out while the cubes are read here.
+    std::unique_lock<std::mutex> cachesHeld;
+    if (async_) cachesHeld = async_->holdCaches();
     const RayCache& cache = session_->cache();
     if (request.inspectObject >= 0 && cache.cachesObject(request.inspectObject)) {
         const CachingCube& cube = cache.cube(request.inspectObject);
@@ -163,8 +228,11 @@ void RenderWorker::renderOne(const RenderRequest& request, DisplayFrame& frame) 
         frame.inspectedInvalidPercent =
             100.0 * static_cast<double>(cube.texelCount() - cube.validCount()) / static_cast<double>(cube.texelCount());
     }
+    frame.cacheBytes = cache.bytes();
+    if (cachesHeld.owns_lock()) cachesHeld.unlock();
     // The difference view's heat map is made from the image without the overlays.
-    if (const RenderCacheOverlays* overlays = session_->renderCacheOverlays(); overlays && !request.difference)
+    const RenderCacheOverlays* overlays = async ? async_->overlays() : session_->renderCacheOverlays();
+    if (overlays && !request.difference)
         paintRenderCacheOverlay(*overlays, static_cast<RenderCacheOverlay>(request.renderCacheOverlay), frame.rgba);
     frame.showsCacheLevels = false;
     if (showLevels)
@@ -195,7 +263,6 @@ void RenderWorker::renderOne(const RenderRequest& request, DisplayFrame& frame) 
     frame.camera = camera;
     frame.pathFrame = onPath ? pathFrame_ : -1;
     frame.reducedResolution = request.reducedResolution && !onPath;
-    frame.cacheBytes = cache.bytes();
     frame.configError = configError_;
     if (onPath) ++pathFrame_;
 }

@@ -20,7 +20,9 @@
 #include "session/FrameLoop.h"
 #include "session/RenderSession.h"
 #include "trace/TraceScene.h"
+#include "rendercache/AsyncRenderCache.h"
 #include "viewer/FrameHandoff.h"
+#include "viewer/RateMeter.h"
 #include "viewer/RenderRequest.h"
 #include "viewer/Srgb8Encoder.h"
 
@@ -36,6 +38,12 @@ struct RenderWorkerSetup {
     // one handed over (lossless), then stop. Empty: interactive.
     std::optional<int> scriptedFrames;
     std::function<void()> onPublished;    // called after each handed-over frame (wakes the UI loop)
+    // The threads the async Render Cache's tracer takes (0: half of
+    // `base.threads`) and its display (0: all), see splitRenderCacheThreads
+    // (RenderRequest::renderCacheAsync asks for that mode).
+    int renderCacheTraceThreads = 0;
+    int renderCacheDisplayThreads = 0;
+    double renderCacheRequestFrames = 2.0;  // AsyncRenderCache::setRequestFrames
 };
 
 class RenderWorker {
@@ -60,6 +68,8 @@ private:
     void renderOne(const RenderRequest& request, DisplayFrame& frame);
     void applyConfig(const ViewerRenderConfig& config, DisplayFrame& frame);
     void encode(const Image& film, std::vector<std::uint8_t>& rgba) const;
+    // The async Render Cache's display frame; makes the pair anew when the size changed.
+    void reconstructAsync(const RenderRequest& request, const Camera& camera, DisplayFrame& frame);
 
     RenderWorkerSetup setup_;
     FrameHandoff& handoff_;
@@ -79,6 +89,9 @@ private:
     Image film_;
     Image uncachedFilm_;
     std::vector<std::uint8_t> uncachedRgba_;
+    RateMeter displayRate_, sampleRate_, batchRate_, requestRate_, busyRate_;
+    std::int64_t displayFrames_ = 0;
+    std::int64_t lastMerged_ = 0;
 
     // Shared with the UI thread.
     mutable std::mutex mutex_;
@@ -87,7 +100,12 @@ private:
     std::uint64_t requestSerial_ = 0;  // bumped when the request changes
     bool stop_ = false;
     bool finished_ = false;
+    bool samplesArrived_ = false;  // the async Render Cache's tracer handed over a batch
     std::exception_ptr error_;
+
+    // Render-thread state, after the mutex: its tracer thread wakes this one
+    // through it until it is destroyed (joined).
+    std::unique_ptr<AsyncRenderCache> async_;
 
     std::thread thread_;  // last: starts after everything above exists
 };

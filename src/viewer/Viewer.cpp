@@ -77,10 +77,11 @@ std::vector<int> cachedObjectsUnder(const Scene& scene, const RenderSettings& ba
 // One shown frame of a scripted run, for the report.
 struct ScriptedSample {
     double intervalMs, renderMs, encodeMs, uploadMs, uiMs, presentMs;
+    double samplesPerSecond;  // the async Render Cache's tracer; < 0 otherwise
 };
 
 void printScriptedSummary(const std::vector<ScriptedSample>& samples, int warmup, std::ostream& out) {
-    std::vector<double> interval, render, encode, upload, ui, present, fps;
+    std::vector<double> interval, render, encode, upload, ui, present, fps, samplesPerSecond;
     for (std::size_t i = static_cast<std::size_t>(warmup); i < samples.size(); ++i) {
         const ScriptedSample& s = samples[i];
         // The first shown frame has no predecessor: no interval.
@@ -93,6 +94,7 @@ void printScriptedSummary(const std::vector<ScriptedSample>& samples, int warmup
         upload.push_back(s.uploadMs);
         ui.push_back(s.uiMs);
         present.push_back(s.presentMs);
+        if (s.samplesPerSecond >= 0.0) samplesPerSecond.push_back(s.samplesPerSecond / 1.0e6);
     }
     const auto line = [&](const char* what, const std::vector<double>& v, int decimals) {
         if (v.empty()) return;
@@ -109,6 +111,7 @@ void printScriptedSummary(const std::vector<ScriptedSample>& samples, int warmup
     line("upload ms        ", upload, 2);
     line("ui ms            ", ui, 2);
     line("present ms       ", present, 2);
+    line("trace Msamples/s ", samplesPerSecond, 3);
 }
 
 }  // namespace
@@ -135,6 +138,7 @@ void Viewer::run(std::ostream& out) {
     state.playPath = scripted;
     state.difference = options_.difference;
     state.cacheLevels = options_.cacheLevels;
+    state.renderCacheAsync = options_.renderCacheDisplay == RenderCacheDisplay::Async;
     if (options_.inspectObject) {
         state.inspectObject = *options_.inspectObject;
         state.showInspector = true;
@@ -163,6 +167,9 @@ void Viewer::run(std::ostream& out) {
     setup.timeline = job_.timeline;
     setup.base = base;
     setup.scriptedFrames = options_.scriptedFrames;
+    setup.renderCacheTraceThreads = options_.renderCacheTraceThreads;
+    setup.renderCacheDisplayThreads = options_.renderCacheDisplayThreads;
+    setup.renderCacheRequestFrames = options_.renderCacheRequestFrames;
     setup.onPublished = &ViewerWindow::wake;
     RenderWorker worker(std::move(setup), handoff);
 
@@ -334,6 +341,7 @@ void Viewer::run(std::ostream& out) {
         request.difference = state.difference;
         request.differenceGain = state.differenceGain;
         request.renderCacheOverlay = state.renderCacheOverlay;
+        request.renderCacheAsync = state.renderCacheAsync;
         request.cacheLevels = state.cacheLevels;
         request.inspectObject = state.showInspector ? state.inspectObject : -1;
         request.inspectorFaceSize = state.inspectorFaceSize;
@@ -375,15 +383,21 @@ void Viewer::run(std::ostream& out) {
         uiTimes.presentMs = msBetween(presentStart, Clock::now());
 
         if (scripted && newFrame) {
-            samples.push_back({lastIntervalMs, shown.renderMs,
-                               shown.encodeMs, uiTimes.uploadMs, uiTimes.uiMs, uiTimes.presentMs});
+            samples.push_back({lastIntervalMs, shown.renderMs, shown.encodeMs, uiTimes.uploadMs, uiTimes.uiMs,
+                               uiTimes.presentMs, shown.asyncRenderCache ? shown.samplesPerSecond : -1.0});
             FrameResult result;
             result.frame = shown.pathFrame;
             result.milliseconds = shown.renderMs;
             result.stats = shown.stats;
             out << formatFrameLine(result, frames) << "  | interval " << formatFixed(lastIntervalMs, 1) << " encode " << formatFixed(shown.encodeMs, 2) << " upload "
                 << formatFixed(uiTimes.uploadMs, 2) << " ui " << formatFixed(uiTimes.uiMs, 2) << " present "
-                << formatFixed(uiTimes.presentMs, 2) << " ms" << std::endl;
+                << formatFixed(uiTimes.presentMs, 2) << " ms";
+            if (shown.asyncRenderCache)
+                out << " | async: merged " << shown.mergedSamples << " samples, tracer "
+                    << formatFixed(shown.samplesPerSecond / 1.0e6, 3) << " Msamples/s, busy "
+                    << formatFixed(100.0 * shown.traceBusyShare, 0) << " %, request map " << shown.stats.renderCache->budget
+                    << " rays";
+            out << std::endl;
             if (lastScriptedFrame) break;
         }
     }

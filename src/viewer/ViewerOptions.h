@@ -3,6 +3,8 @@
 #include <optional>
 #include <string>
 
+#include "viewer/RenderCacheDisplay.h"
+
 namespace raycache {
 
 struct ViewerOptions {
@@ -18,6 +20,12 @@ struct ViewerOptions {
     bool difference = false;     // start showing the difference to the uncached image
     bool cacheLevels = false;    // start with the cube level per pixel overlay on
     std::optional<int> inspectObject;  // start with this object's cube in the inspector
+    // The Render Cache pipeline at its own rate or one request per frame
+    // (docs/viewer.md), and the async mode's tracer threads (0: half).
+    RenderCacheDisplay renderCacheDisplay = RenderCacheDisplay::Sync;
+    int renderCacheTraceThreads = 0;
+    int renderCacheDisplayThreads = 0;  // 0: all
+    double renderCacheRequestFrames = 2.0;  // display frames of tracing one request asks for
 };
 
 }  // namespace raycache

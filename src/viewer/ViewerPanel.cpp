@@ -215,6 +215,20 @@ void drawRenderCacheSection(const ViewerPanelInput& in, ViewerUiState& state) {
     if (!f.stats.renderCache || !ImGui::CollapsingHeader("Render cache", ImGuiTreeNodeFlags_DefaultOpen)) return;
     const RenderCacheStats& c = *f.stats.renderCache;
     const double pixels = static_cast<double>(std::max<std::int64_t>(1, c.pixels));
+    ImGui::Checkbox("display at its own rate (async; scenes that move: sync)", &state.renderCacheAsync);
+    // Both rates: how often the display makes an image, and how fast the
+    // samples it is made of come.
+    if (f.asyncRenderCache) {
+        ImGui::Text("display async (%d display + %d trace threads): %.1f fps", f.displayThreads, f.traceThreads,
+                    f.displayFps);
+        ImGui::Text("tracer: %.3f Msamples/s, %.1f batches/s, %.1f requests/s, busy %.0f%%", f.samplesPerSecond / 1.0e6,
+                    f.batchesPerSecond, f.requestsPerSecond, 100.0 * f.traceBusyShare);
+        ImGui::Text("merged %lld samples, request map %lld rays", static_cast<long long>(f.mergedSamples),
+                    static_cast<long long>(c.budget));
+    } else {
+        ImGui::Text("display sync (one request map traced per frame): %.1f fps, %.3f Msamples/s", in.intervals->fps(),
+                    in.intervals->fps() * static_cast<double>(c.fresh + c.predicted) / 1.0e6);
+    }
     ImGui::Text("traced %.1f%% + %lld predicted, holes %.1f%%, reshaded %lld", 100.0 * static_cast<double>(c.fresh) / pixels,
                 static_cast<long long>(c.predicted), 100.0 * static_cast<double>(c.holes) / pixels,
                 static_cast<long long>(c.reshaded));

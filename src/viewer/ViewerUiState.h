@@ -19,6 +19,7 @@ struct ViewerUiState {
     bool difference = false;
     float differenceGain = 1.0f;
     int renderCacheOverlay = 0;  // RenderCacheOverlay
+    bool renderCacheAsync = false;  // the Render Cache at its own rate (--render-cache-display)
     bool cacheLevels = false;    // the cube level per pixel overlay
     int inspectObject = -1;
     int inspectorFaceSize = 128;

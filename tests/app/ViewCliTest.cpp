@@ -90,6 +90,35 @@ TEST_F(ViewCli, ScriptedRunShowsTheOfflineRenderOfTheSameCamera) {
     EXPECT_TRUE(std::isinf(psnr)) << psnr;
 }
 
+// The Render Cache in a scripted run is synchronous unless asked: the
+// window shows `raycache render`'s frame. Asked for async, it runs, saying
+// what it merged and how fast its tracer traced.
+TEST_F(ViewCli, ScriptedRenderCacheRunsAreSyncUnlessAskedAndAsyncWhenAsked) {
+    if (!haveXvfbRun()) {
+        RAYCACHE_SKIP_OR_FAIL_IN_CI("xvfb-run is not installed (scripts/install-deps.sh installs xvfb)");
+    }
+    const std::string job = "--scene room --width 160 --height 96 --frames 4 --threads 2 --pipeline render-cache";
+    const fs::path shot = dir_ / "view.png", offline = dir_ / "offline.png";
+    const RunResult view = run(underXvfb("view " + job + " --hide-ui --screenshot " + shot.string()), dir_);
+    ASSERT_EQ(view.exitCode, 0) << view.err << view.out;
+    EXPECT_EQ(view.out.find("async"), std::string::npos) << view.out;
+    const RunResult render = run(std::string(RAYCACHE_BINARY) + " render " + job + " --out " + offline.string(), dir_);
+    ASSERT_EQ(render.exitCode, 0) << render.err;
+    const raycache::Image shown = raycache::loadImageFile(shot);
+    const raycache::Image reference = raycache::loadImageFile(offline);
+    int differing = 0;
+    for (int y = 0; y < shown.height(); ++y)
+        for (int x = 0; x < shown.width(); ++x) differing += !(shown.at(x, y) == reference.at(x, y));
+    EXPECT_EQ(differing, 0);
+
+    const RunResult async =
+        run(underXvfb("view " + job + " --hide-ui --render-cache-display async --render-cache-trace-threads 1"), dir_);
+    ASSERT_EQ(async.exitCode, 0) << async.err << async.out;
+    EXPECT_NE(async.out.find("frame 4/4"), std::string::npos) << async.out;
+    EXPECT_NE(async.out.find("| async: merged "), std::string::npos) << async.out;
+    EXPECT_NE(async.out.find("trace Msamples/s"), std::string::npos) << async.out;
+}
+
 TEST_F(ViewCli, TheScreenshotIsTheWindowPanelIncluded) {
     if (!haveXvfbRun()) {
         RAYCACHE_SKIP_OR_FAIL_IN_CI("xvfb-run is not installed (scripts/install-deps.sh installs xvfb)");
@@ -146,7 +175,11 @@ TEST_F(ViewCli, BadInputIsOneLineAndExitTwoWithoutAWindow) {
          {std::string("view --scene no-such-scene --frames 2"), std::string("view no-such-file.json"),
           std::string("view --scene room --frames 2 --screenshot ") + (dir_ / "shot.bmp").string(),
           std::string("view --scene room --frames 2 --screenshot ") + (dir_ / "missing-dir" / "s.png").string(),
-          std::string("view --scene room --moving-scale 0"), std::string("view --scene room --max-depth 0")}) {
+          std::string("view --scene room --moving-scale 0"), std::string("view --scene room --max-depth 0"),
+          std::string("view --scene room --render-cache-display fast"),
+          std::string("view --scene room --render-cache-trace-threads -1"),
+          std::string("view --scene room --render-cache-display-threads -1"),
+          std::string("view --scene room --render-cache-request-frames -1")}) {
         const RunResult r = run("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(RAYCACHE_BINARY) + " " + args, dir_);
         EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.err;
         EXPECT_EQ(lineCount(r.err), 1) << args << "\n" << r.err;
@@ -169,6 +202,8 @@ TEST_F(ViewCli, HelpListsTheViewerOptions) {
     const RunResult r = run(std::string(RAYCACHE_BINARY) + " view --help", dir_);
     EXPECT_EQ(r.exitCode, 0);
     for (const char* option :
-         {"--screenshot", "--frames", "--hide-ui", "--technique", "--moving-scale", "--level-overlay"})
+         {"--screenshot", "--frames", "--hide-ui", "--technique", "--moving-scale", "--level-overlay",
+          "--render-cache-display", "--render-cache-trace-threads", "--render-cache-display-threads",
+          "--render-cache-request-frames"})
         EXPECT_NE(r.out.find(option), std::string::npos) << option;
 }

@@ -11,6 +11,7 @@
 #include "core/ColorSpace.h"
 #include "scene/BuiltinScenes.h"
 #include "session/FrameLoop.h"
+#include "session/RenderSession.h"
 #include "viewer/CacheLevelOverlayImage.h"
 #include "viewer/PipelineChoice.h"
 #include "viewer/RenderCacheOverlayImage.h"
@@ -336,4 +337,47 @@ TEST(RenderCacheOverlay, SourcesTintEachStateAndRequestsMarkTheRequestedPixels) 
     rgba.resize(4);  // the frame after a resize: sizes differ, nothing painted
     paintRenderCacheOverlay(o, RenderCacheOverlay::Sources, rgba);
     EXPECT_EQ(rgba, std::vector<std::uint8_t>(4, 100));
+}
+
+// The Render Cache at its own rate (RenderCacheDisplay::Async): with the
+// camera held still the frames shown converge to the full render's codes,
+// the frame says so and gives the tracer's rates, and the worker stops
+// (joining the tracer, which never runs out of requests) when destroyed.
+TEST(RenderWorker, AsyncRenderCacheWithAStillCameraConvergesToTheFullRender) {
+    const Scene scene = *makeBuiltinScene("room");
+    const TraceScene tracer(scene);
+    RenderSettings settings = smallSettings();
+    settings.cache.techniqueOverride = CacheTechnique::None;
+    Image reference;
+    RenderSession(scene, settings).render(scene.camera, reference);  // the ray pipeline
+    const std::vector<std::uint8_t> expected = srgb8(reference);
+
+    FrameHandoff handoff;
+    RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, {}, smallSettings(), std::nullopt, {}};
+    RenderWorker worker(setup, handoff);
+    RenderRequest request;
+    request.camera = scene.camera;
+    request.width = settings.width;
+    request.height = settings.height;
+    request.config.technique = techniqueChoiceIndex(CacheTechnique::None);
+    request.config.pipeline = kRenderCacheChoice;
+    request.renderCacheAsync = true;
+    worker.submit(request);
+    int frames = 0;
+    takeFrames(handoff, worker, [&](const DisplayFrame& f) {
+        EXPECT_TRUE(f.asyncRenderCache);
+        EXPECT_EQ(f.displayThreads, 2);
+        EXPECT_EQ(f.traceThreads, 1);
+        EXPECT_TRUE(f.stats.renderCache.has_value());
+        if (f.stats.renderCache) {
+            EXPECT_EQ(f.stats.renderCache->fresh, 0) << "the display traces no camera ray";
+        }
+        ++frames;
+        return f.rgba == expected;
+    });
+    EXPECT_GT(frames, 1) << "the first display frame has no samples yet";
+    takeFrames(handoff, worker, [&](const DisplayFrame& f) {
+        EXPECT_EQ(f.rgba, expected) << "the camera is still: every sample is exact";
+        return f.samplesPerSecond > 0.0 && f.displayFps > 0.0;
+    });
 }
