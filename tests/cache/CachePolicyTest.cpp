@@ -39,6 +39,19 @@ bool samplingFrame(int f) { return f < 2 || f == 2 + CubePolicy::kFirstBackoff |
 // Costs no hit can repay: every judged frame loses.
 CachePolicyCosts losingCosts() { return {1e6, 1e6, 1e6}; }
 
+// An animated scene's settings, 48², two threads, CCT on 64² faces under
+// `auto` with costs no hit repays.
+RenderSettings losingAnimatedSettings() {
+    RenderSettings settings;
+    settings.width = settings.height = 48;
+    settings.threads = 2;
+    settings.cache.techniqueOverride = CacheTechnique::Cct;
+    settings.cache.resolutionOverride = 64;
+    settings.cache.policy = CachePolicyMode::Auto;
+    settings.cache.policyCosts = losingCosts();
+    return settings;
+}
+
 }  // namespace
 
 // The names --cache-policy takes, in the order its message lists them.
@@ -433,21 +446,15 @@ TEST(CachePolicyRender, AutoIsTheSameOnOneAndTwoThreads) {
     EXPECT_EQ(one.texels, two.texels);
 }
 
-// Animated: while every cube stands aside the frames are the uncached ones
-// (the cubes keep invalidating meanwhile, so what a probe reads is what the
-// invalidation left valid; the oracle tests cover that).
+// Animated: while every cube stands aside the frames are the uncached ones,
+// and the cubes, emptied when they stepped aside, cost no region tests; the
+// sampling frames' texels are tested against every change.
 TEST(CachePolicyRender, AnimatedSceneBypassedFramesAreTheUncachedRender) {
     const auto scene = makeBuiltinScene("room-moving");
     ASSERT_TRUE(scene.has_value());
-    RenderSettings settings;
-    settings.width = settings.height = 48;
-    settings.threads = 2;
-    settings.cache.techniqueOverride = CacheTechnique::Cct;
-    settings.cache.resolutionOverride = 64;
+    const RenderSettings settings = losingAnimatedSettings();
     RenderSettings plainSettings = settings;
     plainSettings.cache.techniqueOverride = CacheTechnique::None;
-    settings.cache.policy = CachePolicyMode::Auto;
-    settings.cache.policyCosts = losingCosts();
     RenderSession cached(*scene, settings), plain(*scene, plainSettings);
     constexpr int kFrames = 8;
     for (int f = 0; f < kFrames; ++f) {
@@ -473,20 +480,12 @@ TEST(CachePolicyRender, AnimatedSceneBypassedFramesAreTheUncachedRender) {
     }
 }
 
-// In an animated scene a cube that steps aside empties itself; the frames
-// that follow, every cube aside, are the uncached render, and a later probe
-// starts from an empty sample.
+// In an animated scene a cube that steps aside empties itself, and the
+// frame that follows, every cube aside, is rendered as uncached.
 TEST(CachePolicyRender, AnimatedSceneCubeEmptiesItselfWhenItStepsAside) {
     const auto scene = makeBuiltinScene("orbit");
     ASSERT_TRUE(scene.has_value());
-    RenderSettings settings;
-    settings.width = settings.height = 48;
-    settings.threads = 2;
-    settings.cache.techniqueOverride = CacheTechnique::Cct;
-    settings.cache.resolutionOverride = 64;
-    settings.cache.policy = CachePolicyMode::Auto;
-    settings.cache.policyCosts = losingCosts();
-    RenderSession cached(*scene, settings);
+    RenderSession cached(*scene, losingAnimatedSettings());
     for (int f = 0; f < 3; ++f) {
         cached.setTime(static_cast<float>(f) / 30.0f);
         Image a;
