@@ -497,6 +497,8 @@ TEST(CachePolicyRender, AnimatedSceneCubeEmptiesItselfWhenItStepsAside) {
     ASSERT_FALSE(cache.empty());
     for (const SceneObject& object : scene->objects) {
         const int id = static_cast<int>(&object - scene->objects.data());
-        if (cache.cachesObject(id)) EXPECT_EQ(cache.cube(id).validCount(), 0u) << object.name;
+        if (cache.cachesObject(id)) {
+            EXPECT_EQ(cache.cube(id).validCount(), 0u) << object.name;
+        }
     }
 }
