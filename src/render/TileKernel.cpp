@@ -266,8 +266,8 @@ void TileKernel::beginWaves(TileScratch& s, CacheWorker* cache) const {
     s.trackTrees = cache && cache_ && cache_->tracksDependencies();
     // Bounds are kept for tracked nodes only, which emitSecondaryRay makes
     // and resets one by one: the camera rays' nodes (most of a tile's) are
-    // never tracked, and clearing 168 bytes for each of them cost 2.4 % of
-    // an animated frame.
+    // never tracked, and clearing 168 bytes for each of them took 2.4 % of
+    // perf's samples on orbit (`always`, 30 frames).
     if (s.trackTrees && s.nodeBounds.size() < s.nodes.size()) s.nodeBounds.resize(s.nodes.size());
 }
 
