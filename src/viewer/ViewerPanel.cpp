@@ -196,7 +196,9 @@ void drawStatisticsSection(const ViewerPanelInput& in) {
                     static_cast<unsigned long long>(c.lookups()), static_cast<unsigned long long>(c.stores()));
         ImGui::Text("       invalid texels %.1f%% (before the frame), memory %.1f MiB", c.invalidPercentBefore(),
                     static_cast<double>(f.cacheBytes) / kMiB);
-        if (c.bypassedCubes() || c.samplingCubes())
+        if (c.tracedAsUncached)
+            ImGui::Text("       policy: all %zu cubes bypassed: the frame was rendered as uncached", c.objects.size());
+        else if (c.bypassedCubes() || c.samplingCubes())
             ImGui::Text("       policy: of %zu cubes %d bypassed, %d sampling (%llu rays traced directly)",
                         c.objects.size(), c.bypassedCubes(), c.samplingCubes(),
                         static_cast<unsigned long long>(c.bypassedRays()));
