@@ -621,7 +621,6 @@ void TileKernel::spawnSecondaryRays(TileScratch& s, CacheWorker* cache) const {
             // one that enters still has the inside to cross.
             emit(v, *refracted, cone, TileScratch::Kind::Refraction, material.transmissivity, !sp.frontFace);
     }
-    if (s.trackTrees) s.nodeBounds.resize(s.nodes.size());
 }
 
 void TileKernel::lookupReuse(TileScratch& s, CacheWorker& cache) const {

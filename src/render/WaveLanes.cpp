@@ -242,7 +242,6 @@ void TileKernel::shadePackets(TileScratch& s, CacheWorker* cache, bool surfacesK
         }
         for (std::size_t p = 0; p < packets; ++p) packetEmit(s, s.packets[p], s.spawnLanes[p], cache);
     }
-    if (s.trackTrees) s.nodeBounds.resize(s.nodes.size());
 }
 
 void TileKernel::packetSurfaces(TileScratch::HitPacket& packet, MeshHitLanes& meshLanes) const {
