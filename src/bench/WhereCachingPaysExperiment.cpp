@@ -42,7 +42,7 @@ const std::vector<std::string>& allScenes() {
     static const std::vector<std::string> scenes = {
         "grid-8",  "grid-32", "behind-32", "reflective-32", "diffuse-32", "room",        "glass",
         "shapes",  "parallax", "bowl",     "room-moving",   "orbit",      "light-sweep", "cloth",
-        "bunny-glass", "teapot-mirrors", "dragon-hall"};
+        "bunny-glass", "teapot-mirrors", "dragon-hall", "dragon-mirrors"};
     return scenes;
 }
 

@@ -177,6 +177,33 @@ Scene dragonHallScene(const MeshSearchPath& searchPath) {
     return s;
 }
 
+// The dragon among large mirrors: three mirror balls behind and beside it
+// and a glass ball before it, together a third or more of the view, so that
+// most cached trees meet the dragon's 871k triangles. Where the hall keeps
+// its mirrors small and far (17 % of the image), this one asks whether
+// caching pays on a real mesh when mirrors and glass fill the view
+// (docs/caching.md, "When caching pays").
+Scene dragonMirrorsScene(const MeshSearchPath& searchPath) {
+    Scene s;
+    s.name = "dragon-mirrors";
+    MeshFiles files(s.name, searchPath, s.notes);
+    s.objects.push_back(floorObject(100.0f));
+    Material jade = matte(Rgb{0.35f, 0.6f, 0.42f});
+    jade.specular = Rgb{0.35f};
+    jade.shininess = 48.0f;
+    s.objects.push_back(standing("dragon", files.load(kDragonFile), {0, 0, 0}, 3.2f, 0.0f, jade));
+    s.objects.push_back(sphere("mirror-back", {0, 2.4f, -4.2f}, 2.4f, mirror(Rgb{0.1f}, 0.85f)));
+    s.objects.push_back(sphere("mirror-left", {-4.0f, 2.0f, -0.6f}, 2.0f, mirror(paletteColor(1), 0.8f)));
+    s.objects.push_back(sphere("mirror-right", {4.0f, 2.0f, -0.6f}, 2.0f, mirror(paletteColor(4), 0.8f)));
+    s.objects.push_back(sphere("glass-ball", {2.1f, 0.9f, 2.4f}, 0.9f, glass()));
+    s.lights.push_back(pointLight({4, 12, 8}));
+    s.environment = Environment::constant(kSky);
+    s.camera = camera({0, 3.2f, 9.0f}, {0, 1.6f, -1}, 45.0f);
+    s.cameraPath = orbit({0, 1.6f, -1}, 1.0f);
+    s.defaultFrames = 40;
+    return s;
+}
+
 struct RealMeshEntry {
     RealMeshSceneInfo info;
     std::function<Scene(const MeshSearchPath&)> make;
@@ -190,6 +217,9 @@ std::vector<RealMeshEntry> realMeshRegistry() {
          teapotMirrorsScene},
         {{"dragon-hall", "the Stanford dragon (871k triangles) between rows of mirror balls on pedestals", {kDragonFile}},
          dragonHallScene},
+        {{"dragon-mirrors", "the Stanford dragon among three large mirror balls and a glass one (a third of the view)",
+          {kDragonFile}},
+         dragonMirrorsScene},
     };
 }
 
