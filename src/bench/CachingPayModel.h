@@ -34,5 +34,8 @@ double cacheableShare(const CachingPayParts& parts);
 // The frame time the model expects with the technique, and uncached over it.
 double predictedFrameMs(const CachingPayParts& parts);
 double predictedSpeedup(const CachingPayParts& parts);
+// The most any cache could gain: every tree answered, lookups and stores
+// free, 1 / (1 - cacheableShare). Infinite when the trees are the whole frame.
+double freeCacheSpeedup(const CachingPayParts& parts);
 
 }  // namespace raycache

@@ -179,7 +179,8 @@ nlohmann::json partsJson(const CachingPayParts& p) {
             {"hit_rate", finiteOrNull(p.hitRate)},
             {"leaving_rays", p.leavingRays},
             {"cacheable_tree_ms", finiteOrNull(cacheableTreeMs(p))},
-            {"cacheable_share", finiteOrNull(cacheableShare(p))}};
+            {"cacheable_share", finiteOrNull(cacheableShare(p))},
+            {"free_cache_speedup", finiteOrNull(freeCacheSpeedup(p))}};
 }
 
 nlohmann::json techniqueJson(const TechniqueRow& t) {
@@ -395,17 +396,20 @@ private:
             "uncached / technique, with its 95 % bootstrap interval. The model (bench/CachingPayModel.h): the "
             "cacheable share is the time an ideal cache (every ray leaving a mirror or glass looked up, none "
             "traced) saves, lookups given back; predicted frame = uncached − hit rate × cacheable trees + the "
-            "technique's lookups + its frame-end work (the merge of stores, CDCT's pre-fill). Error = predicted / measured − 1.\n\n";
+            "technique's lookups + its frame-end work (the merge of stores, CDCT's pre-fill). Error = predicted / measured − 1. "
+            "*Free cache*: the most any cache could gain, every tree answered with lookups and stores free, "
+            "1 / (1 − cacheable share).\n\n";
         for (const auto& [label, pick] :
              {std::pair<const char*, TechniqueRow SceneRow::*>{"CCT", &SceneRow::cct}, {"CDCT", &SceneRow::cdct}}) {
             md += std::string("### ") + label + "\n\n";
-            MarkdownTable t({"scene", "mirror/glass of image", "cacheable share (filled)", "hits (filled)",
-                             "measured (filled)", "model (filled)", "error", "hits (path)", "measured (path)",
-                             "model (path)", "error"});
+            MarkdownTable t({"scene", "mirror/glass of image", "cacheable share (filled)",
+                             "free cache (filled)", "hits (filled)", "measured (filled)", "model (filled)", "error",
+                             "hits (path)", "measured (path)", "model (path)", "error"});
             for (const SceneRow& r : rows) {
                 const TechniqueRow& tr = r.*pick;
                 t.addRow({r.scene + (r.animated ? " (animated)" : ""), cellNumber(100.0 * r.coverage, 0) + " %",
                           cellNumber(100.0 * r.stillShare, 0) + " %",
+                          cellNumber(freeCacheSpeedup(tr.stillParts), 2) + "×",
                           cellNumber(100.0 * tr.stillParts.hitRate, 0) + " %", speedupCell(tr.stillMeasured),
                           cellNumber(tr.stillPredicted, 2) + "×",
                           errorCell(relativeError(tr.stillPredicted, tr.stillMeasured.speedup)),
@@ -465,7 +469,17 @@ private:
             cdct.points.push_back({r.stillShare, r.cdct.stillMeasured.speedup});
             cdctModel.points.push_back({r.stillShare, r.cdct.stillPredicted});
         }
-        p.series = {cct, cctModel, cdct, cdctModel};
+        // The bound every cache stays under, drawn across the shares measured.
+        PlotSeries bound{"free cache: 1 / (1 − share)", {}};
+        bound.dashed = true;
+        double widest = 0.0;
+        for (const SceneRow& r : rows)
+            if (std::isfinite(r.stillShare)) widest = std::max(widest, std::min(r.stillShare, 0.9));
+        for (int i = 0; i <= 20; ++i) {
+            const double share = widest * i / 20.0;
+            bound.points.push_back({share, 1.0 / (1.0 - share)});
+        }
+        p.series = {cct, cctModel, cdct, cdctModel, bound};
         return p;
     }
 };

@@ -5,6 +5,8 @@
 
 #include "bench/CachingPayModel.h"
 
+#include <limits>
+
 using namespace raycache;
 
 namespace {
@@ -28,6 +30,16 @@ TEST(CachingPayModel, TheIdealCacheIsPredictedAsMeasured) {
     EXPECT_DOUBLE_EQ(cacheableShare(p), 0.44);
     EXPECT_DOUBLE_EQ(predictedFrameMs(p), p.idealMs);
     EXPECT_DOUBLE_EQ(predictedSpeedup(p), 100.0 / 60.0);
+    // Free lookups would leave only the frame outside the trees: 100 - 44.
+    EXPECT_DOUBLE_EQ(freeCacheSpeedup(p), 100.0 / 56.0);
+    EXPECT_GT(freeCacheSpeedup(p), predictedSpeedup(p));
+}
+
+TEST(CachingPayModel, AFrameOfTreesAloneHasNoBound) {
+    CachingPayParts p = partsOfAFrame();
+    p.idealMs = p.idealLookupMs;  // nothing but trees and their lookups
+    EXPECT_DOUBLE_EQ(cacheableShare(p), 1.0);
+    EXPECT_EQ(freeCacheSpeedup(p), std::numeric_limits<double>::infinity());
 }
 
 TEST(CachingPayModel, ACacheThatNeverHitsCostsItsLookupsAndFrameEnd) {
@@ -53,4 +65,5 @@ TEST(CachingPayModel, AnEmptyFrameHasNoShareAndNoSpeedup) {
     const CachingPayParts p;
     EXPECT_EQ(cacheableShare(p), 0.0);
     EXPECT_EQ(predictedSpeedup(p), 0.0);
+    EXPECT_EQ(freeCacheSpeedup(p), 0.0);
 }

@@ -470,6 +470,11 @@ TEST_F(Experiments, WhereCachingPaysModelsEverySceneFromItsMeasuredParts) {
                 const double frame = uncached - hitRate * trees + p.at("lookup_ms").get<double>() +
                                      p.at("frame_end_ms").get<double>();
                 EXPECT_NEAR(t.at("predicted").get<double>(), uncached / frame, 1e-9 * uncached / frame);
+                // The free cache's bound is the uncached frame over what lies outside the trees.
+                if (trees < uncached) {
+                    EXPECT_NEAR(p.at("free_cache_speedup").get<double>(), uncached / (uncached - trees),
+                                1e-9 * uncached / (uncached - trees));
+                }
             }
     }
     EXPECT_TRUE(animated);
