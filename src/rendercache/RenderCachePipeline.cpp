@@ -264,6 +264,9 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
     // traced, so they already do.
     const bool retexture = moved && rc.textureRefetch;
     const CameraRays centreRays(camera, width, height);
+    // Each row's culling decisions, taken before the row is classified.
+    std::vector<unsigned char>& hiddenPerPixel = bytes_;
+    if (cull) hiddenPerPixel.resize(static_cast<std::size_t>(pixels));
     parallel_.forEachIndex(height, [&](int y, int) {
         std::int64_t rowHoles = 0, rowCulled = 0, rowReprojected = 0;
         // Addresses and sizes in locals (through the members the compiler
@@ -276,7 +279,9 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
         const SampleTexturing* const texturings = pool_.texturing.data() + rowSlot;
         PixelState* const rowState = state.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
         float* const rowPriority = priority.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
-        const float threshold = rc.depthCullThreshold;
+        unsigned char* const hidden =
+            cull ? hiddenPerPixel.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width) : nullptr;
+        if (cull) hiddenByNearerKeysRow(keys - stride, keys, keys + stride, width, rc.depthCullThreshold, hidden);
         CentreRetexturing retexturing(scene_.objects);
         for (int x = 0; x < width; ++x) {
             const auto i = static_cast<std::size_t>(x);
@@ -284,7 +289,7 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
                 rowState[i] = PixelState::Hole;
                 rowPriority[i] = 1.0f;
                 ++rowHoles;
-            } else if (cull && hiddenByNearerKeys(keys + x - stride, keys + x, keys + x + stride, threshold)) {
+            } else if (cull && hidden[x]) {
                 rowState[i] = PixelState::Culled;
                 rowPriority[i] = 1.0f;
                 ++rowCulled;
