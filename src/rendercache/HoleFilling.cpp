@@ -62,7 +62,8 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
         const SamplePoint* const points = surfaces ? surfaces->points + surfaces->origin : nullptr;
         const std::size_t surfaceStride = surfaces ? surfaces->stride : 0;
         const std::size_t rowStart = at(0, y);
-        for (int x = 0; x < width; ++x) {
+        const int columns = width, rows = height;  // captured by reference: reloaded after every store
+        for (int x = 0; x < columns; ++x) {
             const PixelState s = stateData[rowStart + static_cast<std::size_t>(x)];
             if (looks && showsSample(s))
                 filmData[rowStart + static_cast<std::size_t>(x)] =
@@ -70,20 +71,23 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
             if (!isHole(s)) continue;
             holes = true;
             SurfaceClusters groups;
-            for (int dy = -1; dy <= 1; ++dy) {
+            // The 3x3 box clipped to the image once per hole, not per neighbour.
+            const int dy0 = y > 0 ? -1 : 0, dy1 = y + 1 < rows ? 1 : 0;
+            const int dx0 = x > 0 ? -1 : 0, dx1 = x + 1 < columns ? 1 : 0;
+            for (int dy = dy0; dy <= dy1; ++dy) {
                 const int ny = y + dy;
-                if (ny < 0 || ny >= height) continue;
-                for (int dx = -1; dx <= 1; ++dx) {
+                const auto line = static_cast<std::size_t>(ny);
+                const PixelState* const states = stateData + line * static_cast<std::size_t>(columns);
+                for (int dx = dx0; dx <= dx1; ++dx) {
                     const int nx = x + dx;
-                    if (nx < 0 || nx >= width || !showsSample(stateData[at(nx, ny)])) continue;
+                    const auto column = static_cast<std::size_t>(nx);
+                    if (!showsSample(states[column])) continue;
                     const float w = (dx == 0 || dy == 0) ? 2.0f : 1.0f;
-                    const Rgb& color = looks ? looks[static_cast<std::size_t>(ny) * lookStride +
-                                                     static_cast<std::size_t>(nx)].color
-                                             : filmData[at(nx, ny)];
+                    const Rgb& color = looks ? looks[line * lookStride + column].color
+                                             : filmData[line * static_cast<std::size_t>(columns) + column];
                     if (surfaces) {
-                        const auto column = static_cast<std::size_t>(nx), line = static_cast<std::size_t>(ny);
                         groups.add(color, w, PointImage::depthOf(keys[line * keyStride + column]),
-                                   points[line * surfaceStride + column].objectId, ny * width + nx);
+                                   points[line * surfaceStride + column].objectId, ny * columns + nx);
                     } else {
                         groups.add(color, w, 0.0f, 0);
                     }
