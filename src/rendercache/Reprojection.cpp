@@ -139,20 +139,28 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
         // Copies the stores cannot touch.
         const ScreenProjection through = projection;
         const ScreenProjection nextThrough = next ? *next : projection;
+        // What the loop reads, in locals of its own: captured by reference,
+        // each was loaded through this lambda's closure for every sample.
+        const SamplePoint* const points = fromPoint;
+        const SampleLook* const looks = fromLook;
+        const Vec3* const objectOrigins = originData;
+        std::int32_t* const nextPixels = next ? nextOfSource : nullptr;
+        const int oldest = maxAge, imageWidth = width, imageHeight = height, imageMargin = margin;
+        const int x0 = coverX0, x1 = coverX1, y1 = coverY1;
         for (std::size_t slot = begin; slot < end; ++slot) {
-            const SamplePoint& point = fromPoint[slot];
+            const SamplePoint& point = points[slot];
             if (point.objectId == SamplePool::kEmpty) continue;
             ++counts.live;
-            if (fromLook[slot].age >= maxAge) {
+            if (looks[slot].age >= oldest) {
                 ++counts.evicted;
                 continue;
             }
             Landed sample{static_cast<std::uint32_t>(slot), 0.0f, 0.0f, 0.0f};
-            if (!projectPoint(point, originData, through, sample.x, sample.y, sample.depth)) continue;
+            if (!projectPoint(point, objectOrigins, through, sample.x, sample.y, sample.depth)) continue;
             const int x = ScreenProjection::pixelOf(sample.x), y = ScreenProjection::pixelOf(sample.y);
-            if (x < coverX0 || y < coverX0 || x >= coverX1 || y >= coverY1) continue;
-            if (next) nextOfSource[slot] = imagePixelOf(point, originData, nextThrough, width, height);
-            if (band < 0 || withinReach(band, y + margin)) offer(x, y, sample, lost);
+            if (x < x0 || y < x0 || x >= x1 || y >= y1) continue;
+            if (nextPixels) nextPixels[slot] = imagePixelOf(point, objectOrigins, nextThrough, imageWidth, imageHeight);
+            if (band < 0 || withinReach(band, y + imageMargin)) offer(x, y, sample, lost);
             else tooFar.push_back(sample);
         }
         bandCounts = counts;
