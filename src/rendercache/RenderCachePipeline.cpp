@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <sstream>
 
@@ -282,22 +283,27 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
         unsigned char* const hidden =
             cull ? hiddenPerPixel.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width) : nullptr;
         if (cull) hiddenByNearerKeysRow(keys - stride, keys, keys + stride, width, rc.depthCullThreshold, hidden);
+        // The frame's flags in locals too: captured by reference, each was
+        // loaded through the closure for every pixel.
+        const bool culling = cull, refetching = retexture;
+        const float ageShare = agePriority;
+        const int columns = width;
         CentreRetexturing retexturing(scene_.objects);
-        for (int x = 0; x < width; ++x) {
+        for (int x = 0; x < columns; ++x) {
             const auto i = static_cast<std::size_t>(x);
             if (keys[x] == PointImage::emptyKey()) {
                 rowState[i] = PixelState::Hole;
                 rowPriority[i] = 1.0f;
                 ++rowHoles;
-            } else if (cull && hidden[x]) {
+            } else if (culling && hidden[x]) {
                 rowState[i] = PixelState::Culled;
                 rowPriority[i] = 1.0f;
                 ++rowCulled;
             } else {
                 rowState[i] = PixelState::Reprojected;
                 SampleLook& look = looks[i];
-                rowPriority[i] = agePriority * static_cast<float>(look.age);
-                if (retexture && look.textured) {
+                rowPriority[i] = ageShare * static_cast<float>(look.age);
+                if (refetching && look.textured) {
                     const int object = points[i].objectId;
                     const auto distance = [&] {
                         return length(scene_.objects[static_cast<std::size_t>(object)].origin + points[i].position -
@@ -565,9 +571,14 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
     stats.unfilled = filled.unfilled;
     if (filled.unfilled > 0)
         parallel_.forEachIndex(height, [&](int y, int) {
-            for (int x = 0; x < width; ++x)
-                if (state[static_cast<std::size_t>(y * width + x)] == PixelState::Unfilled)
-                    film.at(x, y) = kernel_.shading().background(rays.ray(x, y));
+            // There are few (a handful a frame): memchr finds them a register at a time.
+            const auto* const row = reinterpret_cast<const unsigned char*>(state.data()) + static_cast<std::size_t>(y * width);
+            const auto unfilled = static_cast<unsigned char>(PixelState::Unfilled);
+            for (const void* at = std::memchr(row, unfilled, static_cast<std::size_t>(width)); at;) {
+                const auto x = static_cast<int>(static_cast<const unsigned char*>(at) - row);
+                film.at(x, y) = kernel_.shading().background(rays.ray(x, y));
+                at = std::memchr(row + x + 1, unfilled, static_cast<std::size_t>(width - x - 1));
+            }
         });
     stats.filterMs = millisecondsSince(start);
 
