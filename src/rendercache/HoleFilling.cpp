@@ -24,7 +24,15 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
     // order, without a data race. (The first pass, when it also writes the
     // samples' colours to the film, reads them from `samples`, never from
     // the film.) The states change at the end.
-    enum Outcome : unsigned char { kNone, k3x3, k7x7, kUnfilled, kWants7x7 };
+    // An outcome is the hole's new state, so that the last pass is a select
+    // a register of pixels at a time (kWants7x7 never outlives the 7x7 pass).
+    enum Outcome : unsigned char {
+        k3x3 = static_cast<unsigned char>(PixelState::Filled3x3),
+        k7x7 = static_cast<unsigned char>(PixelState::Filled7x7),
+        kUnfilled = static_cast<unsigned char>(PixelState::Unfilled),
+        kWants7x7 = 0xfe,
+        kNone = 0xff,
+    };
     std::vector<unsigned char> ownScratch;
     std::vector<unsigned char>& outcome = scratch ? *scratch : ownScratch;
     outcome.assign(state.size(), kNone);
@@ -174,11 +182,10 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
     });
     parallel.forEachIndex(height, [&](int y, int) {
         if (!hasHoles[static_cast<std::size_t>(y)]) return;
-        for (std::size_t i = at(0, y); i < at(0, y) + static_cast<std::size_t>(width); ++i) {
-            if (outcome[i] == k3x3) state[i] = PixelState::Filled3x3;
-            else if (outcome[i] == k7x7) state[i] = PixelState::Filled7x7;
-            else if (outcome[i] == kUnfilled) state[i] = PixelState::Unfilled;
-        }
+        auto* __restrict const states = reinterpret_cast<unsigned char*>(state.data()) + at(0, y);
+        const unsigned char* __restrict const outcomes = outcome.data() + at(0, y);
+        const int columns = width;
+        for (int x = 0; x < columns; ++x) states[x] = outcomes[x] == kNone ? states[x] : outcomes[x];
     });
     FillCounts total;
     for (const FillCounts& c : perRow) {
