@@ -225,6 +225,13 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
         const SampleTexturing* fromTexturing = from.texturing.data();
         SampleTexturing* toTexturing = to.texturing.data();
         std::int32_t* nextOfPixel = next ? nextPixel->data() : nullptr;
+        // And what the first round left, in locals too: captured by
+        // reference, each was loaded through the closure for every pixel.
+        const std::uint32_t* const winners = winner;
+        const std::int32_t* const nextOfWinner = nextOfSource;
+        const SamplePoint* const points = fromPoint;
+        const SampleLook* const looks = fromLook;
+        const int ageAdded = ageStep;
         std::int64_t placed = 0, moved = 0;
         const std::size_t rowEnd = (static_cast<std::size_t>(row) + 1) * stride;
         for (std::size_t pixel = static_cast<std::size_t>(row) * stride; pixel < rowEnd; ++pixel) {
@@ -234,15 +241,15 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
                 if (nextOfPixel) nextOfPixel[pixel] = -1;
                 continue;
             }
-            const std::size_t source = winner[pixel];
+            const std::size_t source = winners[pixel];
             if (key & kSecondChanceTag) {
                 keys[pixel] = key & ~kSecondChanceTag;
                 ++moved;
             }
-            if (nextOfPixel) nextOfPixel[pixel] = nextOfSource[source];
-            toPoint[pixel] = fromPoint[source];
-            SampleLook look = fromLook[source];
-            look.age = static_cast<std::uint16_t>(look.age + ageStep);
+            if (nextOfPixel) nextOfPixel[pixel] = nextOfWinner[source];
+            toPoint[pixel] = points[source];
+            SampleLook look = looks[source];
+            look.age = static_cast<std::uint16_t>(look.age + ageAdded);
             toLook[pixel] = look;
             // What reshading needs, only where it means something.
             if (look.viewDependent) toReshade[pixel] = fromReshade[source];
