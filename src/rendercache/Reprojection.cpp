@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/Errors.h"
+#include "rendercache/ProjectionLanes.h"
 
 namespace raycache {
 
@@ -147,21 +148,29 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
         std::int32_t* const nextPixels = next ? nextOfSource : nullptr;
         const int oldest = maxAge, imageWidth = width, imageHeight = height, imageMargin = margin;
         const int x0 = coverX0, x1 = coverX1, y1 = coverY1;
-        for (std::size_t slot = begin; slot < end; ++slot) {
-            const SamplePoint& point = points[slot];
-            if (point.objectId == SamplePool::kEmpty) continue;
-            ++counts.live;
-            if (looks[slot].age >= oldest) {
-                ++counts.evicted;
-                continue;
+        // Sixteen samples projected at a time (both cameras), then offered one by one.
+        ProjectedSamples projected;
+        for (std::size_t block = begin; block < end; block += kFloatLanes) {
+            const int count = static_cast<int>(std::min<std::size_t>(kFloatLanes, end - block));
+            projectSamples16(points + block, count, objectOrigins, through, next ? &nextThrough : nullptr, imageWidth,
+                             imageHeight, projected);
+            for (int lane = 0; lane < count; ++lane) {
+                const std::size_t slot = block + static_cast<std::size_t>(lane);
+                if (points[slot].objectId == SamplePool::kEmpty) continue;
+                ++counts.live;
+                if (looks[slot].age >= oldest) {
+                    ++counts.evicted;
+                    continue;
+                }
+                if (!projected.landed[lane]) continue;
+                const Landed sample{static_cast<std::uint32_t>(slot), projected.x[lane], projected.y[lane],
+                                    projected.depth[lane]};
+                const int x = projected.pixelX[lane], y = projected.pixelY[lane];
+                if (x < x0 || y < x0 || x >= x1 || y >= y1) continue;
+                if (nextPixels) nextPixels[slot] = projected.nextPixel[lane];
+                if (band < 0 || withinReach(band, y + imageMargin)) offer(x, y, sample, lost);
+                else tooFar.push_back(sample);
             }
-            Landed sample{static_cast<std::uint32_t>(slot), 0.0f, 0.0f, 0.0f};
-            if (!projectPoint(point, objectOrigins, through, sample.x, sample.y, sample.depth)) continue;
-            const int x = ScreenProjection::pixelOf(sample.x), y = ScreenProjection::pixelOf(sample.y);
-            if (x < x0 || y < x0 || x >= x1 || y >= y1) continue;
-            if (nextPixels) nextPixels[slot] = imagePixelOf(point, objectOrigins, nextThrough, imageWidth, imageHeight);
-            if (band < 0 || withinReach(band, y + imageMargin)) offer(x, y, sample, lost);
-            else tooFar.push_back(sample);
         }
         bandCounts = counts;
     });
