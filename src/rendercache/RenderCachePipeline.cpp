@@ -18,6 +18,7 @@
 #include "rendercache/HoleFilling.h"
 #include "rendercache/Reprojection.h"
 #include "rendercache/RequestMap.h"
+#include "rendercache/RowRays.h"
 #include "rendercache/SampleRetexturing.h"
 #include "rendercache/ScreenProjection.h"
 
@@ -289,6 +290,7 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
         const float ageShare = agePriority;
         const int columns = width;
         CentreRetexturing retexturing(scene_.objects);
+        RowRays centreRow(centreRays, columns, y);
         for (int x = 0; x < columns; ++x) {
             const auto i = static_cast<std::size_t>(x);
             if (keys[x] == PointImage::emptyKey()) {
@@ -311,7 +313,7 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
                     };
                     // Where the centre misses the sample's primitive (its
                     // edge, a silhouette), the stored colour, and a ray sooner.
-                    if (!retexturing.color(object, texturings[i], centreRays.ray(x, y), distance, look.color))
+                    if (!retexturing.color(object, texturings[i], centreRow.at(x), distance, look.color))
                         rowPriority[i] = std::max(rowPriority[i], kMissedPrimitivePriority);
                 }
                 ++rowReprojected;
