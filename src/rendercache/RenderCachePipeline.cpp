@@ -18,7 +18,7 @@
 #include "rendercache/HoleFilling.h"
 #include "rendercache/Reprojection.h"
 #include "rendercache/RequestMap.h"
-#include "rendercache/RowRays.h"
+#include "rendercache/RowRetexturing.h"
 #include "rendercache/SampleRetexturing.h"
 #include "rendercache/ScreenProjection.h"
 
@@ -289,8 +289,7 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
         const bool culling = cull, refetching = retexture;
         const float ageShare = agePriority;
         const int columns = width;
-        CentreRetexturing retexturing(scene_.objects);
-        RowRays centreRow(centreRays, columns, y);
+        RowRetexturing retexturing(scene_.objects, centreRays, y);
         for (int x = 0; x < columns; ++x) {
             const auto i = static_cast<std::size_t>(x);
             if (keys[x] == PointImage::emptyKey()) {
@@ -313,7 +312,7 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
                     };
                     // Where the centre misses the sample's primitive (its
                     // edge, a silhouette), the stored colour, and a ray sooner.
-                    if (!retexturing.color(object, texturings[i], centreRow.at(x), distance, look.color))
+                    if (!retexturing.color(x, object, texturings[i], distance, look.color))
                         rowPriority[i] = std::max(rowPriority[i], kMissedPrimitivePriority);
                 }
                 ++rowReprojected;
@@ -553,7 +552,7 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
     // a grey that neither square has). Where it misses, the filter's mean.
     if (rc.textureRefetch && filled.filled3x3 + filled.filled7x7 > 0)
         parallel_.forEachIndex(height, [&](int y, int) {
-            CentreRetexturing retexturing(scene_.objects);
+            RowRetexturing retexturing(scene_.objects, rays, y);
             for (int x = 0; x < width; ++x) {
                 const auto i = static_cast<std::size_t>(y * width + x);
                 if (state[i] != PixelState::Filled3x3 && state[i] != PixelState::Filled7x7) continue;
@@ -565,7 +564,7 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
                     return length(scene_.objects[static_cast<std::size_t>(object)].origin + pool_.point[slot].position -
                                   camera.position);
                 };
-                retexturing.color(object, pool_.texturing[slot], rays.ray(x, y), distance, film.at(x, y));
+                retexturing.color(x, object, pool_.texturing[slot], distance, film.at(x, y));
             }
         });
     stats.filled3x3 = filled.filled3x3;

@@ -13,7 +13,7 @@ TEST(RowRays, EachPixelsRayIsCameraRaysRayBitForBit) {
     const CameraRays rays(Camera{{1, 2, 3}, {-2, 0.5f, -4}, {0, 1, 0}, 50.0f}, kWidth, kHeight);
     const auto same = [](float a, float b) { return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b); };
     for (int y = 0; y < kHeight; ++y) {
-        RowRays row(rays, kWidth, y);
+        RowRays row(rays, y);
         for (const int x : {36, 0, 15, 16, 3, 35, 31, 32, 17, 20, 33, 1}) {
             const Ray expected = rays.ray(x, y);
             const Ray& got = row.at(x);
