@@ -1,6 +1,7 @@
 #include "rendercache/HoleFilling.h"
 
 #include <algorithm>
+#include <array>
 
 #include "rendercache/SurfaceClusters.h"
 
@@ -71,6 +72,30 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
         const std::size_t surfaceStride = surfaces ? surfaces->stride : 0;
         const std::size_t rowStart = at(0, y);
         const int columns = width, rows = height;  // captured by reference: reloaded after every store
+        // The three rows a hole's 3x3 box reads, their addresses made once
+        // per row of holes, not per hole (clipped to the image: `states`
+        // null for a row outside it).
+        struct NeighbourRow {
+            const PixelState* states = nullptr;
+            const Rgb* film = nullptr;
+            const SampleLook* looks = nullptr;
+            const std::uint32_t* keys = nullptr;
+            const SamplePoint* points = nullptr;
+            int firstPixel = 0;  // y * width of the row
+        };
+        std::array<NeighbourRow, 3> neighbourRows;
+        for (int dy = -1; dy <= 1; ++dy) {
+            const int ny = y + dy;
+            if (ny < 0 || ny >= rows) continue;
+            const auto line = static_cast<std::size_t>(ny);
+            NeighbourRow& r = neighbourRows[static_cast<std::size_t>(dy + 1)];
+            r.states = stateData + line * static_cast<std::size_t>(columns);
+            r.film = filmData + line * static_cast<std::size_t>(columns);
+            r.looks = looks ? looks + line * lookStride : nullptr;
+            r.keys = keys ? keys + line * keyStride : nullptr;
+            r.points = points ? points + line * surfaceStride : nullptr;
+            r.firstPixel = ny * columns;
+        }
         for (int x = 0; x < columns; ++x) {
             const PixelState s = stateData[rowStart + static_cast<std::size_t>(x)];
             if (looks && showsSample(s))
@@ -80,22 +105,19 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
             holes = true;
             SurfaceClusters groups;
             // The 3x3 box clipped to the image once per hole, not per neighbour.
-            const int dy0 = y > 0 ? -1 : 0, dy1 = y + 1 < rows ? 1 : 0;
             const int dx0 = x > 0 ? -1 : 0, dx1 = x + 1 < columns ? 1 : 0;
-            for (int dy = dy0; dy <= dy1; ++dy) {
-                const int ny = y + dy;
-                const auto line = static_cast<std::size_t>(ny);
-                const PixelState* const states = stateData + line * static_cast<std::size_t>(columns);
+            for (int dy = -1; dy <= 1; ++dy) {
+                const NeighbourRow& r = neighbourRows[static_cast<std::size_t>(dy + 1)];
+                if (!r.states) continue;
                 for (int dx = dx0; dx <= dx1; ++dx) {
                     const int nx = x + dx;
                     const auto column = static_cast<std::size_t>(nx);
-                    if (!showsSample(states[column])) continue;
+                    if (!showsSample(r.states[column])) continue;
                     const float w = (dx == 0 || dy == 0) ? 2.0f : 1.0f;
-                    const Rgb& color = looks ? looks[line * lookStride + column].color
-                                             : filmData[line * static_cast<std::size_t>(columns) + column];
+                    const Rgb& color = r.looks ? r.looks[column].color : r.film[column];
                     if (surfaces) {
-                        groups.add(color, w, PointImage::depthOf(keys[line * keyStride + column]),
-                                   points[line * surfaceStride + column].objectId, ny * columns + nx);
+                        groups.add(color, w, PointImage::depthOf(r.keys[column]), r.points[column].objectId,
+                                   r.firstPixel + nx);
                     } else {
                         groups.add(color, w, 0.0f, 0);
                     }
