@@ -42,11 +42,40 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
     // any hole (rows without are skipped by the later passes).
     std::vector<int> wants7x7(static_cast<std::size_t>(height), 0);
     std::vector<unsigned char> hasHoles(static_cast<std::size_t>(height), 0);
-    // A sample's colour into `groups`: without `surfaces`, all in one group.
-    const auto addSample = [&](SurfaceClusters& groups, int nx, int ny, float w) {
-        const Rgb& color = samples ? samples->at(nx, ny) : film.at(nx, ny);
-        if (surfaces) groups.add(color, w, surfaces->depth(nx, ny), surfaces->object(nx, ny), ny * width + nx);
-        else groups.add(color, w, 0.0f, 0);
+    // A row of what the filters read, its addresses made once per row (per
+    // row of holes, not per hole or neighbour): `states` null for a row
+    // outside the image.
+    struct SampleRow {
+        const PixelState* states = nullptr;
+        const Rgb* film = nullptr;
+        const SampleLook* looks = nullptr;  // with `samples`
+        const std::uint32_t* keys = nullptr;  // with `surfaces`
+        const SamplePoint* points = nullptr;  // with `surfaces`
+        int firstPixel = 0;  // y * width of the row
+    };
+    const auto sampleRow = [&](int ny) {
+        SampleRow r;
+        if (ny < 0 || ny >= height) return r;
+        const auto line = static_cast<std::size_t>(ny);
+        r.states = state.data() + line * static_cast<std::size_t>(width);
+        r.film = film.pixels().data() + line * static_cast<std::size_t>(width);
+        if (samples) r.looks = samples->looks + samples->origin + line * samples->stride;
+        if (surfaces) {
+            r.keys = surfaces->depths->keyData() + surfaces->depths->pixelIndex(0, ny);
+            r.points = surfaces->points + surfaces->origin + line * surfaces->stride;
+        }
+        r.firstPixel = ny * width;
+        return r;
+    };
+    // The sample at column nx of row `r` into `groups`: without `surfaces`, all in one group.
+    const auto addSample = [edgeAware = surfaces != nullptr](SurfaceClusters& groups, const SampleRow& r, int nx,
+                                                             float w) {
+        const auto column = static_cast<std::size_t>(nx);
+        const Rgb& color = r.looks ? r.looks[column].color : r.film[column];
+        if (edgeAware)
+            groups.add(color, w, PointImage::depthOf(r.keys[column]), r.points[column].objectId, r.firstPixel + nx);
+        else
+            groups.add(color, w, 0.0f, 0);
     };
     if (fillSource) fillSource->resize(state.size());
     const auto recordSource = [&](int x, int y, const SurfaceClusters& groups) {
@@ -65,37 +94,10 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
         std::int32_t* const sourceData = fillSource && surfaces ? fillSource->data() : nullptr;
         const SampleLook* const looks = samples ? samples->looks + samples->origin : nullptr;
         const std::size_t lookStride = samples ? samples->stride : 0;
-        const PointImage* const depths = surfaces ? surfaces->depths : nullptr;
-        const std::uint32_t* const keys = depths ? depths->keyData() + depths->pixelIndex(0, 0) : nullptr;
-        const std::size_t keyStride = depths ? static_cast<std::size_t>(depths->stride()) : 0;
-        const SamplePoint* const points = surfaces ? surfaces->points + surfaces->origin : nullptr;
-        const std::size_t surfaceStride = surfaces ? surfaces->stride : 0;
         const std::size_t rowStart = at(0, y);
-        const int columns = width, rows = height;  // captured by reference: reloaded after every store
-        // The three rows a hole's 3x3 box reads, their addresses made once
-        // per row of holes, not per hole (clipped to the image: `states`
-        // null for a row outside it).
-        struct NeighbourRow {
-            const PixelState* states = nullptr;
-            const Rgb* film = nullptr;
-            const SampleLook* looks = nullptr;
-            const std::uint32_t* keys = nullptr;
-            const SamplePoint* points = nullptr;
-            int firstPixel = 0;  // y * width of the row
-        };
-        std::array<NeighbourRow, 3> neighbourRows;
-        for (int dy = -1; dy <= 1; ++dy) {
-            const int ny = y + dy;
-            if (ny < 0 || ny >= rows) continue;
-            const auto line = static_cast<std::size_t>(ny);
-            NeighbourRow& r = neighbourRows[static_cast<std::size_t>(dy + 1)];
-            r.states = stateData + line * static_cast<std::size_t>(columns);
-            r.film = filmData + line * static_cast<std::size_t>(columns);
-            r.looks = looks ? looks + line * lookStride : nullptr;
-            r.keys = keys ? keys + line * keyStride : nullptr;
-            r.points = points ? points + line * surfaceStride : nullptr;
-            r.firstPixel = ny * columns;
-        }
+        const int columns = width;  // captured by reference: reloaded after every store
+        // The three rows a hole's 3x3 box reads.
+        const std::array<SampleRow, 3> neighbourRows = {sampleRow(y - 1), sampleRow(y), sampleRow(y + 1)};
         for (int x = 0; x < columns; ++x) {
             const PixelState s = stateData[rowStart + static_cast<std::size_t>(x)];
             if (looks && showsSample(s))
@@ -107,21 +109,10 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
             // The 3x3 box clipped to the image once per hole, not per neighbour.
             const int dx0 = x > 0 ? -1 : 0, dx1 = x + 1 < columns ? 1 : 0;
             for (int dy = -1; dy <= 1; ++dy) {
-                const NeighbourRow& r = neighbourRows[static_cast<std::size_t>(dy + 1)];
+                const SampleRow& r = neighbourRows[static_cast<std::size_t>(dy + 1)];
                 if (!r.states) continue;
-                for (int dx = dx0; dx <= dx1; ++dx) {
-                    const int nx = x + dx;
-                    const auto column = static_cast<std::size_t>(nx);
-                    if (!showsSample(r.states[column])) continue;
-                    const float w = (dx == 0 || dy == 0) ? 2.0f : 1.0f;
-                    const Rgb& color = r.looks ? r.looks[column].color : r.film[column];
-                    if (surfaces) {
-                        groups.add(color, w, PointImage::depthOf(r.keys[column]), r.points[column].objectId,
-                                   r.firstPixel + nx);
-                    } else {
-                        groups.add(color, w, 0.0f, 0);
-                    }
-                }
+                for (int dx = dx0; dx <= dx1; ++dx)
+                    if (showsSample(r.states[x + dx])) addSample(groups, r, x + dx, (dx == 0 || dy == 0) ? 2.0f : 1.0f);
             }
             const std::size_t i = rowStart + static_cast<std::size_t>(x);
             if (!groups.empty()) {
@@ -164,6 +155,8 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
         const int x0 = dense ? std::max(0, first - kPrefilterRadius) : 0;
         const int x1 = dense ? std::min(width - 1, last + kPrefilterRadius) : -1;  // no columns when sparse
         const int y0 = std::max(0, y - kPrefilterRadius), y1 = std::min(height - 1, y + kPrefilterRadius);
+        std::array<SampleRow, 2 * kPrefilterRadius + 1> boxRows;
+        for (int ny = y0; ny <= y1; ++ny) boxRows[static_cast<std::size_t>(ny - y0)] = sampleRow(ny);
         ColumnSums& columns = columnsPerWorker[static_cast<std::size_t>(worker)];
         columns.sum.assign(static_cast<std::size_t>(x1 - x0 + 1), Rgb{});
         columns.count.assign(static_cast<std::size_t>(x1 - x0 + 1), 0);
@@ -186,9 +179,11 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
                 }
                 if (count > 0) groups.add(sum * (1.0f / static_cast<float>(count)), 1.0f, 0.0f, 0);
             } else {
-                for (int ny = y0; ny <= y1; ++ny)
+                for (int ny = y0; ny <= y1; ++ny) {
+                    const SampleRow& r = boxRows[static_cast<std::size_t>(ny - y0)];
                     for (int nx = nx0; nx <= nx1; ++nx)
-                        if (showsSample(state[at(nx, ny)])) addSample(groups, nx, ny, 1.0f);
+                        if (showsSample(r.states[nx])) addSample(groups, r, nx, 1.0f);
+                }
             }
             if (!groups.empty()) {
                 film.at(x, y) = groups.mean();
