@@ -573,7 +573,8 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
     if (filled.unfilled > 0)
         parallel_.forEachIndex(height, [&](int y, int) {
             // There are few (a handful a frame): memchr finds them a register at a time.
-            const auto* const row = reinterpret_cast<const unsigned char*>(state.data()) + static_cast<std::size_t>(y * width);
+            const auto* const row =
+                reinterpret_cast<const unsigned char*>(state.data()) + static_cast<std::size_t>(y * width);
             const auto unfilled = static_cast<unsigned char>(PixelState::Unfilled);
             for (const void* at = std::memchr(row, unfilled, static_cast<std::size_t>(width)); at;) {
                 const auto x = static_cast<int>(static_cast<const unsigned char*>(at) - row);

@@ -11,7 +11,9 @@ using namespace raycache;
 TEST(RowRays, EachPixelsRayIsCameraRaysRayBitForBit) {
     constexpr int kWidth = 37, kHeight = 5;  // blocks of 16, 16 and 5
     const CameraRays rays(Camera{{1, 2, 3}, {-2, 0.5f, -4}, {0, 1, 0}, 50.0f}, kWidth, kHeight);
-    const auto same = [](float a, float b) { return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b); };
+    const auto same = [](float a, float b) {
+        return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b);
+    };
     for (int y = 0; y < kHeight; ++y) {
         RowRays row(rays, y);
         for (const int x : {36, 0, 15, 16, 3, 35, 31, 32, 17, 20, 33, 1}) {
