@@ -34,6 +34,14 @@ inline bool hiddenByNearerKeys(const std::uint32_t* above, const std::uint32_t* 
     return nearer >= 3 && nearer > notNearer;
 }
 
+// hidden[x] = hiddenByNearerKeys(above + x, row + x, below + x, threshold)
+// for x in [0, count), a register of pixels at a time (the holes pass of
+// RenderCachePipeline decides a whole row before it classifies it: a
+// pixel's nine keys one by one cost ~70 instructions); the same decisions bit
+// for bit. Each row is readable one pixel to either side, as above.
+void hiddenByNearerKeysRow(const std::uint32_t* above, const std::uint32_t* row, const std::uint32_t* below, int count,
+                           float threshold, unsigned char* hidden);
+
 // Whether the sample at pixel (x, y) of `image` (which must hold one; the
 // margin must be at least 1) is hidden by the rule above.
 inline bool hiddenByNearerNeighbours(const PointImage& image, int x, int y, float threshold) {

@@ -1,6 +1,7 @@
 #include "rendercache/HoleFilling.h"
 
 #include <algorithm>
+#include <array>
 
 #include "rendercache/SurfaceClusters.h"
 
@@ -24,7 +25,15 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
     // order, without a data race. (The first pass, when it also writes the
     // samples' colours to the film, reads them from `samples`, never from
     // the film.) The states change at the end.
-    enum Outcome : unsigned char { kNone, k3x3, k7x7, kUnfilled, kWants7x7 };
+    // An outcome is the hole's new state, so that the last pass is a select
+    // a register of pixels at a time (kWants7x7 never outlives the 7x7 pass).
+    enum Outcome : unsigned char {
+        k3x3 = static_cast<unsigned char>(PixelState::Filled3x3),
+        k7x7 = static_cast<unsigned char>(PixelState::Filled7x7),
+        kUnfilled = static_cast<unsigned char>(PixelState::Unfilled),
+        kWants7x7 = 0xfe,
+        kNone = 0xff,
+    };
     std::vector<unsigned char> ownScratch;
     std::vector<unsigned char>& outcome = scratch ? *scratch : ownScratch;
     outcome.assign(state.size(), kNone);
@@ -33,11 +42,40 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
     // any hole (rows without are skipped by the later passes).
     std::vector<int> wants7x7(static_cast<std::size_t>(height), 0);
     std::vector<unsigned char> hasHoles(static_cast<std::size_t>(height), 0);
-    // A sample's colour into `groups`: without `surfaces`, all in one group.
-    const auto addSample = [&](SurfaceClusters& groups, int nx, int ny, float w) {
-        const Rgb& color = samples ? samples->at(nx, ny) : film.at(nx, ny);
-        if (surfaces) groups.add(color, w, surfaces->depth(nx, ny), surfaces->object(nx, ny), ny * width + nx);
-        else groups.add(color, w, 0.0f, 0);
+    // A row of what the filters read, its addresses made once per row (per
+    // row of holes, not per hole or neighbour): `states` null for a row
+    // outside the image.
+    struct SampleRow {
+        const PixelState* states = nullptr;
+        const Rgb* film = nullptr;
+        const SampleLook* looks = nullptr;  // with `samples`
+        const std::uint32_t* keys = nullptr;  // with `surfaces`
+        const SamplePoint* points = nullptr;  // with `surfaces`
+        int firstPixel = 0;  // y * width of the row
+    };
+    const auto sampleRow = [&](int ny) {
+        SampleRow r;
+        if (ny < 0 || ny >= height) return r;
+        const auto line = static_cast<std::size_t>(ny);
+        r.states = state.data() + line * static_cast<std::size_t>(width);
+        r.film = film.pixels().data() + line * static_cast<std::size_t>(width);
+        if (samples) r.looks = samples->looks + samples->origin + line * samples->stride;
+        if (surfaces) {
+            r.keys = surfaces->depths->keyData() + surfaces->depths->pixelIndex(0, ny);
+            r.points = surfaces->points + surfaces->origin + line * surfaces->stride;
+        }
+        r.firstPixel = ny * width;
+        return r;
+    };
+    // The sample at column nx of row `r` into `groups`: without `surfaces`, all in one group.
+    const auto addSample = [edgeAware = surfaces != nullptr](SurfaceClusters& groups, const SampleRow& r, int nx,
+                                                             float w) {
+        const auto column = static_cast<std::size_t>(nx);
+        const Rgb& color = r.looks ? r.looks[column].color : r.film[column];
+        if (edgeAware)
+            groups.add(color, w, PointImage::depthOf(r.keys[column]), r.points[column].objectId, r.firstPixel + nx);
+        else
+            groups.add(color, w, 0.0f, 0);
     };
     if (fillSource) fillSource->resize(state.size());
     const auto recordSource = [&](int x, int y, const SurfaceClusters& groups) {
@@ -56,13 +94,11 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
         std::int32_t* const sourceData = fillSource && surfaces ? fillSource->data() : nullptr;
         const SampleLook* const looks = samples ? samples->looks + samples->origin : nullptr;
         const std::size_t lookStride = samples ? samples->stride : 0;
-        const PointImage* const depths = surfaces ? surfaces->depths : nullptr;
-        const std::uint32_t* const keys = depths ? depths->keyData() + depths->pixelIndex(0, 0) : nullptr;
-        const std::size_t keyStride = depths ? static_cast<std::size_t>(depths->stride()) : 0;
-        const SamplePoint* const points = surfaces ? surfaces->points + surfaces->origin : nullptr;
-        const std::size_t surfaceStride = surfaces ? surfaces->stride : 0;
         const std::size_t rowStart = at(0, y);
-        for (int x = 0; x < width; ++x) {
+        const int columns = width;  // captured by reference: reloaded after every store
+        // The three rows a hole's 3x3 box reads.
+        const std::array<SampleRow, 3> neighbourRows = {sampleRow(y - 1), sampleRow(y), sampleRow(y + 1)};
+        for (int x = 0; x < columns; ++x) {
             const PixelState s = stateData[rowStart + static_cast<std::size_t>(x)];
             if (looks && showsSample(s))
                 filmData[rowStart + static_cast<std::size_t>(x)] =
@@ -70,24 +106,13 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
             if (!isHole(s)) continue;
             holes = true;
             SurfaceClusters groups;
+            // The 3x3 box clipped to the image once per hole, not per neighbour.
+            const int dx0 = x > 0 ? -1 : 0, dx1 = x + 1 < columns ? 1 : 0;
             for (int dy = -1; dy <= 1; ++dy) {
-                const int ny = y + dy;
-                if (ny < 0 || ny >= height) continue;
-                for (int dx = -1; dx <= 1; ++dx) {
-                    const int nx = x + dx;
-                    if (nx < 0 || nx >= width || !showsSample(stateData[at(nx, ny)])) continue;
-                    const float w = (dx == 0 || dy == 0) ? 2.0f : 1.0f;
-                    const Rgb& color = looks ? looks[static_cast<std::size_t>(ny) * lookStride +
-                                                     static_cast<std::size_t>(nx)].color
-                                             : filmData[at(nx, ny)];
-                    if (surfaces) {
-                        const auto column = static_cast<std::size_t>(nx), line = static_cast<std::size_t>(ny);
-                        groups.add(color, w, PointImage::depthOf(keys[line * keyStride + column]),
-                                   points[line * surfaceStride + column].objectId, ny * width + nx);
-                    } else {
-                        groups.add(color, w, 0.0f, 0);
-                    }
-                }
+                const SampleRow& r = neighbourRows[static_cast<std::size_t>(dy + 1)];
+                if (!r.states) continue;
+                for (int dx = dx0; dx <= dx1; ++dx)
+                    if (showsSample(r.states[x + dx])) addSample(groups, r, x + dx, (dx == 0 || dy == 0) ? 2.0f : 1.0f);
             }
             const std::size_t i = rowStart + static_cast<std::size_t>(x);
             if (!groups.empty()) {
@@ -130,6 +155,8 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
         const int x0 = dense ? std::max(0, first - kPrefilterRadius) : 0;
         const int x1 = dense ? std::min(width - 1, last + kPrefilterRadius) : -1;  // no columns when sparse
         const int y0 = std::max(0, y - kPrefilterRadius), y1 = std::min(height - 1, y + kPrefilterRadius);
+        std::array<SampleRow, 2 * kPrefilterRadius + 1> boxRows;
+        for (int ny = y0; ny <= y1; ++ny) boxRows[static_cast<std::size_t>(ny - y0)] = sampleRow(ny);
         ColumnSums& columns = columnsPerWorker[static_cast<std::size_t>(worker)];
         columns.sum.assign(static_cast<std::size_t>(x1 - x0 + 1), Rgb{});
         columns.count.assign(static_cast<std::size_t>(x1 - x0 + 1), 0);
@@ -152,9 +179,11 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
                 }
                 if (count > 0) groups.add(sum * (1.0f / static_cast<float>(count)), 1.0f, 0.0f, 0);
             } else {
-                for (int ny = y0; ny <= y1; ++ny)
+                for (int ny = y0; ny <= y1; ++ny) {
+                    const SampleRow& r = boxRows[static_cast<std::size_t>(ny - y0)];
                     for (int nx = nx0; nx <= nx1; ++nx)
-                        if (showsSample(state[at(nx, ny)])) addSample(groups, nx, ny, 1.0f);
+                        if (showsSample(r.states[nx])) addSample(groups, r, nx, 1.0f);
+                }
             }
             if (!groups.empty()) {
                 film.at(x, y) = groups.mean();
@@ -170,11 +199,10 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
     });
     parallel.forEachIndex(height, [&](int y, int) {
         if (!hasHoles[static_cast<std::size_t>(y)]) return;
-        for (std::size_t i = at(0, y); i < at(0, y) + static_cast<std::size_t>(width); ++i) {
-            if (outcome[i] == k3x3) state[i] = PixelState::Filled3x3;
-            else if (outcome[i] == k7x7) state[i] = PixelState::Filled7x7;
-            else if (outcome[i] == kUnfilled) state[i] = PixelState::Unfilled;
-        }
+        auto* __restrict const states = reinterpret_cast<unsigned char*>(state.data()) + at(0, y);
+        const unsigned char* __restrict const outcomes = outcome.data() + at(0, y);
+        const int columns = width;
+        for (int x = 0; x < columns; ++x) states[x] = outcomes[x] == kNone ? states[x] : outcomes[x];
     });
     FillCounts total;
     for (const FillCounts& c : perRow) {

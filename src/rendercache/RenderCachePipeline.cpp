@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <sstream>
 
@@ -17,6 +18,7 @@
 #include "rendercache/HoleFilling.h"
 #include "rendercache/Reprojection.h"
 #include "rendercache/RequestMap.h"
+#include "rendercache/RowRetexturing.h"
 #include "rendercache/SampleRetexturing.h"
 #include "rendercache/ScreenProjection.h"
 
@@ -264,6 +266,9 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
     // traced, so they already do.
     const bool retexture = moved && rc.textureRefetch;
     const CameraRays centreRays(camera, width, height);
+    // Each row's culling decisions, taken before the row is classified.
+    std::vector<unsigned char>& hiddenPerPixel = bytes_;
+    if (cull) hiddenPerPixel.resize(static_cast<std::size_t>(pixels));
     parallel_.forEachIndex(height, [&](int y, int) {
         std::int64_t rowHoles = 0, rowCulled = 0, rowReprojected = 0;
         // Addresses and sizes in locals (through the members the compiler
@@ -276,23 +281,30 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
         const SampleTexturing* const texturings = pool_.texturing.data() + rowSlot;
         PixelState* const rowState = state.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
         float* const rowPriority = priority.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
-        const float threshold = rc.depthCullThreshold;
-        CentreRetexturing retexturing(scene_.objects);
-        for (int x = 0; x < width; ++x) {
+        unsigned char* const hidden =
+            cull ? hiddenPerPixel.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width) : nullptr;
+        if (cull) hiddenByNearerKeysRow(keys - stride, keys, keys + stride, width, rc.depthCullThreshold, hidden);
+        // The frame's flags in locals too: captured by reference, each was
+        // loaded through the closure for every pixel.
+        const bool culling = cull, refetching = retexture;
+        const float ageShare = agePriority;
+        const int columns = width;
+        RowRetexturing retexturing(scene_.objects, centreRays, y);
+        for (int x = 0; x < columns; ++x) {
             const auto i = static_cast<std::size_t>(x);
             if (keys[x] == PointImage::emptyKey()) {
                 rowState[i] = PixelState::Hole;
                 rowPriority[i] = 1.0f;
                 ++rowHoles;
-            } else if (cull && hiddenByNearerKeys(keys + x - stride, keys + x, keys + x + stride, threshold)) {
+            } else if (culling && hidden[x]) {
                 rowState[i] = PixelState::Culled;
                 rowPriority[i] = 1.0f;
                 ++rowCulled;
             } else {
                 rowState[i] = PixelState::Reprojected;
                 SampleLook& look = looks[i];
-                rowPriority[i] = agePriority * static_cast<float>(look.age);
-                if (retexture && look.textured) {
+                rowPriority[i] = ageShare * static_cast<float>(look.age);
+                if (refetching && look.textured) {
                     const int object = points[i].objectId;
                     const auto distance = [&] {
                         return length(scene_.objects[static_cast<std::size_t>(object)].origin + points[i].position -
@@ -300,7 +312,7 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
                     };
                     // Where the centre misses the sample's primitive (its
                     // edge, a silhouette), the stored colour, and a ray sooner.
-                    if (!retexturing.color(object, texturings[i], centreRays.ray(x, y), distance, look.color))
+                    if (!retexturing.color(x, object, texturings[i], distance, look.color))
                         rowPriority[i] = std::max(rowPriority[i], kMissedPrimitivePriority);
                 }
                 ++rowReprojected;
@@ -540,7 +552,7 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
     // a grey that neither square has). Where it misses, the filter's mean.
     if (rc.textureRefetch && filled.filled3x3 + filled.filled7x7 > 0)
         parallel_.forEachIndex(height, [&](int y, int) {
-            CentreRetexturing retexturing(scene_.objects);
+            RowRetexturing retexturing(scene_.objects, rays, y);
             for (int x = 0; x < width; ++x) {
                 const auto i = static_cast<std::size_t>(y * width + x);
                 if (state[i] != PixelState::Filled3x3 && state[i] != PixelState::Filled7x7) continue;
@@ -552,7 +564,7 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
                     return length(scene_.objects[static_cast<std::size_t>(object)].origin + pool_.point[slot].position -
                                   camera.position);
                 };
-                retexturing.color(object, pool_.texturing[slot], rays.ray(x, y), distance, film.at(x, y));
+                retexturing.color(x, object, pool_.texturing[slot], distance, film.at(x, y));
             }
         });
     stats.filled3x3 = filled.filled3x3;
@@ -560,9 +572,15 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
     stats.unfilled = filled.unfilled;
     if (filled.unfilled > 0)
         parallel_.forEachIndex(height, [&](int y, int) {
-            for (int x = 0; x < width; ++x)
-                if (state[static_cast<std::size_t>(y * width + x)] == PixelState::Unfilled)
-                    film.at(x, y) = kernel_.shading().background(rays.ray(x, y));
+            // There are few (a handful a frame): memchr finds them a register at a time.
+            const auto* const row =
+                reinterpret_cast<const unsigned char*>(state.data()) + static_cast<std::size_t>(y * width);
+            const auto unfilled = static_cast<unsigned char>(PixelState::Unfilled);
+            for (const void* at = std::memchr(row, unfilled, static_cast<std::size_t>(width)); at;) {
+                const auto x = static_cast<int>(static_cast<const unsigned char*>(at) - row);
+                film.at(x, y) = kernel_.shading().background(rays.ray(x, y));
+                at = std::memchr(row + x + 1, unfilled, static_cast<std::size_t>(width - x - 1));
+            }
         });
     stats.filterMs = millisecondsSince(start);
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/Errors.h"
+#include "rendercache/ProjectionLanes.h"
 
 namespace raycache {
 
@@ -139,21 +140,37 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
         // Copies the stores cannot touch.
         const ScreenProjection through = projection;
         const ScreenProjection nextThrough = next ? *next : projection;
-        for (std::size_t slot = begin; slot < end; ++slot) {
-            const SamplePoint& point = fromPoint[slot];
-            if (point.objectId == SamplePool::kEmpty) continue;
-            ++counts.live;
-            if (fromLook[slot].age >= maxAge) {
-                ++counts.evicted;
-                continue;
+        // What the loop reads, in locals of its own: captured by reference,
+        // each was loaded through this lambda's closure for every sample.
+        const SamplePoint* const points = fromPoint;
+        const SampleLook* const looks = fromLook;
+        const Vec3* const objectOrigins = originData;
+        std::int32_t* const nextPixels = next ? nextOfSource : nullptr;
+        const int oldest = maxAge, imageWidth = width, imageHeight = height, imageMargin = margin;
+        const int x0 = coverX0, x1 = coverX1, y1 = coverY1;
+        // Sixteen samples projected at a time (both cameras), then offered one by one.
+        ProjectedSamples projected;
+        for (std::size_t block = begin; block < end; block += kFloatLanes) {
+            const int count = static_cast<int>(std::min<std::size_t>(kFloatLanes, end - block));
+            projectSamples16(points + block, count, objectOrigins, through, next ? &nextThrough : nullptr, imageWidth,
+                             imageHeight, projected);
+            for (int lane = 0; lane < count; ++lane) {
+                const std::size_t slot = block + static_cast<std::size_t>(lane);
+                if (points[slot].objectId == SamplePool::kEmpty) continue;
+                ++counts.live;
+                if (looks[slot].age >= oldest) {
+                    ++counts.evicted;
+                    continue;
+                }
+                if (!projected.landed[lane]) continue;
+                const Landed sample{static_cast<std::uint32_t>(slot), projected.x[lane], projected.y[lane],
+                                    projected.depth[lane]};
+                const int x = projected.pixelX[lane], y = projected.pixelY[lane];
+                if (x < x0 || y < x0 || x >= x1 || y >= y1) continue;
+                if (nextPixels) nextPixels[slot] = projected.nextPixel[lane];
+                if (band < 0 || withinReach(band, y + imageMargin)) offer(x, y, sample, lost);
+                else tooFar.push_back(sample);
             }
-            Landed sample{static_cast<std::uint32_t>(slot), 0.0f, 0.0f, 0.0f};
-            if (!projectPoint(point, originData, through, sample.x, sample.y, sample.depth)) continue;
-            const int x = ScreenProjection::pixelOf(sample.x), y = ScreenProjection::pixelOf(sample.y);
-            if (x < coverX0 || y < coverX0 || x >= coverX1 || y >= coverY1) continue;
-            if (next) nextOfSource[slot] = imagePixelOf(point, originData, nextThrough, width, height);
-            if (band < 0 || withinReach(band, y + margin)) offer(x, y, sample, lost);
-            else tooFar.push_back(sample);
         }
         bandCounts = counts;
     });
@@ -217,6 +234,13 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
         const SampleTexturing* fromTexturing = from.texturing.data();
         SampleTexturing* toTexturing = to.texturing.data();
         std::int32_t* nextOfPixel = next ? nextPixel->data() : nullptr;
+        // And what the first round left, in locals too: captured by
+        // reference, each was loaded through the closure for every pixel.
+        const std::uint32_t* const winners = winner;
+        const std::int32_t* const nextOfWinner = nextOfSource;
+        const SamplePoint* const points = fromPoint;
+        const SampleLook* const looks = fromLook;
+        const int ageAdded = ageStep;
         std::int64_t placed = 0, moved = 0;
         const std::size_t rowEnd = (static_cast<std::size_t>(row) + 1) * stride;
         for (std::size_t pixel = static_cast<std::size_t>(row) * stride; pixel < rowEnd; ++pixel) {
@@ -226,15 +250,15 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
                 if (nextOfPixel) nextOfPixel[pixel] = -1;
                 continue;
             }
-            const std::size_t source = winner[pixel];
+            const std::size_t source = winners[pixel];
             if (key & kSecondChanceTag) {
                 keys[pixel] = key & ~kSecondChanceTag;
                 ++moved;
             }
-            if (nextOfPixel) nextOfPixel[pixel] = nextOfSource[source];
-            toPoint[pixel] = fromPoint[source];
-            SampleLook look = fromLook[source];
-            look.age = static_cast<std::uint16_t>(look.age + ageStep);
+            if (nextOfPixel) nextOfPixel[pixel] = nextOfWinner[source];
+            toPoint[pixel] = points[source];
+            SampleLook look = looks[source];
+            look.age = static_cast<std::uint16_t>(look.age + ageAdded);
             toLook[pixel] = look;
             // What reshading needs, only where it means something.
             if (look.viewDependent) toReshade[pixel] = fromReshade[source];

@@ -68,8 +68,7 @@ inline bool projectPoint(const SamplePoint& sample, const Vec3* origins, const S
     const ScreenProjection::Projected p =
         background ? projection.direction(sample.position)
                    : projection.point(origins[static_cast<std::size_t>(sample.objectId)] + sample.position);
-    // Outside this range the conversion to int would overflow.
-    constexpr float kFar = 1.0e8f;
+    constexpr float kFar = ScreenProjection::kRange;
     if (!(p.depth > 0.0f && p.x > -kFar && p.x < kFar && p.y > -kFar && p.y < kFar)) return false;
     depth = background ? std::numeric_limits<float>::infinity() : p.depth;
     px = p.x;

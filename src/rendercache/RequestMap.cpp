@@ -4,8 +4,34 @@
 #include <array>
 #include <numeric>
 #include <cmath>
+#include <emmintrin.h>
 
 namespace raycache {
+
+namespace {
+
+// Inside a tile, priorities in kLevels steps; holes (1) on the top one.
+constexpr int kLevels = 33;
+unsigned char levelOf(float priority) {
+    return static_cast<unsigned char>(std::clamp(priority, 0.0f, 1.0f) * static_cast<float>(kLevels - 1));
+}
+// levelOf() of eight priorities at once: the same operations lane by lane
+// (the clamp's two selects, the product, the conversion's truncation; the
+// levels fit the packs' saturation, and a NaN gives 0 both ways).
+constexpr int kLevelLanes = 8;
+void levelsOf(const float* priorities, unsigned char* levels) {
+    const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f), top = _mm_set1_ps(static_cast<float>(kLevels - 1));
+    const auto fourLevels = [&](const float* p) {
+        __m128 v = _mm_loadu_ps(p);
+        v = _mm_max_ps(zero, v);  // p < 0 ? 0 : p (a NaN stays)
+        v = _mm_min_ps(one, v);   // 1 < p ? 1 : p
+        return _mm_cvttps_epi32(_mm_mul_ps(v, top));
+    };
+    const __m128i words = _mm_packs_epi32(fourLevels(priorities), fourLevels(priorities + 4));
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(levels), _mm_packus_epi16(words, words));
+}
+
+}  // namespace
 
 std::uint64_t mixBits(std::uint64_t x) {
     x += 0x9e3779b97f4a7c15ull;
@@ -85,18 +111,18 @@ void buildRequestMap(std::span<const float> priority, int width, int height, int
         tileRect(t, x0, y0, x1, y1);
         const int tileWidth = x1 - x0;
         const int n = tileWidth * (y1 - y0);
-        // Priorities in kLevels steps; holes (1) on the top one.
-        constexpr int kLevels = 33;
         levels.resize(static_cast<std::size_t>(n));
         std::array<int, kLevels> perLevel{};
-        std::size_t k = 0;
-        for (int y = y0; y < y1; ++y)
-            for (int x = x0; x < x1; ++x, ++k) {
-                const float p = std::clamp(priority[pixelIndex(x, y)], 0.0f, 1.0f);
-                const auto level = static_cast<unsigned char>(p * static_cast<float>(kLevels - 1));
-                levels[k] = level;
-                ++perLevel[level];
-            }
+        for (int y = y0; y < y1; ++y) {
+            // A row's levels first, four at a time, then their histogram (one
+            // pixel at a time with both in one loop: 21 instructions a pixel).
+            const float* const values = priority.data() + pixelIndex(x0, y);
+            unsigned char* const rowLevels = levels.data() + static_cast<std::size_t>((y - y0) * tileWidth);
+            int i = 0;
+            for (; i + kLevelLanes <= tileWidth; i += kLevelLanes) levelsOf(values + i, rowLevels + i);
+            for (; i < tileWidth; ++i) rowLevels[i] = levelOf(values[i]);
+            for (i = 0; i < tileWidth; ++i) ++perLevel[rowLevels[i]];
+        }
         // The lowest level taken, and how many of it.
         int cut = kLevels - 1, above = 0;
         while (cut > 0 && above + perLevel[static_cast<std::size_t>(cut)] < wanted)

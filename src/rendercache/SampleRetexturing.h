@@ -54,14 +54,29 @@ public:
     template <typename Distance>
     bool color(int objectId, const SampleTexturing& texturing, const Ray& centreRay, const Distance& sampleDistance,
                Rgb& color) {
-        const SceneObject& object = objects_[static_cast<std::size_t>(objectId)];
-        if (!std::holds_alternative<MeshShape>(object.shape))
-            return retexturedColor(object, objectId, texturing, centreRay, sampleDistance(), color);
-        if (objectId != object_ || texturing.primitiveId != triangle_.primitive) prepare(object, objectId, texturing.primitiveId);
+        const TriangleOnItsPlane* const triangle = meshTriangle(objectId, texturing.primitiveId);
+        if (!triangle)
+            return retexturedColor(objects_[static_cast<std::size_t>(objectId)], objectId, texturing, centreRay,
+                                   sampleDistance(), color);
         float t, u, v;
-        if (!triangle_.plane.valid || !triangle_.plane.meet(centreRay, t, u, v)) return false;
-        // render/SurfacePoint's albedoAtHit() for a mesh hit, the corners'
-        // texture coordinates kept with the triangle.
+        if (!triangle->valid || !triangle->meet(centreRay, t, u, v)) return false;
+        color = colorAt(objectId, texturing, u, v);
+        return true;
+    }
+
+    // The triangle `primitiveId` of object `objectId` (kept until another
+    // is asked for), or null when the object is not a mesh.
+    const TriangleOnItsPlane* meshTriangle(int objectId, int primitiveId) {
+        const SceneObject& object = objects_[static_cast<std::size_t>(objectId)];
+        if (!std::holds_alternative<MeshShape>(object.shape)) return nullptr;
+        if (objectId != object_ || primitiveId != triangle_.primitive) prepare(object, objectId, primitiveId);
+        return &triangle_.plane;
+    }
+    // The colour where the centre ray met the last meshTriangle() at
+    // barycentrics (u, v): render/SurfacePoint's albedoAtHit() for a mesh
+    // hit, the corners' texture coordinates kept with the triangle.
+    Rgb colorAt(int objectId, const SampleTexturing& texturing, float u, float v) const {
+        const SceneObject& object = objects_[static_cast<std::size_t>(objectId)];
         Rgb albedo = object.material.diffuse;
         if (object.material.diffuseTexture) {
             float texU = 0.0f, texV = 0.0f;
@@ -73,8 +88,7 @@ public:
             }
             albedo = object.material.diffuseTexture->sample(texU, texV);
         }
-        color = albedo * texturing.lighting + texturing.rest;
-        return true;
+        return albedo * texturing.lighting + texturing.rest;
     }
 
 private:

@@ -24,6 +24,16 @@ public:
         return {(dot(d, right_) * inv + 1.0f) * halfWidth_, (1.0f - dot(d, up_) * inv) * halfHeight_, depth};
     }
     const Vec3& eye() const { return eye_; }
+    // What direction() computes from, for lane code that projects many
+    // points with the same operations (rendercache/ProjectionLanes.h).
+    const Vec3& forward() const { return forward_; }
+    const Vec3& right() const { return right_; }
+    const Vec3& up() const { return up_; }
+    float halfWidth() const { return halfWidth_; }
+    float halfHeight() const { return halfHeight_; }
+    // Continuous coordinates are used only within (-kRange, kRange): beyond,
+    // their conversion to int would overflow.
+    static constexpr float kRange = 1.0e8f;
     // The pixel column or row a continuous coordinate lies in: its floor,
     // for |v| < 2^31. (std::floor without SSE4.1 is a sequence of masks and
     // subtractions, and was 7 % of a Render Cache frame.)

@@ -60,8 +60,13 @@ public:
 private:
     static bool sameDepth(float a, float b) {
         if (a == b) return true;  // also both +infinity (the background)
-        return std::fabs(a - b) <= kSurfaceDepthTolerance * std::fmin(a, b);
+        return std::fabs(a - b) <= kSurfaceDepthTolerance * smaller(a, b);
     }
+    // std::fmin(a, b) without the library call GCC makes for it where it may
+    // not assume away NaNs (a third of the 3x3 fill's instructions): the
+    // same value for every input, NaNs included (a zero's sign aside, which
+    // the comparison above does not see).
+    static float smaller(float a, float b) { return b < a || a != a ? b : a; }
     struct Group {
         Rgb sum;
         float weight;

@@ -17,6 +17,7 @@
 #include "render/AnalyticScene.h"
 #include "render/FrameRenderer.h"
 #include "rendercache/RenderCachePipeline.h"
+#include "rendercache/RowRetexturing.h"
 #include "rendercache/SampleRetexturing.h"
 #include "scene/Texture.h"
 #include "trace/TraceScene.h"
@@ -236,4 +237,46 @@ TEST(RenderCacheTexture, CentreRetexturingMatchesRetexturedColourBitForBit) {
     // Both outcomes were tried.
     EXPECT_GT(hits, 1000);
     EXPECT_GT(misses, 1000);
+}
+
+// RowRetexturing meets a row's centre rays with a triangle sixteen at a
+// time; pixel by pixel it must give retexturedColor()'s answer bit for bit,
+// in full blocks and a row's shorter last one, in runs of one primitive and
+// where the primitive changes within a block, on the sphere too.
+TEST(RenderCacheTexture, RowRetexturingMatchesRetexturedColourBitForBit) {
+    const std::vector<SceneObject> objects = retexturedObjects();
+    constexpr int kWidth = 37, kHeight = 29;  // blocks of 16, 16 and 5
+    const CameraRays rays(Camera{{0.3f, 0.2f, 6.0f}, {0.0f, 0.5f, 0.0f}, {0, 1, 0}, 60.0f}, kWidth, kHeight);
+    std::uint64_t state = 777;
+    const auto uniform = [&state](float lo, float hi) {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return lo + (hi - lo) * static_cast<float>(state >> 40) * 0x1.0p-24f;
+    };
+    int hits = 0, misses = 0;
+    for (int y = 0; y < kHeight; ++y) {
+        RowRetexturing row(objects, rays, y);
+        int object = 0, primitive = 0;
+        for (int x = 0; x < kWidth; ++x) {
+            // Runs of one primitive, as along an image row.
+            if (uniform(0.0f, 1.0f) < 0.2f) {
+                const float pick = uniform(0.0f, 1.0f);
+                object = pick < 0.5f ? 0 : pick < 0.6f ? 1 : pick < 0.7f ? 2 : pick < 0.8f ? 3 : 4;
+                primitive = object == 1 ? 0 : static_cast<int>(uniform(0.0f, 5.0f));
+            }
+            const SampleTexturing texturing{Rgb{uniform(0.0f, 2.0f), uniform(0.0f, 2.0f), uniform(0.0f, 2.0f)},
+                                            Rgb{uniform(0.0f, 0.3f), uniform(0.0f, 0.3f), uniform(0.0f, 0.3f)},
+                                            primitive};
+            const float distance = uniform(3.0f, 9.0f);
+            Rgb expected{-1.0f}, got{-1.0f};
+            const bool expectedHit = retexturedColor(objects[static_cast<std::size_t>(object)], object, texturing,
+                                                     rays.ray(x, y), distance, expected);
+            const bool gotHit = row.color(x, object, texturing, [&] { return distance; }, got);
+            ASSERT_EQ(gotHit, expectedHit) << x << "," << y;
+            ASSERT_EQ(std::memcmp(&got, &expected, sizeof(Rgb)), 0) << x << "," << y;
+            (expectedHit ? hits : misses) += 1;
+        }
+    }
+    // Both outcomes were tried.
+    EXPECT_GT(hits, 200);
+    EXPECT_GT(misses, 100);
 }

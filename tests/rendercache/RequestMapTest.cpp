@@ -194,3 +194,28 @@ TEST(RequestMap, SameInputsSameRequestsOnAnyThreadCountAndFramesSpreadThem) {
     buildRequestMap(flat, kW, kH, kTile, 0.5f, 36, 2, 3, s2, Parallel(1));
     EXPECT_NE(s1.pixels, s2.pixels);
 }
+
+// Inside a tile the priorities are put in steps eight pixels at a time and
+// the rest of a row one at a time: an 11-pixel tile uses both, with holes,
+// old samples and priorities past either end of [0, 1] (clamped) in each part.
+TEST(RequestMap, PrioritiesRankAlikeInEightPixelStepsAndInARowsRest) {
+    constexpr int kWidth = 11, kHeight = 3;
+    std::vector<float> p(kWidth * kHeight, 0.1f);
+    const auto at = [&](int x, int y) -> float& { return p[static_cast<std::size_t>(y * kWidth + x)]; };
+    at(3, 1) = -0.5f;
+    at(10, 0) = -2.0f;
+    const int wanted[][2] = {{2, 0}, {9, 1}, {10, 2}, {5, 2}, {8, 0}};  // holes, then old samples
+    at(2, 0) = 1.0f;
+    at(9, 1) = 1.0f;
+    at(10, 2) = 1.7f;
+    at(5, 2) = 0.4f;
+    at(8, 0) = 0.4f;
+    for (std::uint64_t frame = 0; frame < 30; ++frame) {
+        RequestMap m;
+        buildRequestMap(p, kWidth, kHeight, kWidth, 1.0f, 5, 7, frame, m, Parallel(1));
+        std::set<std::pair<int, int>> got;
+        for (const PixelCoord& q : m.pixels) got.insert({q.x, q.y});
+        ASSERT_EQ(got.size(), 5u);
+        for (const auto& w : wanted) EXPECT_TRUE(got.count({w[0], w[1]})) << w[0] << "," << w[1] << ", frame " << frame;
+    }
+}
