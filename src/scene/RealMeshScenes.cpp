@@ -140,6 +140,14 @@ Scene teapotMirrorsScene(const MeshSearchPath& searchPath) {
     return s;
 }
 
+// The dragon in jade, 3.2 high, standing at the origin: both dragon scenes'.
+SceneObject jadeDragon(MeshFiles& files) {
+    Material jade = matte(Rgb{0.35f, 0.6f, 0.42f});
+    jade.specular = Rgb{0.35f};
+    jade.shininess = 48.0f;
+    return standing("dragon", files.load(kDragonFile), {0, 0, 0}, 3.2f, 0.0f, jade);
+}
+
 // The dragon in a hall of mirrors: two rows of mirror balls on pedestals
 // down both sides, a large mirror ball behind it and a glass ball in front.
 // Balls rather than tall mirror columns: a column's cube, one direction per
@@ -150,10 +158,7 @@ Scene dragonHallScene(const MeshSearchPath& searchPath) {
     s.name = "dragon-hall";
     MeshFiles files(s.name, searchPath, s.notes);
     s.objects.push_back(floorObject(100.0f));
-    Material jade = matte(Rgb{0.35f, 0.6f, 0.42f});
-    jade.specular = Rgb{0.35f};
-    jade.shininess = 48.0f;
-    s.objects.push_back(standing("dragon", files.load(kDragonFile), {0, 0, 0}, 3.2f, 0.0f, jade));
+    s.objects.push_back(jadeDragon(files));
     const TriangleMesh pedestal = makeCylinder(48);
     for (int side = 0; side < 2; ++side) {
         for (int k = 0; k < 4; ++k) {
@@ -188,10 +193,7 @@ Scene dragonMirrorsScene(const MeshSearchPath& searchPath) {
     s.name = "dragon-mirrors";
     MeshFiles files(s.name, searchPath, s.notes);
     s.objects.push_back(floorObject(100.0f));
-    Material jade = matte(Rgb{0.35f, 0.6f, 0.42f});
-    jade.specular = Rgb{0.35f};
-    jade.shininess = 48.0f;
-    s.objects.push_back(standing("dragon", files.load(kDragonFile), {0, 0, 0}, 3.2f, 0.0f, jade));
+    s.objects.push_back(jadeDragon(files));
     s.objects.push_back(sphere("mirror-back", {0, 2.4f, -4.2f}, 2.4f, mirror(Rgb{0.1f}, 0.85f)));
     s.objects.push_back(sphere("mirror-left", {-4.0f, 2.0f, -0.6f}, 2.0f, mirror(paletteColor(1), 0.8f)));
     s.objects.push_back(sphere("mirror-right", {4.0f, 2.0f, -0.6f}, 2.0f, mirror(paletteColor(4), 0.8f)));
