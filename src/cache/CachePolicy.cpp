@@ -62,7 +62,7 @@ CubePolicy::Judgement CubePolicy::afterFrame(const CubeFrameCounts& counts) {
                                          (costs_.lookup + (1.0 - kSampledShare) * costs_.store) /
                                          static_cast<double>(kFirstBackoff)
                                    : 0.0;
-    if (j.cost + fill > j.saving) {
+    if (kSavingMargin * (j.cost + fill) > j.saving) {
         state_ = CubeState::Bypassed;
         bypassLeft_ = backoff_;
         backoff_ = std::min(2 * backoff_, kLongestBackoff);

@@ -115,6 +115,16 @@ public:
     // The sample: 1 run of texels in 2^kSampleBits.
     static constexpr int kSampleBits = 4;
     static constexpr double kSampledShare = 1.0 / (1 << kSampleBits);
+    // A cube caches only while its saving beats its cost by this factor.
+    // The saving counts a hit's tree in one unit, a traced ray of grid-32,
+    // but what a traced ray costs differs by scene: that unit missed the
+    // secondary rays' trace time by 44 % rms over the 18 scenes of
+    // `bench where-caching-pays` (31-320 ns a ray against 51 ns;
+    // docs/log/2026-11-27-what-a-tree-costs.md). So a cube whose hits are
+    // worth 1/1.44 of what the unit says still does not cache at a loss:
+    // room-moving's mirror, judged to save 18.5 k rays for 14.5 k, spares
+    // about half what the unit says and lost 3-13 % caching.
+    static constexpr double kSavingMargin = 1.44;
 
     CubePolicy() = default;
     // `samplesTexels`: whether the cube's evidence may come from a sample of
