@@ -102,12 +102,6 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
         projectPoint(fromPoint[loser], originData, projection, pushedOut.x, pushedOut.y, pushedOut.depth);
         list.push_back(pushedOut);
     };
-    // Whether band `band` may test a sample that landed in image row `row`
-    // (from 0 at the margin's top) in parallel: its second chance reaches
-    // one row farther.
-    const auto withinReach = [](int band, int row) {
-        return row >= band * kBandRows - kBandRows / 2 + 1 && row < (band + 1) * kBandRows + kBandRows / 2 - 1;
-    };
     // Counts go to a local and are written once per band or row:
     // neighbouring counters share a cache line, and updating it per sample
     // from two threads cost more than the projection.
@@ -148,6 +142,20 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
         std::int32_t* const nextPixels = next ? nextOfSource : nullptr;
         const int oldest = maxAge, imageWidth = width, imageHeight = height, imageMargin = margin;
         const int x0 = coverX0, x1 = coverX1, y1 = coverY1;
+        // The image rows y in [reachFirst, reachEnd) in which the band may
+        // test a sample in parallel: within half a band of its own, less one
+        // row, as a second chance reaches one row farther (every row on one
+        // thread).
+        const int reachFirst = band < 0 ? std::numeric_limits<int>::min()
+                                        : band * kBandRows - kBandRows / 2 + 1 - imageMargin;
+        const int reachEnd = band < 0 ? std::numeric_limits<int>::max()
+                                      : (band + 1) * kBandRows + kBandRows / 2 - 1 - imageMargin;
+        // The depth test's common case, a sample landing in a pixel still
+        // empty, without the call through `offer`'s closure (which reloaded
+        // the image's address, stride and margin for every sample).
+        std::uint32_t* const imageKeys = keys;
+        std::uint32_t* const winners = winner;
+        const std::size_t rowStride = stride;
         // Sixteen samples projected at a time (both cameras), then offered one by one.
         ProjectedSamples projected;
         for (std::size_t block = begin; block < end; block += kFloatLanes) {
@@ -168,8 +176,19 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
                 const int x = projected.pixelX[lane], y = projected.pixelY[lane];
                 if (x < x0 || y < x0 || x >= x1 || y >= y1) continue;
                 if (nextPixels) nextPixels[slot] = projected.nextPixel[lane];
-                if (band < 0 || withinReach(band, y + imageMargin)) offer(x, y, sample, lost);
-                else tooFar.push_back(sample);
+                if (y < reachFirst || y >= reachEnd) {
+                    tooFar.push_back(sample);
+                    continue;
+                }
+                const std::size_t pixel = static_cast<std::size_t>(y + imageMargin) * rowStride +
+                                          static_cast<std::size_t>(x + imageMargin);
+                const std::uint32_t key = PointImage::key(sample.depth);
+                if (imageKeys[pixel] == PointImage::emptyKey() && key != PointImage::emptyKey()) {
+                    imageKeys[pixel] = key;  // what offer() does there: the offer wins, nobody is pushed out
+                    winners[pixel] = sample.slot;
+                } else {
+                    offer(x, y, sample, lost);
+                }
             }
         }
         bandCounts = counts;
