@@ -108,8 +108,6 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
         std::uint64_t* const holeBits = bits.data() + 3 * words;
         pixelStateBits(stateData + rowStart, columns, PixelState::Reprojected, PixelState::Fresh, sampleBits[1]);
         pixelStateBits(stateData + rowStart, columns, PixelState::Culled, PixelState::Hole, holeBits);
-        static_assert(static_cast<int>(PixelState::Fresh) == static_cast<int>(PixelState::Reprojected) + 1 &&
-                      static_cast<int>(PixelState::Hole) == static_cast<int>(PixelState::Culled) + 1);
         // The samples' colours into the film, a run of samples at a time.
         if (looks) {
             const SampleLook* const rowLooks = looks + static_cast<std::size_t>(y) * lookStride;
@@ -137,9 +135,8 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
         }
         // The three rows a hole's 3x3 box reads.
         const std::array<SampleRow, 3> neighbourRows = {sampleRow(y - 1), sampleRow(y), sampleRow(y + 1)};
-        for (std::size_t w = 0; anyHole && w + 1 < words; ++w)
-            for (std::uint64_t h = holeBits[w]; h; h &= h - 1) {
-                const int x = static_cast<int>(w * 64) + std::countr_zero(h);
+        if (anyHole)
+            forEachPixelSet(holeBits, columns, [&](int x) {
                 holes = true;
                 SurfaceClusters groups;
                 // The box's samples row by row, each row's as bits dx + 1 (the
@@ -164,7 +161,7 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
                     outcomeData[i] = kWants7x7;
                     ++wanting;
                 }
-            }
+            });
         perRow[static_cast<std::size_t>(y)] = row;
         wants7x7[static_cast<std::size_t>(y)] = wanting;
         hasHoles[static_cast<std::size_t>(y)] = holes ? 1 : 0;

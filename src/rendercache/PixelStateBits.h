@@ -22,7 +22,19 @@ inline std::size_t pixelStateWords(int width) {
 // (pixelStateWords(width) words, the bits past the row cleared): set where
 // the state is `first` or `last` (two consecutive states, as showsSample()
 // and isHole() ask).
+// The pairs asked for: showsSample(), isHole(), and a hole either filter filled.
+static_assert(static_cast<int>(PixelState::Fresh) == static_cast<int>(PixelState::Reprojected) + 1 &&
+              static_cast<int>(PixelState::Hole) == static_cast<int>(PixelState::Culled) + 1 &&
+              static_cast<int>(PixelState::Filled7x7) == static_cast<int>(PixelState::Filled3x3) + 1);
 void pixelStateBits(const PixelState* states, int width, PixelState first, PixelState last, std::uint64_t* bits);
+
+// Calls visit(x) for every pixel x whose bit is set in `bits`
+// (pixelStateWords(width) words from pixelStateBits()), from left to right.
+template <class Visit>
+void forEachPixelSet(const std::uint64_t* bits, int width, const Visit& visit) {
+    for (std::size_t w = 0; w + 1 < pixelStateWords(width); ++w)
+        for (std::uint64_t b = bits[w]; b; b &= b - 1) visit(static_cast<int>(w * 64) + std::countr_zero(b));
+}
 
 // The bits of pixels x - 1, x and x + 1 as bits 0, 1 and 2 (0 where x - 1
 // is -1; `bits` from pixelStateBits(), so 0 past the row's end).

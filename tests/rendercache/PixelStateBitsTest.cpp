@@ -1,6 +1,7 @@
-// pixelStateBits() and threeBitsAround() against the states they stand
-// for, pixel by pixel: rows of every width from 1 to 200 (whole words of
-// sixteen-state tests, a tail one state at a time, both and neither).
+// pixelStateBits(), forEachPixelSet() and threeBitsAround() against the
+// states they stand for, pixel by pixel: rows of every width from 1 to 200
+// (whole words of sixteen-state tests, a tail one state at a time, both
+// and neither).
 #include <gtest/gtest.h>
 
 #include <random>
@@ -35,6 +36,15 @@ TEST(PixelStateBits, EachBitSaysWhetherItsPixelsStateIsOneOfTheTwoAndNothingPast
             ASSERT_EQ(bitOf(holes, x), inRow && isHole(states[static_cast<std::size_t>(x)]))
                 << "width " << width << ", pixel " << x;
         }
+        std::vector<std::uint64_t> filled(pixelStateWords(width), ~std::uint64_t{0});
+        pixelStateBits(states.data(), width, PixelState::Filled3x3, PixelState::Filled7x7, filled.data());
+        std::vector<int> visited, wanted;
+        forEachPixelSet(filled.data(), width, [&](int x) { visited.push_back(x); });
+        for (int x = 0; x < width; ++x) {
+            const PixelState s = states[static_cast<std::size_t>(x)];
+            if (s == PixelState::Filled3x3 || s == PixelState::Filled7x7) wanted.push_back(x);
+        }
+        ASSERT_EQ(visited, wanted) << "width " << width;  // each once, from left to right
         for (int x = 0; x < width; ++x) {
             unsigned want = 0;
             for (int dx = -1; dx <= 1; ++dx) {
