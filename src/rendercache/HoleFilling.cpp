@@ -43,6 +43,10 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
     // Per row: holes the 3x3 filter could not fill, and whether the row has
     // any hole (rows without are skipped by the later passes).
     std::vector<int> wants7x7(static_cast<std::size_t>(height), 0);
+    // And those holes as bits (rendercache/PixelStateBits.h's layout): the
+    // 7x7 pass visits them alone, not every pixel of their rows.
+    const std::size_t words = pixelStateWords(width);
+    std::vector<std::uint64_t> wants7x7Bits(static_cast<std::size_t>(height) * words, 0);
     std::vector<unsigned char> hasHoles(static_cast<std::size_t>(height), 0);
     // A row of what the filters read, its addresses made once per row (per
     // row of holes, not per hole or neighbour): `states` null for a row
@@ -86,7 +90,6 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
     // Counts per row go to a local, written once (no false sharing).
     // Per worker, the rows' states as bits (rendercache/PixelStateBits.h):
     // the samples of the three rows a hole's 3x3 box reads, and the holes.
-    const std::size_t words = pixelStateWords(width);
     std::vector<std::vector<std::uint64_t>> bitsPerWorker(static_cast<std::size_t>(parallel.threadCount()));
     parallel.forEachIndex(height, [&](int y, int worker) {
         FillCounts row;
@@ -106,6 +109,7 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
         bits.resize(4 * words);
         const std::array<std::uint64_t*, 3> sampleBits = {bits.data(), bits.data() + words, bits.data() + 2 * words};
         std::uint64_t* const holeBits = bits.data() + 3 * words;
+        std::uint64_t* const wantsRow = wants7x7Bits.data() + static_cast<std::size_t>(y) * words;
         pixelStateBits(stateData + rowStart, columns, PixelState::Reprojected, PixelState::Fresh, sampleBits[1]);
         pixelStateBits(stateData + rowStart, columns, PixelState::Culled, PixelState::Hole, holeBits);
         // The samples' colours into the film, a run of samples at a time.
@@ -159,6 +163,7 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
                     ++row.filled3x3;
                 } else {
                     outcomeData[i] = kWants7x7;
+                    wantsRow[static_cast<std::size_t>(x / 64)] |= std::uint64_t{1} << (x % 64);
                     ++wanting;
                 }
             });
@@ -180,12 +185,12 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
     parallel.forEachIndex(height, [&](int y, int worker) {
         if (wants7x7[static_cast<std::size_t>(y)] == 0) return;
         FillCounts row = perRow[static_cast<std::size_t>(y)];
+        const std::uint64_t* const wantsRow = wants7x7Bits.data() + static_cast<std::size_t>(y) * words;
         int first = width, last = -1;
-        for (int x = 0; x < width; ++x)
-            if (outcome[at(x, y)] == kWants7x7) {
-                first = std::min(first, x);
-                last = x;
-            }
+        forEachPixelSet(wantsRow, width, [&](int x) {
+            first = std::min(first, x);
+            last = x;
+        });
         const int wanting = wants7x7[static_cast<std::size_t>(y)];
         // The edge-aware filter groups each box's samples itself: the 49 pixels of each box.
         const bool dense = !surfaces && last - first + 1 + 2 * kPrefilterRadius < 6 * wanting;
@@ -203,8 +208,7 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
                     columns.sum[static_cast<std::size_t>(nx - x0)] += film.at(nx, ny);
                     ++columns.count[static_cast<std::size_t>(nx - x0)];
                 }
-        for (int x = first; x <= last; ++x) {
-            if (outcome[at(x, y)] != kWants7x7) continue;
+        forEachPixelSet(wantsRow, width, [&](int x) {
             Rgb sum;
             int count = 0;
             SurfaceClusters groups;
@@ -231,7 +235,7 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
                 outcome[at(x, y)] = kUnfilled;
                 ++row.unfilled;
             }
-        }
+        });
         perRow[static_cast<std::size_t>(y)] = row;
     });
     parallel.forEachIndex(height, [&](int y, int) {
