@@ -55,7 +55,7 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
     const int bands = (rows + kBandRows - 1) / kBandRows;
     using Landed = ReprojectionScratch::Landed;
     if (next) {
-        scratch.nextPixel.resize(from.capacity());  // written for every sample that lands
+        scratch.nextPixel.resize(from.capacity());  // written for every live slot, read for the winners
         nextPixel->resize(to.pixelSlots);           // every pixel slot written below
     }
     std::int32_t* nextOfSource = scratch.nextPixel.data();
@@ -162,6 +162,12 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
             const int count = static_cast<int>(std::min<std::size_t>(kFloatLanes, end - block));
             projectSamples16(points + block, count, objectOrigins, through, next ? &nextThrough : nullptr, imageWidth,
                              imageHeight, projected);
+            // Where the block's samples land through the next camera, the
+            // whole block at once: only the slots of samples that win a
+            // pixel are ever read (per sample, behind the tests below, the
+            // store cost six instructions).
+            if (nextPixels)
+                std::copy(projected.nextPixel, projected.nextPixel + count, nextPixels + block);
             for (int lane = 0; lane < count; ++lane) {
                 const std::size_t slot = block + static_cast<std::size_t>(lane);
                 if (points[slot].objectId == SamplePool::kEmpty) continue;
@@ -175,7 +181,6 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
                                     projected.depth[lane]};
                 const int x = projected.pixelX[lane], y = projected.pixelY[lane];
                 if (x < x0 || y < x0 || x >= x1 || y >= y1) continue;
-                if (nextPixels) nextPixels[slot] = projected.nextPixel[lane];
                 if (y < reachFirst || y >= reachEnd) {
                     tooFar.push_back(sample);
                     continue;
