@@ -204,8 +204,15 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
 
     // Second chance: a loser offers itself to the nearest neighbouring pixel
     // that the first round left empty (first-round winners stay).
-    const auto secondChance = [keys, winner, pixelOfImage, coverX0, coverX1, coverY1](const Landed& l) {
+    const auto secondChance = [keys, winner, pixelOfImage, coverX0, coverX1, coverY1, stride](const Landed& l) {
         const int x = ScreenProjection::pixelOf(l.x), y = ScreenProjection::pixelOf(l.y);
+        // Mostly the whole neighbourhood lies in the image and its margin:
+        // then no neighbour is tested against its edges, and each one's key
+        // is a step from the centre's (per neighbour, the tests and the
+        // index cost fourteen instructions).
+        const bool inside = x > coverX0 && y > coverX0 && x + 1 < coverX1 && y + 1 < coverY1;
+        const auto centre = static_cast<std::ptrdiff_t>(y - coverX0) * static_cast<std::ptrdiff_t>(stride) +
+                            static_cast<std::ptrdiff_t>(x - coverX0);
         // The nearest empty neighbour by distance to its centre; among
         // equals the first in row order (a fixed order).
         const float fx = l.x - static_cast<float>(x) - 0.5f, fy = l.y - static_cast<float>(y) - 0.5f;
@@ -215,9 +222,8 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
             for (int dx = -1; dx <= 1; ++dx) {
                 if (dx == 0 && dy == 0) continue;
                 const int nx = x + dx, ny = y + dy;
-                if (nx < coverX0 || ny < coverX0 || nx >= coverX1 || ny >= coverY1 ||
-                    !emptyAfterFirstRound(keys[pixelOfImage(nx, ny)]))
-                    continue;
+                if (!inside && (nx < coverX0 || ny < coverX0 || nx >= coverX1 || ny >= coverY1)) continue;
+                if (!emptyAfterFirstRound(keys[centre + dy * static_cast<std::ptrdiff_t>(stride) + dx])) continue;
                 const float ex = static_cast<float>(dx) - fx, ey = static_cast<float>(dy) - fy;
                 const float distance = ex * ex + ey * ey;
                 if (distance < nearest) {
