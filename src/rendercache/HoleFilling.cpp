@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 
+#include "rendercache/PixelStateBits.h"
 #include "rendercache/SurfaceClusters.h"
 
 namespace raycache {
@@ -41,6 +43,10 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
     // Per row: holes the 3x3 filter could not fill, and whether the row has
     // any hole (rows without are skipped by the later passes).
     std::vector<int> wants7x7(static_cast<std::size_t>(height), 0);
+    // And those holes as bits (rendercache/PixelStateBits.h's layout): the
+    // 7x7 pass visits them alone, not every pixel of their rows.
+    const std::size_t words = pixelStateWords(width);
+    std::vector<std::uint64_t> wants7x7Bits(static_cast<std::size_t>(height) * words, 0);
     std::vector<unsigned char> hasHoles(static_cast<std::size_t>(height), 0);
     // A row of what the filters read, its addresses made once per row (per
     // row of holes, not per hole or neighbour): `states` null for a row
@@ -82,7 +88,10 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
         if (fillSource && surfaces) (*fillSource)[at(x, y)] = groups.chosenSource();
     };
     // Counts per row go to a local, written once (no false sharing).
-    parallel.forEachIndex(height, [&](int y, int) {
+    // Per worker, the rows' states as bits (rendercache/PixelStateBits.h):
+    // the samples of the three rows a hole's 3x3 box reads, and the holes.
+    std::vector<std::vector<std::uint64_t>> bitsPerWorker(static_cast<std::size_t>(parallel.threadCount()));
+    parallel.forEachIndex(height, [&](int y, int worker) {
         FillCounts row;
         int wanting = 0;
         bool holes = false;
@@ -96,35 +105,68 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
         const std::size_t lookStride = samples ? samples->stride : 0;
         const std::size_t rowStart = at(0, y);
         const int columns = width;  // captured by reference: reloaded after every store
-        // The three rows a hole's 3x3 box reads.
-        const std::array<SampleRow, 3> neighbourRows = {sampleRow(y - 1), sampleRow(y), sampleRow(y + 1)};
-        for (int x = 0; x < columns; ++x) {
-            const PixelState s = stateData[rowStart + static_cast<std::size_t>(x)];
-            if (looks && showsSample(s))
-                filmData[rowStart + static_cast<std::size_t>(x)] =
-                    looks[static_cast<std::size_t>(y) * lookStride + static_cast<std::size_t>(x)].color;
-            if (!isHole(s)) continue;
-            holes = true;
-            SurfaceClusters groups;
-            // The 3x3 box clipped to the image once per hole, not per neighbour.
-            const int dx0 = x > 0 ? -1 : 0, dx1 = x + 1 < columns ? 1 : 0;
-            for (int dy = -1; dy <= 1; ++dy) {
-                const SampleRow& r = neighbourRows[static_cast<std::size_t>(dy + 1)];
-                if (!r.states) continue;
-                for (int dx = dx0; dx <= dx1; ++dx)
-                    if (showsSample(r.states[x + dx])) addSample(groups, r, x + dx, (dx == 0 || dy == 0) ? 2.0f : 1.0f);
-            }
-            const std::size_t i = rowStart + static_cast<std::size_t>(x);
-            if (!groups.empty()) {
-                filmData[i] = groups.mean();
-                if (sourceData) sourceData[i] = groups.chosenSource();
-                outcomeData[i] = k3x3;
-                ++row.filled3x3;
-            } else {
-                outcomeData[i] = kWants7x7;
-                ++wanting;
+        std::vector<std::uint64_t>& bits = bitsPerWorker[static_cast<std::size_t>(worker)];
+        bits.resize(4 * words);
+        const std::array<std::uint64_t*, 3> sampleBits = {bits.data(), bits.data() + words, bits.data() + 2 * words};
+        std::uint64_t* const holeBits = bits.data() + 3 * words;
+        std::uint64_t* const wantsRow = wants7x7Bits.data() + static_cast<std::size_t>(y) * words;
+        pixelStateBits(stateData + rowStart, columns, PixelState::Reprojected, PixelState::Fresh, sampleBits[1]);
+        pixelStateBits(stateData + rowStart, columns, PixelState::Culled, PixelState::Hole, holeBits);
+        // The samples' colours into the film, a run of samples at a time.
+        if (looks) {
+            const SampleLook* const rowLooks = looks + static_cast<std::size_t>(y) * lookStride;
+            for (std::size_t w = 0; w + 1 < words; ++w)
+                for (std::uint64_t b = sampleBits[1][w]; b;) {
+                    const int start = std::countr_zero(b), end = start + std::countr_one(b >> start);
+                    const std::size_t first = w * 64 + static_cast<std::size_t>(start);
+                    const SampleLook* from = rowLooks + first;
+                    Rgb* to = filmData + rowStart + first;
+                    for (Rgb* const runEnd = to + (end - start); to != runEnd; ++to, ++from) *to = from->color;
+                    b = end < 64 ? b & (~std::uint64_t{0} << end) : 0;
+                }
+        }
+        const bool anyHole = std::any_of(holeBits, holeBits + words, [](std::uint64_t b) { return b != 0; });
+        if (anyHole) {
+            for (int r = 0; r < 3; r += 2) {
+                const int ny = y - 1 + r;
+                if (ny < 0 || ny >= height)
+                    std::fill(sampleBits[static_cast<std::size_t>(r)], sampleBits[static_cast<std::size_t>(r)] + words,
+                              0);
+                else
+                    pixelStateBits(stateData + at(0, ny), columns, PixelState::Reprojected, PixelState::Fresh,
+                                   sampleBits[static_cast<std::size_t>(r)]);
             }
         }
+        // The three rows a hole's 3x3 box reads.
+        const std::array<SampleRow, 3> neighbourRows = {sampleRow(y - 1), sampleRow(y), sampleRow(y + 1)};
+        if (anyHole)
+            forEachPixelSet(holeBits, columns, [&](int x) {
+                holes = true;
+                SurfaceClusters groups;
+                // The box's samples row by row, each row's as bits dx + 1 (the
+                // box clipped to the image by the bits: none past its edges);
+                // edge neighbours weigh 2, corners 1.
+                const auto addRow = [&](const SampleRow& r, unsigned three, float cornerWeight) {
+                    for (; three; three &= three - 1) {
+                        const int dx = std::countr_zero(three) - 1;
+                        addSample(groups, r, x + dx, dx == 0 ? 2.0f : cornerWeight);
+                    }
+                };
+                addRow(neighbourRows[0], threeBitsAround(sampleBits[0], x), 1.0f);
+                addRow(neighbourRows[1], threeBitsAround(sampleBits[1], x), 2.0f);
+                addRow(neighbourRows[2], threeBitsAround(sampleBits[2], x), 1.0f);
+                const std::size_t i = rowStart + static_cast<std::size_t>(x);
+                if (!groups.empty()) {
+                    filmData[i] = groups.mean();
+                    if (sourceData) sourceData[i] = groups.chosenSource();
+                    outcomeData[i] = k3x3;
+                    ++row.filled3x3;
+                } else {
+                    outcomeData[i] = kWants7x7;
+                    wantsRow[static_cast<std::size_t>(x / 64)] |= std::uint64_t{1} << (x % 64);
+                    ++wanting;
+                }
+            });
         perRow[static_cast<std::size_t>(y)] = row;
         wants7x7[static_cast<std::size_t>(y)] = wanting;
         hasHoles[static_cast<std::size_t>(y)] = holes ? 1 : 0;
@@ -143,12 +185,12 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
     parallel.forEachIndex(height, [&](int y, int worker) {
         if (wants7x7[static_cast<std::size_t>(y)] == 0) return;
         FillCounts row = perRow[static_cast<std::size_t>(y)];
+        const std::uint64_t* const wantsRow = wants7x7Bits.data() + static_cast<std::size_t>(y) * words;
         int first = width, last = -1;
-        for (int x = 0; x < width; ++x)
-            if (outcome[at(x, y)] == kWants7x7) {
-                first = std::min(first, x);
-                last = x;
-            }
+        forEachPixelSet(wantsRow, width, [&](int x) {
+            first = std::min(first, x);
+            last = x;
+        });
         const int wanting = wants7x7[static_cast<std::size_t>(y)];
         // The edge-aware filter groups each box's samples itself: the 49 pixels of each box.
         const bool dense = !surfaces && last - first + 1 + 2 * kPrefilterRadius < 6 * wanting;
@@ -166,8 +208,7 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
                     columns.sum[static_cast<std::size_t>(nx - x0)] += film.at(nx, ny);
                     ++columns.count[static_cast<std::size_t>(nx - x0)];
                 }
-        for (int x = first; x <= last; ++x) {
-            if (outcome[at(x, y)] != kWants7x7) continue;
+        forEachPixelSet(wantsRow, width, [&](int x) {
             Rgb sum;
             int count = 0;
             SurfaceClusters groups;
@@ -194,7 +235,7 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
                 outcome[at(x, y)] = kUnfilled;
                 ++row.unfilled;
             }
-        }
+        });
         perRow[static_cast<std::size_t>(y)] = row;
     });
     parallel.forEachIndex(height, [&](int y, int) {

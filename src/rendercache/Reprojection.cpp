@@ -55,7 +55,7 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
     const int bands = (rows + kBandRows - 1) / kBandRows;
     using Landed = ReprojectionScratch::Landed;
     if (next) {
-        scratch.nextPixel.resize(from.capacity());  // written for every sample that lands
+        scratch.nextPixel.resize(from.capacity());  // written for every live slot, read for the winners
         nextPixel->resize(to.pixelSlots);           // every pixel slot written below
     }
     std::int32_t* nextOfSource = scratch.nextPixel.data();
@@ -102,12 +102,6 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
         projectPoint(fromPoint[loser], originData, projection, pushedOut.x, pushedOut.y, pushedOut.depth);
         list.push_back(pushedOut);
     };
-    // Whether band `band` may test a sample that landed in image row `row`
-    // (from 0 at the margin's top) in parallel: its second chance reaches
-    // one row farther.
-    const auto withinReach = [](int band, int row) {
-        return row >= band * kBandRows - kBandRows / 2 + 1 && row < (band + 1) * kBandRows + kBandRows / 2 - 1;
-    };
     // Counts go to a local and are written once per band or row:
     // neighbouring counters share a cache line, and updating it per sample
     // from two threads cost more than the projection.
@@ -148,12 +142,32 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
         std::int32_t* const nextPixels = next ? nextOfSource : nullptr;
         const int oldest = maxAge, imageWidth = width, imageHeight = height, imageMargin = margin;
         const int x0 = coverX0, x1 = coverX1, y1 = coverY1;
+        // The image rows y in [reachFirst, reachEnd) in which the band may
+        // test a sample in parallel: within half a band of its own, less one
+        // row, as a second chance reaches one row farther (every row on one
+        // thread).
+        const int reachFirst = band < 0 ? std::numeric_limits<int>::min()
+                                        : band * kBandRows - kBandRows / 2 + 1 - imageMargin;
+        const int reachEnd = band < 0 ? std::numeric_limits<int>::max()
+                                      : (band + 1) * kBandRows + kBandRows / 2 - 1 - imageMargin;
+        // The depth test's common case, a sample landing in a pixel still
+        // empty, without the call through `offer`'s closure (which reloaded
+        // the image's address, stride and margin for every sample).
+        std::uint32_t* const imageKeys = keys;
+        std::uint32_t* const winners = winner;
+        const std::size_t rowStride = stride;
         // Sixteen samples projected at a time (both cameras), then offered one by one.
         ProjectedSamples projected;
         for (std::size_t block = begin; block < end; block += kFloatLanes) {
             const int count = static_cast<int>(std::min<std::size_t>(kFloatLanes, end - block));
             projectSamples16(points + block, count, objectOrigins, through, next ? &nextThrough : nullptr, imageWidth,
                              imageHeight, projected);
+            // Where the block's samples land through the next camera, the
+            // whole block at once: only the slots of samples that win a
+            // pixel are ever read (per sample, behind the tests below, the
+            // store cost six instructions).
+            if (nextPixels)
+                std::copy(projected.nextPixel, projected.nextPixel + count, nextPixels + block);
             for (int lane = 0; lane < count; ++lane) {
                 const std::size_t slot = block + static_cast<std::size_t>(lane);
                 if (points[slot].objectId == SamplePool::kEmpty) continue;
@@ -167,9 +181,19 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
                                     projected.depth[lane]};
                 const int x = projected.pixelX[lane], y = projected.pixelY[lane];
                 if (x < x0 || y < x0 || x >= x1 || y >= y1) continue;
-                if (nextPixels) nextPixels[slot] = projected.nextPixel[lane];
-                if (band < 0 || withinReach(band, y + imageMargin)) offer(x, y, sample, lost);
-                else tooFar.push_back(sample);
+                if (y < reachFirst || y >= reachEnd) {
+                    tooFar.push_back(sample);
+                    continue;
+                }
+                const std::size_t pixel = static_cast<std::size_t>(y + imageMargin) * rowStride +
+                                          static_cast<std::size_t>(x + imageMargin);
+                const std::uint32_t key = PointImage::key(sample.depth);
+                if (imageKeys[pixel] == PointImage::emptyKey() && key != PointImage::emptyKey()) {
+                    imageKeys[pixel] = key;  // what offer() does there: the offer wins, nobody is pushed out
+                    winners[pixel] = sample.slot;
+                } else {
+                    offer(x, y, sample, lost);
+                }
             }
         }
         bandCounts = counts;
@@ -180,8 +204,15 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
 
     // Second chance: a loser offers itself to the nearest neighbouring pixel
     // that the first round left empty (first-round winners stay).
-    const auto secondChance = [keys, winner, pixelOfImage, coverX0, coverX1, coverY1](const Landed& l) {
+    const auto secondChance = [keys, winner, pixelOfImage, coverX0, coverX1, coverY1, stride](const Landed& l) {
         const int x = ScreenProjection::pixelOf(l.x), y = ScreenProjection::pixelOf(l.y);
+        // Mostly the whole neighbourhood lies in the image and its margin:
+        // then no neighbour is tested against its edges, and each one's key
+        // is a step from the centre's (per neighbour, the tests and the
+        // index cost fourteen instructions).
+        const bool inside = x > coverX0 && y > coverX0 && x + 1 < coverX1 && y + 1 < coverY1;
+        const auto centre = static_cast<std::ptrdiff_t>(y - coverX0) * static_cast<std::ptrdiff_t>(stride) +
+                            static_cast<std::ptrdiff_t>(x - coverX0);
         // The nearest empty neighbour by distance to its centre; among
         // equals the first in row order (a fixed order).
         const float fx = l.x - static_cast<float>(x) - 0.5f, fy = l.y - static_cast<float>(y) - 0.5f;
@@ -191,9 +222,8 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
             for (int dx = -1; dx <= 1; ++dx) {
                 if (dx == 0 && dy == 0) continue;
                 const int nx = x + dx, ny = y + dy;
-                if (nx < coverX0 || ny < coverX0 || nx >= coverX1 || ny >= coverY1 ||
-                    !emptyAfterFirstRound(keys[pixelOfImage(nx, ny)]))
-                    continue;
+                if (!inside && (nx < coverX0 || ny < coverX0 || nx >= coverX1 || ny >= coverY1)) continue;
+                if (!emptyAfterFirstRound(keys[centre + dy * static_cast<std::ptrdiff_t>(stride) + dx])) continue;
                 const float ex = static_cast<float>(dx) - fx, ey = static_cast<float>(dy) - fy;
                 const float distance = ex * ex + ey * ey;
                 if (distance < nearest) {
@@ -257,9 +287,11 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
             }
             if (nextOfPixel) nextOfPixel[pixel] = nextOfWinner[source];
             toPoint[pixel] = points[source];
-            SampleLook look = looks[source];
-            look.age = static_cast<std::uint16_t>(look.age + ageAdded);
+            // The look copied whole (one load and one store; field by field
+            // it took ten instructions), then its age.
+            const SampleLook look = looks[source];
             toLook[pixel] = look;
+            toLook[pixel].age = static_cast<std::uint16_t>(look.age + ageAdded);
             // What reshading needs, only where it means something.
             if (look.viewDependent) toReshade[pixel] = fromReshade[source];
             if (look.textured) toTexturing[pixel] = fromTexturing[source];

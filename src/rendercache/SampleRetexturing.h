@@ -88,7 +88,16 @@ public:
             }
             albedo = object.material.diffuseTexture->sample(texU, texV);
         }
+        return shaded(albedo, texturing);
+    }
+    // The colour of a textured sample whose albedo is `albedo` (retexturedColor's last step).
+    static Rgb shaded(const Rgb& albedo, const SampleTexturing& texturing) {
         return albedo * texturing.lighting + texturing.rest;
+    }
+    // The corners' texture coordinates of the last meshTriangle(), or null
+    // where its mesh has none.
+    const std::array<std::array<float, 2>, 3>* cornerTextureCoordinates() const {
+        return triangle_.hasUvs ? &triangle_.uv : nullptr;
     }
 
 private:

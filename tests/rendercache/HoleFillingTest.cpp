@@ -6,10 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <random>
 #include <vector>
 
 #include "rendercache/HoleFilling.h"
 #include "rendercache/PointImage.h"
+#include "rendercache/SurfaceClusters.h"
 
 using namespace raycache;
 
@@ -333,4 +335,80 @@ TEST(HoleFilling, AnEdgeHoleTakesTheHeavierSurfaceAndOnATieTheFarther) {
             const Rgb want = nearWeight > farWeight ? Silhouette::kNear : Silhouette::kFar;
             EXPECT_EQ(s.img.film.at(x, y), want) << x << "," << y << ": near " << nearWeight << ", far " << farWeight;
         }
+}
+
+// The 3x3 filter and, where it finds no sample, the 7x7 one against their
+// rules written out one neighbour at a time (row by row; edge neighbours 2,
+// corners 1 in the 3x3, all 1 in the 7x7; the edge-aware groups of
+// SurfaceClusters) on rows wider than a word of PixelStateBits, random
+// states, colours, depths and objects and a wide hole across a word's end:
+// the same colours bit for bit, the same sources and states, and the
+// samples' colours copied from the pool.
+TEST(HoleFilling, TheFillsAreTheirRulesOneNeighbourAtATimeBitForBit) {
+    constexpr int kW = 150, kH = 9, kMargin = 1, kStride = kW + 2 * kMargin;
+    std::mt19937 random(38);
+    std::uniform_int_distribution<int> anyState(0, static_cast<int>(PixelState::Hole)), anyObject(0, 2);
+    std::uniform_real_distribution<float> anyColour(0.0f, 1.0f), anyDepth(1.0f, 1.3f);
+    std::vector<PixelState> states(static_cast<std::size_t>(kW * kH));
+    for (PixelState& s : states) s = static_cast<PixelState>(anyState(random));
+    for (int y = 2; y < 7; ++y)
+        for (int x = 50; x < 80; ++x) states[static_cast<std::size_t>(y * kW + x)] = PixelState::Hole;  // a 7x7's
+    std::vector<SampleLook> looks(static_cast<std::size_t>(kStride * (kH + 2 * kMargin)));
+    std::vector<SamplePoint> points(looks.size());
+    PointImage depths;
+    depths.reset(kW, kH, kMargin);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            const auto slot = depths.pixelIndex(x, y);
+            looks[slot].color = Rgb{anyColour(random), anyColour(random), anyColour(random)};
+            points[slot].objectId = anyObject(random);
+            depths.place(x, y, anyDepth(random));
+        }
+    const SampleColors colours{looks.data(), depths.pixelIndex(0, 0), static_cast<std::size_t>(kStride)};
+    const SampleSurfaces surfaces{&depths, points.data(), depths.pixelIndex(0, 0), static_cast<std::size_t>(kStride)};
+    for (int threads : {1, 2}) {
+        std::vector<PixelState> state = states;
+        Image film(kW, kH);
+        std::vector<std::int32_t> source;
+        fillHoles(state, film, Parallel(threads), nullptr, &colours, &surfaces, &source);
+        int filled = 0, filled7x7 = 0;
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                const PixelState before = states[static_cast<std::size_t>(y * kW + x)];
+                if (showsSample(before)) {
+                    ASSERT_EQ(film.at(x, y), colours.at(x, y)) << x << "," << y;
+                    continue;
+                }
+                const auto box = [&](int radius, bool weighted) {
+                    SurfaceClusters groups;
+                    for (int dy = -radius; dy <= radius; ++dy)
+                        for (int dx = -radius; dx <= radius; ++dx) {
+                            const int nx = x + dx, ny = y + dy;
+                            if (nx < 0 || ny < 0 || nx >= kW || ny >= kH ||
+                                !showsSample(states[static_cast<std::size_t>(ny * kW + nx)]))
+                                continue;
+                            groups.add(colours.at(nx, ny), weighted && (dx == 0 || dy == 0) ? 2.0f : 1.0f,
+                                       surfaces.depth(nx, ny), surfaces.object(nx, ny), ny * kW + nx);
+                        }
+                    return groups;
+                };
+                SurfaceClusters groups = box(1, true);
+                PixelState want = PixelState::Filled3x3;
+                if (groups.empty()) {
+                    groups = box(3, false);
+                    want = PixelState::Filled7x7;
+                    ++filled7x7;
+                }
+                if (groups.empty()) {
+                    ASSERT_EQ(state[static_cast<std::size_t>(y * kW + x)], PixelState::Unfilled) << x << "," << y;
+                    continue;
+                }
+                ++filled;
+                ASSERT_EQ(state[static_cast<std::size_t>(y * kW + x)], want) << x << "," << y;
+                ASSERT_EQ(film.at(x, y), groups.mean()) << x << "," << y << ", " << threads << " threads";
+                ASSERT_EQ(source[static_cast<std::size_t>(y * kW + x)], groups.chosenSource()) << x << "," << y;
+            }
+        EXPECT_GT(filled, kW);
+        EXPECT_GT(filled7x7, 20);
+    }
 }
