@@ -37,11 +37,6 @@ int takeObjectLanes(const int* objectId, int* remaining, int* selected) {
     return object;
 }
 
-Ray laneRay(const RayLanes16& rays, int k) {
-    return Ray{{rays.originX[k], rays.originY[k], rays.originZ[k]},
-               {rays.directionX[k], rays.directionY[k], rays.directionZ[k]}};
-}
-
 TraceHit laneHit(const RayHitLanes16& packet, const int* objectId, int k) {
     TraceHit hit;
     hit.t = packet.ray.tFar[k];

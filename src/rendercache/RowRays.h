@@ -18,9 +18,7 @@ public:
     // rays.ray(x, y), for x >= 0.
     Ray at(int x) {
         const RayLanes16& lanes = block(x);
-        const auto k = static_cast<std::size_t>(x - block_);
-        return Ray{{lanes.originX[k], lanes.originY[k], lanes.originZ[k]},
-                   {lanes.directionX[k], lanes.directionY[k], lanes.directionZ[k]}};
+        return laneRay(lanes, x - block_);
     }
     // The rays of the block of sixteen pixels that holds pixel x, lane k
     // that of pixel x - x % 16 + k (past the row's end too).

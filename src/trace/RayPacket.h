@@ -46,4 +46,10 @@ inline void setLaneRay(RayLanes16& rays, int k, const Ray& ray) {
     rays.flags[k] = 0;
 }
 
+// Lane k's origin and direction as one Ray (its tNear and tFar Ray's defaults).
+inline Ray laneRay(const RayLanes16& rays, int k) {
+    return Ray{{rays.originX[k], rays.originY[k], rays.originZ[k]},
+               {rays.directionX[k], rays.directionY[k], rays.directionZ[k]}};
+}
+
 }  // namespace raycache
