@@ -23,6 +23,7 @@ void TileScratch::beginTile(std::size_t roots) {
     nodes.assign(roots, Node{});
     stores.clear();
     trackTrees = false;  // runWaves decides, once it knows the cache
+    countTreeRays = false;
     recordLevels = false;  // the callers that record say so after this
     vertices.clear();
     surfaces.clear();
@@ -264,6 +265,7 @@ void TileKernel::renderRays(std::span<const RayTreeRecord> rays, std::span<Rgb> 
 
 void TileKernel::beginWaves(TileScratch& s, CacheWorker* cache) const {
     s.trackTrees = cache && cache_ && cache_->tracksDependencies();
+    s.countTreeRays = cache && cache_;
     // Bounds are kept for tracked nodes only, which emitSecondaryRay makes
     // and resets one by one: the camera rays' nodes (most of a tile's) are
     // never tracked, and clearing 168 bytes for each of them took 2.4 % of
@@ -449,7 +451,7 @@ void TileKernel::traceShadowRays(TileScratch& s, bool coherent) const {
         traceShadowRaysByLight(s, count);
     }
     s.counts.shadow += count;
-    if (cache_)
+    if (s.countTreeRays)
         for (std::size_t i = 0; i < n; ++i)
             s.nodes[static_cast<std::size_t>(s.vertices[i].node)].tracedRays +=
                 static_cast<std::uint32_t>(s.firstQuery[i + 1] - s.firstQuery[i]);

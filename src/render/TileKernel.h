@@ -208,6 +208,11 @@ private:
     // its ray tree reached (cache/RayTreeBounds.h), gathered up like colours.
     bool trackTrees = false;
     std::vector<RayTreeBounds> nodeBounds;
+    // Whether this tile counts each node's traced rays (Node::tracedRays):
+    // only when the frame has cube workers, whose stores tell the cache
+    // policy what a hit spares. In a frame where every cube stands aside
+    // the count went nowhere and cost 0.6 % of grid-32's frame (callgrind).
+    bool countTreeRays = false;
     std::vector<float> rootHitDistance;
     // The first hits' view-independent light, recorded for PrimarySample.
     bool recordFirstHits = false;

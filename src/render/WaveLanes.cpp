@@ -318,7 +318,7 @@ void TileKernel::packetShadowRays(TileScratch& s, std::size_t p) const {
     // What a store tells the cache policy a hit spares counts these rays,
     // and a tracked tree's bounds their answers (the general path's
     // traceShadowRays).
-    if (cache_)
+    if (s.countTreeRays)
         for (int k = 0; k < packet.count; ++k)
             s.nodes[static_cast<std::size_t>(packet.node[k])].tracedRays += static_cast<std::uint32_t>(shadowRays[k]);
     if (s.trackTrees)
