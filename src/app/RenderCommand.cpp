@@ -72,7 +72,8 @@ nlohmann::json renderCacheJson(const RenderCacheStats& s) {
             {"fresh", s.fresh}, {"predicted", s.predicted}, {"reprojected", s.reprojected},
             {"reshaded", s.reshaded}, {"culled", s.culled}, {"holes", s.holes}, {"filled_3x3", s.filled3x3},
             {"filled_7x7", s.filled7x7}, {"unfilled", s.unfilled}, {"evicted", s.evicted}, {"lost", s.lost},
-            {"live_samples", s.liveSamples}, {"refreshed_all", s.refreshedAll}};
+            {"live_samples", s.liveSamples}, {"refreshed_all", s.refreshedAll},
+            {"counted_bytes", countedBytesJson(s)}, {"counted_gb_per_s", countedGbPerSecondJson(s)}};
 }
 
 nlohmann::json stagesJson(const StageTimes& s) {

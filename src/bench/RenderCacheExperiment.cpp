@@ -176,6 +176,8 @@ nlohmann::json frameJson(int frame, const FrameRecord& r, std::int64_t mirrorPix
     j["sample_generation_ms"] = s.sampleGenerationMs();
     j["trace_ms"] = s.traceMs;
     j["reshade_ms"] = s.reshadeMs;
+    j["counted_bytes"] = countedBytesJson(s);
+    j["counted_gb_per_s"] = countedGbPerSecondJson(s);
     j["pixels"] = s.pixels;
     j["budget"] = s.budget;
     j["fresh"] = s.fresh;
@@ -251,14 +253,14 @@ public:
 
         // Frame time split.
         MarkdownTable split({"scene", "size", "variant", "ms per frame", "reconstruction ms", "reprojection ms",
-                             "maps ms", "filters ms", "sample generation ms", "trace ms", "reshade ms",
-                             "× full render (95 % CI)", "fresh pixels", "holes", "reshaded"});
+                             "maps ms", "filters ms", "MB counted", "GB/s", "sample generation ms", "trace ms",
+                             "reshade ms", "× full render (95 % CI)", "fresh pixels", "holes", "reshaded"});
         // Quality.
         MarkdownTable quality({"scene", "size", "variant", "PSNR dB", "mean PSNR dB", "SSIM", "mirror pixels",
                                "mirror PSNR dB", "mean mirror PSNR dB"});
         for (const SceneRun& r : runs) {
             split.addRow({r.scene, sideText(r.side), "full render (ray pipeline)", rangeCell(afterSkipped(r.fullMs), 1),
-                          "–", "–", "–", "–", "–", "–", "–", "1.00×", "100 %", "–", "–"});
+                          "–", "–", "–", "–", "–", "–", "–", "–", "–", "1.00×", "100 %", "–", "–"});
             std::vector<double> mirrorShare;
             for (std::int64_t m : r.mirrorPixels)
                 mirrorShare.push_back(100.0 * static_cast<double>(m) / (static_cast<double>(r.side) * r.side));
@@ -271,6 +273,12 @@ public:
                      rangeCell(series(f, [](const FrameRecord& x) { return x.rc.reprojectMs; }), 2),
                      rangeCell(series(f, [](const FrameRecord& x) { return x.rc.mapsMs; }), 2),
                      rangeCell(series(f, [](const FrameRecord& x) { return x.rc.filterMs; }), 2),
+                     rangeCell(series(f,
+                                      [](const FrameRecord& x) {
+                                          return static_cast<double>(x.rc.reconstructionBytes()) / 1e6;
+                                      }),
+                               1),
+                     rangeCell(series(f, [](const FrameRecord& x) { return x.rc.reconstructionGbPerSecond(); }), 2),
                      rangeCell(series(f, [](const FrameRecord& x) { return x.rc.sampleGenerationMs(); }), 2),
                      rangeCell(series(f, [](const FrameRecord& x) { return x.rc.traceMs; }), 2),
                      rangeCell(series(f, [](const FrameRecord& x) { return x.rc.reshadeMs; }), 2),
@@ -380,7 +388,10 @@ public:
             "it is left out of every median, mean, range and speed-up below, and kept in results.json. "
             "*Reconstruction* = reprojection (aging, eviction, projection, depth test) + maps (depth culling, "
             "hole detection, priority and request maps, prediction maps) + filters (3x3 filter, 7x7 prefilter, "
-            "writing the image); *sample generation* = tracing the requested pixels (this frame's camera and the "
+            "writing the image); *MB counted*: the bytes reconstruction's passes read and write, counted from "
+            "their record sizes and the frame's counts (rendercache/ReconstructionBytes.h: a model, not measured "
+            "memory traffic; 1 MB = 10^6 bytes), and *GB/s* those bytes over the reconstruction time; "
+            "*sample generation* = tracing the requested pixels (this frame's camera and the "
             "predicted one, with the merge of the caches' stores) + reshading. *Mirror pixels*: pixels whose "
             "first hit in the full render is an object that reflects (mirrors, and glass, which reflects "
             "10 %), found by tracing the full render's primary rays. Speed-ups: mean time per frame of the full "
@@ -688,6 +699,10 @@ private:
                       {"reproject_ms", get([](const FrameRecord& x) { return x.rc.reprojectMs; })},
                       {"maps_ms", get([](const FrameRecord& x) { return x.rc.mapsMs; })},
                       {"filter_ms", get([](const FrameRecord& x) { return x.rc.filterMs; })},
+                      {"reconstruction_counted_bytes",
+                       get([](const FrameRecord& x) { return static_cast<double>(x.rc.reconstructionBytes()); })},
+                      {"reconstruction_gb_per_s",
+                       get([](const FrameRecord& x) { return x.rc.reconstructionGbPerSecond(); })},
                       {"sample_generation_ms", get([](const FrameRecord& x) { return x.rc.sampleGenerationMs(); })},
                       {"trace_ms", get([](const FrameRecord& x) { return x.rc.traceMs; })},
                       {"reshade_ms", get([](const FrameRecord& x) { return x.rc.reshadeMs; })},

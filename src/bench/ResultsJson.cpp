@@ -32,6 +32,25 @@ nlohmann::json toJson(const VariantTimes& t) {
             {"fps_median", finiteOrNull(s.median > 0.0 ? 1000.0 / s.median : 0.0)}};
 }
 
+nlohmann::json countedBytesJson(const RenderCacheStats& s) {
+    return {{"first_round", s.firstRoundBytes},
+            {"copy", s.copyBytes},
+            {"holes", s.holesBytes},
+            {"request_maps", s.requestMapBytes},
+            {"fills", s.fillBytes},
+            {"reproject", s.reprojectBytes()},
+            {"maps", s.mapsBytes()},
+            {"filter", s.filterBytes()},
+            {"reconstruction", s.reconstructionBytes()}};
+}
+
+nlohmann::json countedGbPerSecondJson(const RenderCacheStats& s) {
+    return {{"reproject", s.reprojectGbPerSecond()},
+            {"maps", s.mapsGbPerSecond()},
+            {"filter", s.filterGbPerSecond()},
+            {"reconstruction", s.reconstructionGbPerSecond()}};
+}
+
 nlohmann::json toJson(const PaperTable& table) {
     nlohmann::json rows = nlohmann::json::array();
     for (const PaperRow& r : table.rows) {

@@ -8,6 +8,7 @@
 #include "bench/PaperFigures.h"
 #include "bench/RunEnvironment.h"
 #include "bench/SpeedupInterval.h"
+#include "render/RenderCacheStats.h"
 
 namespace raycache {
 
@@ -21,6 +22,15 @@ nlohmann::json toJson(const PaperTable& table);
 // {"speedup", "ci95_low", "ci95_high" (null when unknown), "pairs",
 // "relative_half_width", "no_measurable_difference"}.
 nlohmann::json toJson(const SpeedupInterval& s);
+// A Render Cache frame's counted bytes (RenderCacheStats; a model, not
+// measured traffic: rendercache/ReconstructionBytes.h), the same in
+// results.json and `raycache render --stats`: per pass ("first_round",
+// "copy", "holes", "request_maps", "fills"), per timed step ("reproject",
+// "maps", "filter") and "reconstruction".
+nlohmann::json countedBytesJson(const RenderCacheStats& s);
+// The counted bytes over the wall time of each timed step and of
+// reconstruction, GB/s (0 where the time is 0).
+nlohmann::json countedGbPerSecondJson(const RenderCacheStats& s);
 // JSON has no infinity or NaN: such values (e.g. the PSNR of identical
 // images) become null.
 nlohmann::json finiteOrNull(double value);

@@ -18,6 +18,30 @@ struct RenderCacheStats {
     double reconstructionMs() const { return reprojectMs + mapsMs + filterMs; }
     double sampleGenerationMs() const { return traceMs + reshadeMs; }
 
+    // Bytes reconstruction's passes move, read + written: counted from the
+    // record sizes and this frame's counts (rendercache/ReconstructionBytes.h),
+    // not measured memory traffic.
+    std::int64_t firstRoundBytes = 0;  // reprojection: clearing the depth image, projection, depth test, second chance
+    std::int64_t copyBytes = 0;        // reprojection: the winners copied to their pixels' slots
+    std::int64_t holesBytes = 0;       // holes, depth culling, priorities, texture re-fetch
+    std::int64_t requestMapBytes = 0;  // request maps, this frame's camera and the predicted one
+    std::int64_t fillBytes = 0;        // fills, the image, re-fetch of filled holes
+
+    // The counted bytes of each timed step, and of reconstruction.
+    std::int64_t reprojectBytes() const { return firstRoundBytes + copyBytes; }
+    std::int64_t mapsBytes() const { return holesBytes + requestMapBytes; }
+    std::int64_t filterBytes() const { return fillBytes; }
+    std::int64_t reconstructionBytes() const { return reprojectBytes() + mapsBytes() + filterBytes(); }
+    // Counted bytes over wall time, GB/s (10^9 bytes a second); 0 when the
+    // time is not positive.
+    static double gigabytesPerSecond(std::int64_t bytes, double ms) {
+        return ms > 0.0 ? static_cast<double>(bytes) / (ms * 1e6) : 0.0;
+    }
+    double reconstructionGbPerSecond() const { return gigabytesPerSecond(reconstructionBytes(), reconstructionMs()); }
+    double reprojectGbPerSecond() const { return gigabytesPerSecond(reprojectBytes(), reprojectMs); }
+    double mapsGbPerSecond() const { return gigabytesPerSecond(mapsBytes(), mapsMs); }
+    double filterGbPerSecond() const { return gigabytesPerSecond(filterBytes(), filterMs); }
+
     std::int64_t pixels = 0;        // in the image
     std::int64_t budget = 0;        // rays the frame was allowed
     std::int64_t fresh = 0;         // pixels traced through this frame's camera

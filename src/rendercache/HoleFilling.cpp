@@ -9,12 +9,6 @@
 
 namespace raycache {
 
-namespace {
-
-constexpr int kPrefilterRadius = 3;  // 7x7
-
-}  // namespace
-
 FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel& parallel,
                      std::vector<unsigned char>* scratch, const SampleColors* samples, const SampleSurfaces* surfaces,
                      std::vector<std::int32_t>* fillSource) {
@@ -147,6 +141,7 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
                 // box clipped to the image by the bits: none past its edges);
                 // edge neighbours weigh 2, corners 1.
                 const auto addRow = [&](const SampleRow& r, unsigned three, float cornerWeight) {
+                    row.samplesRead += std::popcount(three);
                     for (; three; three &= three - 1) {
                         const int dx = std::countr_zero(three) - 1;
                         addSample(groups, r, x + dx, dx == 0 ? 2.0f : cornerWeight);
@@ -207,6 +202,7 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
                 if (showsSample(state[at(nx, ny)])) {
                     columns.sum[static_cast<std::size_t>(nx - x0)] += film.at(nx, ny);
                     ++columns.count[static_cast<std::size_t>(nx - x0)];
+                    ++row.samplesRead;
                 }
         forEachPixelSet(wantsRow, width, [&](int x) {
             Rgb sum;
@@ -223,7 +219,10 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
                 for (int ny = y0; ny <= y1; ++ny) {
                     const SampleRow& r = boxRows[static_cast<std::size_t>(ny - y0)];
                     for (int nx = nx0; nx <= nx1; ++nx)
-                        if (showsSample(r.states[nx])) addSample(groups, r, nx, 1.0f);
+                        if (showsSample(r.states[nx])) {
+                            addSample(groups, r, nx, 1.0f);
+                            ++row.samplesRead;
+                        }
                 }
             }
             if (!groups.empty()) {
@@ -250,7 +249,9 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
         total.filled3x3 += c.filled3x3;
         total.filled7x7 += c.filled7x7;
         total.unfilled += c.unfilled;
+        total.samplesRead += c.samplesRead;
     }
+    for (unsigned char h : hasHoles) total.rowsWithHoles += h;
     return total;
 }
 

@@ -17,10 +17,17 @@
 
 namespace raycache {
 
+// The prefilter's box: 2 * kPrefilterRadius + 1 pixels a side.
+inline constexpr int kPrefilterRadius = 3;
+
 struct FillCounts {
     std::int64_t filled3x3 = 0;
     std::int64_t filled7x7 = 0;
     std::int64_t unfilled = 0;  // left for the caller: state Unfilled, pixel untouched
+    // What the filters read (rendercache/ReconstructionBytes.h): the samples
+    // around the holes, once per hole that reads them, and the rows with holes.
+    std::int64_t samplesRead = 0;
+    std::int64_t rowsWithHoles = 0;
 };
 
 // Where the samples' colours are when they are not in the film yet: pixel

@@ -17,6 +17,7 @@
 #include "rendercache/DepthCulling.h"
 #include "rendercache/HoleFilling.h"
 #include "rendercache/PixelStateBits.h"
+#include "rendercache/ReconstructionBytes.h"
 #include "rendercache/Reprojection.h"
 #include "rendercache/RequestMap.h"
 #include "rendercache/RowRetexturing.h"
@@ -230,6 +231,14 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
     scratch_.resize(static_cast<std::size_t>(parallel_.threadCount()));
     for (TileScratch& s : scratch_) s.beginFrame();
 
+    // What the reconstruction passes touch, for the counted bytes they move
+    // (ReconstructionBytes.h).
+    ReconstructionCounts touched;
+    touched.width = width;
+    touched.height = height;
+    touched.pixelSlots = static_cast<std::int64_t>(imageSlots);
+    touched.usedSlots = static_cast<std::int64_t>(pool_.used());
+
     // Reprojection.
     auto start = Clock::now();
     const ScreenProjection projection(camera, width, height);
@@ -247,6 +256,15 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
     stats.evicted = reprojected.evicted;
     stats.lost = reprojected.lost;
     stats.reprojectMs = millisecondsSince(start);
+    touched.liveSamples = reprojected.live;
+    touched.offered = reprojected.offered;
+    touched.farOffers = reprojected.farOffers;
+    touched.secondChances = reprojected.secondChances;
+    touched.predicts = predicts;
+    touched.placed = reprojected.placed;
+    touched.moved = reprojected.moved;
+    touched.reshadeCopied = reprojected.reshadeCopied;
+    touched.texturingCopied = reprojected.texturingCopied;
 
     // Depth culling, holes, the priority and request maps.
     start = Clock::now();
@@ -261,6 +279,7 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
     std::vector<std::int64_t> holesPerRow(static_cast<std::size_t>(height), 0);
     std::vector<std::int64_t> culledPerRow(static_cast<std::size_t>(height), 0);
     std::vector<std::int64_t> reprojectedPerRow(static_cast<std::size_t>(height), 0);
+    std::vector<std::int64_t> retexturedPerRow(static_cast<std::size_t>(height), 0);
     const float agePriority = 0.5f / static_cast<float>(rc.maxAge);
     // Textured samples show the albedo their pixel's centre sees
     // (SampleRetexturing); a still camera puts every sample back where it was
@@ -271,7 +290,7 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
     std::vector<unsigned char>& hiddenPerPixel = bytes_;
     if (cull) hiddenPerPixel.resize(static_cast<std::size_t>(pixels));
     parallel_.forEachIndex(height, [&](int y, int) {
-        std::int64_t rowHoles = 0, rowCulled = 0, rowReprojected = 0;
+        std::int64_t rowHoles = 0, rowCulled = 0, rowReprojected = 0, rowRetextured = 0;
         // Addresses and sizes in locals (through the members the compiler
         // reloaded them after every store).
         const auto stride = static_cast<std::size_t>(image_.stride());
@@ -315,6 +334,7 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
                     // edge, a silhouette), the stored colour, and a ray sooner.
                     if (!retexturing.color(x, object, texturings[i], distance, look.color))
                         rowPriority[i] = std::max(rowPriority[i], kMissedPrimitivePriority);
+                    ++rowRetextured;
                 }
                 ++rowReprojected;
             }
@@ -322,12 +342,16 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
         reprojectedPerRow[static_cast<std::size_t>(y)] = rowReprojected;
         holesPerRow[static_cast<std::size_t>(y)] = rowHoles + rowCulled;
         culledPerRow[static_cast<std::size_t>(y)] = rowCulled;
+        retexturedPerRow[static_cast<std::size_t>(y)] = rowRetextured;
     });
     for (std::int64_t c : culledPerRow) stats.culled += c;
     for (std::int64_t r : reprojectedPerRow) stats.reprojected += r;
     std::int64_t holes = 0;
     for (std::int64_t h : holesPerRow) holes += h;
     stats.holes = holes;
+    touched.holes = holes;
+    touched.culls = cull;
+    for (std::int64_t r : retexturedPerRow) touched.retextured += r;
     stats.refreshedAll = !previousCamera_ || static_cast<double>(holes) > static_cast<double>(rc.refreshAllHoleShare) * pixels;
     const int budget = stats.refreshedAll                  ? pixels
                        : async && async->budget > 0 ? std::min(async->budget, pixels)
@@ -353,6 +377,13 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
                         frame_, requests, parallel_);
     }
     stats.mapsMs = millisecondsSince(start);
+    touched.everyPixelRequested = wantsRequests && stats.refreshedAll;
+    touched.requestMap = wantsRequests && !stats.refreshedAll;
+    if (touched.requestMap) {
+        touched.tiles = static_cast<std::int64_t>(requests.tileRequests.size());
+        touched.requested = static_cast<std::int64_t>(requests.pixels.size());
+        touched.pixelsInRequestedTiles = pixelsInTilesWithRequests(requests, width, height);
+    }
 
     // New samples through this frame's camera, replacing what their pixels
     // held; the asynchronous mode hands the request to its tracer instead.
@@ -430,11 +461,16 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
         });
         buildRequestMap(priority, width, height, rc.requestTileSize, 1.0f, predictedBudget, rc.seed ^ 0x5eed,
                         frame_, predictedRequests_, parallel_);
+        const std::size_t offered = predictedRequests_.pixels.size();
         // Only holes: a tile without any gets no ray even if rounding offered one.
         std::erase_if(predictedRequests_.pixels, [&](const PixelCoord& p) {
             return covered[static_cast<std::size_t>(p.y * width + p.x)] != 0;
         });
         stats.mapsMs += millisecondsSince(start);
+        touched.predictionMap = true;
+        touched.predictedOffered = static_cast<std::int64_t>(offered);
+        touched.predictedKept = static_cast<std::int64_t>(predictedRequests_.pixels.size());
+        touched.pixelsInPredictedTiles = pixelsInTilesWithRequests(predictedRequests_, width, height);
         start = Clock::now();
         if (async) {
             async->request->nextCamera = next;
@@ -554,7 +590,9 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
     // The filled holes are found a word of pixels at a time (PixelStateBits):
     // testing every pixel's state cost twice what re-fetching the holes did.
     std::vector<std::vector<std::uint64_t>> filledPerWorker(static_cast<std::size_t>(parallel_.threadCount()));
-    if (rc.textureRefetch && filled.filled3x3 + filled.filled7x7 > 0)
+    std::vector<std::int64_t> retexturedHolesPerRow(static_cast<std::size_t>(height), 0);
+    touched.filledRefetch = rc.textureRefetch && filled.filled3x3 + filled.filled7x7 > 0;
+    if (touched.filledRefetch)
         parallel_.forEachIndex(height, [&](int y, int worker) {
             std::vector<std::uint64_t>& filledBits = filledPerWorker[static_cast<std::size_t>(worker)];
             filledBits.resize(pixelStateWords(width));
@@ -562,11 +600,13 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
                            PixelState::Filled3x3, PixelState::Filled7x7, filledBits.data());
             if (std::all_of(filledBits.begin(), filledBits.end(), [](std::uint64_t b) { return b == 0; })) return;
             RowRetexturing retexturing(scene_.objects, rays, y);
+            std::int64_t retexturedHoles = 0;
             forEachPixelSet(filledBits.data(), width, [&](int x) {
                 const auto i = static_cast<std::size_t>(y * width + x);
                 const int source = fillSource_[i];
                 const std::size_t slot = image_.pixelIndex(source % width, source / width);
                 if (!pool_.look[slot].textured) return;
+                ++retexturedHoles;
                 const int object = pool_.point[slot].objectId;
                 const auto distance = [&] {
                     return length(scene_.objects[static_cast<std::size_t>(object)].origin + pool_.point[slot].position -
@@ -574,6 +614,7 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
                 };
                 retexturing.color(x, object, pool_.texturing[slot], distance, film.at(x, y));
             });
+            retexturedHolesPerRow[static_cast<std::size_t>(y)] = retexturedHoles;
         });
     stats.filled3x3 = filled.filled3x3;
     stats.filled7x7 = filled.filled7x7;
@@ -591,6 +632,18 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
             }
         });
     stats.filterMs = millisecondsSince(start);
+    touched.filled3x3 = filled.filled3x3;
+    touched.filled7x7 = filled.filled7x7;
+    touched.unfilled = filled.unfilled;
+    touched.samplesRead = filled.samplesRead;
+    touched.rowsWithHoles = filled.rowsWithHoles;
+    for (std::int64_t r : retexturedHolesPerRow) touched.retexturedHoles += r;
+    const ReconstructionBytes bytes = reconstructionBytes(touched);
+    stats.firstRoundBytes = bytes.firstRound;
+    stats.copyBytes = bytes.copy;
+    stats.holesBytes = bytes.holes;
+    stats.requestMapBytes = bytes.requestMaps;
+    stats.fillBytes = bytes.fills;
 
     stats.liveSamples = reprojected.placed + newSamples;
 

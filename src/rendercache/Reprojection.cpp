@@ -253,6 +253,8 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
     // image's keys lose their second-chance marks.
     std::vector<std::int64_t> placedPerRow(static_cast<std::size_t>(rows), 0);
     std::vector<std::int64_t> movedPerRow(static_cast<std::size_t>(rows), 0);
+    std::vector<std::int64_t> reshadedPerRow(static_cast<std::size_t>(rows), 0);
+    std::vector<std::int64_t> texturedPerRow(static_cast<std::size_t>(rows), 0);
     parallel.forEachIndex(rows, [&](int row, int) {
         // The arrays' addresses in locals: the compiler cannot tell that the
         // stores do not change the vectors, and reloaded their addresses for
@@ -271,7 +273,7 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
         const SamplePoint* const points = fromPoint;
         const SampleLook* const looks = fromLook;
         const int ageAdded = ageStep;
-        std::int64_t placed = 0, moved = 0;
+        std::int64_t placed = 0, moved = 0, reshaded = 0, textured = 0;
         const std::size_t rowEnd = (static_cast<std::size_t>(row) + 1) * stride;
         for (std::size_t pixel = static_cast<std::size_t>(row) * stride; pixel < rowEnd; ++pixel) {
             const std::uint32_t key = keys[pixel];
@@ -293,24 +295,39 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
             toLook[pixel] = look;
             toLook[pixel].age = static_cast<std::uint16_t>(look.age + ageAdded);
             // What reshading needs, only where it means something.
-            if (look.viewDependent) toReshade[pixel] = fromReshade[source];
-            if (look.textured) toTexturing[pixel] = fromTexturing[source];
+            if (look.viewDependent) {
+                toReshade[pixel] = fromReshade[source];
+                ++reshaded;
+            }
+            if (look.textured) {
+                toTexturing[pixel] = fromTexturing[source];
+                ++textured;
+            }
             ++placed;
         }
         placedPerRow[static_cast<std::size_t>(row)] = placed;
         movedPerRow[static_cast<std::size_t>(row)] = moved;
+        reshadedPerRow[static_cast<std::size_t>(row)] = reshaded;
+        texturedPerRow[static_cast<std::size_t>(row)] = textured;
     });
     to.overflowUsed = 0;
 
     ReprojectionCounts total;
     for (std::int64_t p : placedPerRow) total.placed += p;
     for (std::int64_t m : movedPerRow) total.moved += m;
-    std::int64_t live = 0;
+    for (std::int64_t r : reshadedPerRow) total.reshadeCopied += r;
+    for (std::int64_t t : texturedPerRow) total.texturingCopied += t;
     for (const Counts& c : perBand) {
-        live += c.live;
+        total.live += c.live;
         total.evicted += c.evicted;
     }
-    total.lost = live - total.evicted - total.placed;
+    total.lost = total.live - total.evicted - total.placed;
+    for (const std::vector<Landed>& list : far) total.farOffers += static_cast<std::int64_t>(list.size());
+    for (const std::vector<Landed>& list : losers) total.secondChances += static_cast<std::int64_t>(list.size());
+    // Every offer ends as its pixel's first-round winner or, once, on a
+    // losers' list (pushed out included); the second chance fills only
+    // pixels the first round left empty.
+    total.offered = total.placed - total.moved + total.secondChances;
     return total;
 }
 

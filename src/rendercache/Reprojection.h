@@ -33,6 +33,13 @@ struct ReprojectionCounts {
     std::int64_t moved = 0;    // of those, on a neighbour of the pixel they landed in
     std::int64_t lost = 0;     // behind a nearer sample, past the margin or behind the eye: freed
     std::int64_t evicted = 0;  // too old: freed
+    // What the passes touched (rendercache/ReconstructionBytes.h).
+    std::int64_t live = 0;             // samples in `from`'s used slots: placed + lost + evicted
+    std::int64_t offered = 0;          // offered to a pixel in the first round (landed in the image or margin)
+    std::int64_t farOffers = 0;        // of those, tested on one thread (landed far from their band)
+    std::int64_t secondChances = 0;    // first-round losers, each offered a neighbour
+    std::int64_t reshadeCopied = 0;    // winners whose ReshadeInputs were copied (they depend on the eye)
+    std::int64_t texturingCopied = 0;  // winners whose SampleTexturing was copied (textured)
 };
 
 // Kept from frame to frame (fresh memory costs page faults): per band of

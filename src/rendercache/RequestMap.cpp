@@ -40,6 +40,18 @@ std::uint64_t mixBits(std::uint64_t x) {
     return x ^ (x >> 31);
 }
 
+std::int64_t pixelsInTilesWithRequests(const RequestMap& map, int width, int height) {
+    std::int64_t pixels = 0;
+    for (std::size_t t = 0; t < map.tileRequests.size(); ++t) {
+        if (map.tileRequests[t] == 0) continue;
+        const int x0 = static_cast<int>(t % static_cast<std::size_t>(map.tilesX)) * map.tileSize;
+        const int y0 = static_cast<int>(t / static_cast<std::size_t>(map.tilesX)) * map.tileSize;
+        pixels += static_cast<std::int64_t>(std::min(width, x0 + map.tileSize) - x0) *
+                  static_cast<std::int64_t>(std::min(height, y0 + map.tileSize) - y0);
+    }
+    return pixels;
+}
+
 void buildRequestMap(std::span<const float> priority, int width, int height, int tileSize, float alpha, int budget,
                      std::uint64_t seed, std::uint64_t frame, RequestMap& out, const Parallel& parallel) {
     out.tileSize = tileSize;

@@ -33,6 +33,10 @@ struct RequestMap {
 void buildRequestMap(std::span<const float> priority, int width, int height, int tileSize, float alpha, int budget,
                      std::uint64_t seed, std::uint64_t frame, RequestMap& out, const Parallel& parallel);
 
+// The pixels of `map`'s tiles that got at least one ray (the map made by
+// buildRequestMap() for a width x height image).
+std::int64_t pixelsInTilesWithRequests(const RequestMap& map, int width, int height);
+
 // A well-mixed 64-bit hash (splitmix64's finaliser).
 std::uint64_t mixBits(std::uint64_t x);
 

@@ -84,7 +84,8 @@ std::string formatFrameLine(const FrameResult& r, int frameCount) {
         line << "  render cache: " << (c->refreshedAll ? "every pixel traced" : "traced " + formatFixed(100.0 * static_cast<double>(c->fresh) / pixels, 1) + " %")
              << ", predicted " << c->predicted << ", holes " << formatFixed(100.0 * static_cast<double>(c->holes) / pixels, 1)
              << " %, reshaded " << c->reshaded << ", ms: reconstruction " << formatFixed(c->reconstructionMs(), 1)
-             << ", samples " << formatFixed(c->sampleGenerationMs(), 1);
+             << " (" << formatFixed(c->reconstructionGbPerSecond(), 1) << " GB/s counted), samples "
+             << formatFixed(c->sampleGenerationMs(), 1);
     }
     if (const auto& u = r.stats.sceneUpdate)
         line << "  scene update: " << u->objectsChanged << (u->objectsChanged == 1 ? " object, " : " objects, ")

@@ -348,6 +348,13 @@ TEST_F(Experiments, RenderCacheSplitsFrameTimeAndItsFirstFrameIsTheFullRender) {
                             1e-9);
                 EXPECT_NEAR(x.at("sample_generation_ms").get<double>(),
                             x.at("trace_ms").get<double>() + x.at("reshade_ms").get<double>(), 1e-9);
+                // Reconstruction's counted bytes, and those over its time.
+                const std::int64_t bytes = x.at("counted_bytes").at("reconstruction");
+                EXPECT_GT(bytes, 0);
+                EXPECT_EQ(bytes, x.at("counted_bytes").at("reproject").get<std::int64_t>() +
+                                     x.at("counted_bytes").at("maps").get<std::int64_t>() +
+                                     x.at("counted_bytes").at("filter").get<std::int64_t>());
+                EXPECT_GE(x.at("counted_gb_per_s").at("reconstruction").get<double>(), 0.0);
                 // The parts are timed inside the frame the whole is timed around.
                 EXPECT_LE(x.at("reconstruction_ms").get<double>() + x.at("sample_generation_ms").get<double>(),
                           ms + 1e-6);
@@ -380,6 +387,8 @@ TEST_F(Experiments, RenderCacheSplitsFrameTimeAndItsFirstFrameIsTheFullRender) {
             EXPECT_EQ(s.at("pairs").get<int>(), frames - 1);
             EXPECT_TRUE(s.at("ci95_low").is_null());  // 3 pairs: no interval
             EXPECT_EQ(v.at("summary").at("ms").at("count").get<int>(), frames - 1);
+            EXPECT_GT(v.at("summary").at("reconstruction_counted_bytes").at("median").get<double>(), 0.0);
+            EXPECT_EQ(v.at("summary").at("reconstruction_gb_per_s").at("count").get<int>(), frames - 1);
             for (const std::string suffix : {".png", "-heatmap.png", "-heatmap-x4.png"})
                 EXPECT_TRUE(fs::exists(dir_ / "render-cache" / (scene + "-48-" + key + suffix)));
         }
@@ -402,6 +411,7 @@ TEST_F(Experiments, RenderCacheSplitsFrameTimeAndItsFirstFrameIsTheFullRender) {
     EXPECT_EQ(mirrorGoals, 3);
     const std::string md = readFile(dir_ / "render-cache" / "results.md");
     EXPECT_NE(md.find("Frame 1 traces every pixel"), std::string::npos);
+    EXPECT_NE(md.find("| MB counted | GB/s |"), std::string::npos);
     EXPECT_NE(md.find("123 fps (8.1 ms)"), std::string::npos);
     EXPECT_NE(log_.find("render-cache goal, reconstruction ≤ 2.0 ms at 512² (median): not measured at this size"),
               std::string::npos);

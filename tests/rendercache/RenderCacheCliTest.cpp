@@ -85,6 +85,31 @@ TEST_F(RenderCacheCli, StatisticsJsonCarriesTheRenderCachesCountsPerFrame) {
             EXPECT_LE(fresh, 51);
             EXPECT_GE(holes, 0);
         }
+        // The bytes reconstruction moves, counted (not measured), per pass
+        // and per timed step, and over the step's time.
+        const nlohmann::json& bytes = rc.at("counted_bytes");
+        std::int64_t passes = 0;
+        for (const char* pass : {"first_round", "copy", "holes", "request_maps", "fills"}) {
+            ASSERT_TRUE(bytes.at(pass).is_number_integer()) << pass;
+            EXPECT_GT(bytes.at(pass).get<std::int64_t>(), 0) << pass << ", frame " << f;
+            passes += bytes.at(pass).get<std::int64_t>();
+        }
+        EXPECT_EQ(bytes.at("reproject").get<std::int64_t>(),
+                  bytes.at("first_round").get<std::int64_t>() + bytes.at("copy").get<std::int64_t>());
+        EXPECT_EQ(bytes.at("maps").get<std::int64_t>(),
+                  bytes.at("holes").get<std::int64_t>() + bytes.at("request_maps").get<std::int64_t>());
+        EXPECT_EQ(bytes.at("filter"), bytes.at("fills"));
+        EXPECT_EQ(bytes.at("reconstruction").get<std::int64_t>(), passes);
+        const nlohmann::json& rate = rc.at("counted_gb_per_s");
+        for (const char* step : {"reproject", "maps", "filter", "reconstruction"}) {
+            ASSERT_TRUE(rate.at(step).is_number()) << step;  // never null: 0 without time
+            EXPECT_GE(rate.at(step).get<double>(), 0.0) << step;
+        }
+        const double ms = rc.at("reconstruction_ms");
+        if (ms > 0.0) {
+            const double expected = static_cast<double>(passes) / (ms * 1e6);
+            EXPECT_NEAR(rate.at("reconstruction").get<double>(), expected, 1e-9 * expected);
+        }
     }
     EXPECT_TRUE(fs::exists(dir_ / "f1.png"));
     EXPECT_TRUE(fs::exists(dir_ / "f3.png"));

@@ -192,6 +192,69 @@ TEST(RenderCachePipeline, SlidingAlongAWallMovesEverySampleByTheExpectedPixels) 
     EXPECT_GT(distinct, (kW - 1) * kH * 9 / 10);
 }
 
+// The counted bytes (rendercache/ReconstructionBytes.h) of frames whose
+// counts are known in closed form: the first frame (no sample yet, every
+// pixel traced) and a second one through the same camera (every sample back
+// on its own pixel, no hole), on a matte untextured wall (no record for
+// reshading or texturing copied). Each pass's records, counted here.
+TEST(RenderCachePipeline, CountedBytesOfAFirstAndAStillFrameAreTheirRecords) {
+    constexpr int kW = 64, kH = 48;
+    constexpr std::int64_t kPixels = kW * kH;
+    constexpr int kMargin = 4;  // 5 % of the wider side, rounded up
+    constexpr std::int64_t kSlots = (kW + 2 * kMargin) * (kH + 2 * kMargin);
+    constexpr std::int64_t kTiles = (kW / 8) * (kH / 8);
+    constexpr std::int64_t kPoint = sizeof(SamplePoint), kLook = sizeof(SampleLook), kKey = sizeof(std::uint32_t),
+                           kSlot = sizeof(std::uint32_t), kState = sizeof(PixelState), kFloat = sizeof(float),
+                           kInt = sizeof(int), kRequest = sizeof(PixelCoord), kFilm = sizeof(Rgb);
+    const Scene scene = litWallScene();
+    const RenderSettings settings = renderCacheSettings(kW, kH, CacheTechnique::None);
+    const TraceScene tracer(scene);
+    const Parallel parallel(2);
+    RenderCachePipeline pipeline(scene, tracer, settings, parallel, nullptr);
+    Image film;
+    const FrameStats s1 = pipeline.render(analytic::analyticCamera(), film);
+    ASSERT_TRUE(s1.renderCache.has_value());
+    const RenderCacheStats& first = *s1.renderCache;
+    ASSERT_TRUE(first.refreshedAll);
+    // An empty pool: keys cleared, points read (none live); every slot marked empty.
+    EXPECT_EQ(first.firstRoundBytes, kSlots * kKey + kSlots * kPoint);
+    EXPECT_EQ(first.copyBytes, kSlots * kKey + kSlots * kPoint);
+    // Every pixel a hole: keys read, states and priorities written, no look.
+    EXPECT_EQ(first.holesBytes, kPixels * kKey + kPixels * (kState + kFloat));
+    // No map: the list of every pixel.
+    EXPECT_EQ(first.requestMapBytes, kPixels * kRequest);
+    // Every pixel fresh: outcomes cleared, states read, colours from the pool to the film.
+    EXPECT_EQ(first.fillBytes, kPixels * 1 + kPixels * kState + kPixels * (kLook + kFilm));
+
+    const FrameStats s2 = pipeline.render(analytic::analyticCamera(), film);
+    ASSERT_TRUE(s2.renderCache.has_value());
+    const RenderCacheStats& still = *s2.renderCache;
+    ASSERT_EQ(still.holes, 0);
+    ASSERT_EQ(still.lost, 0);
+    ASSERT_EQ(still.liveSamples, kPixels);
+    // Every pixel's sample offered to its own pixel and winning it.
+    EXPECT_EQ(still.firstRoundBytes,
+              kSlots * kKey + kSlots * kPoint + kPixels * kLook + kPixels * kKey + kPixels * (kKey + kSlot));
+    EXPECT_EQ(still.copyBytes,
+              kSlots * kKey + (kSlots - kPixels) * kPoint + kPixels * (kSlot + 2 * kPoint + 2 * kLook));
+    EXPECT_EQ(still.holesBytes, kPixels * kKey + kPixels * (kState + kFloat) + kPixels * kLook);
+    // The map: the tile sums, the tiles' counts, the priorities of the tiles
+    // that got a ray again (here every tile), the requests.
+    const RenderCacheOverlays* overlays = pipeline.renderCacheOverlays();
+    ASSERT_NE(overlays, nullptr);
+    std::vector<int> raysPerTile(static_cast<std::size_t>(kTiles), 0);
+    for (const PixelCoord& p : overlays->requests.pixels)
+        ++raysPerTile[static_cast<std::size_t>(p.y / 8 * (kW / 8) + p.x / 8)];
+    const std::int64_t tilesWithRays =
+        std::count_if(raysPerTile.begin(), raysPerTile.end(), [](int n) { return n > 0; });
+    EXPECT_EQ(tilesWithRays, kTiles);
+    EXPECT_EQ(still.requestMapBytes,
+              kPixels * kFloat + kTiles * 2 * (kFloat + kInt) + tilesWithRays * 64 * kFloat + still.budget * kRequest);
+    EXPECT_EQ(still.fillBytes, kPixels * 1 + kPixels * kState + kPixels * (kLook + kFilm));
+    EXPECT_EQ(still.reconstructionBytes(),
+              still.firstRoundBytes + still.copyBytes + still.holesBytes + still.requestMapBytes + still.fillBytes);
+}
+
 // Predictive sampling on the sliding wall: during frame 2 the camera of
 // frame 3 is predicted exactly (the same step again), and the rays through
 // it go where frame 3 will have holes, so frame 3 has none, and every pixel
@@ -379,6 +442,27 @@ TEST(RenderCachePipeline, AMovingCameraGivesTheSameImagesAndCountsOnOneAndTwoThr
         EXPECT_EQ(x.lost, y.lost) << frame;
         EXPECT_EQ(x.liveSamples, y.liveSamples) << frame;
         EXPECT_EQ(x.refreshedAll, y.refreshedAll) << frame;
+        // The counted bytes come from the counts: the same on any thread count.
+        EXPECT_EQ(x.firstRoundBytes, y.firstRoundBytes) << frame;
+        EXPECT_EQ(x.copyBytes, y.copyBytes) << frame;
+        EXPECT_EQ(x.holesBytes, y.holesBytes) << frame;
+        EXPECT_EQ(x.requestMapBytes, y.requestMapBytes) << frame;
+        EXPECT_EQ(x.fillBytes, y.fillBytes) << frame;
+        if (frame > 0) {
+            EXPECT_GT(x.firstRoundBytes, 0) << frame;
+            EXPECT_GT(x.copyBytes, 0) << frame;
+            EXPECT_GT(x.requestMapBytes, 0) << frame;
+            EXPECT_GT(x.fillBytes, 0) << frame;
+            // The holes pass: keys, culling flags, states and priorities of
+            // every pixel, a look per sample, and for each textured sample
+            // re-fetched (room's floor) its point, parts and look.
+            const std::int64_t perPixel = sizeof(std::uint32_t) + 2 + sizeof(PixelState) + sizeof(float);
+            const std::int64_t retextured =
+                x.holesBytes - x.pixels * perPixel - (x.pixels - x.holes) * std::int64_t{sizeof(SampleLook)};
+            const std::int64_t perRetextured = sizeof(SamplePoint) + sizeof(SampleTexturing) + sizeof(SampleLook);
+            EXPECT_GT(retextured, 0) << frame;
+            EXPECT_EQ(retextured % perRetextured, 0) << frame;
+        }
         EXPECT_EQ(sa.rays.total(), sb.rays.total()) << frame;
         ASSERT_TRUE(sa.cache && sb.cache);
         EXPECT_EQ(sa.cache->hits(), sb.cache->hits()) << frame;

@@ -98,6 +98,16 @@ TEST(Reprojection, AgesEvictsTestsDepthGivesLosersASecondChanceAndCountsExactly)
         EXPECT_EQ(counts.moved, 4);
         EXPECT_EQ(counts.lost, 3);
         EXPECT_EQ(counts.evicted, 1);
+        // What the passes touched: 19 samples, of which all but the evicted
+        // one, the one behind the eye and the one past the margin are
+        // offered a pixel; 6, 8, 13, 14 and 16 (pushed out by 17) lose the
+        // first round.
+        EXPECT_EQ(counts.live, 19);
+        EXPECT_EQ(counts.offered, 16);
+        EXPECT_EQ(counts.secondChances, 5);
+        EXPECT_EQ(counts.farOffers, 0);
+        EXPECT_EQ(counts.reshadeCopied, 0);
+        EXPECT_EQ(counts.texturingCopied, 0);
 
         // Pixel -> the sample that wins it.
         const std::map<std::pair<int, int>, std::size_t> expected = {
@@ -186,6 +196,7 @@ TEST(Reprojection, EveryWinnerMovesToItsPixelsSlotWithAllItsFieldsOnAnyThreadCou
         from.look[slot].color = Rgb{static_cast<float>(slot), 1.0f, 2.0f};
         from.look[slot].age = static_cast<std::uint16_t>(h % 3);
         from.look[slot].viewDependent = slot % 2;
+        from.look[slot].textured = slot % 3 == 0 ? 1 : 0;
         from.reshade[slot].primitiveId = static_cast<int>(slot) + 7;
         from.reshade[slot].baryU = 0.25f;
         from.reshade[slot].baryV = static_cast<float>(slot);
@@ -202,13 +213,15 @@ TEST(Reprojection, EveryWinnerMovesToItsPixelsSlotWithAllItsFieldsOnAnyThreadCou
         const ReprojectionCounts c = reproject(from, to, scene, projection, 32, image, Parallel(threads), scratch);
         EXPECT_GT(c.lost, 0) << "the samples collide";
         EXPECT_GT(c.moved, 0);
-        std::int64_t placed = 0;
+        std::int64_t placed = 0, viewDependent = 0, textured = 0;
         for (int y = -kMargin; y < kSize + kMargin; ++y)
             for (int x = -kMargin; x < kSize + kMargin; ++x) {
                 const std::size_t pixel = image.pixelIndex(x, y);
                 ASSERT_EQ(image.hasSample(x, y), !to.empty(pixel));
                 if (to.empty(pixel)) continue;
                 ++placed;
+                viewDependent += to.look[pixel].viewDependent;
+                textured += to.look[pixel].textured;
                 // The sample it came from: its colour names it.
                 const auto source = static_cast<std::size_t>(to.look[pixel].color.r);
                 ASSERT_EQ(to.point[pixel].position, from.point[source].position);
@@ -222,6 +235,11 @@ TEST(Reprojection, EveryWinnerMovesToItsPixelsSlotWithAllItsFieldsOnAnyThreadCou
                 }
             }
         EXPECT_EQ(placed, c.placed);
+        EXPECT_EQ(viewDependent, c.reshadeCopied);
+        EXPECT_EQ(textured, c.texturingCopied);
+        EXPECT_GT(viewDependent, 0);
+        EXPECT_GT(textured, 0);
+        EXPECT_EQ(c.live, c.placed + c.lost + c.evicted);
         if (threads == 1) {
             reference = to;
             continue;
@@ -380,6 +398,21 @@ TEST(Reprojection, BandsFarSamplesAndOverflowGiveThePlainRulesOutcome) {
         std::size_t far = 0;
         for (const auto& list : scratch.far) far += list.size();
         EXPECT_GT(far, 20u) << "samples landing far from their band must be exercised";
+        EXPECT_EQ(c.farOffers, static_cast<std::int64_t>(far));
+        std::size_t losers = 0;
+        for (const auto& list : scratch.losers) losers += list.size();
+        EXPECT_EQ(c.secondChances, static_cast<std::int64_t>(losers));
+        // Offered: the live samples young enough that land in the image or its margin.
+        std::int64_t landing = 0;
+        for (std::size_t slot = 0; slot < from.used(); ++slot) {
+            int x, y;
+            float depth;
+            if (from.empty(slot) || from.look[slot].age >= 3 ||
+                !projectSample(from, slot, objectOrigins(scene), projection, x, y, depth))
+                continue;
+            landing += image.covers(x, y) ? 1 : 0;
+        }
+        EXPECT_EQ(c.offered, landing);
         EXPECT_GT(scratch.far.size(), 4u) << "several bands";
         for (int y = -kM; y < kH + kM; ++y)
             for (int x = -kM; x < kW + kM; ++x) {
