@@ -133,6 +133,7 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
         }
         // The three rows a hole's 3x3 box reads.
         const std::array<SampleRow, 3> neighbourRows = {sampleRow(y - 1), sampleRow(y), sampleRow(y + 1)};
+        std::int64_t samplesRead = 0;  // by the holes' boxes (ReconstructionBytes.h)
         if (anyHole)
             forEachPixelSet(holeBits, columns, [&](int x) {
                 holes = true;
@@ -141,6 +142,10 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
                 // box clipped to the image by the bits: none past its edges);
                 // edge neighbours weigh 2, corners 1.
                 const auto addRow = [&](const SampleRow& r, unsigned three, float cornerWeight) {
+                    // The box row's samples: 2-bit counts of 0..7 in one constant
+                    // (std::popcount is a library call on the baseline target,
+                    // whose spills cost this pass more than the count).
+                    samplesRead += (0xE994u >> (three * 2)) & 3u;
                     for (; three; three &= three - 1) {
                         const int dx = std::countr_zero(three) - 1;
                         addSample(groups, r, x + dx, dx == 0 ? 2.0f : cornerWeight);
@@ -161,11 +166,7 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
                     ++wanting;
                 }
             });
-        // The samples the holes' boxes read, counted a word at a time after
-        // the loop (a counter per box row cost the 3x3 pass about 6 %).
-        if (anyHole)
-            for (const std::uint64_t* samplesOfRow : sampleBits)
-                row.samplesRead += bitsBesideSetPixels(holeBits, samplesOfRow, columns);
+        row.samplesRead += samplesRead;
         perRow[static_cast<std::size_t>(y)] = row;
         wants7x7[static_cast<std::size_t>(y)] = wanting;
         hasHoles[static_cast<std::size_t>(y)] = holes ? 1 : 0;

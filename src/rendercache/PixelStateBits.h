@@ -47,27 +47,4 @@ inline unsigned threeBitsAround(const std::uint64_t* bits, int x) {
     return x > 0 ? three : (three << 1) & 7u;
 }
 
-// How many of the pixels x - 1, x and x + 1 have their bit in `near`, summed
-// over every pixel x set in `at` (both from pixelStateBits() for a row of
-// `width`): what reading the 3x3 neighbours of each set pixel in that row
-// would count, a word at a time, so the fills need no counter in their
-// loops (rendercache/ReconstructionBytes.h).
-inline std::int64_t bitsBesideSetPixels(const std::uint64_t* at, const std::uint64_t* near, int width) {
-    const std::size_t words = pixelStateWords(width) - 1;  // and one cleared word past the row
-    std::int64_t count = 0;
-    for (std::size_t w = 0; w < words; ++w) {
-        const std::uint64_t set = at[w];
-        if (set == 0) continue;
-        const std::uint64_t here = near[w];
-        const std::uint64_t left = (here << 1) | (w > 0 ? near[w - 1] >> 63 : 0);  // bit x: pixel x - 1
-        const std::uint64_t right = (here >> 1) | (near[w + 1] << 63);             // bit x: pixel x + 1
-        // The three neighbours' bits summed per pixel as a two-bit number
-        // (a carry-save add): two popcounts instead of three.
-        const std::uint64_t a = set & here, b = set & left, c = set & right;
-        const std::uint64_t ones = a ^ b ^ c, twos = (a & b) | (c & (a ^ b));
-        count += std::popcount(ones) + 2 * std::popcount(twos);
-    }
-    return count;
-}
-
 }  // namespace raycache

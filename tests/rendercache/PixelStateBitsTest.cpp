@@ -4,7 +4,6 @@
 // and neither).
 #include <gtest/gtest.h>
 
-#include <bit>
 #include <random>
 #include <vector>
 
@@ -55,38 +54,4 @@ TEST(PixelStateBits, EachBitSaysWhetherItsPixelsStateIsOneOfTheTwoAndNothingPast
             ASSERT_EQ(threeBitsAround(samples.data(), x), want) << "width " << width << ", pixel " << x;
         }
     }
-}
-
-TEST(PixelStateBits, BitsBesideSetPixelsCountsEachSetPixelsThreeNeighboursAsTheFillsRead) {
-    std::mt19937 random(4038);
-    std::uniform_int_distribution<int> anyState(0, static_cast<int>(PixelState::Unfilled));
-    for (int width = 1; width <= 200; ++width) {
-        std::vector<PixelState> states(static_cast<std::size_t>(width)), other(static_cast<std::size_t>(width));
-        for (PixelState& s : states) s = static_cast<PixelState>(anyState(random));
-        for (PixelState& s : other) s = static_cast<PixelState>(anyState(random));
-        std::vector<std::uint64_t> holes(pixelStateWords(width)), samples(pixelStateWords(width)),
-            otherSamples(pixelStateWords(width));
-        pixelStateBits(states.data(), width, PixelState::Culled, PixelState::Hole, holes.data());
-        pixelStateBits(states.data(), width, PixelState::Reprojected, PixelState::Fresh, samples.data());
-        pixelStateBits(other.data(), width, PixelState::Reprojected, PixelState::Fresh, otherSamples.data());
-        // One neighbour at a time, as the 3x3 fill's threeBitsAround() sees them.
-        std::int64_t sameRow = 0, otherRow = 0;
-        for (int x = 0; x < width; ++x) {
-            if (!isHole(states[static_cast<std::size_t>(x)])) continue;
-            sameRow += std::popcount(threeBitsAround(samples.data(), x));
-            for (int dx = -1; dx <= 1; ++dx) {
-                const int nx = x + dx;
-                if (nx >= 0 && nx < width && showsSample(other[static_cast<std::size_t>(nx)])) ++otherRow;
-            }
-        }
-        ASSERT_EQ(bitsBesideSetPixels(holes.data(), samples.data(), width), sameRow) << "width " << width;
-        ASSERT_EQ(bitsBesideSetPixels(holes.data(), otherSamples.data(), width), otherRow) << "width " << width;
-    }
-    // Across a word's end: holes at 63 and 64, samples at 62..65.
-    std::vector<std::uint64_t> holes(pixelStateWords(130)), samples(pixelStateWords(130));
-    holes[0] = std::uint64_t{1} << 63;
-    holes[1] = 1;
-    samples[0] = std::uint64_t{3} << 62;
-    samples[1] = 3;
-    EXPECT_EQ(bitsBesideSetPixels(holes.data(), samples.data(), 130), 6);
 }
