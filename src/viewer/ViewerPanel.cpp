@@ -237,6 +237,9 @@ void drawRenderCacheSection(const ViewerPanelInput& in, ViewerUiState& state) {
     ImGui::Text("ms: reconstruction %.1f (reproject %.1f, maps %.1f, filters %.1f)", c.reconstructionMs(), c.reprojectMs,
                 c.mapsMs, c.filterMs);
     ImGui::Text("    samples %.1f (trace %.1f, reshade %.1f)", c.sampleGenerationMs(), c.traceMs, c.reshadeMs);
+    // A model of the passes' reads and writes (rendercache/ReconstructionBytes.h), not measured traffic.
+    ImGui::Text("reconstruction moves %.0f MB counted, %.1f GB/s", static_cast<double>(c.reconstructionBytes()) / 1.0e6,
+                c.reconstructionGbPerSecond());
     ImGui::RadioButton("no overlay", &state.renderCacheOverlay, static_cast<int>(RenderCacheOverlay::None));
     ImGui::SameLine();
     ImGui::RadioButton("pixel sources", &state.renderCacheOverlay, static_cast<int>(RenderCacheOverlay::Sources));
