@@ -44,10 +44,8 @@ std::int64_t pixelsInTilesWithRequests(const RequestMap& map, int width, int hei
     std::int64_t pixels = 0;
     for (std::size_t t = 0; t < map.tileRequests.size(); ++t) {
         if (map.tileRequests[t] == 0) continue;
-        const int x0 = static_cast<int>(t % static_cast<std::size_t>(map.tilesX)) * map.tileSize;
-        const int y0 = static_cast<int>(t / static_cast<std::size_t>(map.tilesX)) * map.tileSize;
-        pixels += static_cast<std::int64_t>(std::min(width, x0 + map.tileSize) - x0) *
-                  static_cast<std::int64_t>(std::min(height, y0 + map.tileSize) - y0);
+        const TileRect r = tileRectOf(map, t, width, height);
+        pixels += static_cast<std::int64_t>(r.x1 - r.x0) * static_cast<std::int64_t>(r.y1 - r.y0);
     }
     return pixels;
 }
@@ -61,12 +59,6 @@ void buildRequestMap(std::span<const float> priority, int width, int height, int
     out.tilePriority.assign(tiles, 0.0f);
     out.tileRequests.assign(tiles, 0);
     out.pixels.clear();
-    const auto tileRect = [&](std::size_t t, int& x0, int& y0, int& x1, int& y1) {
-        x0 = static_cast<int>(t % static_cast<std::size_t>(out.tilesX)) * tileSize;
-        y0 = static_cast<int>(t / static_cast<std::size_t>(out.tilesX)) * tileSize;
-        x1 = std::min(width, x0 + tileSize);
-        y1 = std::min(height, y0 + tileSize);
-    };
     const auto pixelIndex = [width](int x, int y) {
         return static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
     };
@@ -78,8 +70,7 @@ void buildRequestMap(std::span<const float> priority, int width, int height, int
         float* const sums = out.tilePriority.data();
         for (auto t = static_cast<std::size_t>(tileRow) * static_cast<std::size_t>(out.tilesX);
              t < static_cast<std::size_t>(tileRow + 1) * static_cast<std::size_t>(out.tilesX); ++t) {
-            int x0, y0, x1, y1;
-            tileRect(t, x0, y0, x1, y1);
+            const auto [x0, y0, x1, y1] = tileRectOf(out, t, width, height);
             double q = 0.0;  // per tile in double, then one float: the same sum on any thread
             for (int y = y0; y < y1; ++y)
                 for (int x = x0; x < x1; ++x) q += values[pixelIndex(x, y)];
@@ -97,8 +88,7 @@ void buildRequestMap(std::span<const float> priority, int width, int height, int
     double cumulative = 0.0;
     double previous = std::floor(start);
     for (std::size_t t = 0; t < tiles; ++t) {
-        int x0, y0, x1, y1;
-        tileRect(t, x0, y0, x1, y1);
+        const auto [x0, y0, x1, y1] = tileRectOf(out, t, width, height);
         const double area = static_cast<double>(x1 - x0) * static_cast<double>(y1 - y0);
         double share = (1.0 - priorityWeight) * area / pixels;
         if (priorityWeight > 0.0) share += priorityWeight * out.tilePriority[t] / totalPriority;
@@ -119,8 +109,7 @@ void buildRequestMap(std::span<const float> priority, int width, int height, int
     const auto requestsOfTile = [&](std::size_t t, std::vector<unsigned char>& levels) {
         const int wanted = out.tileRequests[t];
         if (wanted == 0) return;
-        int x0, y0, x1, y1;
-        tileRect(t, x0, y0, x1, y1);
+        const auto [x0, y0, x1, y1] = tileRectOf(out, t, width, height);
         const int tileWidth = x1 - x0;
         const int n = tileWidth * (y1 - y0);
         levels.resize(static_cast<std::size_t>(n));

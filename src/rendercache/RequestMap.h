@@ -10,6 +10,7 @@
 // so a budget below one ray per tile still reaches every tile over frames.
 // Everything random is a hash of (seed, frame, tile): the same inputs give
 // the same requests on any number of threads.
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -32,6 +33,17 @@ struct RequestMap {
 // most as many as it has pixels.
 void buildRequestMap(std::span<const float> priority, int width, int height, int tileSize, float alpha, int budget,
                      std::uint64_t seed, std::uint64_t frame, RequestMap& out, const Parallel& parallel);
+
+// Tile `t` of `map` (row-major) over a width x height image: pixels
+// [x0, x1) x [y0, y1), clipped at the image's right and bottom edges.
+struct TileRect {
+    int x0, y0, x1, y1;
+};
+inline TileRect tileRectOf(const RequestMap& map, std::size_t t, int width, int height) {
+    const int x0 = static_cast<int>(t % static_cast<std::size_t>(map.tilesX)) * map.tileSize;
+    const int y0 = static_cast<int>(t / static_cast<std::size_t>(map.tilesX)) * map.tileSize;
+    return {x0, y0, std::min(width, x0 + map.tileSize), std::min(height, y0 + map.tileSize)};
+}
 
 // The pixels of `map`'s tiles that got at least one ray (the map made by
 // buildRequestMap() for a width x height image).
