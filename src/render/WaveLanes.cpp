@@ -107,13 +107,8 @@ void TileKernel::traceCameraRaysInLanes(const CameraRays& cameraRays, const Tile
                                         CacheWorker* cache) const {
     StageTimer timer(settings_.stageTimes, s.stages.firstHits);
     startTilePackets(cameraRays, tile, s);
-    if (tracer_.accelerator() == Accelerator::Embree) {
-        for (TileScratch::HitPacket& packet : s.packets) {
-            PacketLanes traced;
-            for (int k = 0; k < kFloatLanes; ++k) traced.valid[k] = k < packet.count ? -1 : 0;
-            tracer_.intersectPacket(packet.rays, traced, packet.objectId);
-        }
-    } else {
+    const bool grids = tracer_.accelerator() != Accelerator::Embree;
+    if (grids) {
         // The grids answer a tile's rays together: their hits go back into the lanes.
         s.rays.resize(s.nodes.size());
         s.hits.resize(s.nodes.size());
@@ -131,6 +126,11 @@ void TileKernel::traceCameraRaysInLanes(const CameraRays& cameraRays, const Tile
     }
     std::uint64_t hits = 0;
     for (TileScratch::HitPacket& packet : s.packets) {
+        if (!grids) {
+            PacketLanes traced;
+            for (int k = 0; k < kFloatLanes; ++k) traced.valid[k] = k < packet.count ? -1 : 0;
+            tracer_.intersectPacket(packet.rays, traced, packet.objectId);
+        }
         s.counts.primary += static_cast<std::uint64_t>(packet.count);
         for (int k = 0; k < kFloatLanes; ++k) {
             const bool hit = k < packet.count && packet.objectId[k] >= 0;
@@ -282,7 +282,8 @@ void TileKernel::shadePackets(TileScratch& s, CacheWorker* cache, bool surfacesK
             } else {
                 for (std::size_t p = 0; p < s.packets.size(); ++p) packetShadowRays(s, p);
             }
-            for (std::size_t p = 0; p < s.packets.size(); ++p) recordShadowRays(s, p);
+            if (s.countTreeRays || s.trackTrees)
+                for (std::size_t p = 0; p < s.packets.size(); ++p) recordShadowRays(s, p);
         }
         StageTimer timer(settings_.stageTimes, s.stages.directShading);
         for (std::size_t p = 0; p < s.packets.size(); ++p) packetDirect(s, p);
