@@ -9,10 +9,10 @@
 //
 // A wave is held as packets of sixteen rays in the tracer's own layout,
 // each lane carrying its node, path weight, depth and cone, and every stage
-// runs in lanes over them (render/WaveLanes.cpp, RenderSettings::waveLanes).
-// The general path, one record per hit (PathVertex), gives the same bits; it
-// still makes the first wave of the Render Cache's samples, of reshading, of
-// the CDCT pre-fill and of camera rays under the grids accelerator.
+// runs in lanes over them (render/TileKernelWaves.cpp). Every caller's first
+// hits become such packets, whoever found them: Embree's packets, the grids
+// (their hits put into the lanes), the G-buffer, a batch of camera rays,
+// rays from inside an object, reprojected points. Each stage is written once.
 //
 // Whitted's recursion becomes a loop over bounces. Every ray carries the node
 // its colour adds to and its weight there; a node is a pixel (or a pre-fill
@@ -23,8 +23,10 @@
 // the shading itself).
 //
 // Every pipeline uses it: the ray pipeline (render/FrameRenderer.h), the
-// hybrid pipeline (render/DeferredShading.h) and improved CDCT's pre-fill
-// (render/CachePrefill.h) differ only in their first stage.
+// hybrid pipeline (render/DeferredShading.h), the Render Cache's samples
+// and reshading (rendercache/), improved CDCT's pre-fill
+// (render/CachePrefill.h) and the invalidation oracle's re-trace differ
+// only in their first stage.
 #include <chrono>
 #include <cstdint>
 #include <span>
@@ -145,7 +147,7 @@ private:
     };
 
     // Sixteen rays of a wave and their hits in lanes, from the tracer's
-    // packet to their direct light and secondary rays (render/WaveLanes.cpp).
+    // packet to their direct light and secondary rays (render/TileKernelWaves.cpp).
     struct HitPacket {
         RayHitLanes16 rays;
         PacketLanes hits;  // -1 where the ray hit something
@@ -226,7 +228,7 @@ private:
 };
 
 // What the tile kernel's lanes learned of a spawned ray's cache texel
-// (render/WaveLanes.cpp), handed to TileKernel::emitSecondaryRay.
+// (render/TileKernelWaves.cpp), handed to TileKernel::emitSecondaryRay.
 struct SpawnedRayLookup {
     int texel = -1;     // the CCT texel its direction addresses; -1: not addressed
     int answered = -1;  // 1: the cache answered `color`; 0: it missed; -1: not asked yet

@@ -1,13 +1,12 @@
-// The tile kernel's waves in lanes (RenderSettings::waveLanes): the
-// tracer's packets stay the wave's records. A wave is a list of packets of
-// sixteen rays: the camera rays of one tile row, or sixteen secondary rays
-// in the order they were spawned. Each stage (surfaces, shadow rays, direct
-// light, secondary rays) runs over the wave's packets before the next, as
-// the general path's stages run over its records. Where a packet's lanes
-// hit several objects, a stage takes one object at a time under a mask, so
-// that a material and a sphere are read once per packet, not once per hit.
-// What each lane computes is the general path's arithmetic, operation for
-// operation (render/HitLanes.h), so the image is the same bit for bit.
+// The tile kernel's waves (render/TileKernel.h): a wave is a list of
+// packets of sixteen rays in the tracer's own layout, the camera rays of
+// one tile row, sixteen first hits of a caller, or sixteen secondary rays in
+// the order they were spawned. Each stage (surfaces, shadow rays, direct
+// light, secondary rays) runs over the wave's packets before the next.
+// Where a packet's lanes hit several objects, a stage takes one object at a
+// time under a mask, so that a material and a sphere are read once per
+// packet. What each lane computes is the scalar rule's arithmetic,
+// operation for operation (render/HitLanes.h).
 #include <algorithm>
 #include <array>
 #include <cstring>
@@ -206,7 +205,6 @@ void TileKernel::readGBufferInLanes(const CameraRays& cameraRays, const GBufferV
             packet.hits.valid[k] = 0;
             packet.objectId[k] = -1;
             if (k >= packet.count) continue;
-            // The general path's readGBufferTile, lane by lane.
             const int root = packet.node[k];
             const std::size_t i = gbuffer.index(tile.x0 + root % tileWidth, tile.y0 + root / tileWidth);
             const Ray ray = laneRay(packet.rays.ray, k);
@@ -588,8 +586,9 @@ void TileKernel::packetSpawnLanes(const TileScratch::HitPacket& packet, Secondar
 void TileKernel::packetEmit(TileScratch& s, const TileScratch::HitPacket& packet, SecondaryRayLanes16& spawned,
                             CacheWorker* cache) const {
     if (!spawned.any) return;
-    // Hit by hit, the reflected ray before the refracted one, as the
-    // general path spawns them.
+    // Hit by hit, the reflected ray before the refracted one: nodes are
+    // gathered last to first, so the refracted colour is added first, as
+    // Whitted's sum has it.
     for (int k = 0; k < packet.count; ++k) {
         if (!spawned.reflects[k] && !spawned.refracts[k]) continue;
         const int objectId = packet.objectId[k];
