@@ -70,7 +70,7 @@ struct FrameTotals {
     std::vector<double> ms;  // wall time per timed frame
     double lookupCpuMs = 0.0;  // the reuse-lookup stage
     // The secondary-ray stage, where CCT lookups are asked as the rays
-    // spawn (render/WaveLanes.cpp), and the hits it spawned from.
+    // spawn (render/TileKernelWaves.cpp), and the hits it spawned from.
     double spawnCpuMs = 0.0;
     std::uint64_t hitsShaded = 0;
     double frameEndMs = 0.0;  // wall

@@ -1,7 +1,7 @@
 #pragma once
 // cubeTexelIndex(cubeTexelFromDirection(d, size), size) for sixteen
 // directions at once: the tile kernel addresses the texels of the rays that
-// leave a CCT object while it spawns them in lanes (render/WaveLanes.cpp),
+// leave a CCT object while it spawns them in lanes (render/TileKernelWaves.cpp),
 // so the cache's lookup batch need not address them one at a time. The same
 // IEEE operations as the scalar form, lane by lane, so the same texels on
 // every x86-64 level (tests/cache/CubeAddressingLanesTest.cpp).

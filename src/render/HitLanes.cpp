@@ -11,37 +11,24 @@ namespace raycache {
 #define RAYCACHE_LANE_KERNELS "render/HitLaneKernels.inc"
 #include "core/LaneLevelsInclude.h"
 
-void meshSurfaces16(const MeshHitLanes& hits, int count, SurfacePoint* out) {
-    RAYCACHE_LANE_DISPATCH(meshSurfaceLanes, hits, count, out);
-}
-
-void sphereSurfaces16(const SphereHitLanes& hits, int count, SurfacePoint* out) {
-    RAYCACHE_LANE_DISPATCH(sphereSurfaceLanes, hits, count, out);
-}
-
-int shadowQueries16(std::span<const Light> lights, std::span<const SpotCone> spot, const SurfacePoint* surfaces,
-                    int count, ShadowQuery* out, int* firstQuery) {
-    RAYCACHE_LANE_DISPATCH(shadowQueryLanes, lights, spot, surfaces, count, out, firstQuery);
-}
-
 void sphereSurfaceLanes16(const RayLanes16& rays, const Sphere& sphere, const int* lanes, SurfaceLanes16& out) {
-    RAYCACHE_LANE_DISPATCH(sphereSurfaceLanesSoa, rays, sphere, lanes, out);
+    RAYCACHE_LANE_DISPATCH(sphereSurfaceLanes, rays, sphere, lanes, out);
 }
 
 void meshSurfaceLanes16(const RayLanes16& rays, const MeshHitLanes& triangles, const int* lanes,
                         SurfaceLanes16& out) {
-    RAYCACHE_LANE_DISPATCH(meshSurfaceLanesSoa, rays, triangles, lanes, out);
+    RAYCACHE_LANE_DISPATCH(meshSurfaceLanes, rays, triangles, lanes, out);
 }
 
 void shadowRayLanes16(const Light& light, const SpotCone& spot, const SurfaceLanes16& surfaces, const int* lanes,
                       RayLanes16& rays, PacketLanes& traced, LightLanes16& seen) {
-    RAYCACHE_LANE_DISPATCH(shadowRayLanesSoa, light, spot, surfaces, lanes, rays, traced, seen);
+    RAYCACHE_LANE_DISPATCH(shadowRayLanes, light, spot, surfaces, lanes, rays, traced, seen);
 }
 
 void directLightLanes16(const Material& material, std::span<const Light> lights, const LightLanes16* seen,
                         const SurfaceLanes16& surfaces, const RayLanes16& viewRays, const int* lanes, float* outR,
                         float* outG, float* outB) {
-    RAYCACHE_LANE_DISPATCH(directLightLanesSoa, material, lights, seen, surfaces, viewRays, lanes, outR, outG, outB);
+    RAYCACHE_LANE_DISPATCH(directLightLanes, material, lights, seen, surfaces, viewRays, lanes, outR, outG, outB);
 }
 
 void checkerAlbedoLanes16(const Checkerboard& pattern, const int* lanes, SurfaceLanes16& surfaces) {
@@ -51,7 +38,7 @@ void checkerAlbedoLanes16(const Checkerboard& pattern, const int* lanes, Surface
 void secondaryRayLanes16(const Material& material, float curvature, float minWeight, const SurfaceLanes16& surfaces,
                          const RayLanes16& rays, const float* pathWeight, const float* coneWidth,
                          const float* coneSpread, const int* lanes, SecondaryRayLanes16& out) {
-    RAYCACHE_LANE_DISPATCH(secondaryRayLanesSoa, material, curvature, minWeight, surfaces, rays, pathWeight, coneWidth,
+    RAYCACHE_LANE_DISPATCH(secondaryRayLanes, material, curvature, minWeight, surfaces, rays, pathWeight, coneWidth,
                            coneSpread, lanes, out);
 }
 

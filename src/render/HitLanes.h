@@ -1,11 +1,10 @@
 #pragma once
 // The tile kernel's per-hit arithmetic sixteen hits at a time
-// (core/FloatLanes.h): the surface at a sphere hit, and the shadow queries
-// of a batch of surfaces. Each lane's result is bit for bit what the scalar
-// code gives (render/SurfacePoint.h, LocalShading::shadowQueries): the same
-// IEEE operations in the same order, on every target (AVX-512, AVX2,
-// baseline x86-64; tests/render/HitLanesTest.cpp). The kernel keeps its
-// records in arrays of structures; the lanes gather from and scatter to them.
+// (core/FloatLanes.h), over the wave's structure-of-arrays lanes: surfaces,
+// shadow rays, direct light, albedo and secondary rays. Each lane's result
+// is bit for bit what the scalar rule gives (render/SurfacePoint.h,
+// LocalShading): the same IEEE operations in the same order, on every
+// target (AVX-512, AVX2, baseline x86-64; tests/render/HitLanesTest.cpp).
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -18,25 +17,11 @@
 
 namespace raycache {
 
-// Up to sixteen sphere hits, one per lane: the ray, its distance, the sphere.
-struct SphereHitLanes {
-    alignas(64) float originX[16], originY[16], originZ[16];
-    alignas(64) float directionX[16], directionY[16], directionZ[16];
-    alignas(64) float t[16];
-    alignas(64) float centerX[16], centerY[16], centerZ[16], radius[16];
-};
-
-// out[k] = surfacePointAt(sphere k, ray k, hit at t k, needUv = false) for
-// k < count (texture coordinates 0).
-void sphereSurfaces16(const SphereHitLanes& hits, int count, SurfacePoint* out);
-
-// Up to sixteen triangle-mesh hits, one per lane: the ray, the hit's
-// distance and barycentrics, the triangle's unit geometric normal, and its
-// vertex normals and texture coordinates where the mesh has them.
+// Up to sixteen triangle-mesh hits, one per lane (their rays are the
+// packet's): the hit's barycentrics, the triangle's unit geometric normal,
+// and its vertex normals and texture coordinates where the mesh has them.
 struct MeshHitLanes {
-    alignas(64) float originX[16], originY[16], originZ[16];
-    alignas(64) float directionX[16], directionY[16], directionZ[16];
-    alignas(64) float t[16], u[16], v[16];
+    alignas(64) float u[16], v[16];
     alignas(64) float geometricX[16], geometricY[16], geometricZ[16];
     alignas(64) float normal0X[16], normal0Y[16], normal0Z[16];
     alignas(64) float normal1X[16], normal1Y[16], normal1Z[16];
@@ -82,22 +67,8 @@ inline void setMeshHitLane(MeshHitLanes& lanes, std::size_t k, const TriangleMes
                         mesh.uvs.empty() ? nullptr : &uv);
 }
 
-// out[k] = surfacePointAt(the mesh, ray k, hit k, needUv = true) for k < count.
-void meshSurfaces16(const MeshHitLanes& hits, int count, SurfacePoint* out);
-
-// The shadow queries of surfaces[0..count) (count <= 16) as
-// LocalShading::shadowQueries writes them, surface after surface: the
-// queries of surface k go to out from firstQuery[k] on, firstQuery[k + 1]
-// past them. `spot` holds each light's cone (used for spot lights). Returns the number of queries written.
-int shadowQueries16(std::span<const Light> lights, std::span<const SpotCone> spot, const SurfacePoint* surfaces,
-                    int count, ShadowQuery* out, int* firstQuery);
-
-// The same per-hit work with the wave itself in lanes (the first bounce of a
-// camera tile, TileKernel): surfaces, shadow rays and direct light of
-// sixteen hits kept as structure of arrays from the tracer's packet to the
-// pixels, with no record per hit in between. Every function writes only the
-// lanes its `lanes` mask selects (-1 selected, 0 not), and each selected
-// lane gets the scalar code's bits, as above.
+// Every function writes only the lanes its `lanes` mask selects (-1
+// selected, 0 not).
 
 // Sixteen surface points and their albedos.
 struct SurfaceLanes16 {
@@ -117,10 +88,11 @@ struct LightLanes16 {
     alignas(64) int traced[16], lit[16];
 };
 
-// sphereSurfaces16 into lanes, for hits of `rays` (at their tFar) on one sphere.
+// surfacePointAt (needUv false: texture coordinates 0) for hits of `rays`
+// (at their tFar) on one sphere.
 void sphereSurfaceLanes16(const RayLanes16& rays, const Sphere& sphere, const int* lanes, SurfaceLanes16& out);
-// meshSurfaces16 into lanes, for hits of `rays` (at their tFar) on the
-// triangles of `triangles` (whose own rays are not read).
+// surfacePointAt (needUv true) for hits of `rays` (at their tFar) on the
+// triangles of `triangles`.
 void meshSurfaceLanes16(const RayLanes16& rays, const MeshHitLanes& triangles, const int* lanes,
                         SurfaceLanes16& out);
 
@@ -143,7 +115,8 @@ void directLightLanes16(const Material& material, std::span<const Light> lights,
 void checkerAlbedoLanes16(const Checkerboard& pattern, const int* lanes, SurfaceLanes16& surfaces);
 
 // The secondary rays of sixteen hits of one material:
-// TileKernel::spawnSecondaryRays' arithmetic.
+// Whitted's reflected and refracted rays, with total internal reflection
+// adding the transmitted share to the reflected one.
 struct SecondaryRayLanes16 {
     alignas(64) float reflectedX[16], reflectedY[16], reflectedZ[16];  // unit directions
     alignas(64) float aboveX[16], aboveY[16], aboveZ[16];              // their origins, lifted off the surface

@@ -67,10 +67,6 @@ int LocalShading::shadowQueries(const SurfacePoint& sp, ShadowQuery* out) const 
     return count;
 }
 
-int LocalShading::shadowQueriesOf16(const SurfacePoint* surfaces, int count, ShadowQuery* out, int* firstQuery) const {
-    return shadowQueries16(scene_.lights, spotCosines_, surfaces, count, out, firstQuery);
-}
-
 Rgb LocalShading::directLight(const Material& material, const Rgb& albedo, const SurfacePoint& sp,
                               const Vec3& toViewer, std::span<const ShadowQuery> queries,
                               std::span<const unsigned char> occluded) const {

@@ -53,11 +53,6 @@ public:
     Rgb highlights(const Material& material, const SurfacePoint& sp, const Vec3& toViewer,
                    std::span<const ShadowQuery> queries, std::uint64_t litMask) const;
 
-    // shadowQueries for surfaces[0..count), count <= 16, sixteen at a time
-    // (render/HitLanes.h), the same queries bit for bit: surface k's from
-    // out[firstQuery[k]] to out[firstQuery[k + 1]]. Returns how many.
-    int shadowQueriesOf16(const SurfacePoint* surfaces, int count, ShadowQuery* out, int* firstQuery) const;
-
     const Scene& scene() const { return scene_; }
     // Each light's cone (for spot lights), as shadowQueries uses it.
     std::span<const SpotCone> spotCones() const { return spotCosines_; }

@@ -40,12 +40,6 @@ struct RenderSettings {
     // Time every stage of the tile kernel (FrameStats::stages): two clock
     // reads per stage and wave, so off unless a profile is wanted.
     bool stageTimes = false;
-    // The tile kernel's waves in lanes: each wave's rays kept sixteen to a
-    // packet from the tracer to their secondary rays (render/WaveLanes.cpp).
-    // Off, every wave takes the general path, one record per hit. The image
-    // is the same bit for bit: tests switch it off to prove so, and
-    // benchmarks to compare.
-    bool waveLanes = true;
     // Record per pixel what the cache did for the pixel's rays leaving
     // caching objects (render/CacheLevelImage.h; the viewer's cube-level
     // overlay). Off, the tile kernel writes nothing per pixel for it. Ray and

@@ -9,10 +9,10 @@
 //
 // A wave is held as packets of sixteen rays in the tracer's own layout,
 // each lane carrying its node, path weight, depth and cone, and every stage
-// runs in lanes over them (render/WaveLanes.cpp, RenderSettings::waveLanes).
-// The general path, one record per hit (PathVertex), gives the same bits; it
-// still makes the first wave of the Render Cache's samples, of reshading, of
-// the CDCT pre-fill and of camera rays under the grids accelerator.
+// runs in lanes over them (render/TileKernelWaves.cpp). Every caller's first
+// hits become such packets, whoever found them: Embree's packets, the grids
+// (their hits put into the lanes), the G-buffer, a batch of camera rays,
+// rays from inside an object, reprojected points. Each stage is written once.
 //
 // Whitted's recursion becomes a loop over bounces. Every ray carries the node
 // its colour adds to and its weight there; a node is a pixel (or a pre-fill
@@ -23,8 +23,10 @@
 // the shading itself).
 //
 // Every pipeline uses it: the ray pipeline (render/FrameRenderer.h), the
-// hybrid pipeline (render/DeferredShading.h) and improved CDCT's pre-fill
-// (render/CachePrefill.h) differ only in their first stage.
+// hybrid pipeline (render/DeferredShading.h), the Render Cache's samples
+// and reshading (rendercache/), improved CDCT's pre-fill
+// (render/CachePrefill.h) and the invalidation oracle's re-trace differ
+// only in their first stage.
 #include <chrono>
 #include <cstdint>
 #include <span>
@@ -91,14 +93,6 @@ public:
 private:
     friend class TileKernel;
     enum class Kind : unsigned char { Reflection, Refraction };
-    struct PathVertex {  // a ray that reached a surface, waiting to be shaded
-        Ray ray;
-        TraceHit hit;
-        int node;          // the node of the ray: what it brings back adds up there
-        float pathWeight;  // product of kr/kt since the camera, for the minimum-weight rule
-        int depth;         // rays on its path so far, the primary ray being 1
-        RayCone cone{};    // the pixel's cone along the ray (zero where no pixel stands behind it)
-    };
     struct PendingRay {  // a secondary ray waiting to be traced
         Ray ray;
         int node;
@@ -153,7 +147,7 @@ private:
     };
 
     // Sixteen rays of a wave and their hits in lanes, from the tracer's
-    // packet to their direct light and secondary rays (render/WaveLanes.cpp).
+    // packet to their direct light and secondary rays (render/TileKernelWaves.cpp).
     struct HitPacket {
         RayHitLanes16 rays;
         PacketLanes hits;  // -1 where the ray hit something
@@ -161,42 +155,39 @@ private:
         SurfaceLanes16 surface;
         alignas(64) float directR[16], directG[16], directB[16];
         alignas(64) int node[16];          // the node each ray's colour adds to
-        alignas(64) float pathWeight[16];  // as PathVertex's
-        alignas(64) int depth[16];
+        alignas(64) float pathWeight[16];  // product of kr/kt since the camera, for the minimum-weight rule
+        alignas(64) int depth[16];         // rays on its path so far, the primary ray being 1
+        // The pixel's cone along the ray (zero where no pixel stands behind it).
         alignas(64) float coneWidth[16], coneSpread[16];
         int count = 0;  // lanes in use; the rest are not traced
     };
 
     void beginTile(std::size_t roots);
-    // How the first wave starts: from tracer hits, from surfaces a G-buffer
-    // already gave, or from reprojected points whose view-independent light
-    // is known (ReshadeRequest).
-    // Spawned: the first wave is shaded and its secondary rays are spawned
-    // (the camera rays in lanes); the waves start from the lookups.
-    enum class FirstWave : unsigned char { Hits, Surfaces, Reshade, Spawned };
+    // How a wave's hits learn which lights reach them: shadow rays in
+    // packets; the shadow rays of camera rays' hits, which the tracer may
+    // answer with its light grids (TraceScene::occludedPrimaryShadows); or
+    // not at all, the lights being known (ReshadeRequest::litMask).
+    enum class WaveShadows : unsigned char { Traced, OfCameraHits, Known };
 
     std::vector<Node> nodes;
     std::vector<NodeStore> stores;
-    // The waves in lanes (RenderSettings::waveLanes): the wave's packets,
-    // packet p's view of light l at p * lights + l, packet p's secondary
-    // rays at p (TileKernel::packetSpawnLanes), and one packet's triangles.
+    // The wave: its packets, packet p's view of light l at p * lights + l,
+    // packet p's secondary rays at p (TileKernel::packetSpawnLanes), and one
+    // packet's triangles. `filledLanes` counts the lanes addFirstHit filled.
     std::vector<HitPacket> packets;
     std::vector<LightLanes16> packetLights;
     std::vector<SecondaryRayLanes16> spawnLanes;
     MeshHitLanes meshLanes;
-    std::vector<PathVertex> vertices, nextVertices;
-    std::vector<SurfacePoint> surfaces;
-    std::vector<Rgb> albedo;
-    std::vector<int> firstQuery;
-    std::vector<ShadowQuery> queries;
-    std::vector<Ray> rays;  // packed for the tracer: shadow, camera or secondary rays
+    std::size_t filledLanes = 0;
+    // Rays packed for the tracer's batch calls (camera rays, or the shadow
+    // rays of camera hits, each with its light for the light grids).
+    std::vector<Ray> rays;
     std::vector<TraceHit> hits;
     std::vector<unsigned char> occluded;
-    std::vector<int> shadowLights;  // the light of each shadow ray, for the light grids
-    // Later bounces' shadow rays put in light order (TileKernel::traceShadowRaysByLight).
-    std::vector<int> lightStart, byLight;
-    std::vector<Ray> byLightRays;
-    std::vector<unsigned char> byLightOccluded;
+    std::vector<int> shadowLights;
+    // The shadow rays of camera hits, packet p's toward light l at p * lights + l.
+    std::vector<RayLanes16> shadowLanes;
+    std::vector<PacketLanes> shadowTraced;
     std::vector<LeavingRay> leaving;
     std::vector<RayCache::Query> cacheQueries;  // one per leaving ray
     std::vector<Rgb> cachedColors;
@@ -237,7 +228,7 @@ private:
 };
 
 // What the tile kernel's lanes learned of a spawned ray's cache texel
-// (render/WaveLanes.cpp), handed to TileKernel::emitSecondaryRay.
+// (render/TileKernelWaves.cpp), handed to TileKernel::emitSecondaryRay.
 struct SpawnedRayLookup {
     int texel = -1;     // the CCT texel its direction addresses; -1: not addressed
     int answered = -1;  // 1: the cache answered `color`; 0: it missed; -1: not asked yet
@@ -305,31 +296,51 @@ public:
     void prepareFrame() const { meshShading_.refresh(scene_); }
 
 private:
-    using FirstWave = TileScratch::FirstWave;
-    // Shades the waves until no ray is left, the first as `first` says.
-    // beginWaves first (FirstWave::Spawned: before the spawn).
+    using WaveShadows = TileScratch::WaveShadows;
+    // The cache flags of the tile (tracked trees, counted tree rays), and
+    // room for the tracked nodes' bounds: before the first wave is shaded.
     void beginWaves(TileScratch& s, CacheWorker* cache) const;
-    void runWaves(TileScratch& s, CacheWorker* cache, FirstWave first, bool coherentShadows) const;
-    void reshadeDirect(TileScratch& s) const;
-    // The waves in lanes (RenderSettings::waveLanes, render/WaveLanes.cpp):
-    // a wave is s.packets, each stage runs over all of them, and every lane
-    // gets the general path's bits. A tile's first hits (camera rays, or the
-    // G-buffer's surfaces) go in lanes with the Embree accelerator only: the
-    // grids answer camera rays and their shadow rays their own way.
-    bool tracesCameraRaysInLanes() const;
+    // The waves after the first: the lookups of the rays it spawned, the
+    // rays left traced as packets and shaded, until no ray is left.
+    void runWaves(TileScratch& s, CacheWorker* cache) const;
     // s.packets for a tile's pixels: their camera rays and what each lane
     // carries (root, weight 1, depth 1, the pixel's cone).
     static void startTilePackets(const CameraRays& cameraRays, const TileRange& tile, TileScratch& s);
+    // A tile's first wave: its camera rays in s.packets, traced (Embree per
+    // packet; the grids over the whole tile, their hits put in the lanes).
     void traceCameraRaysInLanes(const CameraRays& cameraRays, const TileRange& tile, TileScratch& s,
                                 CacheWorker* cache) const;
+    // The hybrid pipeline's first hits from the G-buffer, as packets whose
+    // surfaces are already known (shadePackets with surfacesKnown).
+    void readGBufferInLanes(const CameraRays& cameraRays, const GBufferView& gbuffer, const TileRange& tile,
+                            TileScratch& s, CacheWorker* cache) const;
+    // A first wave from hits found elsewhere (a batch of camera rays, rays
+    // from inside an object, reprojected points), packed hit after hit into
+    // lanes: beginFirstHits with room for `count`, addFirstHit per hit, endFirstHits.
+    static void beginFirstHits(TileScratch& s, std::size_t count);
+    static void addFirstHit(TileScratch& s, const Ray& ray, const TraceHit& hit, int node, int depth,
+                            const RayCone& cone);
+    static void endFirstHits(TileScratch& s);
     // s.pending traced as packets in spawn order: the next wave.
     void traceSecondaryRaysInLanes(TileScratch& s) const;
     // Surfaces (unless `surfacesKnown`: the G-buffer gave them), shadow
     // rays, direct light, then the secondary rays into s.leaving and s.pending.
-    void shadePackets(TileScratch& s, CacheWorker* cache, bool surfacesKnown = false) const;
+    void shadePackets(TileScratch& s, CacheWorker* cache, bool surfacesKnown, WaveShadows shadows) const;
     void packetSurfaces(TileScratch::HitPacket& packet, MeshHitLanes& meshLanes) const;
     void packetShadowRays(TileScratch& s, std::size_t p) const;
+    // The shadow rays of a first wave of camera hits over the whole wave, in
+    // one call to the tracer's primary shadow rays (the light grids).
+    void cameraHitShadowRays(TileScratch& s) const;
+    // What the shadow rays of packet p tell the cache: the rays its nodes'
+    // trees traced, and where tracked trees' shadow rays went.
+    void recordShadowRays(TileScratch& s, std::size_t p) const;
     void packetDirect(TileScratch& s, std::size_t p) const;
+    // The Render Cache's record of camera hits (PrimarySample): the light of
+    // packet p's depth-1 lanes split as LocalShading::viewIndependentLight splits it.
+    void recordFirstHitLight(TileScratch& s, std::size_t p) const;
+    // Reshading (ReshadeRequest): packet p's kept view-independent light plus
+    // its lit lights' highlights from the new eye.
+    void reshadePacket(TileScratch& s, std::size_t p) const;
     // A packet's secondary rays in two steps. packetSpawnLanes: the rays in
     // lanes, the texels of those leaving CCT objects, and a prefetch of
     // their validity bits. packetEmit: the lookups, then each ray's node,
@@ -340,22 +351,6 @@ private:
                           bool lookUpInLanes) const;
     void packetEmit(TileScratch& s, const TileScratch::HitPacket& packet, SecondaryRayLanes16& spawned,
                     CacheWorker* cache) const;
-    // The hybrid pipeline's first hits from the G-buffer, as packets whose
-    // surfaces are already known (shadePackets with surfacesKnown).
-    void readGBufferInLanes(const CameraRays& cameraRays, const GBufferView& gbuffer, const TileRange& tile,
-                            TileScratch& s, CacheWorker* cache) const;
-    // The general path's first stage of a G-buffer tile: one record per hit.
-    void readGBufferTile(const CameraRays& cameraRays, const GBufferView& gbuffer, const TileRange& tile,
-                         TileScratch& s, CacheWorker* cache) const;
-    // The general path's first stage of a camera tile: rays, packets, one
-    // record per hit.
-    void traceCameraTile(const CameraRays& cameraRays, const TileRange& tile, TileScratch& s, CacheWorker* cache) const;
-    void computeSurfaces(TileScratch& s) const;
-    void traceShadowRays(TileScratch& s, bool coherent) const;
-    // Shadow rays of several lights as packets, each light's rays together.
-    void traceShadowRaysByLight(TileScratch& s, std::size_t count) const;
-    void shadeDirect(TileScratch& s) const;
-    void spawnSecondaryRays(TileScratch& s, CacheWorker* cache) const;
     // One secondary ray of the hit of node `parent`: its node, then the
     // cache's lookup batch (a ray leaving a caching object whose cube asks)
     // or the rays to trace.
@@ -374,8 +369,7 @@ private:
     // weightier (or as weighty and earlier) ray of that pixel was recorded.
     static void noteRootLevel(TileScratch& s, int node, float pathWeight, std::int8_t level);
     static void writeLevelRecord(const TileScratch& s, const TileRange& tile, CacheLevelImage& levels);
-    void traceSecondaryRays(TileScratch& s) const;
-    // What either path records of a traced secondary ray: its count, its
+    // What the kernel records of a traced secondary ray: its count, its
     // node's traced rays, a store's hit distance, a tracked tree's segment,
     // and the background where it hit nothing (`hit` false; `t` its distance otherwise).
     void recordTracedRay(TileScratch& s, const TileScratch::PendingRay& ray, bool hit, float t) const;

@@ -1,5 +1,5 @@
-// The tile kernel's sixteen-lane surface and shadow-query code against the
-// scalar rules it replaces (surfacePointAt, LocalShading::shadowQueries), bit
+// The tile kernel's sixteen-lane surface and shadow-ray code against the
+// scalar rules it implements (surfacePointAt, LocalShading::shadowQueries), bit
 // for bit, and the specular power against std::pow. The release build runs
 // the clone this machine picks (AVX-512 or AVX2); the asan build, with
 // RAYCACHE_BASELINE_LANES, the baseline x86-64 code.
@@ -30,6 +30,17 @@ void expectSameBits(const Vec3& a, const Vec3& b, const char* what, int k) {
     EXPECT_EQ(bits(a.z), bits(b.z)) << what << " z, lane " << k;
 }
 
+SurfacePoint laneSurface(const SurfaceLanes16& s, int k) {
+    SurfacePoint sp;
+    sp.position = {s.positionX[k], s.positionY[k], s.positionZ[k]};
+    sp.normal = {s.normalX[k], s.normalY[k], s.normalZ[k]};
+    sp.geometricNormal = {s.geometricX[k], s.geometricY[k], s.geometricZ[k]};
+    sp.u = s.u[k];
+    sp.v = s.v[k];
+    sp.frontFace = s.frontFace[k] != 0;
+    return sp;
+}
+
 Vec3 randomUnit(std::mt19937& rng) {
     std::normal_distribution<float> g;
     return normalize(Vec3{g(rng), g(rng), g(rng)});
@@ -42,38 +53,43 @@ TEST(HitLanes, SphereSurfacesEqualSurfacePointAt) {
     std::uniform_real_distribution<float> coord(-30.0f, 30.0f), radius(0.05f, 8.0f), unit(-1.0f, 1.0f);
     int backFaces = 0;
     for (int round = 0; round < 2000; ++round) {
-        const int count = 1 + round % 16;
-        SphereHitLanes lanes;
-        std::vector<SceneObject> objects(static_cast<std::size_t>(count));
-        std::vector<Ray> rays(static_cast<std::size_t>(count));
-        std::vector<TraceHit> hits(static_cast<std::size_t>(count));
-        for (int k = 0; k < count; ++k) {
+        // One sphere per call, as the kernel takes a packet's lanes object by object.
+        const Sphere sphere{{coord(rng), coord(rng), coord(rng)}, radius(rng)};
+        SceneObject object;
+        object.shape = sphere;
+        RayLanes16 rays{};
+        std::vector<Ray> scalarRays(16);
+        std::vector<TraceHit> hits(16);
+        alignas(64) int lanes[16];
+        for (int k = 0; k < 16; ++k) {
             const auto i = static_cast<std::size_t>(k);
-            const Sphere sphere{{coord(rng), coord(rng), coord(rng)}, radius(rng)};
-            objects[i].shape = sphere;
             // Rays from outside and from inside (refracted rays leaving).
             const bool inside = k % 3 == 0;
             const Vec3 origin = inside ? sphere.center + Vec3{unit(rng), unit(rng), unit(rng)} * (0.5f * sphere.radius)
                                        : Vec3{coord(rng), coord(rng), coord(rng)};
-            rays[i] = Ray{origin, randomUnit(rng)};
+            scalarRays[i] = Ray{origin, randomUnit(rng)};
             hits[i].t = std::fabs(coord(rng));
-            hits[i].objectId = k;
-            lanes.originX[k] = origin.x, lanes.originY[k] = origin.y, lanes.originZ[k] = origin.z;
-            lanes.directionX[k] = rays[i].direction.x, lanes.directionY[k] = rays[i].direction.y;
-            lanes.directionZ[k] = rays[i].direction.z;
-            lanes.t[k] = hits[i].t;
-            lanes.centerX[k] = sphere.center.x, lanes.centerY[k] = sphere.center.y, lanes.centerZ[k] = sphere.center.z;
-            lanes.radius[k] = sphere.radius;
+            setLaneRay(rays, k, scalarRays[i]);
+            rays.tFar[k] = hits[i].t;
+            lanes[k] = (round + k) % 7 == 0 ? 0 : -1;
         }
-        SurfacePoint out[16];
-        sphereSurfaces16(lanes, count, out);
-        for (int k = 0; k < count; ++k) {
+        SurfaceLanes16 out{};
+        out.positionX[0] = -7.0f;  // a lane left out keeps what it held
+        sphereSurfaceLanes16(rays, sphere, lanes, out);
+        for (int k = 0; k < 16; ++k) {
             const auto i = static_cast<std::size_t>(k);
-            const SurfacePoint expected = surfacePointAt(objects[i], rays[i], hits[i], false);
-            expectSameBits(out[k].position, expected.position, "position", k);
-            expectSameBits(out[k].normal, expected.normal, "normal", k);
-            expectSameBits(out[k].geometricNormal, expected.geometricNormal, "geometric normal", k);
-            EXPECT_EQ(out[k].frontFace, expected.frontFace) << "lane " << k;
+            if (!lanes[k]) {
+                if (k == 0) {
+                    EXPECT_EQ(out.positionX[0], -7.0f);
+                }
+                continue;
+            }
+            const SurfacePoint expected = surfacePointAt(object, scalarRays[i], hits[i], false);
+            const SurfacePoint got = laneSurface(out, k);
+            expectSameBits(got.position, expected.position, "position", k);
+            expectSameBits(got.normal, expected.normal, "normal", k);
+            expectSameBits(got.geometricNormal, expected.geometricNormal, "geometric normal", k);
+            EXPECT_EQ(got.frontFace, expected.frontFace) << "lane " << k;
             backFaces += expected.frontFace ? 0 : 1;
         }
         if (HasFailure()) return;
@@ -81,7 +97,7 @@ TEST(HitLanes, SphereSurfacesEqualSurfacePointAt) {
     EXPECT_GT(backFaces, 1000);  // both orientations were checked
 }
 
-TEST(HitLanes, ShadowQueriesEqualScalarForEveryLightKind) {
+TEST(HitLanes, ShadowRaysEqualScalarQueriesForEveryLightKind) {
     Scene scene;
     Light point;
     point.position = {3.0f, 9.0f, -2.0f};
@@ -116,24 +132,48 @@ TEST(HitLanes, ShadowQueriesEqualScalarForEveryLightKind) {
             // A shading normal near the geometric one, as interpolated normals are.
             surfaces[k].normal = normalize(surfaces[k].geometricNormal + Vec3{near(rng), near(rng), near(rng)} * 0.3f);
         }
-        ShadowQuery lanes[16 * 5];
-        int first[17];
-        const int written = shading.shadowQueriesOf16(surfaces, count, lanes, first);
-        int expectedTotal = 0;
-        for (int k = 0; k < count; ++k) {
+        SurfaceLanes16 lanes{};
+        alignas(64) int selected[16];
+        for (int k = 0; k < 16; ++k) {
+            const SurfacePoint& sp = surfaces[k < count ? k : 0];
+            lanes.positionX[k] = sp.position.x, lanes.positionY[k] = sp.position.y, lanes.positionZ[k] = sp.position.z;
+            lanes.normalX[k] = sp.normal.x, lanes.normalY[k] = sp.normal.y, lanes.normalZ[k] = sp.normal.z;
+            lanes.geometricX[k] = sp.geometricNormal.x, lanes.geometricY[k] = sp.geometricNormal.y;
+            lanes.geometricZ[k] = sp.geometricNormal.z;
+            selected[k] = k < count ? -1 : 0;
+        }
+        const std::size_t lightCount = scene.lights.size();
+        std::vector<RayLanes16> rays(lightCount);
+        std::vector<PacketLanes> traced(lightCount);
+        std::vector<LightLanes16> seen(lightCount);
+        for (std::size_t l = 0; l < lightCount; ++l)
+            shadowRayLanes16(scene.lights[l], shading.spotCones()[l], lanes, selected, rays[l], traced[l], seen[l]);
+        int written = 0, expectedTotal = 0;
+        for (int k = 0; k < 16; ++k) {
+            if (k >= count) {
+                for (std::size_t l = 0; l < lightCount; ++l) EXPECT_EQ(traced[l].valid[k], 0) << "lane left out " << k;
+                continue;
+            }
             ShadowQuery expected[5];
             const int n = shading.shadowQueries(surfaces[k], expected);
-            ASSERT_EQ(first[k], expectedTotal) << "surface " << k;
-            ASSERT_EQ(first[k + 1] - first[k], n) << "surface " << k;
-            for (int q = 0; q < n; ++q) {
-                const ShadowQuery& a = lanes[first[k] + q];
-                expectSameBits(a.ray.origin, expected[q].ray.origin, "origin", k);
-                expectSameBits(a.ray.direction, expected[q].ray.direction, "direction", k);
-                EXPECT_EQ(bits(a.ray.tNear), bits(expected[q].ray.tNear));
-                EXPECT_EQ(bits(a.ray.tFar), bits(expected[q].ray.tFar));
-                EXPECT_EQ(a.lightIndex, expected[q].lightIndex);
-                EXPECT_EQ(bits(a.strength), bits(expected[q].strength));
+            // The lights the lanes reach, in order, are the scalar queries.
+            int q = 0;
+            for (std::size_t l = 0; l < lightCount; ++l) {
+                if (!traced[l].valid[k]) continue;
+                ++written;
+                ASSERT_LT(q, n) << "surface " << k;
+                EXPECT_EQ(expected[q].lightIndex, static_cast<int>(l));
+                Ray ray = laneRay(rays[l], k);
+                ray.tNear = rays[l].tNear[k];
+                ray.tFar = rays[l].tFar[k];
+                expectSameBits(ray.origin, expected[q].ray.origin, "origin", k);
+                expectSameBits(ray.direction, expected[q].ray.direction, "direction", k);
+                EXPECT_EQ(bits(ray.tNear), bits(expected[q].ray.tNear));
+                EXPECT_EQ(bits(ray.tFar), bits(expected[q].ray.tFar));
+                EXPECT_EQ(bits(seen[l].strength[k]), bits(expected[q].strength));
+                ++q;
             }
+            EXPECT_EQ(q, n) << "surface " << k;
             expectedTotal += n;
         }
         EXPECT_EQ(written, expectedTotal);
@@ -202,7 +242,9 @@ TEST(HitLanes, MeshSurfacesEqualSurfacePointAt) {
     int back = 0;
     for (int round = 0; round < 1500; ++round) {
         const int count = 1 + round % 16;
-        MeshHitLanes lanes;
+        MeshHitLanes lanes{};
+        RayLanes16 packet{};
+        alignas(64) int selected[16];
         std::vector<Ray> rays(16);
         std::vector<TraceHit> hits(16);
         std::vector<std::size_t> which(16);
@@ -215,18 +257,21 @@ TEST(HitLanes, MeshSurfacesEqualSurfacePointAt) {
             hits[i] = TraceHit{std::fabs(coord(rng)), static_cast<int>(which[i]),
                                static_cast<int>(rng() % mesh.triangles.size()), u, v};
             rays[i] = Ray{{coord(rng), coord(rng), coord(rng)}, randomUnit(rng)};
-            lanes.originX[k] = rays[i].origin.x, lanes.originY[k] = rays[i].origin.y, lanes.originZ[k] = rays[i].origin.z;
-            lanes.directionX[k] = rays[i].direction.x, lanes.directionY[k] = rays[i].direction.y;
-            lanes.directionZ[k] = rays[i].direction.z;
-            lanes.t[k] = hits[i].t, lanes.u[k] = u, lanes.v[k] = v;
+            setLaneRay(packet, k, rays[i]);
+            packet.tFar[k] = hits[i].t;
+            lanes.u[k] = u, lanes.v[k] = v;
             // Made from the mesh as the kernel's records are (render/MeshShading.h).
             const auto triangle = static_cast<std::size_t>(hits[i].primitiveId);
             const TriangleUvRecord uv = uvRecordOf(mesh, triangle);
             setMeshTriangleLane(lanes, i, shadingRecordOf(mesh, triangle), !mesh.normals.empty(),
                                 mesh.uvs.empty() ? nullptr : &uv);
         }
+        // Lanes past `count` are left out (their records are stale or unset).
+        for (int k = 0; k < 16; ++k) selected[k] = k < count ? -1 : 0;
+        SurfaceLanes16 surfaces{};
+        meshSurfaceLanes16(packet, lanes, selected, surfaces);
         SurfacePoint out[16];
-        meshSurfaces16(lanes, count, out);
+        for (int k = 0; k < count; ++k) out[k] = laneSurface(surfaces, k);
         for (int k = 0; k < count; ++k) {
             const auto i = static_cast<std::size_t>(k);
             const SurfacePoint expected = surfacePointAt(objects[which[i]], rays[i], hits[i], true);

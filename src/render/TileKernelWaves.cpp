@@ -1,14 +1,14 @@
-// The tile kernel's waves in lanes (RenderSettings::waveLanes): the
-// tracer's packets stay the wave's records. A wave is a list of packets of
-// sixteen rays: the camera rays of one tile row, or sixteen secondary rays
-// in the order they were spawned. Each stage (surfaces, shadow rays, direct
-// light, secondary rays) runs over the wave's packets before the next, as
-// the general path's stages run over its records. Where a packet's lanes
-// hit several objects, a stage takes one object at a time under a mask, so
-// that a material and a sphere are read once per packet, not once per hit.
-// What each lane computes is the general path's arithmetic, operation for
-// operation (render/HitLanes.h), so the image is the same bit for bit.
+// The tile kernel's waves (render/TileKernel.h): a wave is a list of
+// packets of sixteen rays in the tracer's own layout, the camera rays of
+// one tile row, sixteen first hits of a caller, or sixteen secondary rays in
+// the order they were spawned. Each stage (surfaces, shadow rays, direct
+// light, secondary rays) runs over the wave's packets before the next.
+// Where a packet's lanes hit several objects, a stage takes one object at a
+// time under a mask, so that a material and a sphere are read once per
+// packet. What each lane computes is the scalar rule's arithmetic,
+// operation for operation (render/HitLanes.h).
 #include <algorithm>
+#include <array>
 #include <cstring>
 
 #include "cache/CubeAddressingLanes.h"
@@ -47,6 +47,25 @@ TraceHit laneHit(const RayHitLanes16& packet, const int* objectId, int k) {
     return hit;
 }
 
+// Lane k of `packet` hit as `hit` says (the ray is set apart).
+void setLaneHit(RayHitLanes16& packet, int k, const TraceHit& hit) {
+    packet.ray.tFar[k] = hit.t;
+    packet.hit.primitiveId[k] = static_cast<std::uint32_t>(hit.primitiveId);
+    packet.hit.u[k] = hit.u;
+    packet.hit.v[k] = hit.v;
+}
+
+SurfacePoint laneSurface(const SurfaceLanes16& s, int k) {
+    SurfacePoint sp;
+    sp.position = {s.positionX[k], s.positionY[k], s.positionZ[k]};
+    sp.normal = {s.normalX[k], s.normalY[k], s.normalZ[k]};
+    sp.geometricNormal = {s.geometricX[k], s.geometricY[k], s.geometricZ[k]};
+    sp.u = s.u[k];
+    sp.v = s.v[k];
+    sp.frontFace = s.frontFace[k] != 0;
+    return sp;
+}
+
 void setLaneSurface(SurfaceLanes16& s, int k, const SurfacePoint& sp) {
     s.positionX[k] = sp.position.x, s.positionY[k] = sp.position.y, s.positionZ[k] = sp.position.z;
     s.normalX[k] = sp.normal.x, s.normalY[k] = sp.normal.y, s.normalZ[k] = sp.normal.z;
@@ -58,10 +77,6 @@ void setLaneSurface(SurfaceLanes16& s, int k, const SurfacePoint& sp) {
 }
 
 }  // namespace
-
-bool TileKernel::tracesCameraRaysInLanes() const {
-    return settings_.waveLanes && tracer_.accelerator() == Accelerator::Embree;
-}
 
 void TileKernel::startTilePackets(const CameraRays& cameraRays, const TileRange& tile, TileScratch& s) {
     // One packet per sixteen pixels of a row, row after row: lane k of a
@@ -91,11 +106,30 @@ void TileKernel::traceCameraRaysInLanes(const CameraRays& cameraRays, const Tile
                                         CacheWorker* cache) const {
     StageTimer timer(settings_.stageTimes, s.stages.firstHits);
     startTilePackets(cameraRays, tile, s);
+    const bool grids = tracer_.accelerator() != Accelerator::Embree;
+    if (grids) {
+        // The grids answer a tile's rays together: their hits go back into the lanes.
+        s.rays.resize(s.nodes.size());
+        s.hits.resize(s.nodes.size());
+        std::size_t i = 0;
+        for (const TileScratch::HitPacket& packet : s.packets)
+            for (int k = 0; k < packet.count; ++k) s.rays[i++] = laneRay(packet.rays.ray, k);
+        tracer_.intersectPrimary(std::span(s.rays.data(), i), std::span(s.hits.data(), i));
+        i = 0;
+        for (TileScratch::HitPacket& packet : s.packets)
+            for (int k = 0; k < kFloatLanes; ++k) {
+                const TraceHit hit = k < packet.count ? s.hits[i++] : TraceHit{};
+                packet.objectId[k] = hit.objectId;
+                if (hit.hit()) setLaneHit(packet.rays, k, hit);
+            }
+    }
     std::uint64_t hits = 0;
     for (TileScratch::HitPacket& packet : s.packets) {
-        PacketLanes traced;
-        for (int k = 0; k < kFloatLanes; ++k) traced.valid[k] = k < packet.count ? -1 : 0;
-        tracer_.intersectPacket(packet.rays, traced, packet.objectId);
+        if (!grids) {
+            PacketLanes traced;
+            for (int k = 0; k < kFloatLanes; ++k) traced.valid[k] = k < packet.count ? -1 : 0;
+            tracer_.intersectPacket(packet.rays, traced, packet.objectId);
+        }
         s.counts.primary += static_cast<std::uint64_t>(packet.count);
         for (int k = 0; k < kFloatLanes; ++k) {
             const bool hit = k < packet.count && packet.objectId[k] >= 0;
@@ -117,6 +151,49 @@ void TileKernel::traceCameraRaysInLanes(const CameraRays& cameraRays, const Tile
     s.stages.hitsShaded += hits;
 }
 
+void TileKernel::beginFirstHits(TileScratch& s, std::size_t count) {
+    s.packets.resize((count + kFloatLanes - 1) / kFloatLanes);
+    s.filledLanes = 0;
+}
+
+void TileKernel::addFirstHit(TileScratch& s, const Ray& ray, const TraceHit& hit, int node, int depth,
+                             const RayCone& cone) {
+    TileScratch::HitPacket& packet = s.packets[s.filledLanes / kFloatLanes];
+    const int k = static_cast<int>(s.filledLanes % kFloatLanes);
+    ++s.filledLanes;
+    setLaneRay(packet.rays.ray, k, ray);
+    setLaneHit(packet.rays, k, hit);
+    packet.objectId[k] = hit.objectId;
+    packet.hits.valid[k] = -1;
+    packet.node[k] = node;
+    packet.pathWeight[k] = 1.0f;
+    packet.depth[k] = depth;
+    packet.coneWidth[k] = cone.width;
+    packet.coneSpread[k] = cone.spread;
+    packet.count = k + 1;
+}
+
+void TileKernel::endFirstHits(TileScratch& s) {
+    const std::size_t packets = (s.filledLanes + kFloatLanes - 1) / kFloatLanes;
+    s.packets.resize(packets);
+    if (packets == 0) return;
+    // Lanes past the last hit repeat it, not shaded.
+    TileScratch::HitPacket& last = s.packets.back();
+    const int from = last.count - 1;
+    for (int k = last.count; k < kFloatLanes; ++k) {
+        setLaneRay(last.rays.ray, k, laneRay(last.rays.ray, from));
+        last.rays.ray.tFar[k] = last.rays.ray.tFar[from];
+        last.objectId[k] = -1;
+        last.hits.valid[k] = 0;
+        last.node[k] = last.node[from];
+        last.pathWeight[k] = last.pathWeight[from];
+        last.depth[k] = last.depth[from];
+        last.coneWidth[k] = last.coneWidth[from];
+        last.coneSpread[k] = last.coneSpread[from];
+    }
+    s.stages.hitsShaded += s.filledLanes;
+}
+
 void TileKernel::readGBufferInLanes(const CameraRays& cameraRays, const GBufferView& gbuffer, const TileRange& tile,
                                     TileScratch& s, CacheWorker* cache) const {
     StageTimer timer(settings_.stageTimes, s.stages.firstHits);
@@ -128,7 +205,6 @@ void TileKernel::readGBufferInLanes(const CameraRays& cameraRays, const GBufferV
             packet.hits.valid[k] = 0;
             packet.objectId[k] = -1;
             if (k >= packet.count) continue;
-            // The general path's readGBufferTile, lane by lane.
             const int root = packet.node[k];
             const std::size_t i = gbuffer.index(tile.x0 + root % tileWidth, tile.y0 + root / tileWidth);
             const Ray ray = laneRay(packet.rays.ray, k);
@@ -185,19 +261,32 @@ void TileKernel::traceSecondaryRaysInLanes(TileScratch& s) const {
     s.stages.hitsShaded += hits;
 }
 
-void TileKernel::shadePackets(TileScratch& s, CacheWorker* cache, bool surfacesKnown) const {
+void TileKernel::shadePackets(TileScratch& s, CacheWorker* cache, bool surfacesKnown, WaveShadows shadows) const {
     if (!surfacesKnown) {
         StageTimer timer(settings_.stageTimes, s.stages.surfaces);
         for (TileScratch::HitPacket& packet : s.packets) packetSurfaces(packet, s.meshLanes);
     }
-    {
-        StageTimer timer(settings_.stageTimes, s.stages.shadowRays);
-        s.packetLights.resize(s.packets.size() * scene_.lights.size());
-        for (std::size_t p = 0; p < s.packets.size(); ++p) packetShadowRays(s, p);
-    }
-    {
+    if (shadows == WaveShadows::Known) {
+        StageTimer timer(settings_.stageTimes, s.stages.directShading);
+        for (std::size_t p = 0; p < s.packets.size(); ++p) reshadePacket(s, p);
+    } else {
+        {
+            StageTimer timer(settings_.stageTimes, s.stages.shadowRays);
+            s.packetLights.resize(s.packets.size() * scene_.lights.size());
+            // Camera hits' shadow rays start close together and head for the
+            // same lights: the grids, when they are on, answer them per light.
+            if (shadows == WaveShadows::OfCameraHits && tracer_.accelerator() != Accelerator::Embree) {
+                cameraHitShadowRays(s);
+            } else {
+                for (std::size_t p = 0; p < s.packets.size(); ++p) packetShadowRays(s, p);
+            }
+            if (s.countTreeRays || s.trackTrees)
+                for (std::size_t p = 0; p < s.packets.size(); ++p) recordShadowRays(s, p);
+        }
         StageTimer timer(settings_.stageTimes, s.stages.directShading);
         for (std::size_t p = 0; p < s.packets.size(); ++p) packetDirect(s, p);
+        if (s.recordFirstHits)
+            for (std::size_t p = 0; p < s.packets.size(); ++p) recordFirstHitLight(s, p);
     }
     StageTimer timer(settings_.stageTimes, s.stages.secondaryRays);
     s.leaving.clear();
@@ -291,7 +380,6 @@ void TileKernel::packetSurfaces(TileScratch::HitPacket& packet, MeshHitLanes& me
 void TileKernel::packetShadowRays(TileScratch& s, std::size_t p) const {
     TileScratch::HitPacket& packet = s.packets[p];
     const std::size_t lights = scene_.lights.size();
-    alignas(64) int shadowRays[kFloatLanes] = {};
     bool anyHit = false;
     for (int k = 0; k < kFloatLanes; ++k) anyHit |= packet.hits.valid[k] != 0;
     for (std::size_t l = 0; l < lights; ++l) {
@@ -311,31 +399,81 @@ void TileKernel::packetShadowRays(TileScratch& s, std::size_t p) const {
         for (int k = 0; k < kFloatLanes; ++k) {
             seen.traced[k] = traced.valid[k] ? 1 : 0;
             seen.lit[k] = traced.valid[k] && !occluded[k] ? 1 : 0;
-            shadowRays[k] += seen.traced[k];
         }
         s.counts.shadow += static_cast<std::uint64_t>(count);
     }
-    // What a store tells the cache policy a hit spares counts these rays,
-    // and a tracked tree's bounds their answers (the general path's
-    // traceShadowRays).
-    if (s.countTreeRays)
-        for (int k = 0; k < packet.count; ++k)
-            s.nodes[static_cast<std::size_t>(packet.node[k])].tracedRays += static_cast<std::uint32_t>(shadowRays[k]);
-    if (s.trackTrees)
-        for (int k = 0; k < packet.count; ++k) {
-            const auto node = static_cast<std::size_t>(packet.node[k]);
-            if (!packet.hits.valid[k] || !s.nodes[node].tracked) continue;
-            RayTreeBounds& bounds = s.nodeBounds[node];
-            bounds.shaded = true;
-            const Vec3 position{packet.surface.positionX[k], packet.surface.positionY[k], packet.surface.positionZ[k]};
-            const Vec3 geometric{packet.surface.geometricX[k], packet.surface.geometricY[k],
-                                 packet.surface.geometricZ[k]};
-            const Vec3 origin = position + geometric * surfaceOffset(position);
-            for (std::size_t l = 0; l < lights; ++l) {
-                const LightLanes16& seen = s.packetLights[p * lights + l];
-                if (seen.traced[k]) bounds.addShadowRay(origin, static_cast<int>(l), seen.lit[k] != 0);
-            }
+}
+
+void TileKernel::cameraHitShadowRays(TileScratch& s) const {
+    const std::size_t lights = scene_.lights.size();
+    const std::size_t packets = s.packets.size();
+    s.shadowLanes.resize(packets * lights);
+    s.shadowTraced.resize(packets * lights);
+    for (std::size_t p = 0; p < packets; ++p)
+        for (std::size_t l = 0; l < lights; ++l) {
+            LightLanes16& seen = s.packetLights[p * lights + l];
+            std::fill_n(seen.lit, kFloatLanes, 0);
+            std::fill_n(seen.traced, kFloatLanes, 0);
+            shadowRayLanes16(scene_.lights[l], shading_.spotCones()[l], s.packets[p].surface, s.packets[p].hits.valid,
+                             s.shadowLanes[p * lights + l], s.shadowTraced[p * lights + l], seen);
         }
+    // Hit after hit, each hit's lights in order, as LocalShading::shadowQueries lists them.
+    s.rays.clear();
+    s.shadowLights.clear();
+    for (std::size_t p = 0; p < packets; ++p)
+        for (int k = 0; k < s.packets[p].count; ++k)
+            for (std::size_t l = 0; l < lights; ++l) {
+                if (!s.packets[p].hits.valid[k] || !s.shadowTraced[p * lights + l].valid[k]) continue;
+                const RayLanes16& rays = s.shadowLanes[p * lights + l];
+                Ray ray = laneRay(rays, k);
+                ray.tNear = rays.tNear[k];
+                ray.tFar = rays.tFar[k];
+                s.rays.push_back(ray);
+                s.shadowLights.push_back(static_cast<int>(l));
+            }
+    const std::size_t count = s.rays.size();
+    s.occluded.resize(count);
+    tracer_.occludedPrimaryShadows(std::span(s.rays.data(), count), std::span(s.shadowLights.data(), count),
+                                   std::span(s.occluded.data(), count));
+    std::size_t q = 0;
+    for (std::size_t p = 0; p < packets; ++p)
+        for (int k = 0; k < s.packets[p].count; ++k)
+            for (std::size_t l = 0; l < lights; ++l) {
+                if (!s.packets[p].hits.valid[k] || !s.shadowTraced[p * lights + l].valid[k]) continue;
+                LightLanes16& seen = s.packetLights[p * lights + l];
+                seen.traced[k] = 1;
+                seen.lit[k] = s.occluded[q++] ? 0 : 1;
+            }
+    s.counts.shadow += count;
+}
+
+void TileKernel::recordShadowRays(TileScratch& s, std::size_t p) const {
+    const TileScratch::HitPacket& packet = s.packets[p];
+    const std::size_t lights = scene_.lights.size();
+    // What a store tells the cache policy a hit spares counts these rays.
+    if (s.countTreeRays)
+        for (int k = 0; k < packet.count; ++k) {
+            std::uint32_t traced = 0;
+            for (std::size_t l = 0; l < lights; ++l) traced += static_cast<std::uint32_t>(s.packetLights[p * lights + l].traced[k]);
+            s.nodes[static_cast<std::size_t>(packet.node[k])].tracedRays += traced;
+        }
+    if (!s.trackTrees) return;
+    for (int k = 0; k < packet.count; ++k) {
+        const auto node = static_cast<std::size_t>(packet.node[k]);
+        if (!packet.hits.valid[k] || !s.nodes[node].tracked) continue;
+        // The hit's light depends on every light (even one below its
+        // horizon, which may rise) and on what its shadow rays cross,
+        // kept apart by their answers (cache/RayTreeBounds.h).
+        RayTreeBounds& bounds = s.nodeBounds[node];
+        bounds.shaded = true;
+        const Vec3 position{packet.surface.positionX[k], packet.surface.positionY[k], packet.surface.positionZ[k]};
+        const Vec3 geometric{packet.surface.geometricX[k], packet.surface.geometricY[k], packet.surface.geometricZ[k]};
+        const Vec3 origin = position + geometric * surfaceOffset(position);
+        for (std::size_t l = 0; l < lights; ++l) {
+            const LightLanes16& seen = s.packetLights[p * lights + l];
+            if (seen.traced[k]) bounds.addShadowRay(origin, static_cast<int>(l), seen.lit[k] != 0);
+        }
+    }
 }
 
 void TileKernel::packetDirect(TileScratch& s, std::size_t p) const {
@@ -351,6 +489,49 @@ void TileKernel::packetDirect(TileScratch& s, std::size_t p) const {
         if (packet.hits.valid[k])
             s.nodes[static_cast<std::size_t>(packet.node[k])].direct =
                 Rgb{packet.directR[k], packet.directG[k], packet.directB[k]};
+}
+
+void TileKernel::recordFirstHitLight(TileScratch& s, std::size_t p) const {
+    const TileScratch::HitPacket& packet = s.packets[p];
+    const std::size_t lights = scene_.lights.size();
+    std::array<ShadowQuery, kMaxLights> queries;
+    std::array<unsigned char, kMaxLights> occluded;
+    for (int k = 0; k < packet.count; ++k) {
+        if (!packet.hits.valid[k] || packet.depth[k] != 1) continue;
+        const SurfacePoint sp = laneSurface(packet.surface, k);
+        const Rgb albedo{packet.surface.albedoR[k], packet.surface.albedoG[k], packet.surface.albedoB[k]};
+        const Material& material = scene_.objects[static_cast<std::size_t>(packet.objectId[k])].material;
+        // The lanes' shadow rays were these queries' rays (render/HitLanes.h).
+        const auto count = static_cast<std::size_t>(shading_.shadowQueries(sp, queries.data()));
+        for (std::size_t q = 0; q < count; ++q)
+            occluded[q] = s.packetLights[p * lights + static_cast<std::size_t>(queries[q].lightIndex)].lit[k] ? 0 : 1;
+        const auto node = static_cast<std::size_t>(packet.node[k]);
+        const std::span<const ShadowQuery> seen(queries.data(), count);
+        const std::span<const unsigned char> blocked(occluded.data(), count);
+        s.rootViewIndependent[node] = shading_.viewIndependentLight(material, albedo, sp, seen, blocked, s.rootLitMask[node]);
+        if (material.diffuseTexture) {
+            // Only a texture varies the albedo within a primitive; the
+            // lighting of untextured hits is never asked for.
+            std::uint64_t sameMask;
+            s.rootLighting[node] = shading_.viewIndependentLight(material, Rgb{1.0f}, sp, seen, blocked, sameMask);
+        }
+    }
+}
+
+void TileKernel::reshadePacket(TileScratch& s, std::size_t p) const {
+    const TileScratch::HitPacket& packet = s.packets[p];
+    std::array<ShadowQuery, kMaxLights> queries;
+    for (int k = 0; k < packet.count; ++k) {
+        if (!packet.hits.valid[k]) continue;
+        const SurfacePoint sp = laneSurface(packet.surface, k);
+        const auto node = static_cast<std::size_t>(packet.node[k]);
+        const ReshadeRequest& request = s.reshade[node];
+        const Material& material = scene_.objects[static_cast<std::size_t>(packet.objectId[k])].material;
+        const auto count = static_cast<std::size_t>(shading_.shadowQueries(sp, queries.data()));
+        const Vec3 toViewer = -laneRay(packet.rays.ray, k).direction;
+        s.nodes[node].direct = request.viewIndependent +
+                               shading_.highlights(material, sp, toViewer, std::span(queries.data(), count), request.litMask);
+    }
 }
 
 void TileKernel::packetSpawnLanes(const TileScratch::HitPacket& packet, SecondaryRayLanes16& spawned,
@@ -405,8 +586,9 @@ void TileKernel::packetSpawnLanes(const TileScratch::HitPacket& packet, Secondar
 void TileKernel::packetEmit(TileScratch& s, const TileScratch::HitPacket& packet, SecondaryRayLanes16& spawned,
                             CacheWorker* cache) const {
     if (!spawned.any) return;
-    // Hit by hit, the reflected ray before the refracted one, as the
-    // general path spawns them.
+    // Hit by hit, the reflected ray before the refracted one: nodes are
+    // gathered last to first, so the refracted colour is added first, as
+    // Whitted's sum has it.
     for (int k = 0; k < packet.count; ++k) {
         if (!spawned.reflects[k] && !spawned.refracts[k]) continue;
         const int objectId = packet.objectId[k];

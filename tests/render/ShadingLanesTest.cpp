@@ -1,0 +1,229 @@
+// The tile kernel's direct light and secondary rays in lanes against the
+// scalar rules they implement, bit for bit: LocalShading::directLight, and
+// Whitted's spawn written out below as the specification (mirror
+// reflection, Snell refraction, total internal reflection adding the
+// transmitted share to the reflected one, the minimum-weight rule, origins
+// lifted off the surface, the ray cone carried on).
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <optional>
+#include <random>
+#include <vector>
+
+#include "core/Optics.h"
+#include "render/HitLanes.h"
+#include "render/LocalShading.h"
+#include "render/RayCone.h"
+
+using namespace raycache;
+
+namespace {
+
+std::uint32_t floatBits(float f) { return std::bit_cast<std::uint32_t>(f); }
+
+Vec3 randomDirection(std::mt19937& rng) {
+    std::normal_distribution<float> g;
+    return normalize(Vec3{g(rng), g(rng), g(rng)});
+}
+
+// Sixteen surfaces facing the rays that hit them, some from inside.
+struct LaneHits {
+    SurfaceLanes16 lanes{};
+    RayLanes16 rays{};
+    SurfacePoint points[16];
+    Ray scalarRays[16];
+};
+
+LaneHits randomLaneHits(std::mt19937& rng) {
+    std::uniform_real_distribution<float> coord(-50.0f, 50.0f), near(-0.9f, 0.9f), unit(0.0f, 1.0f);
+    LaneHits h;
+    for (int k = 0; k < 16; ++k) {
+        SurfacePoint& sp = h.points[k];
+        sp.position = Vec3{coord(rng), coord(rng), coord(rng)} * (k % 4 == 0 ? 0.01f : 1.0f);
+        sp.geometricNormal = randomDirection(rng);
+        sp.normal = normalize(sp.geometricNormal + Vec3{near(rng), near(rng), near(rng)} * 0.3f);
+        sp.frontFace = k % 3 != 0;
+        sp.u = unit(rng), sp.v = unit(rng);
+        // A ray arriving against the geometric normal, as surfaces are turned.
+        Vec3 d = randomDirection(rng);
+        if (dot(d, sp.geometricNormal) > 0.0f) d = -d;
+        const float t = 0.5f + 20.0f * unit(rng);
+        h.scalarRays[k] = Ray{sp.position - d * t, d};
+        setLaneRay(h.rays, k, h.scalarRays[k]);
+        h.rays.tFar[k] = t;
+        SurfaceLanes16& s = h.lanes;
+        s.positionX[k] = sp.position.x, s.positionY[k] = sp.position.y, s.positionZ[k] = sp.position.z;
+        s.normalX[k] = sp.normal.x, s.normalY[k] = sp.normal.y, s.normalZ[k] = sp.normal.z;
+        s.geometricX[k] = sp.geometricNormal.x, s.geometricY[k] = sp.geometricNormal.y;
+        s.geometricZ[k] = sp.geometricNormal.z;
+        s.u[k] = sp.u, s.v[k] = sp.v;
+        s.albedoR[k] = unit(rng), s.albedoG[k] = unit(rng), s.albedoB[k] = unit(rng);
+        s.frontFace[k] = sp.frontFace ? 1 : 0;
+    }
+    return h;
+}
+
+// The rays one hit spawns (the specification secondaryRayLanes16 implements).
+struct SpawnRuleRays {
+    std::optional<Ray> reflected, refracted;
+    float reflectWeight = 0.0f;
+    RayCone cone;
+};
+
+SpawnRuleRays spawnRule(const Material& material, float curvature, float minWeight, const SurfacePoint& sp,
+                  const Ray& ray, float t, float pathWeight, const RayCone& cone) {
+    SpawnRuleRays out;
+    const float offset = surfaceOffset(sp.position);
+    out.cone = cone.bounced(t, curvature);
+    out.reflectWeight = material.reflectivity;
+    if (material.refracts()) {
+        // Entering: air -> material; leaving: material -> air.
+        const float eta = sp.frontFace ? 1.0f / material.ior : material.ior;
+        if (const auto direction = refract(ray.direction, sp.normal, eta)) {
+            if (pathWeight * material.transmissivity >= minWeight)
+                out.refracted = Ray{sp.position - sp.geometricNormal * offset, normalize(*direction)};
+        } else {
+            out.reflectWeight += material.transmissivity;  // total internal reflection
+        }
+    }
+    if (out.reflectWeight > 0.0f && pathWeight * out.reflectWeight >= minWeight)
+        out.reflected = Ray{sp.position + sp.geometricNormal * offset, normalize(reflect(ray.direction, sp.normal))};
+    return out;
+}
+
+void expectSameRay(const float* x, const float* y, const float* z, const float* ox, const float* oy, const float* oz,
+                   int k, const Ray& expected, const char* what) {
+    EXPECT_EQ(floatBits(x[k]), floatBits(expected.direction.x)) << what << " lane " << k;
+    EXPECT_EQ(floatBits(y[k]), floatBits(expected.direction.y)) << what << " lane " << k;
+    EXPECT_EQ(floatBits(z[k]), floatBits(expected.direction.z)) << what << " lane " << k;
+    EXPECT_EQ(floatBits(ox[k]), floatBits(expected.origin.x)) << what << " lane " << k;
+    EXPECT_EQ(floatBits(oy[k]), floatBits(expected.origin.y)) << what << " lane " << k;
+    EXPECT_EQ(floatBits(oz[k]), floatBits(expected.origin.z)) << what << " lane " << k;
+}
+
+}  // namespace
+
+TEST(ShadingLanes, DirectLightEqualsLocalShading) {
+    Scene scene;
+    Light point;
+    point.position = {3.0f, 9.0f, -2.0f};
+    Light directional;
+    directional.type = LightType::Directional;
+    directional.direction = normalize(Vec3{0.3f, -1.0f, 0.2f});
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.position = {-4.0f, 6.0f, 1.0f};
+    spot.direction = normalize(Vec3{0.5f, -1.0f, 0.0f});
+    spot.coneAngleDeg = 40.0f;
+    spot.falloffAngleDeg = 15.0f;
+    scene.lights = {point, directional, spot};
+    const LocalShading shading(scene);
+    std::mt19937 rng(17);
+    std::uniform_int_distribution<int> coin(0, 1);
+    int lit = 0;
+    for (int round = 0; round < 1500; ++round) {
+        Material material;
+        material.diffuse = Rgb{0.7f, 0.4f, 0.2f};
+        material.ambient = Rgb{0.05f, 0.1f, 0.02f};
+        material.specular = Rgb{0.3f, 0.5f, 0.9f};
+        material.shininess = round % 3 == 0 ? 7.5f : static_cast<float>(1 + round % 64);  // whole and not
+        const LaneHits h = randomLaneHits(rng);
+        alignas(64) int selected[16];
+        for (int k = 0; k < 16; ++k) selected[k] = k % 5 == 4 ? 0 : -1;
+        std::vector<LightLanes16> seen(scene.lights.size());
+        for (std::size_t l = 0; l < scene.lights.size(); ++l) {
+            RayLanes16 rays;
+            PacketLanes traced;
+            shadowRayLanes16(scene.lights[l], shading.spotCones()[l], h.lanes, selected, rays, traced, seen[l]);
+            for (int k = 0; k < 16; ++k) {
+                seen[l].traced[k] = traced.valid[k] ? 1 : 0;
+                seen[l].lit[k] = traced.valid[k] && coin(rng) ? 1 : 0;  // some blocked
+            }
+        }
+        alignas(64) float r[16], g[16], b[16];
+        for (int k = 0; k < 16; ++k) r[k] = g[k] = b[k] = -1.0f;
+        directLightLanes16(material, scene.lights, seen.data(), h.lanes, h.rays, selected, r, g, b);
+        for (int k = 0; k < 16; ++k) {
+            if (!selected[k]) {
+                EXPECT_EQ(r[k], -1.0f) << "a lane left out is written, lane " << k;
+                continue;
+            }
+            ShadowQuery queries[kMaxLights];
+            unsigned char occluded[kMaxLights];
+            const int n = shading.shadowQueries(h.points[k], queries);
+            for (int q = 0; q < n; ++q) {
+                occluded[q] = seen[static_cast<std::size_t>(queries[q].lightIndex)].lit[k] ? 0 : 1;
+                lit += occluded[q] ? 0 : 1;
+            }
+            const Rgb albedo{h.lanes.albedoR[k], h.lanes.albedoG[k], h.lanes.albedoB[k]};
+            const Rgb expected = shading.directLight(material, albedo, h.points[k], -h.scalarRays[k].direction,
+                                                     std::span(queries, static_cast<std::size_t>(n)),
+                                                     std::span(occluded, static_cast<std::size_t>(n)));
+            EXPECT_EQ(floatBits(r[k]), floatBits(expected.r)) << "lane " << k;
+            EXPECT_EQ(floatBits(g[k]), floatBits(expected.g)) << "lane " << k;
+            EXPECT_EQ(floatBits(b[k]), floatBits(expected.b)) << "lane " << k;
+        }
+        if (HasFailure()) return;
+    }
+    EXPECT_GT(lit, 1500 * 4);  // lights do reach surfaces: not a vacuous comparison
+}
+
+TEST(ShadingLanes, SecondaryRaysEqualWhittedsSpawn) {
+    std::mt19937 rng(23);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    int reflected = 0, refracted = 0, totalInternal = 0, belowMinWeight = 0;
+    for (int round = 0; round < 3000; ++round) {
+        Material material;
+        material.reflectivity = round % 7 == 0 ? 0.0f : unit(rng);
+        material.transmissivity = round % 2 == 0 ? unit(rng) : 0.0f;
+        material.ior = 1.0f + unit(rng);
+        const float curvature = round % 3 == 0 ? 0.0f : 1.0f / (0.1f + 5.0f * unit(rng));
+        const float minWeight = round % 4 == 0 ? 0.3f : 0.001f;
+        const LaneHits h = randomLaneHits(rng);
+        alignas(64) float pathWeight[16], coneWidth[16], coneSpread[16];
+        alignas(64) int selected[16];
+        for (int k = 0; k < 16; ++k) {
+            pathWeight[k] = unit(rng);
+            coneWidth[k] = unit(rng) * 0.01f;
+            coneSpread[k] = unit(rng) * 0.002f;
+            selected[k] = k % 6 == 5 ? 0 : -1;
+        }
+        SecondaryRayLanes16 out{};
+        secondaryRayLanes16(material, curvature, minWeight, h.lanes, h.rays, pathWeight, coneWidth, coneSpread,
+                            selected, out);
+        for (int k = 0; k < 16; ++k) {
+            if (!selected[k]) {
+                EXPECT_EQ(out.reflects[k], 0) << "a lane left out spawns, lane " << k;
+                EXPECT_EQ(out.refracts[k], 0) << "a lane left out spawns, lane " << k;
+                continue;
+            }
+            const SpawnRuleRays expected = spawnRule(material, curvature, minWeight, h.points[k], h.scalarRays[k],
+                                               h.rays.tFar[k], pathWeight[k], {coneWidth[k], coneSpread[k]});
+            EXPECT_EQ(floatBits(out.coneWidth[k]), floatBits(expected.cone.width)) << "lane " << k;
+            EXPECT_EQ(floatBits(out.coneSpread[k]), floatBits(expected.cone.spread)) << "lane " << k;
+            ASSERT_EQ(out.reflects[k] != 0, expected.reflected.has_value()) << "round " << round << " lane " << k;
+            ASSERT_EQ(out.refracts[k] != 0, expected.refracted.has_value()) << "round " << round << " lane " << k;
+            if (expected.reflected) {
+                ++reflected;
+                EXPECT_EQ(floatBits(out.reflectWeight[k]), floatBits(expected.reflectWeight)) << "lane " << k;
+                expectSameRay(out.reflectedX, out.reflectedY, out.reflectedZ, out.aboveX, out.aboveY, out.aboveZ, k,
+                              *expected.reflected, "reflected");
+            }
+            if (expected.refracted) {
+                ++refracted;
+                expectSameRay(out.refractedX, out.refractedY, out.refractedZ, out.belowX, out.belowY, out.belowZ, k,
+                              *expected.refracted, "refracted");
+            }
+            if (material.refracts() && expected.reflectWeight > material.reflectivity) ++totalInternal;
+            if (material.refracts() && !expected.refracted && expected.reflectWeight == material.reflectivity)
+                ++belowMinWeight;
+        }
+        if (HasFailure()) return;
+    }
+    // Every branch of the rule was taken.
+    EXPECT_GT(reflected, 1000);
+    EXPECT_GT(refracted, 1000);
+    EXPECT_GT(totalInternal, 100);
+    EXPECT_GT(belowMinWeight, 100);
+}
