@@ -519,6 +519,22 @@ private:
     // within the footprint and seeing its point within it (CoarseLevels;
     // counted as rejected when a valid coarse texel failed the point test).
     CctAnswer cctAnswer(const Entry& e, int texel, const Query& q, CacheWorker::Counters& counters) const;
+    // endFrame's steps. orderBatches: every worker's batches of stores in
+    // key order, into mergeOrder_. mergeStores: applies them, in partitions
+    // (see endFrame) through applyStores, counting stores made and skipped
+    // into `stats`. recordFrame: the cube's part of the frame's statistics.
+    // judgeFrame: its policy's judgement of the frame, and the face size a
+    // view-sized cube asks for next (resizedTo), which resizeViewSizedCubes
+    // applies. clearQueues: empties a worker's queues for the next frame.
+    void orderBatches(std::span<CacheWorker> workers);
+    void mergeStores(std::span<CacheWorker> workers, const PartitionRunner& runPartitions, int partitions,
+                     FrameCacheStats& stats);
+    void applyStores(std::span<CacheWorker> workers, std::size_t part, std::size_t parts, bool skipping,
+                     FrameCacheStats& stats);
+    static void recordFrame(Entry& e, const CacheWorker::Counters& all, ObjectCacheStats& s);
+    void judgeFrame(Entry& e, const CacheWorker::Counters& all, ObjectCacheStats& s);
+    void resizeViewSizedCubes(const FrameCacheStats& stats, const PartitionRunner& runPartitions);
+    static void clearQueues(CacheWorker& w);
     // Resamples view-sized cube `e` to `size` texels per face side, with its
     // dependency blocks (each new block the union of the old blocks it
     // overlaps) and oracle records; coarser levels start again empty.
