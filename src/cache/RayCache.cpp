@@ -10,17 +10,12 @@
 #include <variant>
 
 #include "core/Errors.h"
+#include "core/TextFormat.h"
 #include "scene/ObjectBounds.h"
 
 namespace raycache {
 
 namespace {
-
-std::string formatNumber(float v) {
-    std::ostringstream out;
-    out << v;
-    return out.str();
-}
 
 }  // namespace
 
@@ -36,20 +31,20 @@ CdctParameters RayCache::cdctParametersFor(const SceneObject& object, const RayC
 void RayCache::validateCdct(const CdctParameters& p, const std::string& what) {
     const auto positive = [&](float v, const char* name) {
         if (!(std::isfinite(v) && v > 0.0f))
-            throw InputError(what + ": cdct " + name + " must be a finite number > 0 (got " + formatNumber(v) + ")");
+            throw InputError(what + ": cdct " + name + " must be a finite number > 0 (got " + formatGeneral(v) + ")");
     };
     positive(p.step, "step");
     positive(p.epsilon, "epsilon");
     positive(p.maxDepth, "maxDepth");
     positive(p.tolerance, "tolerance");
     if (p.tolerance > 1e6f)
-        throw InputError(what + ": cdct tolerance must be at most 1e6 texels (got " + formatNumber(p.tolerance) + ")");
+        throw InputError(what + ": cdct tolerance must be at most 1e6 texels (got " + formatGeneral(p.tolerance) + ")");
     if (!(p.epsilon < p.step))
-        throw InputError(what + ": cdct epsilon (" + formatNumber(p.epsilon) + ") must be smaller than step (" +
-                         formatNumber(p.step) + ")");
+        throw InputError(what + ": cdct epsilon (" + formatGeneral(p.epsilon) + ") must be smaller than step (" +
+                         formatGeneral(p.step) + ")");
     if (std::ceil(2.0 * p.maxDepth / p.step) > kMaxCdctLinearSteps)
-        throw InputError(what + ": cdct step " + formatNumber(p.step) + " is too small for maxDepth " +
-                         formatNumber(p.maxDepth) + " (at most 1e6 search steps: step >= maxDepth / 500000)");
+        throw InputError(what + ": cdct step " + formatGeneral(p.step) + " is too small for maxDepth " +
+                         formatGeneral(p.maxDepth) + " (at most 1e6 search steps: step >= maxDepth / 500000)");
 }
 
 Vec3 RayCache::boundingHalfSize(const SceneObject& object) {
@@ -99,7 +94,7 @@ CubeBudgetPlan RayCache::validate(const Scene& scene, const RayCacheSettings& se
     if (!(std::isfinite(settings.levelErrorBound) && settings.levelErrorBound > 0.0f &&
           settings.levelErrorBound <= 1000.0f))
         throw InputError("cache level error bound must be a finite number in (0, 1000] (got " +
-                         formatNumber(settings.levelErrorBound) + ")");
+                         formatGeneral(settings.levelErrorBound) + ")");
     if (settings.prefillTexelsPerFrame < 0)
         throw InputError("pre-fill texels per frame must be 0 (whole cubes) or more (got " +
                          std::to_string(settings.prefillTexelsPerFrame) + ")");
