@@ -19,6 +19,7 @@
 #include "core/ProcessAgreement.h"
 #include "render/VisibleSurfaceFill.h"
 #include "scene/CacheTechnique.h"
+#include "scene/Material.h"
 
 namespace {
 
@@ -58,8 +59,10 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
                        "Improved CDCT: trace at most this many pre-fill rays (cube texels) per frame, whole face rows, "
                        "so no frame stalls filling cubes; 0 = fill every cube whole in the frame that first asks "
                        "for it (default: 0, but half the image's pixels a frame in the viewer)");
-    command.add_option("--cache-res", job.cacheResolution, "Caching-cube face resolution, 16..2048 "
-                                                           "(default: each material's own, 512 in built-in scenes)");
+    command.add_option("--cache-res", job.cacheResolution,
+                       "Caching-cube face resolution, " + std::to_string(raycache::CacheSettings::kMinFaceResolution) +
+                           ".." + std::to_string(raycache::CacheSettings::kMaxFaceResolution) +
+                           " (default: each material's own, 512 in built-in scenes)");
     command.add_option("--cache-levels", job.cacheLevels,
                        "CCT cubes' resolution levels, 1..8: each level halves the last's face resolution; a lookup "
                        "takes the finest valid texel no wider than its pixel's footprint allows (docs/caching.md)")

@@ -17,6 +17,16 @@ namespace raycache {
 
 namespace {
 
+// "between 16 and 2048": the face resolutions a cube may be asked for.
+std::string faceResolutionRange() {
+    return "between " + std::to_string(CacheSettings::kMinFaceResolution) + " and " +
+           std::to_string(CacheSettings::kMaxFaceResolution);
+}
+
+bool allowedFaceResolution(int resolution) {
+    return resolution >= CacheSettings::kMinFaceResolution && resolution <= CacheSettings::kMaxFaceResolution;
+}
+
 }  // namespace
 
 CdctParameters RayCache::cdctParametersFor(const SceneObject& object, const RayCacheSettings& settings) {
@@ -83,11 +93,9 @@ CacheTechnique RayCache::techniqueFor(const SceneObject& object, const RayCacheS
 }
 
 CubeBudgetPlan RayCache::validate(const Scene& scene, const RayCacheSettings& settings) {
-    if (settings.resolutionOverride &&
-        (*settings.resolutionOverride < kMinResolution || *settings.resolutionOverride > kMaxResolution))
-        throw InputError("cache resolution must be between " + std::to_string(kMinResolution) + " and " +
-                         std::to_string(kMaxResolution) + " (got " + std::to_string(*settings.resolutionOverride) +
-                         ")");
+    if (settings.resolutionOverride && !allowedFaceResolution(*settings.resolutionOverride))
+        throw InputError("cache resolution must be " + faceResolutionRange() + " (got " +
+                         std::to_string(*settings.resolutionOverride) + ")");
     if (settings.cubeLevels < 1 || settings.cubeLevels > kMaxCubeLevels)
         throw InputError("cache levels must be between 1 and " + std::to_string(kMaxCubeLevels) + " (got " +
                          std::to_string(settings.cubeLevels) + ")");
@@ -103,8 +111,8 @@ CubeBudgetPlan RayCache::validate(const Scene& scene, const RayCacheSettings& se
         if (technique == CacheTechnique::Cdct || technique == CacheTechnique::CdctParity)
             validateCdct(cdctParametersFor(object, settings), "object '" + object.name + "'");
         const int resolution = settings.resolutionOverride.value_or(object.material.cache.faceResolution);
-        if (technique != CacheTechnique::None && (resolution < kMinResolution || resolution > kMaxResolution))
-            throw InputError("object '" + object.name + "': cache resolution must be between 16 and 2048");
+        if (technique != CacheTechnique::None && !allowedFaceResolution(resolution))
+            throw InputError("object '" + object.name + "': cache resolution must be " + faceResolutionRange());
     }
     return planBudget(scene, settings);
 }

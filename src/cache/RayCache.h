@@ -128,9 +128,7 @@ class RayCache {
 public:
     // Runs body(part) for every part in [0, count), possibly in parallel.
     using PartitionRunner = std::function<void(int count, const std::function<void(int part)>& body)>;
-    static constexpr int kMinResolution = 16;
-    static constexpr int kMaxResolution = 2048;
-    // The memory budget may lower a cube below kMinResolution, down to this
+    // The memory budget may lower a cube below CacheSettings::kMinFaceResolution, down to this
     // (a scene of 100 000 caching spheres fits 256 MiB only so).
     static constexpr int kMinBudgetResolution = 4;
     // CDCT: the linear search takes at most ceil(2 * maxDepth / step) steps;
@@ -140,7 +138,7 @@ public:
     // One cube per object whose (possibly overridden) technique is not None
     // and that reflects or refracts; CDCT cubes get a box bounding the object
     // around its origin. Throws InputError for a resolution outside
-    // [16, 2048] or invalid CDCT parameters.
+    // [CacheSettings::kMinFaceResolution, kMaxFaceResolution] or invalid CDCT parameters.
     RayCache(const Scene& scene, const RayCacheSettings& settings);
 
     // The technique `object` is cached with under `settings`: None for objects

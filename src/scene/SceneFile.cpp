@@ -48,8 +48,6 @@ constexpr std::size_t kMaxKeyframes = 10000;
 constexpr std::size_t kMaxRotations = 64;
 constexpr int kMaxFrames = 1000000;
 constexpr int kMaxFramesPerSegment = 100000;
-constexpr int kMinCacheResolution = 16;
-constexpr int kMaxCacheResolution = 2048;
 // Meshes and images live in their own files, so a scene file is small; a huge
 // one is the wrong file.
 constexpr std::uintmax_t kMaxSceneFileBytes = 64u << 20;
@@ -845,7 +843,7 @@ private:
         expectObject(n, {"technique", "resolution", "step", "epsilon", "maxDepth", "tolerance"});
         CacheSettings c;
         if (const Node v = child(n, "technique")) c.technique = choice(v, "cache technique", kCacheTechniqueChoices);
-        if (const Node v = child(n, "resolution")) c.faceResolution = integer(v, kMinCacheResolution, kMaxCacheResolution);
+        if (const Node v = child(n, "resolution")) c.faceResolution = integer(v, CacheSettings::kMinFaceResolution, CacheSettings::kMaxFaceResolution);
         // CDCT search parameters; RayCache::validate checks the step count.
         if (const Node v = child(n, "step")) c.cdct.step = number(v, positive());
         if (const Node v = child(n, "epsilon")) c.cdct.epsilon = number(v, positive());
