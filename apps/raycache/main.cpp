@@ -17,11 +17,63 @@
 #include "cluster/ClusterRuntime.h"
 #include "core/Errors.h"
 #include "core/ProcessAgreement.h"
+#include "core/TextFormat.h"
+#include "render/RenderCacheSettings.h"
 #include "render/VisibleSurfaceFill.h"
 #include "scene/CacheTechnique.h"
 #include "scene/Material.h"
 
 namespace {
+
+// The --rc-* options, their defaults read from RenderCacheSettings.
+void addRenderCacheOptions(CLI::App& command, raycache::RenderJobOptions& job) {
+    const raycache::RenderCacheSettings defaults;
+    const auto number = [](float value) { return raycache::formatShortest(value); };
+    // " the default" after the choice that is the default.
+    const auto theDefault = [](bool isDefault) { return isDefault ? std::string("; the default") : std::string(); };
+    command.add_option("--rc-budget", job.renderCache.budget,
+                       "Render cache: share of the pixels traced per frame, (0, 1] (default " + number(defaults.budget) +
+                           ")");
+    command.add_option("--rc-target-ms", job.renderCache.targetFrameMs,
+                       "Render cache: choose the budget each frame to hold this frame time, ms (0 = off; images "
+                       "then depend on the machine's speed; default " +
+                           number(defaults.targetFrameMs) + (defaults.targetFrameMs == 0.0f ? " = off)" : ")"));
+    command.add_option("--rc-alpha", job.renderCache.alpha,
+                       "Render cache: request map mix, (1-alpha) uniform + alpha priority, [0, 1] (default " +
+                           number(defaults.alpha) + ")");
+    command.add_option("--rc-max-age", job.renderCache.maxAge,
+                       "Render cache: frames a sample lives (default " + std::to_string(defaults.maxAge) + ")");
+    command.add_option("--rc-predict", job.renderCache.predictShare,
+                       "Render cache: share of the budget for holes the predicted next camera will see, [0, 0.9] "
+                       "(default " +
+                           number(defaults.predictShare) + ")");
+    raycache::addChoiceOption(
+        command, "--rc-reflections", job.renderCache.reflections, raycache::kReprojectedReflections,
+        raycache::reprojectedReflectionsName,
+        "Render cache: reprojected mirror/glass/glossy samples: reshade (highlights and reflections from the new eye, "
+        "through the caching cubes" +
+            theDefault(defaults.reflections == raycache::ReprojectedReflections::Reshade) + ") or reproject (as traced" +
+            theDefault(defaults.reflections == raycache::ReprojectedReflections::Reproject) + ")");
+    raycache::addChoiceOption(command, "--rc-texture", job.renderCache.textureRefetch, raycache::kTextureRefetchValues,
+                              raycache::textureRefetchName,
+                              "Render cache: reprojected textured samples: refetch (the albedo where the pixel's "
+                              "centre meets the sample's primitive" +
+                                  theDefault(defaults.textureRefetch) + ") or reproject (as traced" +
+                                  theDefault(!defaults.textureRefetch) + ")");
+    command.add_option("--rc-seed", job.renderCache.seed,
+                       "Render cache: seed of the request map's random choices (default " +
+                           std::to_string(defaults.seed) + ")");
+    command.add_option("--rc-margin", job.renderCache.margin,
+                       "Render cache: samples kept past each image edge, share of the side, [0, 0.5] (default " +
+                           number(defaults.margin) + ")");
+    command.add_option("--rc-depth-cull", job.renderCache.depthCullThreshold,
+                       "Render cache: depth culling hides a sample whose neighbours are nearer by this share of its "
+                       "depth, [0, 1] (0 = off; default " +
+                           number(defaults.depthCullThreshold) + ")");
+    command.add_option("--rc-tile", job.renderCache.requestTileSize,
+                       "Render cache: side of the hole-detection and request-map tiles, pixels, 1..256 (default " +
+                           std::to_string(defaults.requestTileSize) + ")");
+}
 
 // The options every rendering command shares: what to render and how.
 void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
@@ -106,32 +158,7 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
         "embree: primary and shadow rays through Embree's BVH; grids: a perspective grid for "
         "primary rays and a light-space grid per light for their shadow rays, rebuilt every frame "
         "(docs/grids.md); default: the scene file's, else embree");
-    command.add_option("--rc-budget", job.renderCache.budget, "Render cache: share of the pixels traced per frame, (0, 1] (default 0.05)");
-    command.add_option("--rc-target-ms", job.renderCache.targetFrameMs,
-                       "Render cache: choose the budget each frame to hold this frame time, ms (0 = off; images "
-                       "then depend on the machine's speed; default 0 = off)");
-    command.add_option("--rc-alpha", job.renderCache.alpha,
-                       "Render cache: request map mix, (1-alpha) uniform + alpha priority, [0, 1] (default 0.25)");
-    command.add_option("--rc-max-age", job.renderCache.maxAge, "Render cache: frames a sample lives (default 32)");
-    command.add_option("--rc-predict", job.renderCache.predictShare,
-                       "Render cache: share of the budget for holes the predicted next camera will see, [0, 0.9] (default 0.2)");
-    raycache::addChoiceOption(command, "--rc-reflections", job.renderCache.reflections,
-                              raycache::kReprojectedReflections, raycache::reprojectedReflectionsName,
-                              "Render cache: reprojected mirror/glass/glossy samples: reshade (highlights and "
-                              "reflections from the new eye, through the caching cubes; the default) or reproject "
-                              "(as traced)");
-    raycache::addChoiceOption(command, "--rc-texture", job.renderCache.textureRefetch, raycache::kTextureRefetchValues,
-                              raycache::textureRefetchName,
-                              "Render cache: reprojected textured samples: refetch (the albedo where the pixel's "
-                              "centre meets the sample's primitive; the default) or reproject (as traced)");
-    command.add_option("--rc-seed", job.renderCache.seed, "Render cache: seed of the request map's random choices (default 1)");
-    command.add_option("--rc-margin", job.renderCache.margin,
-                       "Render cache: samples kept past each image edge, share of the side, [0, 0.5] (default 0.05)");
-    command.add_option("--rc-depth-cull", job.renderCache.depthCullThreshold,
-                       "Render cache: depth culling hides a sample whose neighbours are nearer by this share of its "
-                       "depth, [0, 1] (0 = off; default 0.1)");
-    command.add_option("--rc-tile", job.renderCache.requestTileSize,
-                       "Render cache: side of the hole-detection and request-map tiles, pixels, 1..256 (default 8)");
+    addRenderCacheOptions(command, job);
     raycache::addChoiceOption(command, "--gbuffer", job.gbuffer, raycache::kGBufferSources, raycache::gbufferSourceName,
                               "Hybrid G-buffer source: auto (OpenGL if a 4.5 context can be made, else packets), "
                               "gl or packets");
