@@ -8,7 +8,7 @@
 
 #include "app/FramePathPattern.h"
 #include "app/OutputDirectory.h"
-#include "bench/BuildInfo.h"
+#include "session/BuildInfo.h"
 #include "bench/ResultsJson.h"
 #include "core/AtomicFile.h"
 #include "core/Errors.h"
