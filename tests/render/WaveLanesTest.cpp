@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "ImageCompare.h"
 #include "CiRequirement.h"
 #include "render/FrameRenderer.h"
 #include "scene/BuiltinScenes.h"
@@ -52,18 +53,13 @@ Frames renderFrames(const Scene& scene, bool lanes, CacheTechnique technique, in
     return out;
 }
 
-bool sameBits(const Image& a, const Image& b) {
-    return a.width() == b.width() && a.height() == b.height() &&
-           std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size() * sizeof(Rgb)) == 0;
-}
-
 void expectLanesEqualGeneralPath(const Scene& scene, const std::string& name, CacheTechnique technique, int frames,
                                  PipelineKind pipeline = PipelineKind::Ray, bool idealCache = false) {
     const Frames lanes = renderFrames(scene, true, technique, frames, pipeline, idealCache);
     const Frames general = renderFrames(scene, false, technique, frames, pipeline, idealCache);
     for (int f = 0; f < frames; ++f) {
         const auto i = static_cast<std::size_t>(f);
-        EXPECT_TRUE(sameBits(lanes.images[i], general.images[i])) << name << " frame " << f;
+        EXPECT_TRUE(identicalImages(lanes.images[i], general.images[i])) << name << " frame " << f;
         const RayCounts& a = lanes.stats[i].rays;
         const RayCounts& b = general.stats[i].rays;
         EXPECT_EQ(a.primary, b.primary) << name;
