@@ -12,23 +12,23 @@
 #include "app/RenderCommand.h"
 #include "app/ScenesCommand.h"
 #include "app/ViewCommand.h"
-#include "session/BuildInfo.h"
-#include "core/ProgressBar.h"
 #include "cluster/ClusterRuntime.h"
 #include "core/Errors.h"
 #include "core/ProcessAgreement.h"
+#include "core/ProgressBar.h"
 #include "core/TextFormat.h"
 #include "render/RenderCacheSettings.h"
 #include "render/VisibleSurfaceFill.h"
 #include "scene/CacheTechnique.h"
 #include "scene/Material.h"
+#include "session/BuildInfo.h"
 
 namespace {
 
 // The --rc-* options, their defaults read from RenderCacheSettings.
 void addRenderCacheOptions(CLI::App& command, raycache::RenderJobOptions& job) {
     const raycache::RenderCacheSettings defaults;
-    const auto number = [](float value) { return raycache::formatShortest(value); };
+    const auto number = [](float value) { return raycache::formatShortestFloat(value); };
     // " the default" after the choice that is the default.
     const auto theDefault = [](bool isDefault) { return isDefault ? std::string("; the default") : std::string(); };
     command.add_option("--rc-budget", job.renderCache.budget,
