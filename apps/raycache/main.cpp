@@ -12,15 +12,68 @@
 #include "app/RenderCommand.h"
 #include "app/ScenesCommand.h"
 #include "app/ViewCommand.h"
-#include "bench/BuildInfo.h"
-#include "bench/ProgressBar.h"
 #include "cluster/ClusterRuntime.h"
 #include "core/Errors.h"
 #include "core/ProcessAgreement.h"
+#include "core/ProgressBar.h"
+#include "core/TextFormat.h"
+#include "render/RenderCacheSettings.h"
 #include "render/VisibleSurfaceFill.h"
 #include "scene/CacheTechnique.h"
+#include "scene/Material.h"
+#include "session/BuildInfo.h"
 
 namespace {
+
+// The --rc-* options, their defaults read from RenderCacheSettings.
+void addRenderCacheOptions(CLI::App& command, raycache::RenderJobOptions& job) {
+    const raycache::RenderCacheSettings defaults;
+    const auto number = [](float value) { return raycache::formatShortestFloat(value); };
+    // " the default" after the choice that is the default.
+    const auto theDefault = [](bool isDefault) { return isDefault ? std::string("; the default") : std::string(); };
+    command.add_option("--rc-budget", job.renderCache.budget,
+                       "Render cache: share of the pixels traced per frame, (0, 1] (default " + number(defaults.budget) +
+                           ")");
+    command.add_option("--rc-target-ms", job.renderCache.targetFrameMs,
+                       "Render cache: choose the budget each frame to hold this frame time, ms (0 = off; images "
+                       "then depend on the machine's speed; default " +
+                           number(defaults.targetFrameMs) + (defaults.targetFrameMs == 0.0f ? " = off)" : ")"));
+    command.add_option("--rc-alpha", job.renderCache.alpha,
+                       "Render cache: request map mix, (1-alpha) uniform + alpha priority, [0, 1] (default " +
+                           number(defaults.alpha) + ")");
+    command.add_option("--rc-max-age", job.renderCache.maxAge,
+                       "Render cache: frames a sample lives (default " + std::to_string(defaults.maxAge) + ")");
+    command.add_option("--rc-predict", job.renderCache.predictShare,
+                       "Render cache: share of the budget for holes the predicted next camera will see, [0, 0.9] "
+                       "(default " +
+                           number(defaults.predictShare) + ")");
+    raycache::addChoiceOption(
+        command, "--rc-reflections", job.renderCache.reflections, raycache::kReprojectedReflections,
+        raycache::reprojectedReflectionsName,
+        "Render cache: reprojected mirror/glass/glossy samples: reshade (highlights and reflections from the new eye, "
+        "through the caching cubes" +
+            theDefault(defaults.reflections == raycache::ReprojectedReflections::Reshade) + ") or reproject (as traced" +
+            theDefault(defaults.reflections == raycache::ReprojectedReflections::Reproject) + ")");
+    raycache::addChoiceOption(command, "--rc-texture", job.renderCache.textureRefetch, raycache::kTextureRefetchValues,
+                              raycache::textureRefetchName,
+                              "Render cache: reprojected textured samples: refetch (the albedo where the pixel's "
+                              "centre meets the sample's primitive" +
+                                  theDefault(defaults.textureRefetch) + ") or reproject (as traced" +
+                                  theDefault(!defaults.textureRefetch) + ")");
+    command.add_option("--rc-seed", job.renderCache.seed,
+                       "Render cache: seed of the request map's random choices (default " +
+                           std::to_string(defaults.seed) + ")");
+    command.add_option("--rc-margin", job.renderCache.margin,
+                       "Render cache: samples kept past each image edge, share of the side, [0, 0.5] (default " +
+                           number(defaults.margin) + ")");
+    command.add_option("--rc-depth-cull", job.renderCache.depthCullThreshold,
+                       "Render cache: depth culling hides a sample whose neighbours are nearer by this share of its "
+                       "depth, [0, 1] (0 = off; default " +
+                           number(defaults.depthCullThreshold) + ")");
+    command.add_option("--rc-tile", job.renderCache.requestTileSize,
+                       "Render cache: side of the hole-detection and request-map tiles, pixels, 1..256 (default " +
+                           std::to_string(defaults.requestTileSize) + ")");
+}
 
 // The options every rendering command shares: what to render and how.
 void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
@@ -58,8 +111,10 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
                        "Improved CDCT: trace at most this many pre-fill rays (cube texels) per frame, whole face rows, "
                        "so no frame stalls filling cubes; 0 = fill every cube whole in the frame that first asks "
                        "for it (default: 0, but half the image's pixels a frame in the viewer)");
-    command.add_option("--cache-res", job.cacheResolution, "Caching-cube face resolution, 16..2048 "
-                                                           "(default: each material's own, 512 in built-in scenes)");
+    command.add_option("--cache-res", job.cacheResolution,
+                       "Caching-cube face resolution, " + std::to_string(raycache::CacheSettings::kMinFaceResolution) +
+                           ".." + std::to_string(raycache::CacheSettings::kMaxFaceResolution) +
+                           " (default: each material's own, 512 in built-in scenes)");
     command.add_option("--cache-levels", job.cacheLevels,
                        "CCT cubes' resolution levels, 1..8: each level halves the last's face resolution; a lookup "
                        "takes the finest valid texel no wider than its pixel's footprint allows (docs/caching.md)")
@@ -103,32 +158,7 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
         "embree: primary and shadow rays through Embree's BVH; grids: a perspective grid for "
         "primary rays and a light-space grid per light for their shadow rays, rebuilt every frame "
         "(docs/grids.md); default: the scene file's, else embree");
-    command.add_option("--rc-budget", job.renderCache.budget, "Render cache: share of the pixels traced per frame, (0, 1] (default 0.05)");
-    command.add_option("--rc-target-ms", job.renderCache.targetFrameMs,
-                       "Render cache: choose the budget each frame to hold this frame time, ms (0 = off; images "
-                       "then depend on the machine's speed; default 0 = off)");
-    command.add_option("--rc-alpha", job.renderCache.alpha,
-                       "Render cache: request map mix, (1-alpha) uniform + alpha priority, [0, 1] (default 0.25)");
-    command.add_option("--rc-max-age", job.renderCache.maxAge, "Render cache: frames a sample lives (default 32)");
-    command.add_option("--rc-predict", job.renderCache.predictShare,
-                       "Render cache: share of the budget for holes the predicted next camera will see, [0, 0.9] (default 0.2)");
-    raycache::addChoiceOption(command, "--rc-reflections", job.renderCache.reflections,
-                              raycache::kReprojectedReflections, raycache::reprojectedReflectionsName,
-                              "Render cache: reprojected mirror/glass/glossy samples: reshade (highlights and "
-                              "reflections from the new eye, through the caching cubes; the default) or reproject "
-                              "(as traced)");
-    raycache::addChoiceOption(command, "--rc-texture", job.renderCache.textureRefetch, raycache::kTextureRefetchValues,
-                              raycache::textureRefetchName,
-                              "Render cache: reprojected textured samples: refetch (the albedo where the pixel's "
-                              "centre meets the sample's primitive; the default) or reproject (as traced)");
-    command.add_option("--rc-seed", job.renderCache.seed, "Render cache: seed of the request map's random choices (default 1)");
-    command.add_option("--rc-margin", job.renderCache.margin,
-                       "Render cache: samples kept past each image edge, share of the side, [0, 0.5] (default 0.05)");
-    command.add_option("--rc-depth-cull", job.renderCache.depthCullThreshold,
-                       "Render cache: depth culling hides a sample whose neighbours are nearer by this share of its "
-                       "depth, [0, 1] (0 = off; default 0.1)");
-    command.add_option("--rc-tile", job.renderCache.requestTileSize,
-                       "Render cache: side of the hole-detection and request-map tiles, pixels, 1..256 (default 8)");
+    addRenderCacheOptions(command, job);
     raycache::addChoiceOption(command, "--gbuffer", job.gbuffer, raycache::kGBufferSources, raycache::gbufferSourceName,
                               "Hybrid G-buffer source: auto (OpenGL if a 4.5 context can be made, else packets), "
                               "gl or packets");
@@ -139,6 +169,20 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
         "every thread take the next tile from a counter on process 0 when it is free. Images do "
         "not depend on it (docs/cluster.md)");
 }
+
+// Every command's options, and the subcommand that fills them (to ask which was parsed).
+struct Commands {
+    raycache::RenderCommandOptions render;
+    CLI::App* renderCmd = nullptr;
+    raycache::CacheViewCommandOptions cacheView;
+    CLI::App* cacheViewCmd = nullptr;
+    raycache::ViewCommandOptions view;
+    CLI::App* viewCmd = nullptr;
+    raycache::DiffCommandOptions diff;
+    CLI::App* diffCmd = nullptr;
+    raycache::BenchCommandOptions bench;
+    CLI::App* benchCmd = nullptr;
+};
 
 // main() proper, once the process knows its place in an MPI job (if any).
 int run(int argc, char** argv, const raycache::ClusterRuntime& cluster);
@@ -162,50 +206,36 @@ int main(int argc, char** argv) {
 
 namespace {
 
-int run(int argc, char** argv, const raycache::ClusterRuntime& cluster) {
-    const raycache::ProcessGroup& group = cluster.group();
-    // In an MPI job only process 0 speaks; the others' output goes nowhere
-    // (a stream without a buffer drops what it is given).
-    std::ostream discarded(nullptr);
-    std::ostream& out = group.isRoot() ? std::cout : discarded;
-    std::ostream& err = group.isRoot() ? std::cerr : discarded;
-
-    CLI::App app{"raycache: real-time Whitted ray tracing with per-object ray caching"};
-    app.require_subcommand(1);
-    app.set_version_flag(
-        "--version", [] { return raycache::formatBuildInfo(raycache::currentBuildInfo()); },
-        "Print the version, git commit, build type and compiler, the Embree, oneTBB, Assimp and OpenEXR versions "
-        "and the lane code's instruction set, then exit");
-
-    raycache::RenderCommandOptions render;
-    CLI::App* renderCmd = app.add_subcommand(
+void addRenderCommand(CLI::App& app, Commands& c) {
+    c.renderCmd = app.add_subcommand(
         "render", "Render a scene along its camera path (under mpirun, over all its processes: docs/cluster.md)");
-    addRenderJobOptions(*renderCmd, render.job);
-    renderCmd->add_option("--out", render.out,
-                          "Image to write (.png sRGB 8-bit, .exr linear float); %04d in the name writes every frame");
-    renderCmd->add_option("--stats", render.statsPath, "Write per-frame statistics as JSON to this file");
+    addRenderJobOptions(*c.renderCmd, c.render.job);
+    c.renderCmd->add_option("--out", c.render.out,
+                            "Image to write (.png sRGB 8-bit, .exr linear float); %04d in the name writes every frame");
+    c.renderCmd->add_option("--stats", c.render.statsPath, "Write per-frame statistics as JSON to this file");
+}
 
-    raycache::CacheViewCommandOptions cacheView;
-    CLI::App* cacheViewCmd = app.add_subcommand(
+void addCacheViewCommand(CLI::App& app, Commands& c) {
+    c.cacheViewCmd = app.add_subcommand(
         "cache-view", "Render a scene's camera path with caching, then write one object's caching cube as a cross");
-    cacheViewCmd->add_option("--object", cacheView.object, "Name of the caching object whose cube to show")
+    c.cacheViewCmd->add_option("--object", c.cacheView.object, "Name of the caching object whose cube to show")
         ->required();
-    cacheViewCmd->add_option("--out", cacheView.out,
-                             "Image of the unfolded cube (.png sRGB 8-bit, .exr linear float)")
+    c.cacheViewCmd->add_option("--out", c.cacheView.out,
+                               "Image of the unfolded cube (.png sRGB 8-bit, .exr linear float)")
         ->required();
-    cacheViewCmd->add_option("--show", cacheView.show,
-                             "What to draw: color, or depth (CDCT cubes: grey near to far, blue environment, red "
-                             "invalid)")
+    c.cacheViewCmd->add_option("--show", c.cacheView.show,
+                               "What to draw: color, or depth (CDCT cubes: grey near to far, blue environment, red "
+                               "invalid)")
         ->capture_default_str();
-    addRenderJobOptions(*cacheViewCmd, cacheView.job);
+    addRenderJobOptions(*c.cacheViewCmd, c.cacheView.job);
+}
 
-    app.add_subcommand("scenes", "List the built-in scenes, one per line");
-
-    // `view`: the interactive viewer (docs/viewer.md).
-    raycache::ViewCommandOptions view;
+// `view`: the interactive viewer (docs/viewer.md).
+void addViewCommand(CLI::App& app, Commands& c) {
+    raycache::ViewCommandOptions& view = c.view;
     view.job.width = 960;
     view.job.height = 540;
-    CLI::App* viewCmd = app.add_subcommand(
+    CLI::App* viewCmd = c.viewCmd = app.add_subcommand(
         "view", "Walk through a scene in a window; with --frames, play its camera path, print timings and exit");
     viewCmd->add_option("scene-name", view.job.scene, "Built-in scene name, scene .json file or glTF 2.0 scene (.gltf, .glb); same as --scene");
     addRenderJobOptions(*viewCmd, view.job);
@@ -247,20 +277,23 @@ int run(int argc, char** argv, const raycache::ClusterRuntime& cluster) {
                         "Async Render Cache: a request map asks for what the tracer traces in this many display "
                         "frames (at least --rc-budget); 0: --rc-budget alone, leaving more of the cores to the display")
         ->capture_default_str();
+}
 
-    // raycache diff: image difference metrics and heat map.
-    raycache::DiffCommandOptions diff;
-    CLI::App* diffCmd = app.add_subcommand("diff", "Compare two images: MAE, PSNR and SSIM of the displayed images");
-    diffCmd->add_option("first", diff.first, "First image (.png, .exr, .hdr, .jpg, .bmp, .tga)")->required();
-    diffCmd->add_option("second", diff.second, "Second image, same size")->required();
-    diffCmd->add_option("--heatmap", diff.heatmap,
-                        "Write the per-pixel difference as a heat map with a color bar (.png or .exr)");
-    diffCmd->add_option("--heatmap-max", diff.heatmapMax, "Difference shown as full red, in (0, 1]")
+// raycache diff: image difference metrics and heat map.
+void addDiffCommand(CLI::App& app, Commands& c) {
+    c.diffCmd = app.add_subcommand("diff", "Compare two images: MAE, PSNR and SSIM of the displayed images");
+    c.diffCmd->add_option("first", c.diff.first, "First image (.png, .exr, .hdr, .jpg, .bmp, .tga)")->required();
+    c.diffCmd->add_option("second", c.diff.second, "Second image, same size")->required();
+    c.diffCmd->add_option("--heatmap", c.diff.heatmap,
+                          "Write the per-pixel difference as a heat map with a color bar (.png or .exr)");
+    c.diffCmd->add_option("--heatmap-max", c.diff.heatmapMax, "Difference shown as full red, in (0, 1]")
         ->capture_default_str();
+}
 
-    // raycache bench: the documents' experiments.
-    raycache::BenchCommandOptions bench;
-    CLI::App* benchCmd = app.add_subcommand(
+// raycache bench: the documents' experiments.
+void addBenchCommand(CLI::App& app, Commands& c) {
+    raycache::BenchCommandOptions& bench = c.bench;
+    CLI::App* benchCmd = c.benchCmd = app.add_subcommand(
         "bench", "Reproduce the documents' experiments: tables, plots, images and results/report.md");
     benchCmd->add_option("experiments", bench.experiments,
                          "table-5.1, table-5.2, table-5.3, fill-rate, quality, parallax, render-cache, dynamic, grids, "
@@ -277,8 +310,12 @@ int run(int argc, char** argv, const raycache::ClusterRuntime& cluster) {
         "the cache policy of `raycache render` (docs/caching.md) in dynamic and parallax; the other "
         "experiments always cache (docs/bench.md)");
     benchCmd->add_flag("--list", bench.list, "List the experiments and exit");
+}
 
-    // Every process parses the same arguments, so they all agree on the outcome.
+// Every process parses the same arguments, so they all agree on the
+// outcome. Returns the exit code when the process ends here (help,
+// version, bad arguments), else nothing.
+std::optional<int> parseArguments(CLI::App& app, int argc, char** argv, std::ostream& out, std::ostream& err) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -291,22 +328,51 @@ int run(int argc, char** argv, const raycache::ClusterRuntime& cluster) {
         err << "error: " << e.what() << " (see --help)\n";
         return 2;
     }
-    if (group.size() > 1 && !renderCmd->parsed() && !benchCmd->parsed()) {
+    return std::nullopt;
+}
+
+void runParsedCommand(Commands& c, std::ostream& out, std::ostream& err, const raycache::ProcessGroup& group) {
+    if (c.renderCmd->parsed()) raycache::runRenderCommand(c.render, out, err, group);
+    else if (c.cacheViewCmd->parsed()) raycache::runCacheViewCommand(c.cacheView, std::cout, std::cerr);
+    else if (c.viewCmd->parsed()) raycache::runViewCommand(c.view, std::cout, std::cerr);
+    else if (c.diffCmd->parsed()) raycache::runDiffCommand(c.diff, std::cout);
+    else if (c.benchCmd->parsed()) {
+        c.bench.interactive = raycache::ProgressBar::stdoutIsTerminal();
+        raycache::runBenchCommand(c.bench, out, group);
+    }
+    else raycache::runScenesCommand(std::cout);
+}
+
+int run(int argc, char** argv, const raycache::ClusterRuntime& cluster) {
+    const raycache::ProcessGroup& group = cluster.group();
+    // In an MPI job only process 0 speaks; the others' output goes nowhere
+    // (a stream without a buffer drops what it is given).
+    std::ostream discarded(nullptr);
+    std::ostream& out = group.isRoot() ? std::cout : discarded;
+    std::ostream& err = group.isRoot() ? std::cerr : discarded;
+
+    CLI::App app{"raycache: real-time Whitted ray tracing with per-object ray caching"};
+    app.require_subcommand(1);
+    app.set_version_flag(
+        "--version", [] { return raycache::formatBuildInfo(raycache::currentBuildInfo()); },
+        "Print the version, git commit, build type and compiler, the Embree, oneTBB, Assimp and OpenEXR versions "
+        "and the lane code's instruction set, then exit");
+    Commands commands;
+    addRenderCommand(app, commands);
+    addCacheViewCommand(app, commands);
+    app.add_subcommand("scenes", "List the built-in scenes, one per line");
+    addViewCommand(app, commands);
+    addDiffCommand(app, commands);
+    addBenchCommand(app, commands);
+
+    if (const std::optional<int> exitCode = parseArguments(app, argc, argv, out, err)) return *exitCode;
+    if (group.size() > 1 && !commands.renderCmd->parsed() && !commands.benchCmd->parsed()) {
         err << "error: only `raycache render` and `raycache bench` run as MPI jobs; run the other commands without "
                "mpirun\n";
         return 2;
     }
-
     try {
-        if (renderCmd->parsed()) raycache::runRenderCommand(render, out, err, group);
-        else if (cacheViewCmd->parsed()) raycache::runCacheViewCommand(cacheView, std::cout, std::cerr);
-        else if (viewCmd->parsed()) raycache::runViewCommand(view, std::cout, std::cerr);
-        else if (diffCmd->parsed()) raycache::runDiffCommand(diff, std::cout);
-        else if (benchCmd->parsed()) {
-            bench.interactive = raycache::ProgressBar::stdoutIsTerminal();
-            raycache::runBenchCommand(bench, out, group);
-        }
-        else raycache::runScenesCommand(std::cout);
+        runParsedCommand(commands, out, err, group);
     } catch (const raycache::ProcessGroupFailure& e) {
         // Every process of the job threw this together: process 0 reports it.
         err << "error: " << e.what() << '\n';

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "bench/ProgressBar.h"
+#include "core/ProgressBar.h"
 #include "bench/RunEnvironment.h"
 #include "cache/CachePolicy.h"
 #include "core/Parallel.h"

@@ -4,14 +4,13 @@
 #include <cstdio>
 
 #include "core/Errors.h"
+#include "core/TextFormat.h"
 
 namespace raycache {
 
 std::string cellNumber(double value, int decimals) {
     if (!std::isfinite(value)) return "–";
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
-    return buffer;
+    return formatFixed(value, decimals);
 }
 
 std::string cellRange(const SampleSummary& s, int decimals) {

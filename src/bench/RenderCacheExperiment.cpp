@@ -167,33 +167,10 @@ std::vector<unsigned char> mirrorMask(const Scene& scene, const TraceScene& trac
 nlohmann::json frameJson(int frame, const FrameRecord& r, std::int64_t mirrorPixels) {
     const RenderCacheStats& s = r.rc;
     nlohmann::json j = toJson(r.metrics);
+    j.update(renderCacheStatsJson(s));  // as `raycache render --stats` writes them
     j["frame"] = frame;
     j["ms"] = r.ms;
-    j["reconstruction_ms"] = s.reconstructionMs();
-    j["reproject_ms"] = s.reprojectMs;
-    j["maps_ms"] = s.mapsMs;
-    j["filter_ms"] = s.filterMs;
-    j["sample_generation_ms"] = s.sampleGenerationMs();
-    j["trace_ms"] = s.traceMs;
-    j["reshade_ms"] = s.reshadeMs;
-    j["counted_bytes"] = countedBytesJson(s);
-    j["counted_gb_per_s"] = countedGbPerSecondJson(s);
-    j["pixels"] = s.pixels;
-    j["budget"] = s.budget;
-    j["fresh"] = s.fresh;
     j["fresh_share"] = s.freshShare();
-    j["predicted"] = s.predicted;
-    j["reprojected"] = s.reprojected;
-    j["reshaded"] = s.reshaded;
-    j["culled"] = s.culled;
-    j["holes"] = s.holes;
-    j["filled_3x3"] = s.filled3x3;
-    j["filled_7x7"] = s.filled7x7;
-    j["unfilled"] = s.unfilled;
-    j["evicted"] = s.evicted;
-    j["lost"] = s.lost;
-    j["live_samples"] = s.liveSamples;
-    j["refreshed_all"] = s.refreshedAll;
     j["mirror_pixels"] = mirrorPixels;
     j["mirror_psnr_db"] = finiteOrNull(r.mirrorPsnr);
     return j;

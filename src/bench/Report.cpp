@@ -2,7 +2,7 @@
 
 #include "bench/MachineLoad.h"
 #include "bench/MarkdownTable.h"
-#include "bench/ProgressBar.h"
+#include "core/ProgressBar.h"
 
 namespace raycache {
 

@@ -7,14 +7,6 @@
 
 namespace raycache {
 
-nlohmann::json toJson(const BuildInfo& b) {
-    return {{"raycache", b.raycacheVersion}, {"git_commit", b.gitCommit},
-            {"build_type", b.buildType},     {"compiler", b.compiler},
-            {"embree", b.embreeVersion},     {"tbb", b.tbbVersion},
-            {"assimp", b.assimpVersion},     {"openexr", b.openExrVersion},
-            {"lanes", b.lanes},              {"baseline_lanes_build", b.baselineLanesBuild}};
-}
-
 nlohmann::json toJson(const RunEnvironment& e) {
     return {{"cpu_model", e.cpuModel},           {"hardware_threads", e.hardwareThreads},
             {"worker_threads", e.workerThreads}, {"os", e.os},
@@ -30,25 +22,6 @@ nlohmann::json toJson(const VariantTimes& t) {
             {"min_ms", s.min},
             {"max_ms", s.max},
             {"fps_median", finiteOrNull(s.median > 0.0 ? 1000.0 / s.median : 0.0)}};
-}
-
-nlohmann::json countedBytesJson(const RenderCacheStats& s) {
-    return {{"first_round", s.firstRoundBytes},
-            {"copy", s.copyBytes},
-            {"holes", s.holesBytes},
-            {"request_maps", s.requestMapBytes},
-            {"fills", s.fillBytes},
-            {"reproject", s.reprojectBytes()},
-            {"maps", s.mapsBytes()},
-            {"filter", s.filterBytes()},
-            {"reconstruction", s.reconstructionBytes()}};
-}
-
-nlohmann::json countedGbPerSecondJson(const RenderCacheStats& s) {
-    return {{"reproject", s.reprojectGbPerSecond()},
-            {"maps", s.mapsGbPerSecond()},
-            {"filter", s.filterGbPerSecond()},
-            {"reconstruction", s.reconstructionGbPerSecond()}};
 }
 
 nlohmann::json toJson(const PaperTable& table) {

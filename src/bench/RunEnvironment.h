@@ -3,7 +3,7 @@
 // versions, recorded beside every result so figures can be compared honestly.
 #include <string>
 
-#include "bench/BuildInfo.h"
+#include "session/BuildInfo.h"
 
 namespace raycache {
 

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "core/TextFormat.h"
+
 namespace raycache {
 
 namespace {
@@ -31,12 +33,6 @@ double percentile(const std::vector<double>& sorted, double q) {
     const auto i = static_cast<std::size_t>(std::floor(pos));
     const std::size_t j = std::min(i + 1, sorted.size() - 1);
     return sorted[i] + (pos - static_cast<double>(i)) * (sorted[j] - sorted[i]);
-}
-
-std::string format2(double v) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.2f", v);
-    return b;
 }
 
 }  // namespace
@@ -91,24 +87,24 @@ SpeedupInterval bootstrapSpeedup(std::span<const double> baselineMs, std::span<c
 
 std::string intervalText(const SpeedupInterval& s) {
     if (!s.known()) return "–";
-    return format2(s.low) + "–" + format2(s.high);
+    return formatFixed(s.low, 2) + "–" + formatFixed(s.high, 2);
 }
 
 std::string describeSpeedup(const SpeedupInterval& s) {
     if (!std::isfinite(s.speedup)) return "–";
     if (!s.known())
-        return format2(s.speedup) + "× (no interval: fewer than " + std::to_string(kMinPairsForInterval) +
+        return formatFixed(s.speedup, 2) + "× (no interval: fewer than " + std::to_string(kMinPairsForInterval) +
                " timed pairs)";
     const std::string ci = "95 % CI " + intervalText(s);
-    if (s.containsOne()) return "no measurable difference (" + format2(s.speedup) + "×, " + ci + ")";
-    return format2(s.speedup) + "× (" + ci + ")";
+    if (s.containsOne()) return "no measurable difference (" + formatFixed(s.speedup, 2) + "×, " + ci + ")";
+    return formatFixed(s.speedup, 2) + "× (" + ci + ")";
 }
 
 std::string speedupCell(const SpeedupInterval& s) {
     if (!std::isfinite(s.speedup)) return "–";
-    if (!s.known()) return format2(s.speedup) + "×";
-    if (s.containsOne()) return "no measurable difference (" + format2(s.speedup) + "×, " + intervalText(s) + ")";
-    return format2(s.speedup) + "× (" + intervalText(s) + ")";
+    if (!s.known()) return formatFixed(s.speedup, 2) + "×";
+    if (s.containsOne()) return "no measurable difference (" + formatFixed(s.speedup, 2) + "×, " + intervalText(s) + ")";
+    return formatFixed(s.speedup, 2) + "× (" + intervalText(s) + ")";
 }
 
 }  // namespace raycache

@@ -8,6 +8,7 @@
 
 #include "core/AtomicFile.h"
 #include "core/Errors.h"
+#include "core/TextFormat.h"
 
 namespace raycache {
 
@@ -40,9 +41,7 @@ std::string escapeXml(const std::string& s) {
 }
 
 std::string num(double v) {
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%.2f", v);
-    return buffer;
+    return formatFixed(v, 2);
 }
 
 // A 1, 2 or 5 times a power of ten close to range / 5.
@@ -55,10 +54,8 @@ double niceStep(double range) {
 }
 
 std::string tickLabel(double v, double step) {
-    char buffer[32];
     const int decimals = step >= 1.0 ? 0 : std::min(6, static_cast<int>(std::ceil(-std::log10(step) - 1e-9)));
-    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, std::fabs(v) < step * 1e-6 ? 0.0 : v);
-    return buffer;
+    return formatFixed(std::fabs(v) < step * 1e-6 ? 0.0 : v, decimals);
 }
 
 }  // namespace

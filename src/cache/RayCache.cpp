@@ -10,16 +10,21 @@
 #include <variant>
 
 #include "core/Errors.h"
+#include "core/TextFormat.h"
 #include "scene/ObjectBounds.h"
 
 namespace raycache {
 
 namespace {
 
-std::string formatNumber(float v) {
-    std::ostringstream out;
-    out << v;
-    return out.str();
+// "between 16 and 2048": the face resolutions a cube may be asked for.
+std::string faceResolutionRange() {
+    return "between " + std::to_string(CacheSettings::kMinFaceResolution) + " and " +
+           std::to_string(CacheSettings::kMaxFaceResolution);
+}
+
+bool allowedFaceResolution(int resolution) {
+    return resolution >= CacheSettings::kMinFaceResolution && resolution <= CacheSettings::kMaxFaceResolution;
 }
 
 }  // namespace
@@ -36,20 +41,20 @@ CdctParameters RayCache::cdctParametersFor(const SceneObject& object, const RayC
 void RayCache::validateCdct(const CdctParameters& p, const std::string& what) {
     const auto positive = [&](float v, const char* name) {
         if (!(std::isfinite(v) && v > 0.0f))
-            throw InputError(what + ": cdct " + name + " must be a finite number > 0 (got " + formatNumber(v) + ")");
+            throw InputError(what + ": cdct " + name + " must be a finite number > 0 (got " + formatGeneral(v) + ")");
     };
     positive(p.step, "step");
     positive(p.epsilon, "epsilon");
     positive(p.maxDepth, "maxDepth");
     positive(p.tolerance, "tolerance");
     if (p.tolerance > 1e6f)
-        throw InputError(what + ": cdct tolerance must be at most 1e6 texels (got " + formatNumber(p.tolerance) + ")");
+        throw InputError(what + ": cdct tolerance must be at most 1e6 texels (got " + formatGeneral(p.tolerance) + ")");
     if (!(p.epsilon < p.step))
-        throw InputError(what + ": cdct epsilon (" + formatNumber(p.epsilon) + ") must be smaller than step (" +
-                         formatNumber(p.step) + ")");
+        throw InputError(what + ": cdct epsilon (" + formatGeneral(p.epsilon) + ") must be smaller than step (" +
+                         formatGeneral(p.step) + ")");
     if (std::ceil(2.0 * p.maxDepth / p.step) > kMaxCdctLinearSteps)
-        throw InputError(what + ": cdct step " + formatNumber(p.step) + " is too small for maxDepth " +
-                         formatNumber(p.maxDepth) + " (at most 1e6 search steps: step >= maxDepth / 500000)");
+        throw InputError(what + ": cdct step " + formatGeneral(p.step) + " is too small for maxDepth " +
+                         formatGeneral(p.maxDepth) + " (at most 1e6 search steps: step >= maxDepth / 500000)");
 }
 
 Vec3 RayCache::boundingHalfSize(const SceneObject& object) {
@@ -88,18 +93,16 @@ CacheTechnique RayCache::techniqueFor(const SceneObject& object, const RayCacheS
 }
 
 CubeBudgetPlan RayCache::validate(const Scene& scene, const RayCacheSettings& settings) {
-    if (settings.resolutionOverride &&
-        (*settings.resolutionOverride < kMinResolution || *settings.resolutionOverride > kMaxResolution))
-        throw InputError("cache resolution must be between " + std::to_string(kMinResolution) + " and " +
-                         std::to_string(kMaxResolution) + " (got " + std::to_string(*settings.resolutionOverride) +
-                         ")");
+    if (settings.resolutionOverride && !allowedFaceResolution(*settings.resolutionOverride))
+        throw InputError("cache resolution must be " + faceResolutionRange() + " (got " +
+                         std::to_string(*settings.resolutionOverride) + ")");
     if (settings.cubeLevels < 1 || settings.cubeLevels > kMaxCubeLevels)
         throw InputError("cache levels must be between 1 and " + std::to_string(kMaxCubeLevels) + " (got " +
                          std::to_string(settings.cubeLevels) + ")");
     if (!(std::isfinite(settings.levelErrorBound) && settings.levelErrorBound > 0.0f &&
           settings.levelErrorBound <= 1000.0f))
         throw InputError("cache level error bound must be a finite number in (0, 1000] (got " +
-                         formatNumber(settings.levelErrorBound) + ")");
+                         formatGeneral(settings.levelErrorBound) + ")");
     if (settings.prefillTexelsPerFrame < 0)
         throw InputError("pre-fill texels per frame must be 0 (whole cubes) or more (got " +
                          std::to_string(settings.prefillTexelsPerFrame) + ")");
@@ -108,8 +111,8 @@ CubeBudgetPlan RayCache::validate(const Scene& scene, const RayCacheSettings& se
         if (technique == CacheTechnique::Cdct || technique == CacheTechnique::CdctParity)
             validateCdct(cdctParametersFor(object, settings), "object '" + object.name + "'");
         const int resolution = settings.resolutionOverride.value_or(object.material.cache.faceResolution);
-        if (technique != CacheTechnique::None && (resolution < kMinResolution || resolution > kMaxResolution))
-            throw InputError("object '" + object.name + "': cache resolution must be between 16 and 2048");
+        if (technique != CacheTechnique::None && !allowedFaceResolution(resolution))
+            throw InputError("object '" + object.name + "': cache resolution must be " + faceResolutionRange());
     }
     return planBudget(scene, settings);
 }

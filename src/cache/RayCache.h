@@ -128,9 +128,7 @@ class RayCache {
 public:
     // Runs body(part) for every part in [0, count), possibly in parallel.
     using PartitionRunner = std::function<void(int count, const std::function<void(int part)>& body)>;
-    static constexpr int kMinResolution = 16;
-    static constexpr int kMaxResolution = 2048;
-    // The memory budget may lower a cube below kMinResolution, down to this
+    // The memory budget may lower a cube below CacheSettings::kMinFaceResolution, down to this
     // (a scene of 100 000 caching spheres fits 256 MiB only so).
     static constexpr int kMinBudgetResolution = 4;
     // CDCT: the linear search takes at most ceil(2 * maxDepth / step) steps;
@@ -140,7 +138,7 @@ public:
     // One cube per object whose (possibly overridden) technique is not None
     // and that reflects or refracts; CDCT cubes get a box bounding the object
     // around its origin. Throws InputError for a resolution outside
-    // [16, 2048] or invalid CDCT parameters.
+    // [CacheSettings::kMinFaceResolution, kMaxFaceResolution] or invalid CDCT parameters.
     RayCache(const Scene& scene, const RayCacheSettings& settings);
 
     // The technique `object` is cached with under `settings`: None for objects
@@ -519,6 +517,22 @@ private:
     // within the footprint and seeing its point within it (CoarseLevels;
     // counted as rejected when a valid coarse texel failed the point test).
     CctAnswer cctAnswer(const Entry& e, int texel, const Query& q, CacheWorker::Counters& counters) const;
+    // endFrame's steps. orderBatches: every worker's batches of stores in
+    // key order, into mergeOrder_. mergeStores: applies them, in partitions
+    // (see endFrame) through applyStores, counting stores made and skipped
+    // into `stats`. recordFrame: the cube's part of the frame's statistics.
+    // judgeFrame: its policy's judgement of the frame, and the face size a
+    // view-sized cube asks for next (resizedTo), which resizeViewSizedCubes
+    // applies. clearQueues: empties a worker's queues for the next frame.
+    void orderBatches(std::span<CacheWorker> workers);
+    void mergeStores(std::span<CacheWorker> workers, const PartitionRunner& runPartitions, int partitions,
+                     FrameCacheStats& stats);
+    void applyStores(std::span<CacheWorker> workers, std::size_t part, std::size_t parts, bool skipping,
+                     FrameCacheStats& stats);
+    static void recordFrame(Entry& e, const CacheWorker::Counters& all, ObjectCacheStats& s);
+    void judgeFrame(Entry& e, const CacheWorker::Counters& all, ObjectCacheStats& s);
+    void resizeViewSizedCubes(const FrameCacheStats& stats, const PartitionRunner& runPartitions);
+    static void clearQueues(CacheWorker& w);
     // Resamples view-sized cube `e` to `size` texels per face side, with its
     // dependency blocks (each new block the union of the old blocks it
     // overlaps) and oracle records; coarser levels start again empty.

@@ -27,10 +27,7 @@ void RayCache::beginFrame(std::span<CacheWorker> workers) {
         e.invalidPercentBefore =
             100.0 * static_cast<double>(e.cube.texelCount() - e.cube.validCount()) / static_cast<double>(e.cube.texelCount());
     for (CacheWorker& w : workers) {
-        w.pending_.clear();
-        w.pendingTrees_.clear();
-        w.pendingSeen_.clear();
-        w.batches_.clear();
+        clearQueues(w);
         w.counters_.assign(cubes_.size(), CacheWorker::Counters{});
     }
 }
@@ -111,8 +108,34 @@ bool RayCache::reachesLastChange(const RayTreeBounds& bounds, int cachingObject)
 
 FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const PartitionRunner& runPartitions,
                                    int partitions) {
-    // Batches in key order; only their boundaries are sorted (one per tile),
-    // never the stores themselves.
+    orderBatches(workers);
+    FrameCacheStats stats;
+    stats.objects.resize(cubes_.size());
+    mergeStores(workers, runPartitions, partitions, stats);
+    // The change is this frame's: a frame rendered without one stores everything.
+    changedBeforeThisFrame_ = false;
+    forgetLastChange();
+    for (std::size_t c = 0; c < cubes_.size(); ++c) {
+        CacheWorker::Counters all;
+        for (const CacheWorker& w : workers) all += w.counters_[c];
+        ObjectCacheStats& s = stats.objects[c];
+        recordFrame(cubes_[c], all, s);
+        judgeFrame(cubes_[c], all, s);
+    }
+    resizeViewSizedCubes(stats, runPartitions);
+    for (CacheWorker& w : workers) clearQueues(w);
+    return stats;
+}
+
+void RayCache::clearQueues(CacheWorker& w) {
+    w.pending_.clear();
+    w.pendingTrees_.clear();
+    w.pendingSeen_.clear();
+    w.batches_.clear();
+}
+
+void RayCache::orderBatches(std::span<CacheWorker> workers) {
+    // Only the batches' boundaries are sorted (one per tile), never the stores themselves.
     mergeOrder_.clear();
     for (std::size_t w = 0; w < workers.size(); ++w) {
         workers[w].closeBatch();
@@ -122,140 +145,136 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
     std::sort(mergeOrder_.begin(), mergeOrder_.end(), [](const BatchRef& a, const BatchRef& b) {
         return a.key != b.key ? a.key < b.key : a.worker < b.worker;
     });
+}
 
-    FrameCacheStats stats;
-    stats.objects.resize(cubes_.size());
+void RayCache::mergeStores(std::span<CacheWorker> workers, const PartitionRunner& runPartitions, int partitions,
+                           FrameCacheStats& stats) {
     const bool skipping = skipStoresReachingChanges_ && (!lastChangeRegions_.empty() || lastChangeLit_);
-    // Partition `part` of `parts` applies the stores of cubes c with
-    // c % parts == part: cubes are independent, so partitions may run in
-    // parallel, and each cube still sees its stores in merge order. Stores
-    // land on scattered texels of large cubes: those a little ahead are
-    // prefetched so the memory misses overlap.
-    const auto applyPartition = [&](std::size_t part, std::size_t parts) {
-        // Far enough ahead that several of this partition's own stores are
-        // in flight (a partition owns about 1/parts of them).
-        constexpr std::size_t kAhead = 48;
-        for (const BatchRef& b : mergeOrder_) {
-            const auto& pending = workers[b.worker].pending_;
-            for (std::size_t i = b.begin; i < b.end; ++i) {
-                if (i + kAhead < b.end) {
-                    const auto& ahead = pending[i + kAhead];
-                    if (ahead.cube % parts == part) {
-                        __builtin_prefetch(cubes_[ahead.cube].cube.validWordOf(ahead.texel), 1);
-                        __builtin_prefetch(cubes_[ahead.cube].cube.texelWordOf(ahead.texel), 1);
-                    }
-                }
-                const auto& p = pending[i];
-                if (p.cube % parts != part) continue;
-                Entry& e = cubes_[p.cube];
-                if (skipping && reachesLastChange(workers[b.worker].pendingTrees_[i].bounds, e.objectId)) {
-                    ++stats.objects[p.cube].skippedStores;
-                    continue;
-                }
-                const bool finest = e.cube.writeIfInvalid(p.texel, p.packed, p.depth);
-                const bool coarser =
-                    e.coarse.levelCount() > 1 && e.coarse.writeOver(p.texel, p.packed, workers[b.worker].pendingSeen_[i]) > 0;
-                if (!finest && !coarser) continue;
-                if (finest) {
-                    ++stats.objects[p.cube].stores;
-                    if (!e.treeRays.empty() && CubePolicy::sampledTexel(p.texel))
-                        e.treeRays[static_cast<std::size_t>(p.texel)] =
-                            static_cast<std::uint8_t>(std::min<std::uint32_t>(p.treeRays, 255));
-                }
-                if (tracksDependencies_) {
-                    // The block covers the coarser texels written too (their
-                    // answers take its bounds, see addAnswerDependencies).
-                    const RayTreeRecord& tree = workers[b.worker].pendingTrees_[i];
-                    if (!e.blocks.empty()) e.blocks[static_cast<std::size_t>(blockOf(e, p.texel))].add(tree.bounds);
-                    if (oracle_ && finest) e.storedTrees[static_cast<std::size_t>(p.texel)] = tree;
-                }
-                if (p.depth < e.cdct.maxDepth) e.farthestSurface = std::max(e.farthestSurface, p.depth);
-            }
-        }
-    };
     // One partition per thread: each scans all queued stores once (a 1024²
     // grid-32 CCT frame merged 15-20 % faster on 2 threads with 2 partitions
     // than with 4, and 30 % faster on 1 thread with 1: docs/cluster.md).
     const int parts = runPartitions ? std::clamp(partitions, 1, std::max(1, static_cast<int>(cubes_.size()))) : 1;
     // A frame with nothing to merge (every cube standing aside) starts no
     // parallel work.
-    if (!mergeOrder_.empty()) {
-        if (parts > 1)
-            runPartitions(parts, [&](int part) {
-                applyPartition(static_cast<std::size_t>(part), static_cast<std::size_t>(parts));
-            });
-        else
-            applyPartition(0, 1);
-    }
-    // The change is this frame's: a frame rendered without one stores everything.
-    changedBeforeThisFrame_ = false;
-    forgetLastChange();
+    if (mergeOrder_.empty()) return;
+    if (parts > 1)
+        runPartitions(parts, [&](int part) {
+            applyStores(workers, static_cast<std::size_t>(part), static_cast<std::size_t>(parts), skipping, stats);
+        });
+    else
+        applyStores(workers, 0, 1, skipping, stats);
+}
 
-    for (std::size_t c = 0; c < cubes_.size(); ++c) {
-        ObjectCacheStats& s = stats.objects[c];
-        s.objectId = cubes_[c].objectId;
-        s.name = cubes_[c].name;
-        s.resolution = cubes_[c].cube.size();
-        s.levels = cubes_[c].coarse.levelCount();
-        // All levels, with the dependency records of an animated scene's cube.
-        s.bytes = cubes_[c].cube.bytes() + cubes_[c].coarse.bytes() + cubes_[c].blocks.size() * sizeof(RayTreeBounds);
-        s.invalidPercentBefore = cubes_[c].invalidPercentBefore;
-        s.prefilledTexels = cubes_[c].prefilledTexels;
-        cubes_[c].prefilledTexels = 0;
-        CacheWorker::Counters all;
-        for (const CacheWorker& w : workers) all += w.counters_[c];
-        s.lookups = all.lookups;
-        s.hits = all.hits;
-        s.misses = all.misses;
-        s.rejected = all.rejected;
-        s.ownSurface = all.ownSurface;
-        s.viewDependent = all.viewDependent;
-        s.hitsByLevel = all.levelHits;
-        // Colours inherited from a coarser resolution answer at their level too.
-        for (int k = s.levels; k < kMaxCubeLevels; ++k)
-            if (all.levelHits[static_cast<std::size_t>(k)] > 0) s.levels = k + 1;
-        s.cdctSearches = all.cdctSearches;
-        s.cdctSteps = all.cdctSteps;
-        s.cdctStepsHistogram = all.cdctStepsHistogram;
-        Entry& e = cubes_[c];
-        // The policy judges the frame from counts summed over every worker
-        // (and, in a cluster job, every process): the same decision everywhere.
-        s.state = e.policy.state();
-        s.bypassedRays = all.bypassed;
-        s.queuedStores = all.queuedStores;
-        s.regionTests = e.regionTests;
-        // A sample's texels spread over more blocks than a sixteenth of them:
-        // its tests, scaled to the sample's share of full caching's.
-        const std::uint64_t judgedRegionTests =
-            e.policy.sampling() ? static_cast<std::uint64_t>(std::llround(static_cast<double>(e.regionTests) *
-                                                                          sampleRegionTestScale(e)))
-                                : e.regionTests;
-        e.regionTests = 0;
-        const CubePolicy::Judgement judged = e.policy.afterFrame({.lookups = all.lookups,
-                                                                  .hits = all.hits,
-                                                                  .queuedStores = all.queuedStores,
-                                                                  .tracedTrees = all.tracedTrees,
-                                                                  .treeRays = all.treeRays,
-                                                                  .cdctSteps = all.cdctSteps,
-                                                                  .regionTests = judgedRegionTests,
-                                                                  .recordedHits = all.recordedHits,
-                                                                  .recordedHitRays = all.recordedHitRays});
-        s.policySaving = judged.saving;
-        s.policyCost = judged.cost;
-        s.next = e.policy.state();
-        // In an animated scene a cube standing aside empties itself: its
-        // texels, unread until a probe refreshes them anyway, would cost the
-        // region tests of every change (docs/caching.md, "Animated scenes").
-        if (tracksDependencies_ && s.next == CubeState::Bypassed && s.state != CubeState::Bypassed) clearEntry(e);
-        s.framesCaching = e.policy.framesCaching();
-        s.framesSampling = e.policy.framesSampling();
-        s.framesBypassed = e.policy.framesBypassed();
-        s.meanTree = e.policy.meanTree();
-        if (e.view.fullSize() > 0) {
-            const int size = e.view.fullSize() >> e.view.afterFrame(all.lookupsByAllowedLevel);
-            if (size != e.cube.size()) s.resizedTo = size;
+void RayCache::applyStores(std::span<CacheWorker> workers, std::size_t part, std::size_t parts, bool skipping,
+                           FrameCacheStats& stats) {
+    // Far enough ahead that several of this partition's own stores are
+    // in flight (a partition owns about 1/parts of them).
+    constexpr std::size_t kAhead = 48;
+    for (const BatchRef& b : mergeOrder_) {
+        const auto& pending = workers[b.worker].pending_;
+        for (std::size_t i = b.begin; i < b.end; ++i) {
+            if (i + kAhead < b.end) {
+                const auto& ahead = pending[i + kAhead];
+                if (ahead.cube % parts == part) {
+                    __builtin_prefetch(cubes_[ahead.cube].cube.validWordOf(ahead.texel), 1);
+                    __builtin_prefetch(cubes_[ahead.cube].cube.texelWordOf(ahead.texel), 1);
+                }
+            }
+            const auto& p = pending[i];
+            if (p.cube % parts != part) continue;
+            Entry& e = cubes_[p.cube];
+            if (skipping && reachesLastChange(workers[b.worker].pendingTrees_[i].bounds, e.objectId)) {
+                ++stats.objects[p.cube].skippedStores;
+                continue;
+            }
+            const bool finest = e.cube.writeIfInvalid(p.texel, p.packed, p.depth);
+            const bool coarser =
+                e.coarse.levelCount() > 1 && e.coarse.writeOver(p.texel, p.packed, workers[b.worker].pendingSeen_[i]) > 0;
+            if (!finest && !coarser) continue;
+            if (finest) {
+                ++stats.objects[p.cube].stores;
+                if (!e.treeRays.empty() && CubePolicy::sampledTexel(p.texel))
+                    e.treeRays[static_cast<std::size_t>(p.texel)] =
+                        static_cast<std::uint8_t>(std::min<std::uint32_t>(p.treeRays, 255));
+            }
+            if (tracksDependencies_) {
+                // The block covers the coarser texels written too (their
+                // answers take its bounds, see addAnswerDependencies).
+                const RayTreeRecord& tree = workers[b.worker].pendingTrees_[i];
+                if (!e.blocks.empty()) e.blocks[static_cast<std::size_t>(blockOf(e, p.texel))].add(tree.bounds);
+                if (oracle_ && finest) e.storedTrees[static_cast<std::size_t>(p.texel)] = tree;
+            }
+            if (p.depth < e.cdct.maxDepth) e.farthestSurface = std::max(e.farthestSurface, p.depth);
         }
     }
+}
+
+void RayCache::recordFrame(Entry& e, const CacheWorker::Counters& all, ObjectCacheStats& s) {
+    s.objectId = e.objectId;
+    s.name = e.name;
+    s.resolution = e.cube.size();
+    s.levels = e.coarse.levelCount();
+    // All levels, with the dependency records of an animated scene's cube.
+    s.bytes = e.cube.bytes() + e.coarse.bytes() + e.blocks.size() * sizeof(RayTreeBounds);
+    s.invalidPercentBefore = e.invalidPercentBefore;
+    s.prefilledTexels = e.prefilledTexels;
+    e.prefilledTexels = 0;
+    s.lookups = all.lookups;
+    s.hits = all.hits;
+    s.misses = all.misses;
+    s.rejected = all.rejected;
+    s.ownSurface = all.ownSurface;
+    s.viewDependent = all.viewDependent;
+    s.hitsByLevel = all.levelHits;
+    // Colours inherited from a coarser resolution answer at their level too.
+    for (int k = s.levels; k < kMaxCubeLevels; ++k)
+        if (all.levelHits[static_cast<std::size_t>(k)] > 0) s.levels = k + 1;
+    s.cdctSearches = all.cdctSearches;
+    s.cdctSteps = all.cdctSteps;
+    s.cdctStepsHistogram = all.cdctStepsHistogram;
+}
+
+void RayCache::judgeFrame(Entry& e, const CacheWorker::Counters& all, ObjectCacheStats& s) {
+    // The policy judges the frame from counts summed over every worker
+    // (and, in a cluster job, every process): the same decision everywhere.
+    s.state = e.policy.state();
+    s.bypassedRays = all.bypassed;
+    s.queuedStores = all.queuedStores;
+    s.regionTests = e.regionTests;
+    // A sample's texels spread over more blocks than a sixteenth of them:
+    // its tests, scaled to the sample's share of full caching's.
+    const std::uint64_t judgedRegionTests =
+        e.policy.sampling()
+            ? static_cast<std::uint64_t>(std::llround(static_cast<double>(e.regionTests) * sampleRegionTestScale(e)))
+            : e.regionTests;
+    e.regionTests = 0;
+    const CubePolicy::Judgement judged = e.policy.afterFrame({.lookups = all.lookups,
+                                                              .hits = all.hits,
+                                                              .queuedStores = all.queuedStores,
+                                                              .tracedTrees = all.tracedTrees,
+                                                              .treeRays = all.treeRays,
+                                                              .cdctSteps = all.cdctSteps,
+                                                              .regionTests = judgedRegionTests,
+                                                              .recordedHits = all.recordedHits,
+                                                              .recordedHitRays = all.recordedHitRays});
+    s.policySaving = judged.saving;
+    s.policyCost = judged.cost;
+    s.next = e.policy.state();
+    // In an animated scene a cube standing aside empties itself: its
+    // texels, unread until a probe refreshes them anyway, would cost the
+    // region tests of every change (docs/caching.md, "Animated scenes").
+    if (tracksDependencies_ && s.next == CubeState::Bypassed && s.state != CubeState::Bypassed) clearEntry(e);
+    s.framesCaching = e.policy.framesCaching();
+    s.framesSampling = e.policy.framesSampling();
+    s.framesBypassed = e.policy.framesBypassed();
+    s.meanTree = e.policy.meanTree();
+    if (e.view.fullSize() > 0) {
+        const int size = e.view.fullSize() >> e.view.afterFrame(all.lookupsByAllowedLevel);
+        if (size != e.cube.size()) s.resizedTo = size;
+    }
+}
+
+void RayCache::resizeViewSizedCubes(const FrameCacheStats& stats, const PartitionRunner& runPartitions) {
     // Cubes are resampled independently of each other, so in parallel.
     std::vector<std::size_t> resized;
     for (std::size_t c = 0; c < cubes_.size(); ++c)
@@ -267,13 +286,6 @@ FrameCacheStats RayCache::endFrame(std::span<CacheWorker> workers, const Partiti
     if (runPartitions && resized.size() > 1) runPartitions(static_cast<int>(resized.size()), resize);
     else
         for (std::size_t i = 0; i < resized.size(); ++i) resize(static_cast<int>(i));
-    for (CacheWorker& w : workers) {
-        w.pending_.clear();
-        w.pendingTrees_.clear();
-        w.pendingSeen_.clear();
-        w.batches_.clear();
-    }
-    return stats;
 }
 
 double RayCache::sampleRegionTestScale(const Entry& e) {

@@ -9,6 +9,7 @@
 
 #include "core/ColorSpace.h"
 #include "core/Errors.h"
+#include "core/TextFormat.h"
 
 namespace raycache {
 
@@ -90,9 +91,7 @@ int textWidth(std::string_view text, int scale) {
 }
 
 std::string formatLabel(double v) {
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%.3f", v);
-    std::string s = buffer;
+    std::string s = formatFixed(v, 3);
     while (s.back() == '0') s.pop_back();
     if (s.back() == '.') s.pop_back();
     return s;

@@ -25,6 +25,7 @@
 
 #include "core/Box3.h"
 #include "core/Errors.h"
+#include "core/TextFormat.h"
 #include "core/Transform.h"
 #include "scene/AssimpFileReader.h"
 #include "scene/GltfDocument.h"
@@ -74,13 +75,6 @@ std::string gltfQuoted(const std::string& s) {
 
 std::string gltfCounted(std::size_t n, const std::string& singular, const std::string& plural) {
     return std::to_string(n) + " " + (n == 1 ? singular : plural);
-}
-
-// "1", "0.25": short numbers for notes and errors.
-std::string shortNumber(double v) {
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%g", v);
-    return buffer;
 }
 
 Transform transformOf(const aiMatrix4x4& m) {
@@ -220,8 +214,8 @@ private:
         float v = fallback;
         if (m.Get(key, type, index, v) != AI_SUCCESS) return fallback;
         if (!(v >= lo && v <= hi))
-            fail(materialName + ": " + field + " " + shortNumber(v) + " is outside [" + shortNumber(lo) + ", " +
-                 shortNumber(hi) + "]");
+            fail(materialName + ": " + field + " " + formatGeneral(v) + " is outside [" + formatGeneral(lo) + ", " +
+                 formatGeneral(hi) + "]");
         return v;
     }
 
@@ -231,8 +225,8 @@ private:
         if (m.Get(key, type, index, c) != AI_SUCCESS) return fallback;
         const Rgb rgb{c.r, c.g, c.b};
         if (!isFinite(rgb) || rgb.r < 0.0f || rgb.g < 0.0f || rgb.b < 0.0f)
-            fail(materialName + ": " + field + " [" + shortNumber(c.r) + ", " + shortNumber(c.g) + ", " +
-                 shortNumber(c.b) + "] must be finite and not negative");
+            fail(materialName + ": " + field + " [" + formatGeneral(c.r) + ", " + formatGeneral(c.g) + ", " +
+                 formatGeneral(c.b) + "] must be finite and not negative");
         return rgb;
     }
 
@@ -254,7 +248,7 @@ private:
             // its diffuse is the base colour, 1 - glossiness the roughness.
             ++specularGlossiness_;
             if (!(glossiness >= 0.0f && glossiness <= 1.0f))
-                fail(name + ": glossinessFactor " + shortNumber(glossiness) + " is outside [0, 1]");
+                fail(name + ": glossinessFactor " + formatGeneral(glossiness) + " is outside [0, 1]");
             pbr.baseColor = color(m, AI_MATKEY_COLOR_DIFFUSE, Rgb(1.0f), name, "diffuseFactor");
             pbr.metallic = 0.0f;
             pbr.roughness = 1.0f - glossiness;
@@ -267,7 +261,7 @@ private:
         pbr.transmission = factor(m, AI_MATKEY_TRANSMISSION_FACTOR, 0.0f, name, "transmissionFactor", 0.0f, 1.0f);
         float ior = 1.5f;
         if (m.Get(AI_MATKEY_REFRACTI, ior) == AI_SUCCESS && !(ior > 0.0f && std::isfinite(ior)))
-            fail(name + ": ior " + shortNumber(ior) + " must be a finite number > 0");
+            fail(name + ": ior " + formatGeneral(ior) + " must be a finite number > 0");
         pbr.ior = ior;
 
         MappedMaterial mapped;
@@ -513,7 +507,7 @@ private:
                  std::to_string(mesh.positions.size()) + " vertices non-finite (infinite or NaN)");
         if (outside > 0)
             fail("node " + gltfQuoted(nodeName) + ": " + std::to_string(outside) + " of the mesh's " +
-                 std::to_string(mesh.positions.size()) + " vertices lie beyond ±" + shortNumber(kMaxWorldCoordinate) +
+                 std::to_string(mesh.positions.size()) + " vertices lie beyond ±" + formatGeneral(kMaxWorldCoordinate) +
                  " on some axis (floats are too coarse to trace beyond)");
     }
 
@@ -547,7 +541,7 @@ private:
             const float yfov = c.mAspect != 0.0f ? c.mHorizontalFOV / c.mAspect : c.mHorizontalFOV;
             const float degrees = yfov * 180.0f / std::numbers::pi_v<float>;
             if (!(degrees > 0.0f && degrees < 180.0f))
-                fail(name + ": vertical field of view " + shortNumber(degrees) + " degrees, must be between 0 and 180");
+                fail(name + ": vertical field of view " + formatGeneral(degrees) + " degrees, must be between 0 and 180");
             // A glTF camera sits at its node's origin and looks down the
             // node's -z with +y up (aiCamera's mLookAt and mUp). Its
             // mPosition is not used: Assimp 5.2 copies the node's
@@ -637,9 +631,9 @@ private:
                 const float outer = l.mAngleOuterCone * 180.0f / std::numbers::pi_v<float>;
                 const float inner = l.mAngleInnerCone * 180.0f / std::numbers::pi_v<float>;
                 if (!(outer > 0.0f && outer <= 90.0f + 1e-3f))
-                    fail(name + ": outerConeAngle " + shortNumber(l.mAngleOuterCone) + " must lie in (0, pi/2]");
+                    fail(name + ": outerConeAngle " + formatGeneral(l.mAngleOuterCone) + " must lie in (0, pi/2]");
                 if (!(inner >= 0.0f && inner <= outer))
-                    fail(name + ": innerConeAngle " + shortNumber(l.mAngleInnerCone) +
+                    fail(name + ": innerConeAngle " + formatGeneral(l.mAngleInnerCone) +
                          " must lie in [0, outerConeAngle]");
                 light.coneAngleDeg = std::min(outer, 90.0f);
                 light.falloffAngleDeg = light.coneAngleDeg - std::min(inner, light.coneAngleDeg);

@@ -25,8 +25,12 @@ struct CdctParameters {
 
 // How an object's secondary rays are cached (honoured by the cache module).
 struct CacheSettings {
+    // The face resolutions a scene or the command line may ask for (the
+    // memory budget may lower a cube further: RayCache::kMinBudgetResolution).
+    static constexpr int kMinFaceResolution = 16;
+    static constexpr int kMaxFaceResolution = 2048;
     CacheTechnique technique = CacheTechnique::None;
-    int faceResolution = 512;  // texels per cube-face side
+    int faceResolution = 512;  // texels per cube-face side, kMinFaceResolution..kMaxFaceResolution
     CdctParameters cdct;       // used when technique is Cdct or CdctParity
 };
 

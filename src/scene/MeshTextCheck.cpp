@@ -553,34 +553,217 @@ std::optional<MeshTextProblem> checkPlyAsciiBody(std::string_view text, std::siz
     return std::nullopt;
 }
 
-}  // namespace
+// Reads a PLY header line by line as Assimp does, keeping what later lines
+// and the body's check need; read() gives the first problem, if any.
+class PlyHeaderReader {
+public:
+    PlyHeaderReader(std::string_view text, std::string* ignoredLines) : text_(text), ignoredLines_(ignoredLines) {}
 
-std::optional<MeshTextProblem> checkPlyHeader(std::string_view text, std::string* ignoredLines) {
+    std::optional<MeshTextProblem> read() {
+        std::size_t start = 0;
+        while (start < text_.size()) {
+            std::size_t end = text_.find('\n', start);
+            if (end == std::string_view::npos) end = text_.size();
+            HeaderLine line{text_.substr(start, end - start), end, false};
+            line.endsWithCarriageReturn = !line.text.empty() && line.text.back() == '\r';
+            if (line.endsWithCarriageReturn) line.text.remove_suffix(1);
+            ++lineNumber_;
+            if (auto problem = readLine(line)) return problem;
+            if (finished_) return std::nullopt;
+            start = end + 1;
+        }
+        return at(1, "the PLY header has no end_header line");
+    }
+
+private:
     enum class Format { kAscii, kLittleEndian, kBigEndian };
-    Format format = Format::kAscii;
-    std::vector<PlyElement> elements;
-    int vertexElementLine = 0;  // where the vertex element was declared, else 0
-    int faceElementLine = 0;    // and the face element
-    int unknownElement = -1;    // the first element Assimp does not know with a nonzero count, else -1
-    // The first line since the last element line that is not a property:
-    // Assimp ends an element's property list at any such line (a comment
-    // too), and skips the properties after it, so the body would be
-    // misread if one followed. Elsewhere such lines are harmless.
-    int interruptingLine = 0;
-    int interruptingColumn = 0;
-    std::string interruption;  // the error if a property follows
-    int ignoredCount = 0;
-    std::string firstIgnored;
-    int lineNumber = 0;
-    const auto at = [&](int column, std::string message) {
-        return MeshTextProblem{lineNumber, column, std::move(message)};
+
+    struct HeaderLine {
+        std::string_view text;  // without its line break and carriage return
+        std::size_t end = 0;    // where its '\n' is, or the text's size
+        bool endsWithCarriageReturn = false;
     };
+
+    MeshTextProblem at(int column, std::string message) const { return {lineNumber_, column, std::move(message)}; }
+
+    std::optional<MeshTextProblem> readLine(const HeaderLine& line) {
+        if (lineNumber_ == 1) {
+            if (line.text != "ply") return at(1, "a PLY file starts with a line \"ply\"");
+            return std::nullopt;
+        }
+        if (const std::size_t control = firstControlByte(line.text); control != std::string_view::npos)
+            return at(static_cast<int>(control) + 1,
+                      "control byte " + hexByte(static_cast<unsigned char>(line.text[control])) +
+                          " in the PLY header (only printable text and tabs belong there)");
+        const std::vector<Token> words = plyWords(line.text);
+        const std::string_view keyword = words.empty() ? std::string_view() : words[0].text;
+        if (lineNumber_ == 2) return readFormat(words);
+        if (keyword == "end_header") return endHeader(line, words);
+        if (keyword == "element") return declareElement(words);
+        if (keyword == "property") return declareProperty(words);
+        if (keyword == "comment" || keyword == "obj_info") {
+            if (!elements_.empty())
+                noteInterruption(words[0].column, std::string(keyword) + " line among the properties of element " +
+                                                      quoted(elements_.back().name) +
+                                                      ": Assimp would ignore the properties after it");
+            return std::nullopt;
+        }
+        if (keyword == "format") return at(words[0].column, "a second format line");
+        // A line without a keyword: Assimp skips it.
+        if (!elements_.empty())
+            noteInterruption(1, "unknown PLY header line " + quoted(keyword) +
+                                    " (expected comment, obj_info, element, property or end_header)");
+        if (ignoredCount_++ == 0)
+            firstIgnored_ = std::to_string(lineNumber_) + " without a keyword (" + quotedLine(line.text) + ")";
+        return std::nullopt;
+    }
+
+    std::optional<MeshTextProblem> readFormat(const std::vector<Token>& words) {
+        const bool known = words.size() == 3 && words[0].text == "format" &&
+                           (words[1].text == "ascii" || words[1].text == "binary_little_endian" ||
+                            words[1].text == "binary_big_endian") &&
+                           words[2].text == "1.0";
+        if (!known) return at(1, "expected \"format ascii|binary_little_endian|binary_big_endian 1.0\"");
+        format_ = words[1].text == "ascii"                  ? Format::kAscii
+                  : words[1].text == "binary_little_endian" ? Format::kLittleEndian
+                                                            : Format::kBigEndian;
+        return std::nullopt;
+    }
+
+    std::optional<MeshTextProblem> endHeader(const HeaderLine& line, const std::vector<Token>& words) {
+        if (words.size() > 1) return at(words[1].column, "nothing may follow end_header on its line");
+        // Assimp's header reader loops forever on an end_header line
+        // that ends the file (docs/testing.md finding 19).
+        if (line.end == text_.size())
+            return at(words[0].column + 10, "the file ends after end_header, without a line break");
+        if (auto problem = elementComplete()) return problem;
+        if (auto problem = checkBody(line)) return problem;
+        if (ignoredLines_ && ignoredCount_ > 0)
+            *ignoredLines_ = ignoredCount_ == 1 ? "ignored PLY header line " + firstIgnored_
+                                                : "ignored " + std::to_string(ignoredCount_) +
+                                                      " PLY header lines, the first line " + firstIgnored_;
+        finished_ = true;
+        return std::nullopt;
+    }
+
+    std::optional<MeshTextProblem> checkBody(const HeaderLine& endHeaderLine) const {
+        const std::size_t bodyStart = std::min(endHeaderLine.end + 1, text_.size());
+        if (format_ == Format::kAscii) return checkPlyAsciiBody(text_, bodyStart, lineNumber_, elements_);
+        const std::string_view body = text_.substr(bodyStart);
+        // Assimp drops a line feed that starts the body, taking it for the
+        // rest of a "\r\n" after end_header; behind a lone "\n" it is the
+        // first data byte, and everything after it would be read one byte early.
+        const bool data = std::any_of(elements_.begin(), elements_.end(), [](const PlyElement& e) { return e.count > 0; });
+        if (data && !endHeaderLine.endsWithCarriageReturn && !body.empty() && body.front() == '\n')
+            return at(1,
+                      "the binary data starts with byte 0x0a, which Assimp drops after an end_header line "
+                      "ending in \"\\n\" (end it with \"\\r\\n\")");
+        return checkPlyBinaryBody(body, elements_, format_ == Format::kBigEndian, lineNumber_);
+    }
+
+    std::optional<MeshTextProblem> declareElement(const std::vector<Token>& words) {
+        if (auto problem = elementComplete()) return problem;
+        const std::optional<std::int64_t> count = words.size() == 3 ? integer(words[2].text) : std::nullopt;
+        if (!count || *count < 0) return at(1, "expected \"element <name> <count>\"");
+        const Token& name = words[1];
+        if (auto problem = checkElementName(name)) return problem;
+        const bool known =
+            name.text == "vertex" || name.text == "face" || name.text == "edge" || name.text == "material";
+        if (name.text == "vertex" || name.text == "face") {
+            // Assimp writes every vertex element into one array sized for
+            // the first, and every face element into another (heap overflows).
+            int& first = name.text == "vertex" ? vertexElementLine_ : faceElementLine_;
+            if (first > 0)
+                return at(name.column, "a second " + quoted(name.text) + " element (the first is on line " +
+                                           std::to_string(first) + "): Assimp writes both into one array");
+            first = lineNumber_;
+            // Having read none of an unknown element's instances, Assimp
+            // would read their data as this element's.
+            if (unknownElement_ >= 0) {
+                const PlyElement& unknown = elements_[static_cast<std::size_t>(unknownElement_)];
+                return MeshTextProblem{unknown.line, unknown.column,
+                                       "Assimp reads no " + quoted(unknown.name) +
+                                           " instances (an element it does not know), so they may only come "
+                                           "after the vertex and face elements"};
+            }
+        }
+        if (!known && *count > 0 && unknownElement_ < 0) unknownElement_ = static_cast<int>(elements_.size());
+        elements_.push_back({name.text, *count, lineNumber_, name.column, {}});
+        interruptingLine_ = 0;
+        return std::nullopt;
+    }
+
+    // The element names Assimp misreads.
+    std::optional<MeshTextProblem> checkElementName(const Token& name) const {
+        if (!plainWord(name.text))
+            return at(name.column, "element name " + quoted(name.text) + " is not a plain ASCII word");
+        // Assimp takes this one for a texture file's name and reads no count or properties.
+        if (name.text == "TextureFile") return at(name.column, "\"element TextureFile\" is not an element to Assimp");
+        // Assimp keeps the last triangle of each strip only.
+        if (name.text == "tristrips")
+            return at(name.column, "Assimp reads one triangle of each triangle strip: use \"element face\"");
+        // Assimp reads the count of an element it does not know from the
+        // start of its name (finding 20): 555555555 instances of
+        // "555555555face", allocated at once, and 0 of most others.
+        const bool known =
+            name.text == "vertex" || name.text == "face" || name.text == "edge" || name.text == "material";
+        if (!known && std::isdigit(static_cast<unsigned char>(name.text[0])))
+            return at(name.column,
+                      "element name " + quoted(name.text) + " starts with a digit (Assimp reads it as the count)");
+        return std::nullopt;
+    }
+
+    std::optional<MeshTextProblem> declareProperty(const std::vector<Token>& words) {
+        if (elements_.empty()) return at(words[0].column, "a property before any element");
+        if (interruptingLine_ > 0) return MeshTextProblem{interruptingLine_, interruptingColumn_, interruption_};
+        const bool list = words.size() > 1 && words[1].text == "list";
+        if (words.size() != (list ? 5u : 3u))
+            return at(words[0].column,
+                      "expected \"property <type> <name>\" or \"property list <length type> <item type> <name>\"");
+        PlyProperty property{nullptr, nullptr, words.back().text, lineNumber_};
+        const Token& typeWord = words[list ? 3 : 1];
+        if (list) {
+            property.lengthType = plyType(words[2].text);
+            if (!property.lengthType || !property.lengthType->integer)
+                return at(words[2].column,
+                          quoted(words[2].text) +
+                              " is not a list length type (char, uchar, short, ushort, int, uint, int8, uint8, "
+                              "int16, uint16, int32 or uint32)");
+        }
+        property.type = plyType(typeWord.text);
+        if (!property.type)
+            return at(typeWord.column, "unknown PLY type " + quoted(typeWord.text) +
+                                           " (char, uchar, short, ushort, int, uint, float, double, or int8 to float64)");
+        if (!plainWord(property.name))
+            return at(words.back().column, "property name " + quoted(property.name) + " is not a plain ASCII word");
+        PlyElement& element = elements_.back();
+        if (list) element.lastList = static_cast<int>(element.properties.size());
+        if (element.name == "face" && list) {
+            const int index = static_cast<int>(element.properties.size());
+            if (property.name == "vertex_indices" || property.name == "vertex_index") element.vertexIndices = index;
+            if (property.name == "texcoord") element.textureCoordinates = index;
+        }
+        element.properties.push_back(property);
+        return std::nullopt;
+    }
+
+    // Assimp ends an element's property list at any line that is not a
+    // property (a comment too), and skips the properties after it, so the
+    // body would be misread if one followed. Elsewhere such lines are
+    // harmless: the first since the last element line is kept.
+    void noteInterruption(int column, std::string message) {
+        if (interruptingLine_ != 0) return;
+        interruptingLine_ = lineNumber_;
+        interruptingColumn_ = column;
+        interruption_ = std::move(message);
+    }
+
     // Checks of an element once its properties are known. Its count needs
     // something to count (Assimp loops over empty instances, and allocates
     // one record each for a non-vertex one).
-    const auto elementComplete = [&]() -> std::optional<MeshTextProblem> {
-        if (elements.empty()) return std::nullopt;
-        const PlyElement& e = elements.back();
+    std::optional<MeshTextProblem> elementComplete() const {
+        if (elements_.empty()) return std::nullopt;
+        const PlyElement& e = elements_.back();
         if (e.textureCoordinates >= 0 && e.vertexIndices < 0)
             return MeshTextProblem{e.properties[static_cast<std::size_t>(e.textureCoordinates)].line, 1,
                                    "a face's texcoord list needs its vertex_indices list (Assimp reads the one "
@@ -589,161 +772,28 @@ std::optional<MeshTextProblem> checkPlyHeader(std::string_view text, std::string
         return MeshTextProblem{e.line, e.column,
                                "element " + quoted(e.name) + " announces " +
                                    plural(static_cast<std::uint64_t>(e.count), "instance") + " but has no properties"};
-    };
-    std::size_t start = 0;
-    while (start < text.size()) {
-        std::size_t end = text.find('\n', start);
-        if (end == std::string_view::npos) end = text.size();
-        std::string_view line = text.substr(start, end - start);
-        const bool endsWithCarriageReturn = !line.empty() && line.back() == '\r';
-        if (endsWithCarriageReturn) line.remove_suffix(1);
-        ++lineNumber;
-        if (lineNumber == 1) {
-            if (line != "ply") return at(1, "a PLY file starts with a line \"ply\"");
-            start = end + 1;
-            continue;
-        }
-        if (const std::size_t control = firstControlByte(line); control != std::string_view::npos)
-            return at(static_cast<int>(control) + 1,
-                      "control byte " + hexByte(static_cast<unsigned char>(line[control])) +
-                          " in the PLY header (only printable text and tabs belong there)");
-        const std::vector<Token> words = plyWords(line);
-        const std::string_view keyword = words.empty() ? std::string_view() : words[0].text;
-        if (lineNumber == 2) {
-            const bool known = words.size() == 3 && keyword == "format" &&
-                               (words[1].text == "ascii" || words[1].text == "binary_little_endian" ||
-                                words[1].text == "binary_big_endian") &&
-                               words[2].text == "1.0";
-            if (!known) return at(1, "expected \"format ascii|binary_little_endian|binary_big_endian 1.0\"");
-            format = words[1].text == "ascii"                  ? Format::kAscii
-                     : words[1].text == "binary_little_endian" ? Format::kLittleEndian
-                                                               : Format::kBigEndian;
-        } else if (keyword == "end_header") {
-            if (words.size() > 1) return at(words[1].column, "nothing may follow end_header on its line");
-            // Assimp's header reader loops forever on an end_header line
-            // that ends the file (docs/testing.md finding 19).
-            if (end == text.size())
-                return at(words[0].column + 10, "the file ends after end_header, without a line break");
-            if (auto problem = elementComplete()) return problem;
-            const std::size_t bodyStart = std::min(end + 1, text.size());
-            if (format == Format::kAscii) {
-                if (auto problem = checkPlyAsciiBody(text, bodyStart, lineNumber, elements)) return problem;
-            } else {
-                const std::string_view body = text.substr(bodyStart);
-                // Assimp drops a line feed that starts the body, taking it
-                // for the rest of a "\r\n" after end_header; behind a lone
-                // "\n" it is the first data byte, and everything after it
-                // would be read one byte early.
-                const bool data =
-                    std::any_of(elements.begin(), elements.end(), [](const PlyElement& e) { return e.count > 0; });
-                if (data && !endsWithCarriageReturn && !body.empty() && body.front() == '\n')
-                    return at(1,
-                              "the binary data starts with byte 0x0a, which Assimp drops after an end_header line "
-                              "ending in \"\\n\" (end it with \"\\r\\n\")");
-                if (auto problem = checkPlyBinaryBody(body, elements, format == Format::kBigEndian, lineNumber))
-                    return problem;
-            }
-            if (ignoredLines && ignoredCount > 0)
-                *ignoredLines = ignoredCount == 1 ? "ignored PLY header line " + firstIgnored
-                                                  : "ignored " + std::to_string(ignoredCount) +
-                                                        " PLY header lines, the first line " + firstIgnored;
-            return std::nullopt;
-        } else if (keyword == "element") {
-            if (auto problem = elementComplete()) return problem;
-            const std::optional<std::int64_t> count = words.size() == 3 ? integer(words[2].text) : std::nullopt;
-            if (!count || *count < 0) return at(1, "expected \"element <name> <count>\"");
-            if (!plainWord(words[1].text))
-                return at(words[1].column, "element name " + quoted(words[1].text) + " is not a plain ASCII word");
-            // Assimp takes this one for a texture file's name and reads no count or properties.
-            if (words[1].text == "TextureFile")
-                return at(words[1].column, "\"element TextureFile\" is not an element to Assimp");
-            // Assimp keeps the last triangle of each strip only.
-            if (words[1].text == "tristrips")
-                return at(words[1].column, "Assimp reads one triangle of each triangle strip: use \"element face\"");
-            // Assimp reads the count of an element it does not know from the
-            // start of its name (finding 20): 555555555 instances of
-            // "555555555face", allocated at once, and 0 of most others.
-            const bool known = words[1].text == "vertex" || words[1].text == "face" || words[1].text == "edge" ||
-                               words[1].text == "material";
-            if (!known && std::isdigit(static_cast<unsigned char>(words[1].text[0])))
-                return at(words[1].column, "element name " + quoted(words[1].text) +
-                                               " starts with a digit (Assimp reads it as the count)");
-            if (words[1].text == "vertex" || words[1].text == "face") {
-                // Assimp writes every vertex element into one array sized for
-                // the first, and every face element into another (heap overflows).
-                int& first = words[1].text == "vertex" ? vertexElementLine : faceElementLine;
-                if (first > 0)
-                    return at(words[1].column, "a second " + quoted(words[1].text) + " element (the first is on line " +
-                                                   std::to_string(first) + "): Assimp writes both into one array");
-                first = lineNumber;
-                // Having read none of an unknown element's instances, Assimp
-                // would read their data as this element's.
-                if (unknownElement >= 0) {
-                    const PlyElement& unknown = elements[static_cast<std::size_t>(unknownElement)];
-                    return MeshTextProblem{unknown.line, unknown.column,
-                                           "Assimp reads no " + quoted(unknown.name) +
-                                               " instances (an element it does not know), so they may only come "
-                                               "after the vertex and face elements"};
-                }
-            }
-            if (!known && *count > 0 && unknownElement < 0) unknownElement = static_cast<int>(elements.size());
-            elements.push_back({words[1].text, *count, lineNumber, words[1].column, {}});
-            interruptingLine = 0;
-        } else if (keyword == "property") {
-            if (elements.empty()) return at(words[0].column, "a property before any element");
-            if (interruptingLine > 0) return MeshTextProblem{interruptingLine, interruptingColumn, interruption};
-            const bool list = words.size() > 1 && words[1].text == "list";
-            if (words.size() != (list ? 5u : 3u))
-                return at(words[0].column,
-                          "expected \"property <type> <name>\" or \"property list <length type> <item type> <name>\"");
-            PlyProperty property{nullptr, nullptr, words.back().text, lineNumber};
-            const Token& typeWord = words[list ? 3 : 1];
-            if (list) {
-                property.lengthType = plyType(words[2].text);
-                if (!property.lengthType || !property.lengthType->integer)
-                    return at(words[2].column,
-                              quoted(words[2].text) +
-                                  " is not a list length type (char, uchar, short, ushort, int, uint, int8, uint8, "
-                                  "int16, uint16, int32 or uint32)");
-            }
-            property.type = plyType(typeWord.text);
-            if (!property.type)
-                return at(typeWord.column,
-                          "unknown PLY type " + quoted(typeWord.text) +
-                              " (char, uchar, short, ushort, int, uint, float, double, or int8 to float64)");
-            if (!plainWord(property.name))
-                return at(words.back().column, "property name " + quoted(property.name) + " is not a plain ASCII word");
-            PlyElement& element = elements.back();
-            if (list) element.lastList = static_cast<int>(element.properties.size());
-            if (element.name == "face" && list) {
-                const int index = static_cast<int>(element.properties.size());
-                if (property.name == "vertex_indices" || property.name == "vertex_index") element.vertexIndices = index;
-                if (property.name == "texcoord") element.textureCoordinates = index;
-            }
-            element.properties.push_back(property);
-        } else if (keyword == "comment" || keyword == "obj_info") {
-            if (!elements.empty() && interruptingLine == 0) {
-                interruptingLine = lineNumber;
-                interruptingColumn = words[0].column;
-                interruption = std::string(keyword) + " line among the properties of element " +
-                               quoted(elements.back().name) + ": Assimp would ignore the properties after it";
-            }
-        } else if (keyword == "format") {
-            return at(words[0].column, "a second format line");
-        } else {
-            // A line without a keyword: Assimp skips it.
-            if (!elements.empty() && interruptingLine == 0) {
-                interruptingLine = lineNumber;
-                interruptingColumn = 1;
-                interruption = "unknown PLY header line " + quoted(keyword) +
-                               " (expected comment, obj_info, element, property or end_header)";
-            }
-            if (ignoredCount++ == 0)
-                firstIgnored = std::to_string(lineNumber) + " without a keyword (" + quotedLine(line) + ")";
-        }
-        start = end + 1;
     }
-    return MeshTextProblem{lineNumber, 1, "the PLY header has no end_header line"};
+
+    std::string_view text_;
+    std::string* ignoredLines_;
+    int lineNumber_ = 0;
+    bool finished_ = false;  // end_header read and the body checked
+    Format format_ = Format::kAscii;
+    std::vector<PlyElement> elements_;
+    int vertexElementLine_ = 0;  // where the vertex element was declared, else 0
+    int faceElementLine_ = 0;    // and the face element
+    int unknownElement_ = -1;    // the first element Assimp does not know with a nonzero count, else -1
+    int interruptingLine_ = 0;   // see noteInterruption
+    int interruptingColumn_ = 0;
+    std::string interruption_;  // the error if a property follows
+    int ignoredCount_ = 0;
+    std::string firstIgnored_;
+};
+
+}  // namespace
+
+std::optional<MeshTextProblem> checkPlyHeader(std::string_view text, std::string* ignoredLines) {
+    return PlyHeaderReader(text, ignoredLines).read();
 }
 
 namespace {

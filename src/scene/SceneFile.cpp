@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/Errors.h"
+#include "core/TextFormat.h"
 #include "core/Transform.h"
 #include "scene/GltfScene.h"
 #include "scene/ImageLoader.h"
@@ -47,29 +48,9 @@ constexpr std::size_t kMaxKeyframes = 10000;
 constexpr std::size_t kMaxRotations = 64;
 constexpr int kMaxFrames = 1000000;
 constexpr int kMaxFramesPerSegment = 100000;
-constexpr int kMinCacheResolution = 16;
-constexpr int kMaxCacheResolution = 2048;
 // Meshes and images live in their own files, so a scene file is small; a huge
 // one is the wrong file.
 constexpr std::uintmax_t kMaxSceneFileBytes = 64u << 20;
-
-// Shortest text that reads back as the same double ("-1", "0.25", "1e+39"),
-// except that whole numbers are written out ("1000000", not "1e+06").
-std::string formatSceneNumber(double v) {
-    if (v == std::floor(v) && std::fabs(v) < 1e15) return std::to_string(static_cast<long long>(v));
-    std::array<char, 32> buf{};
-    const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), v);
-    return std::string(buf.data(), r.ptr);
-}
-
-// The same for a float: the shortest text that reads back as that float
-// ("3e+38", not the double 3.0000000054977558e+38).
-std::string formatFloat(float v) {
-    if (v == std::floor(v) && std::fabs(v) < 1e15f) return std::to_string(static_cast<long long>(v));
-    std::array<char, 32> buf{};
-    const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), v);
-    return std::string(buf.data(), r.ptr);
-}
 
 // A string as a JSON literal: quoted, and escaped so messages stay one line.
 std::string quote(std::string_view s) {
@@ -211,11 +192,11 @@ struct Range {
     }
     std::string describe() const {
         if (lo && hi && loInclusive && hiInclusive)
-            return "must be between " + formatSceneNumber(*lo) + " and " + formatSceneNumber(*hi);
+            return "must be between " + formatShortest(*lo) + " and " + formatShortest(*hi);
         std::string s = "must be";
-        if (lo) s += std::string(loInclusive ? " >= " : " > ") + formatSceneNumber(*lo);
+        if (lo) s += std::string(loInclusive ? " >= " : " > ") + formatShortest(*lo);
         if (lo && hi) s += " and";
-        if (hi) s += std::string(hiInclusive ? " <= " : " < ") + formatSceneNumber(*hi);
+        if (hi) s += std::string(hiInclusive ? " <= " : " < ") + formatShortest(*hi);
         return s;
     }
 };
@@ -378,16 +359,16 @@ private:
         // Everything downstream is float: a double beyond float range would
         // silently become infinity.
         if (std::fabs(d) > static_cast<double>(std::numeric_limits<float>::max()))
-            fail(n, "is too large to be represented (got " + formatSceneNumber(d) + ")");
-        if (!range.contains(d)) fail(n, range.describe() + " (got " + formatSceneNumber(d) + ")");
+            fail(n, "is too large to be represented (got " + formatShortest(d) + ")");
+        if (!range.contains(d)) fail(n, range.describe() + " (got " + formatShortest(d) + ")");
         return static_cast<float>(d);
     }
 
     int integer(const Node& n, int lo, int hi) const {
         const double d = numberValue(n);
-        if (d != std::floor(d)) fail(n, "must be a whole number (got " + formatSceneNumber(d) + ")");
+        if (d != std::floor(d)) fail(n, "must be a whole number (got " + formatShortest(d) + ")");
         const Range range = closed(lo, hi);
-        if (!range.contains(d)) fail(n, range.describe() + " (got " + formatSceneNumber(d) + ")");
+        if (!range.contains(d)) fail(n, range.describe() + " (got " + formatShortest(d) + ")");
         return static_cast<int>(d);
     }
 
@@ -711,7 +692,7 @@ private:
             const Node t = required(k, "time");
             const float time = number(t, closed(-kMaxAnimationSeconds, kMaxAnimationSeconds));
             if (!times.empty() && !(time > times.back()))
-                fail(t, "key times must increase (got " + formatSceneNumber(time) + " after " + formatSceneNumber(times.back()) + ")");
+                fail(t, "key times must increase (got " + formatShortest(time) + " after " + formatShortest(times.back()) + ")");
             times.push_back(time);
         }
         return keys;
@@ -756,8 +737,8 @@ private:
             const double reach = static_cast<double>(length(key.translate)) +
                                  static_cast<double>(std::max({key.scale.x, key.scale.y, key.scale.z})) * restReach;
             if (!(reach <= kMaxWorldCoordinate))
-                fail(k, "this key moves the object up to " + formatSceneNumber(reach) + " from the origin, beyond the limit of " +
-                            formatFloat(kMaxWorldCoordinate) + " (floats are too coarse to trace beyond)");
+                fail(k, "this key moves the object up to " + formatShortest(reach) + " from the origin, beyond the limit of " +
+                            formatShortestFloat(kMaxWorldCoordinate) + " (floats are too coarse to trace beyond)");
             track.keys.push_back(key);
         }
         return track;
@@ -862,7 +843,7 @@ private:
         expectObject(n, {"technique", "resolution", "step", "epsilon", "maxDepth", "tolerance"});
         CacheSettings c;
         if (const Node v = child(n, "technique")) c.technique = choice(v, "cache technique", kCacheTechniqueChoices);
-        if (const Node v = child(n, "resolution")) c.faceResolution = integer(v, kMinCacheResolution, kMaxCacheResolution);
+        if (const Node v = child(n, "resolution")) c.faceResolution = integer(v, CacheSettings::kMinFaceResolution, CacheSettings::kMaxFaceResolution);
         // CDCT search parameters; RayCache::validate checks the step count.
         if (const Node v = child(n, "step")) c.cdct.step = number(v, positive());
         if (const Node v = child(n, "epsilon")) c.cdct.epsilon = number(v, positive());
@@ -971,8 +952,8 @@ private:
                 if (t.rotate) fail(t.rotate, "a sphere cannot be rotated (only translate and a uniform scale apply)");
                 const Vec3& s = t.scaleFactors;
                 if (t.scale && !(s.x == s.y && s.y == s.z))
-                    fail(t.scale, "a sphere needs a uniform scale (got [" + formatSceneNumber(s.x) + ", " +
-                                      formatSceneNumber(s.y) + ", " + formatSceneNumber(s.z) + "])");
+                    fail(t.scale, "a sphere needs a uniform scale (got [" + formatShortest(s.x) + ", " +
+                                      formatShortest(s.y) + ", " + formatShortest(s.z) + "])");
                 Sphere sphere;
                 if (const Node v = child(o, "center")) sphere.center = vec3(v);
                 if (const Node v = child(o, "radius")) sphere.radius = number(v, positive());
@@ -1023,12 +1004,12 @@ private:
                                        std::fabs(double(sphere.center.z))}) +
                              double(sphere.radius);
         if (!isFinite(sphere.center) || !std::isfinite(sphere.radius) || !(reach <= kMaxWorldCoordinate))
-            fail(where, "the sphere (world centre [" + formatFloat(sphere.center.x) + ", " +
-                            formatFloat(sphere.center.y) + ", " + formatFloat(sphere.center.z) + "], radius " +
-                            formatFloat(sphere.radius) + ") reaches " +
-                            (reach <= std::numeric_limits<float>::max() ? formatFloat(static_cast<float>(reach))
-                                                                        : formatSceneNumber(reach)) +
-                            ", beyond the limit of ±" + formatFloat(kMaxWorldCoordinate) +
+            fail(where, "the sphere (world centre [" + formatShortestFloat(sphere.center.x) + ", " +
+                            formatShortestFloat(sphere.center.y) + ", " + formatShortestFloat(sphere.center.z) + "], radius " +
+                            formatShortestFloat(sphere.radius) + ") reaches " +
+                            (reach <= std::numeric_limits<float>::max() ? formatShortestFloat(static_cast<float>(reach))
+                                                                        : formatShortest(reach)) +
+                            ", beyond the limit of ±" + formatShortestFloat(kMaxWorldCoordinate) +
                             " on some axis (floats are too coarse to trace beyond)");
     }
 
@@ -1047,7 +1028,7 @@ private:
         if (outside > 0)
             fail(where, (prefix.empty() ? "" : prefix) + std::to_string(outside) + " of the mesh's " +
                             std::to_string(mesh.positions.size()) + " vertices lie beyond ±" +
-                            formatFloat(kMaxWorldCoordinate) + " on some axis (floats are too coarse to trace beyond)");
+                            formatShortestFloat(kMaxWorldCoordinate) + " on some axis (floats are too coarse to trace beyond)");
         if (const std::string problem = validateMesh(mesh); !problem.empty()) fail(where, problem);
     }
 

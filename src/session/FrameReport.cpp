@@ -6,12 +6,6 @@
 
 namespace raycache {
 
-std::string formatFixed(double value, int decimals) {
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
-    return buffer;
-}
-
 std::string formatFrameLine(const FrameResult& r, int frameCount) {
     const RayCounts& rays = r.stats.rays;
     const double mrays = static_cast<double>(rays.total()) / (r.milliseconds * 1e3);

@@ -3,12 +3,10 @@
 // `render` and `cache-view` report frames identically.
 #include <string>
 
+#include "core/TextFormat.h"
 #include "session/FrameLoop.h"
 
 namespace raycache {
-
-// `value` with exactly `decimals` digits after the point ("26.6").
-std::string formatFixed(double value, int decimals);
 
 // "frame 3/48  26.6 ms  rays: primary ..., ...  21.54 Mrays/s[  cache: ...][  phases ms: ...]",
 // without a newline; the cache part appears when the frame used caches, the

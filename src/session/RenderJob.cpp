@@ -70,9 +70,11 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
                          std::to_string(*o.cdctPrefillPerFrame) + ")");
     if (o.cdctStep && o.cdctEpsilon && !(*o.cdctEpsilon < *o.cdctStep))
         throw InputError("--cdct-epsilon must be smaller than --cdct-step");
-    if (o.cacheResolution &&
-        (*o.cacheResolution < RayCache::kMinResolution || *o.cacheResolution > RayCache::kMaxResolution))
-        throw InputError("--cache-res must be between 16 and 2048 (got " + std::to_string(*o.cacheResolution) + ")");
+    if (o.cacheResolution && (*o.cacheResolution < CacheSettings::kMinFaceResolution ||
+                              *o.cacheResolution > CacheSettings::kMaxFaceResolution))
+        throw InputError("--cache-res must be between " + std::to_string(CacheSettings::kMinFaceResolution) +
+                         " and " + std::to_string(CacheSettings::kMaxFaceResolution) + " (got " +
+                         std::to_string(*o.cacheResolution) + ")");
     if (o.cacheLevels < 1 || o.cacheLevels > kMaxCubeLevels)
         throw InputError("--cache-levels must be between 1 and " + std::to_string(kMaxCubeLevels) + " (got " +
                          std::to_string(o.cacheLevels) + ")");

@@ -3,6 +3,7 @@
 // uncached render.
 #include <gtest/gtest.h>
 
+#include "ImageCompare.h"
 #include "PathRender.h"
 
 #include <cstring>
@@ -22,11 +23,6 @@ const CachePolicyCosts kPolicyTestCosts{0.1, 0.1, 0.02};
 CubeFrameCounts policyFrame(std::uint64_t lookups, std::uint64_t hits, std::uint64_t tree) {
     const std::uint64_t misses = lookups - hits;
     return {lookups, hits, misses, misses, misses * tree, 0};
-}
-
-bool policyImagesMatch(const Image& a, const Image& b) {
-    return a.width() == b.width() && a.height() == b.height() &&
-           std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size() * sizeof(Rgb)) == 0;
 }
 
 // A CCT cube under costs no hit repays: frame 0 fills its sample (not judged),
@@ -371,7 +367,7 @@ TEST(CachePolicyRender, BypassedFramesAreTheUncachedRender) {
         EXPECT_EQ(c.bypassedRays(), 0u);
         EXPECT_EQ(cached.stats[static_cast<std::size_t>(f)].rays.reflection,
                   plain.stats[static_cast<std::size_t>(f)].rays.reflection);
-        EXPECT_TRUE(policyImagesMatch(cached.frames[static_cast<std::size_t>(f)], plain.frames[static_cast<std::size_t>(f)]))
+        EXPECT_TRUE(identicalImages(cached.frames[static_cast<std::size_t>(f)], plain.frames[static_cast<std::size_t>(f)]))
             << "frame " << f;
     }
     // The probe looks the cubes up again, on their samples.
@@ -402,7 +398,7 @@ TEST(CachePolicyRender, SampledFramesLookUpTheSampleOnlyAndItPredictsFullCaching
         EXPECT_LT(sampled, 1.0 / 8.0) << "frame " << f;
     }
     EXPECT_EQ(cacheOf(0).hits(), 0u);
-    EXPECT_TRUE(policyImagesMatch(cached.frames[0], plain.frames[0]));
+    EXPECT_TRUE(identicalImages(cached.frames[0], plain.frames[0]));
     EXPECT_GT(cacheOf(1).lookups(), 0u);
     EXPECT_EQ(cacheOf(1).hits(), cacheOf(1).lookups());
     for (int f = 2; f < kFrames; ++f) {
@@ -446,7 +442,7 @@ TEST(CachePolicyRender, AlwaysIsTheDefaultBehaviour) {
                                          TileBalance::Dynamic, 1, 0, false, VisibleFill::Off, {},
                                          CachePolicyMode::Always, losingCosts());
     for (std::size_t f = 0; f < 4; ++f) {
-        EXPECT_TRUE(policyImagesMatch(byDefault.frames[f], always.frames[f])) << "frame " << f;
+        EXPECT_TRUE(identicalImages(byDefault.frames[f], always.frames[f])) << "frame " << f;
         EXPECT_EQ(always.stats[f].cache->bypassedCubes(), 0);
     }
     EXPECT_EQ(byDefault.texels, always.texels);
@@ -460,7 +456,7 @@ TEST(CachePolicyRender, AutoIsTheSameOnOneAndTwoThreads) {
     };
     const PathRender one = run(1), two = run(2);
     for (std::size_t f = 0; f < one.frames.size(); ++f) {
-        EXPECT_TRUE(policyImagesMatch(one.frames[f], two.frames[f])) << "frame " << f;
+        EXPECT_TRUE(identicalImages(one.frames[f], two.frames[f])) << "frame " << f;
         for (std::size_t o = 0; o < one.stats[f].cache->objects.size(); ++o) {
             EXPECT_EQ(one.stats[f].cache->objects[o].state, two.stats[f].cache->objects[o].state);
             EXPECT_EQ(one.stats[f].cache->objects[o].policyCost, two.stats[f].cache->objects[o].policyCost);
@@ -491,7 +487,7 @@ TEST(CachePolicyRender, AnimatedSceneBypassedFramesAreTheUncachedRender) {
         ASSERT_TRUE(sa.cache.has_value());
         EXPECT_EQ(sa.cache->bypassedCubes() > 0, aside) << "frame " << f;
         if (aside) {
-            EXPECT_TRUE(policyImagesMatch(a, b)) << "frame " << f;
+            EXPECT_TRUE(identicalImages(a, b)) << "frame " << f;
             // Stepping aside emptied the cube: no change tests its blocks.
             for (const ObjectCacheStats& o : sa.cache->objects) EXPECT_EQ(o.regionTests, 0u) << "frame " << f;
         } else if (f > 0) {

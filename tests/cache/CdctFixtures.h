@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "ImageCompare.h"
 #include "core/Image.h"
 #include "scene/Scene.h"
 
@@ -65,11 +66,6 @@ inline std::vector<Probe> awkwardRays() {
         {{0.3f, 0.2f, 0.1f}, {0.0f, -1.0f, 0.0f}},       // origin inside the object
         {{0.6f, 0.8f, 0.0f}, {0.8f, -0.6f, 0.0f}},       // tangent to the sphere
     };
-}
-
-inline bool sameImage(const Image& a, const Image& b) {
-    return a.pixels().size() == b.pixels().size() &&
-           std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size() * sizeof(Rgb)) == 0;
 }
 
 }  // namespace raycache::cdct_test

@@ -313,7 +313,7 @@ TEST(CdctImproved, FirstFrameTracesThenPrefillsThenAnswers) {
     const PathRender run = renderPath("parallax", CacheTechnique::Cdct, 3, true, 96, 2, 32);
     const PathRender plain = renderPath("parallax", CacheTechnique::None, 1, true, 96, 2, 32);
     ASSERT_EQ(run.stats.size(), 3u);
-    EXPECT_TRUE(sameImage(run.frames[0], plain.frames[0])) << "frame 1 traces every ray";
+    EXPECT_TRUE(identicalImages(run.frames[0], plain.frames[0])) << "frame 1 traces every ray";
     EXPECT_EQ(run.stats[0].cache->hits(), 0u);
     EXPECT_EQ(run.stats[0].cache->cdctSearches(), 0u) << "nothing searched before the pre-fill";
     EXPECT_EQ(run.stats[1].cache->cdctSearches(), run.stats[1].cache->lookups()) << "every lookup searched after it";
@@ -331,7 +331,7 @@ TEST(CdctImproved, ImagesAndCachesBitIdenticalAcrossThreadCounts) {
     const PathRender three = renderPath("parallax", CacheTechnique::Cdct, 3, false, 96, 3, 32);
     ASSERT_EQ(one.frames.size(), three.frames.size());
     for (std::size_t f = 0; f < one.frames.size(); ++f)
-        EXPECT_TRUE(sameImage(one.frames[f], three.frames[f])) << "frame " << f;
+        EXPECT_TRUE(identicalImages(one.frames[f], three.frames[f])) << "frame " << f;
     EXPECT_EQ(one.texels, three.texels);
     EXPECT_GT(one.stats.back().cache->hits(), 0u);
 }

@@ -183,7 +183,7 @@ TEST(Cdct, StillCameraSecondFrameAnswersFromTheCache) {
     EXPECT_GT(run.stats[1].cache->hits(), run.stats[1].cache->lookups() / 2) << "most lookups answered";
     EXPECT_LT(run.stats[1].rays.reflection, run.stats[0].rays.reflection);
     const PathRender plain = renderPath("parallax", CacheTechnique::None, 2, true, 128, 2, 16);
-    EXPECT_TRUE(sameImage(run.frames[0], plain.frames[0])) << "frame 1 traces every ray";
+    EXPECT_TRUE(identicalImages(run.frames[0], plain.frames[0])) << "frame 1 traces every ray";
     const double db = psnr(run.frames[1], plain.frames[1]);
     std::printf(
         "parallax 128x128 still camera, 16^2 faces, frame 2: CDCT parity %.2f dB vs uncached, hits %llu of "
@@ -235,7 +235,7 @@ TEST(Cdct, ParallaxAlongTheCameraPathAgainstCctAndUncached) {
         if (resolution == 512) {
             // No answers at all: the image must be exactly the uncached one.
             EXPECT_EQ(cdct.stats.back().cache->hits(), 0u);
-            EXPECT_TRUE(sameImage(cdct.frames.back(), plain.frames.back()));
+            EXPECT_TRUE(identicalImages(cdct.frames.back(), plain.frames.back()));
             continue;
         }
         EXPECT_GE(cdctDb, expected.minCdctDb) << resolution << "^2 faces";
@@ -250,7 +250,7 @@ TEST(Cdct, ImagesAndCachesBitIdenticalAcrossThreadCounts) {
     const PathRender three = renderPath("parallax", CacheTechnique::CdctParity, 3, false, 96, 3, 16);
     ASSERT_EQ(one.frames.size(), three.frames.size());
     for (std::size_t f = 0; f < one.frames.size(); ++f)
-        EXPECT_TRUE(sameImage(one.frames[f], three.frames[f])) << "frame " << f;
+        EXPECT_TRUE(identicalImages(one.frames[f], three.frames[f])) << "frame " << f;
     EXPECT_EQ(one.texels, three.texels);
     EXPECT_GT(one.stats.back().cache->hits(), 0u);
 }

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "ImageCompare.h"
 #include "metrics/ImageMetrics.h"
 
 #include "core/Errors.h"
@@ -34,11 +35,6 @@ Scene stillPoseAt(const Scene& scene, float time) {
     return posed;
 }
 
-bool identical(const Image& a, const Image& b) {
-    return a.width() == b.width() && a.height() == b.height() &&
-           std::memcmp(a.pixels().data(), b.pixels().data(), sizeof(Rgb) * a.pixels().size()) == 0;
-}
-
 void expectFramesMatchFreshRenders(const std::string& name, CacheTechnique technique, PipelineKind pipeline) {
     const Scene scene = *makeBuiltinScene(name);
     const RenderSettings settings = smallSettings(technique, pipeline);
@@ -52,7 +48,7 @@ void expectFramesMatchFreshRenders(const std::string& name, CacheTechnique techn
         const Scene still = stillPoseAt(scene, time);
         RenderSession fresh(still, smallSettings(CacheTechnique::None, pipeline));
         fresh.render(still.camera, truth);
-        EXPECT_TRUE(identical(film, truth)) << name << " frame " << frame;
+        EXPECT_TRUE(identicalImages(film, truth)) << name << " frame " << frame;
         if (frame > 0) {
             EXPECT_GT(stats.sceneUpdate->objectsChanged + stats.sceneUpdate->lightsChanged, 0);
         }

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "ImageCompare.h"
 #include "CiRequirement.h"
 #include "app/RenderCommand.h"
 #include "core/Parallel.h"
@@ -77,11 +78,6 @@ Frames renderPath(const Scene& scene, const RenderSettings& settings, int frames
         out.images.push_back(std::move(film));
     }
     return out;
-}
-
-bool identical(const Image& a, const Image& b) {
-    return a.width() == b.width() && a.height() == b.height() &&
-           std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size() * sizeof(Rgb)) == 0;
 }
 
 // Whether this machine can make the context the GL tests need; the reason otherwise.
@@ -152,7 +148,7 @@ TEST_P(HybridEquivalence, PacketGBufferIsBitIdenticalToRayTracing) {
     const double db = psnr(ray.images[0], packets.images[0]);
     std::printf("[ psnr     ] %-14s hybrid (packet G-buffer) vs ray: %s dB\n", GetParam().c_str(),
                 std::isinf(db) ? "inf (identical)" : std::to_string(db).c_str());
-    EXPECT_TRUE(identical(ray.images[0], packets.images[0])) << GetParam() << ": PSNR " << db << " dB";
+    EXPECT_TRUE(identicalImages(ray.images[0], packets.images[0])) << GetParam() << ": PSNR " << db << " dB";
     const RayCounts& a = ray.stats[0].rays;
     const RayCounts& b = packets.stats[0].rays;
     EXPECT_EQ(a.primary, b.primary);
@@ -174,7 +170,7 @@ TEST(HybridPipeline, CachesWorkUnchanged) {
     const Frames packets =
         renderPath(scene, settingsFor(PipelineKind::Hybrid, GBufferSource::Packets, 0, CacheTechnique::Cct), kFrames);
     for (int f = 0; f < kFrames; ++f) {
-        EXPECT_TRUE(identical(ray.images[f], packets.images[f])) << "frame " << f;
+        EXPECT_TRUE(identicalImages(ray.images[f], packets.images[f])) << "frame " << f;
         ASSERT_TRUE(ray.stats[f].cache && packets.stats[f].cache);
         EXPECT_EQ(ray.stats[f].cache->hits(), packets.stats[f].cache->hits()) << "frame " << f;
         EXPECT_EQ(ray.stats[f].cache->stores(), packets.stats[f].cache->stores()) << "frame " << f;
@@ -211,7 +207,7 @@ TEST(HybridPipeline, DeterministicAcrossThreadCounts) {
             const Frames many =
                 renderPath(scene, settingsFor(PipelineKind::Hybrid, source, threads, CacheTechnique::Cct), 2);
             for (std::size_t f = 0; f < one.images.size(); ++f) {
-                EXPECT_TRUE(identical(one.images[f], many.images[f]))
+                EXPECT_TRUE(identicalImages(one.images[f], many.images[f]))
                     << many.description << ", " << threads << " threads, frame " << f;
                 EXPECT_EQ(one.stats[f].cache->stores(), many.stats[f].cache->stores());
                 EXPECT_EQ(one.stats[f].cache->hits(), many.stats[f].cache->hits());

@@ -14,6 +14,7 @@
 #include <numbers>
 #include <vector>
 
+#include "ImageCompare.h"
 #include "core/Parallel.h"
 #include "render/AnalyticScene.h"
 #include "render/FrameRenderer.h"
@@ -44,11 +45,6 @@ RenderSettings raySettings(const RenderSettings& rc) {
     return s;
 }
 
-bool sameImage(const Image& a, const Image& b) {
-    return a.width() == b.width() && a.height() == b.height() &&
-           std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size() * sizeof(Rgb)) == 0;
-}
-
 int differingPixels(const Image& a, const Image& b) {
     int n = 0;
     for (std::size_t i = 0; i < a.pixels().size(); ++i) n += a.pixels()[i] == b.pixels()[i] ? 0 : 1;
@@ -73,14 +69,14 @@ TEST(RenderCachePipeline, AStillCameraReproducesTheRayPipelinesImageEveryFrame) 
         EXPECT_TRUE(s1.renderCache->refreshedAll);
         EXPECT_EQ(s1.renderCache->fresh, 64 * 48);
         EXPECT_EQ(s1.rays.primary, 64u * 48u);
-        EXPECT_TRUE(sameImage(first, reference))
+        EXPECT_TRUE(identicalImages(first, reference))
             << name << ": " << differingPixels(first, reference) << " pixels differ";
         for (int frame = 2; frame <= 6; ++frame) {
             Image film;
             const FrameStats s = session.render(scene->camera, film);
             ASSERT_TRUE(s.renderCache.has_value());
             const RenderCacheStats& rc = *s.renderCache;
-            EXPECT_TRUE(sameImage(film, first))
+            EXPECT_TRUE(identicalImages(film, first))
                 << name << " frame " << frame << ": " << differingPixels(film, first) << " pixels differ";
             EXPECT_FALSE(rc.refreshedAll);
             EXPECT_EQ(rc.holes, 0) << "every sample lands back on its own pixel";
@@ -143,7 +139,7 @@ TEST(RenderCachePipeline, SlidingAlongAWallMovesEverySampleByTheExpectedPixels) 
     Image f1, f2, truth1, truth2;
     pipeline.render(first, f1);
     ray.render(first, truth1);
-    ASSERT_TRUE(sameImage(f1, truth1));
+    ASSERT_TRUE(identicalImages(f1, truth1));
     const FrameStats stats = pipeline.render(second, f2);
     ray.render(second, truth2);
     ASSERT_TRUE(stats.renderCache.has_value());
@@ -406,7 +402,7 @@ TEST(RenderCachePipeline, ACutTracesEveryPixelAndGivesTheRayPipelinesImage) {
         if (!cut) continue;
         EXPECT_EQ(rc.fresh, 48 * 32) << i;
         EXPECT_EQ(rc.predicted, 0) << i;
-        EXPECT_TRUE(sameImage(film, truth)) << "frame " << i << ": " << differingPixels(film, truth) << " differ";
+        EXPECT_TRUE(identicalImages(film, truth)) << "frame " << i << ": " << differingPixels(film, truth) << " differ";
     }
 }
 
@@ -426,7 +422,7 @@ TEST(RenderCachePipeline, AMovingCameraGivesTheSameImagesAndCountsOnOneAndTwoThr
         Image fa, fb;
         const FrameStats sa = a.render(camera, fa), sb = b.render(camera, fb);
         ASSERT_TRUE(sa.renderCache && sb.renderCache);
-        EXPECT_TRUE(sameImage(fa, fb)) << "frame " << frame << ": " << differingPixels(fa, fb) << " pixels differ";
+        EXPECT_TRUE(identicalImages(fa, fb)) << "frame " << frame << ": " << differingPixels(fa, fb) << " pixels differ";
         const RenderCacheStats &x = *sa.renderCache, &y = *sb.renderCache;
         EXPECT_EQ(x.budget, y.budget) << frame;
         EXPECT_EQ(x.fresh, y.fresh) << frame;

@@ -12,6 +12,7 @@
 #include <numbers>
 #include <vector>
 
+#include "ImageCompare.h"
 #include "core/Parallel.h"
 #include "metrics/ImageMetrics.h"
 #include "render/AnalyticScene.h"
@@ -118,11 +119,6 @@ CheckerRun run(bool refetch, int threads) {
     return r;
 }
 
-bool sameTextureImage(const Image& a, const Image& b) {
-    return a.width() == b.width() && a.height() == b.height() &&
-           std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size() * sizeof(Rgb)) == 0;
-}
-
 }  // namespace
 
 // Measured (release, 64x48, budget 5 %, frames 2-10): mean PSNR with
@@ -154,7 +150,7 @@ TEST(RenderCacheTexture, RefetchingTheTextureBeatsReprojectingItsColour) {
 TEST(RenderCacheTexture, RefetchGivesTheSameImagesOnOneAndTwoThreads) {
     const CheckerRun one = run(true, 1), two = run(true, 2);
     for (int frame = 0; frame < kTextureFrames; ++frame)
-        EXPECT_TRUE(sameTextureImage(one.frames[static_cast<std::size_t>(frame)], two.frames[static_cast<std::size_t>(frame)]))
+        EXPECT_TRUE(identicalImages(one.frames[static_cast<std::size_t>(frame)], two.frames[static_cast<std::size_t>(frame)]))
             << "frame " << frame;
 }
 

@@ -4,6 +4,7 @@
 
 #include <cstring>
 
+#include "ImageCompare.h"
 #include "core/Parallel.h"
 #include "render/CacheFrame.h"
 #include "render/CameraRays.h"
@@ -25,11 +26,6 @@ RenderSettings smallSessionSettings(CacheTechnique technique) {
     return s;
 }
 
-bool sameImage(const Image& a, const Image& b) {
-    return a.width() == b.width() && a.height() == b.height() &&
-           std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size() * sizeof(Rgb)) == 0;
-}
-
 }  // namespace
 
 TEST(RenderSession, RendersWhatTheHandAssembledPartsRender) {
@@ -47,7 +43,7 @@ TEST(RenderSession, RendersWhatTheHandAssembledPartsRender) {
             Image a, b;
             const FrameStats sa = session.render(camera, a);
             const FrameStats sb = renderer.render(camera, b);
-            EXPECT_TRUE(sameImage(a, b)) << cacheTechniqueName(technique) << " frame " << frame;
+            EXPECT_TRUE(identicalImages(a, b)) << cacheTechniqueName(technique) << " frame " << frame;
             EXPECT_EQ(sa.rays.total(), sb.rays.total());
             EXPECT_EQ(sa.cache.has_value(), technique != CacheTechnique::None);
         }

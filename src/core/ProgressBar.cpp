@@ -1,4 +1,4 @@
-#include "bench/ProgressBar.h"
+#include "core/ProgressBar.h"
 
 #include <unistd.h>
 

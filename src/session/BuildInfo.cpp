@@ -1,4 +1,4 @@
-#include "bench/BuildInfo.h"
+#include "session/BuildInfo.h"
 
 #include "core/LaneInstructionSet.h"
 #include "core/Parallel.h"

@@ -2,7 +2,7 @@
 
 #include <sstream>
 
-#include "bench/ProgressBar.h"
+#include "core/ProgressBar.h"
 
 using namespace raycache;
 
