@@ -252,6 +252,14 @@ RenderRequest renderRequest(const ViewerUiState& state, const Camera& camera, co
     return request;
 }
 
+// The frame fitted into the window, on a dark background.
+void drawFrame(const GlTexture& frameTexture, int fbw, int fbh) {
+    glViewport(0, 0, fbw, fbh);
+    glClearColor(0.05f, 0.05f, 0.05f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    frameTexture.blitTo(fitRect(frameTexture.width(), frameTexture.height(), fbw, fbh));
+}
+
 // A shown frame's render time teaches pipeline auto's rule what each way
 // costs. Left out: a Render Cache frame that traced every pixel (its first,
 // a cut) and a full frame made while the Render Cache waited for samples
@@ -411,19 +419,10 @@ void Viewer::run(std::ostream& out) {
                                                    state, actions);
         const bool wasPlaying = state.playPath;
         if (state.showUi) {
-            ViewerPanelInput in;
-            in.scene = &scene;
-            in.frame = &shown;
-            in.intervals = &intervals;
-            in.renderTimes = &renderTimes;
-            in.uiTimes = uiTimes;
-            in.cachedObjects = cachedObjects;
-            in.inspectorTexture = inspectorTexture.id();
-            in.inspectorWidth = inspectorTexture.width();
-            in.inspectorHeight = inspectorTexture.height();
-            in.autoRule = &autoRule;
-            in.autoFullPixels = autoFullPixels;
-            in.autoRenderCachePixels = autoRenderCachePixels;
+            ViewerPanelInput in{&scene,         &shown,          &intervals,  &renderTimes,
+                                uiTimes,        cachedObjects,   inspectorTexture.id(),
+                                inspectorTexture.width(),        inspectorTexture.height(),
+                                &autoRule,      autoFullPixels,  autoRenderCachePixels};
             drawViewerPanel(in, state, actions);
         }
 
@@ -466,10 +465,7 @@ void Viewer::run(std::ostream& out) {
         if (fbw > 0 && fbh > 0) worker.submit(request);
 
         // 4. Draw: the frame, then the panel over it.
-        glViewport(0, 0, fbw, fbh);
-        glClearColor(0.05f, 0.05f, 0.05f, 1.0f);
-        glClear(GL_COLOR_BUFFER_BIT);
-        frameTexture.blitTo(fitRect(frameTexture.width(), frameTexture.height(), fbw, fbh));
+        drawFrame(frameTexture, fbw, fbh);
         window.endUiFrame();
         uiTimes.uiMs = msBetween(uiStart, Clock::now());
 
