@@ -21,6 +21,8 @@
 #include "render/CameraRays.h"
 #include "render/ImageWriter.h"
 #include "scene/BuiltinScenes.h"
+#include "scene/MeshSearchPath.h"
+#include "scene/RealMeshScenes.h"
 #include "session/RenderSession.h"
 #include "trace/TraceScene.h"
 
@@ -35,6 +37,24 @@ std::vector<std::string> benchScenes(BenchSize size) {
     std::vector<std::string> scenes = {"room", "behind-32", "glass"};
     if (size != BenchSize::Tiny) scenes.push_back("dragon-hall");
     return scenes;
+}
+
+// A built-in scene, or one made of real meshes found on the search path;
+// empty, with a caveat saying why, when its mesh is not there.
+std::optional<Scene> benchScene(const std::string& name, std::vector<std::string>& caveats) {
+    if (std::optional<Scene> scene = makeBuiltinScene(name)) return scene;
+    const MeshSearchPath meshes = meshSearchPathFromEnvironment();
+    const auto real = realMeshScenes();
+    const auto info =
+        std::find_if(real.begin(), real.end(), [&](const RealMeshSceneInfo& r) { return r.name == name; });
+    if (info == real.end()) throw RuntimeError("built-in scene " + name + " is missing");
+    if (const std::string missing = missingMeshFiles(*info, meshes); !missing.empty()) {
+        const std::string caveat =
+            name + " left out: its mesh is not on the search path (" + missing + "; scripts/install-deps.sh fetches it)";
+        if (std::find(caveats.begin(), caveats.end(), caveat) == caveats.end()) caveats.push_back(caveat);
+        return std::nullopt;
+    }
+    return makeRealMeshScene(name, meshes);
 }
 
 std::string listed(const std::vector<std::string>& names, const char* quote) {
@@ -252,7 +272,8 @@ public:
         std::vector<SceneRun> runs;
         for (int side : sides) {
             for (const std::string& sceneName : benchScenes(context.settings.size)) {
-                runs.push_back(runScene(context, sceneName, side, frames, variants, out));
+                std::optional<Scene> scene = benchScene(sceneName, out.caveats);
+                if (scene) runs.push_back(runScene(context, *scene, sceneName, side, frames, variants, out));
             }
         }
         const CpuSample cpuAfter = currentCpuSample();
@@ -473,11 +494,8 @@ private:
         return md;
     }
 
-    SceneRun runScene(ExperimentContext& context, const std::string& sceneName, int side, int frames,
-                      const std::vector<RcVariant>& variants, ExperimentOutput& out) const {
-        std::optional<Scene> maybeScene = makeBuiltinScene(sceneName);
-        if (!maybeScene) throw RuntimeError("built-in scene " + sceneName + " is missing");
-        const Scene& scene = *maybeScene;
+    SceneRun runScene(ExperimentContext& context, const Scene& scene, const std::string& sceneName, int side,
+                      int frames, const std::vector<RcVariant>& variants, ExperimentOutput& out) const {
         const TraceScene tracer(scene);
         const double mp = static_cast<double>(side) * side / 1e6;
         context.progress.step("render-cache: " + sceneName + " " + sideText(side) + ", " + std::to_string(frames) +
