@@ -1,6 +1,7 @@
 // RenderCachePipeline's new samples: the requested pixels traced through the
 // frame's camera by the tile kernel, each replacing what its pixel held;
 // the asynchronous mode hands the request to its tracer instead.
+#include <atomic>
 #include <limits>
 
 #include "core/Elapsed.h"
@@ -42,13 +43,17 @@ void RenderCachePipeline::traceNewSamples(FrameContext& f) {
             const PixelCoord p = requests.pixels[i];
             const std::size_t slot = image_.pixelIndex(p.x, p.y);
             fresh += image_.hasSample(p.x, p.y) ? 0 : 1;
+            PixelState& s = state[static_cast<std::size_t>(p.y * width + p.x)];
+            // A reprojected sample replaced is not reshaded: out of its row's count.
+            if (s == PixelState::Reprojected && pool_.look[slot].viewDependent)
+                std::atomic_ref<std::size_t>(reshadeRowStart_[static_cast<std::size_t>(p.y) + 1])
+                    .fetch_sub(1, std::memory_order_relaxed);
             keep(slot, traced[i], rays, p);
             int px, py;
             float depth = std::numeric_limits<float>::infinity();  // a camera ray's hit is never behind the eye
             projectSample(pool_, slot, f.origins, f.projection, px, py, depth);
             // Placed where it was traced, whatever rounding says about the reprojection.
             image_.place(p.x, p.y, depth);
-            PixelState& s = state[static_cast<std::size_t>(p.y * width + p.x)];
             replaced += s == PixelState::Reprojected ? 1 : 0;
             s = PixelState::Fresh;
             if (f.predictedBudget > 0)

@@ -39,8 +39,10 @@ void RenderCachePipeline::classifyPixels(FrameContext& f) {
     // Each row's culling decisions, taken before the row is classified.
     std::vector<unsigned char>& hiddenPerPixel = bytes_;
     if (cull) hiddenPerPixel.resize(static_cast<std::size_t>(f.pixels));
+    reshadeRowStart_.assign(static_cast<std::size_t>(height) + 1, 0);
     parallel_.forEachIndex(height, [&](int y, int) {
         std::int64_t rowHoles = 0, rowCulled = 0, rowReprojected = 0, rowTextured = 0;
+        std::size_t rowViewDependent = 0;
         // Addresses and sizes in locals (through the members the compiler
         // reloaded them after every store).
         const auto stride = static_cast<std::size_t>(image_.stride());
@@ -78,6 +80,7 @@ void RenderCachePipeline::classifyPixels(FrameContext& f) {
                 // branch (a counter inside the re-fetch's branch cost this
                 // pass 4 % of its instructions).
                 rowTextured += look.textured ? 1 : 0;
+                rowViewDependent += look.viewDependent ? 1 : 0;
                 if (refetching && look.textured) {
                     const int object = points[i].objectId;
                     const auto distance = [&] {
@@ -96,6 +99,7 @@ void RenderCachePipeline::classifyPixels(FrameContext& f) {
         holesPerRow[static_cast<std::size_t>(y)] = rowHoles + rowCulled;
         culledPerRow[static_cast<std::size_t>(y)] = rowCulled;
         texturedPerRow[static_cast<std::size_t>(y)] = rowTextured;
+        reshadeRowStart_[static_cast<std::size_t>(y) + 1] = rowViewDependent;
     });
     for (std::int64_t c : culledPerRow) f.stats.culled += c;
     for (std::int64_t r : reprojectedPerRow) f.stats.reprojected += r;

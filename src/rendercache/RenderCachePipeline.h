@@ -156,6 +156,10 @@ private:
     std::vector<PrimarySample> traced_;
     std::vector<ReshadeRequest> reshade_;
     std::vector<std::uint32_t> reshadeSlots_;
+    // Per row, from index 1: the reprojected samples that depend on the eye,
+    // counted by classifyPixels (less those traceNewSamples replaces), so
+    // that reshading places each row's requests without a walk of its own.
+    std::vector<std::size_t> reshadeRowStart_;
     std::vector<Rgb> reshadeColors_;
     std::optional<Camera> previousCamera_;
     std::uint64_t frame_ = 0;
