@@ -57,7 +57,7 @@ std::optional<Scene> benchScene(const std::string& name, std::vector<std::string
     return makeRealMeshScene(name, meshes);
 }
 
-std::string listed(const std::vector<std::string>& names, const char* quote) {
+std::string sceneNamesListed(const std::vector<std::string>& names, const char* quote) {
     std::string text;
     for (std::size_t i = 0; i < names.size(); ++i) text += (i ? ", " : "") + (quote + names[i] + quote);
     return text;
@@ -249,7 +249,7 @@ public:
     std::string name() const override { return "render-cache"; }
     std::string title() const override {
         return "Render Cache: frame time split and quality along camera paths (" +
-               listed(benchScenes(BenchSize::Full), "") + ")";
+               sceneNamesListed(benchScenes(BenchSize::Full), "") + ")";
     }
     double estimatedWork(const BenchSettings& settings) const override {
         double work = 0.0;
@@ -459,7 +459,7 @@ private:
     static std::string methodMarkdown(BenchSize size, const std::vector<int>& sides, int frames,
                                       const std::string& lastFrameText) {
         const RenderCacheSettings rcDefaults;
-        std::string md = "Each scene's own camera path — " + listed(benchScenes(size), "`") + " — for " +
+        std::string md = "Each scene's own camera path — " + sceneNamesListed(benchScenes(size), "`") + " — for " +
                          std::to_string(frames) + " frames at ";
         for (std::size_t i = 0; i < sides.size(); ++i)
             md += (i ? " and " : "") + std::to_string(sides[i]) + "x" + std::to_string(sides[i]);
