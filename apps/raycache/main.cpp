@@ -241,6 +241,16 @@ void addViewCommand(CLI::App& app, Commands& c) {
     addRenderJobOptions(*viewCmd, view.job);
     viewCmd->get_option("--width")->description("Window and film width in pixels");
     viewCmd->get_option("--height")->description("Window and film height in pixels");
+    // The view command's own --pipeline: the render options' one plus auto, its default.
+    viewCmd->remove_option(viewCmd->get_option("--pipeline"));
+    raycache::addChoiceOption(
+        *viewCmd, "--pipeline", view.pipeline, raycache::kViewerPipelines, raycache::viewerPipelineName,
+        "auto: full frames (the ray pipeline) while they keep --target-fps or the camera is still, the Render "
+        "Cache while the camera moves faster than full frames follow and it is faster (docs/viewer.md); ray, "
+        "hybrid (primary-ray packet G-buffer), render-cache: always that pipeline");
+    viewCmd->add_option("--target-fps", view.targetFps,
+                        "--pipeline auto: the display rate full frames must keep while the camera moves")
+        ->capture_default_str();
     viewCmd->get_option("--frames")->description(
         "Scripted run: show this many frames of the camera path, print per-frame timings, exit");
     viewCmd->add_option("--screenshot", view.screenshotPath,

@@ -23,6 +23,8 @@ void runViewCommand(const ViewCommandOptions& options, std::ostream& out, std::o
     if (!(std::isfinite(options.renderCacheRequestFrames) && options.renderCacheRequestFrames >= 0.0 &&
           options.renderCacheRequestFrames <= 100.0))
         throw InputError("--render-cache-request-frames must be between 0 and 100");
+    if (!(std::isfinite(options.targetFps) && options.targetFps >= 1.0 && options.targetFps <= 1000.0))
+        throw InputError("--target-fps must be between 1 and 1000");
     if (options.job.cacheIdeal) throw InputError("--cache-ideal is a benchmark switch; the viewer does not take it");
 
     RenderJob job = prepareRenderJob(options.job);
@@ -41,9 +43,7 @@ void runViewCommand(const ViewCommandOptions& options, std::ostream& out, std::o
     config.cdctEpsilon = options.job.cdctEpsilon;
     config.maxDepth = options.job.maxDepth;
     // The viewer's hybrid pipeline always takes its G-buffer from packets (viewer/PipelineChoice.h).
-    config.pipeline = job.settings.pipeline == PipelineKind::Hybrid        ? 1
-                      : job.settings.pipeline == PipelineKind::RenderCache ? kRenderCacheChoice
-                                                                            : 0;
+    config.pipeline = static_cast<int>(options.pipeline);
 
     config.accelerator = job.settings.trace.accelerator;
 
@@ -61,6 +61,7 @@ void runViewCommand(const ViewCommandOptions& options, std::ostream& out, std::o
     // Scripted runs repeat `raycache render`'s frames unless asked otherwise.
     viewer.renderCacheDisplay =
         options.renderCacheDisplay.value_or(viewer.scriptedFrames ? RenderCacheDisplay::Sync : RenderCacheDisplay::Async);
+    viewer.targetFrameMs = 1000.0 / options.targetFps;
     viewer.renderCacheTraceThreads = options.renderCacheTraceThreads;
     viewer.renderCacheDisplayThreads = options.renderCacheDisplayThreads;
     viewer.renderCacheRequestFrames = options.renderCacheRequestFrames;

@@ -6,12 +6,17 @@
 #include <string>
 
 #include "session/RenderJob.h"
+#include "viewer/PipelineChoice.h"
 #include "viewer/RenderCacheDisplay.h"
 
 namespace raycache {
 
 struct ViewCommandOptions {
     RenderJobOptions job;        // scene, window/film size, path, threads, depth, caching
+    // --pipeline (the view command's own: it adds auto, and is the panel's
+    // starting value; a scene file's "pipeline" key is for `render`).
+    ViewerPipeline pipeline = ViewerPipeline::Auto;
+    double targetFps = 30.0;     // --target-fps: the display rate auto's full frames must keep
     std::string screenshotPath;  // --screenshot (.png/.exr)
     bool hideUi = false;         // --hide-ui
     int warmupFrames = 0;        // --warmup (scripted runs)

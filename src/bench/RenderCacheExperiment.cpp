@@ -21,6 +21,8 @@
 #include "render/CameraRays.h"
 #include "render/ImageWriter.h"
 #include "scene/BuiltinScenes.h"
+#include "scene/MeshSearchPath.h"
+#include "scene/RealMeshScenes.h"
 #include "session/RenderSession.h"
 #include "trace/TraceScene.h"
 
@@ -28,7 +30,38 @@ namespace raycache {
 
 namespace {
 
-const std::vector<std::string> kScenes = {"room", "behind-32", "glass"};
+// Each scene's own camera path. dragon-hall (0.87 M triangles behind its
+// mirrors: the expensive scene, where the Render Cache should pay most) is
+// left out of the tiny runs the tests make.
+std::vector<std::string> benchScenes(BenchSize size) {
+    std::vector<std::string> scenes = {"room", "behind-32", "glass"};
+    if (size != BenchSize::Tiny) scenes.push_back("dragon-hall");
+    return scenes;
+}
+
+// A built-in scene, or one made of real meshes found on the search path;
+// empty, with a caveat saying why, when its mesh is not there.
+std::optional<Scene> benchScene(const std::string& name, std::vector<std::string>& caveats) {
+    if (std::optional<Scene> scene = makeBuiltinScene(name)) return scene;
+    const MeshSearchPath meshes = meshSearchPathFromEnvironment();
+    const auto real = realMeshScenes();
+    const auto info =
+        std::find_if(real.begin(), real.end(), [&](const RealMeshSceneInfo& r) { return r.name == name; });
+    if (info == real.end()) throw RuntimeError("built-in scene " + name + " is missing");
+    if (const std::string missing = missingMeshFiles(*info, meshes); !missing.empty()) {
+        const std::string caveat =
+            name + " left out: its mesh is not on the search path (" + missing + "; scripts/install-deps.sh fetches it)";
+        if (std::find(caveats.begin(), caveats.end(), caveat) == caveats.end()) caveats.push_back(caveat);
+        return std::nullopt;
+    }
+    return makeRealMeshScene(name, meshes);
+}
+
+std::string sceneNamesListed(const std::vector<std::string>& names, const char* quote) {
+    std::string text;
+    for (std::size_t i = 0; i < names.size(); ++i) text += (i ? ", " : "") + (quote + names[i] + quote);
+    return text;
+}
 
 struct RcVariant {
     std::string key;
@@ -192,12 +225,14 @@ class RenderCacheExperiment : public Experiment {
 public:
     std::string name() const override { return "render-cache"; }
     std::string title() const override {
-        return "Render Cache: frame time split and quality along camera paths (room, behind-32, glass)";
+        return "Render Cache: frame time split and quality along camera paths (" +
+               sceneNamesListed(benchScenes(BenchSize::Full), "") + ")";
     }
     double estimatedWork(const BenchSettings& settings) const override {
         double work = 0.0;
         for (int side : imageSides(settings.size))
-            work += renderCacheFrameCount(settings.size) * static_cast<double>(kScenes.size()) * std::pow(side, 2) / 1e6 * 2.5;
+            work += renderCacheFrameCount(settings.size) * static_cast<double>(benchScenes(settings.size).size()) *
+                    std::pow(side, 2) / 1e6 * 2.5;
         return work;
     }
 
@@ -205,7 +240,6 @@ public:
         const std::vector<int> sides = imageSides(context.settings.size);
         const int frames = renderCacheFrameCount(context.settings.size);
         const std::vector<RcVariant> variants = rcVariants();
-        const RenderCacheSettings rcDefaults;
         const LoadAverage loadBefore = currentLoadAverage();
         const CpuSample cpuBefore = currentCpuSample();
 
@@ -214,8 +248,9 @@ public:
         out.title = title();
         std::vector<SceneRun> runs;
         for (int side : sides) {
-            for (const std::string& sceneName : kScenes) {
-                runs.push_back(runScene(context, sceneName, side, frames, variants, out));
+            for (const std::string& sceneName : benchScenes(context.settings.size)) {
+                std::optional<Scene> scene = benchScene(sceneName, out.caveats);
+                if (scene) runs.push_back(runScene(context, *scene, sceneName, side, frames, variants, out));
             }
         }
         const CpuSample cpuAfter = currentCpuSample();
@@ -228,19 +263,69 @@ public:
         const PaperTable documents = paperRenderCache();
         const std::string lastFrameText = "frames 2–" + std::to_string(frames);
 
-        // Frame time split.
+        MarkdownTable split = frameTimeTable(runs, variants);
+        MarkdownTable quality = qualityTable(runs, variants);
+
+        // The documents' figures beside ours.
+        MarkdownTable beside = documentsBeside(runs, documents);
+
+        // Goals, from the measured numbers.
+        const std::vector<GoalCheck> goals = checkGoals(runs, variants);
+        MarkdownTable goalTable({"goal", "where", "measured", "verdict"});
+        for (const GoalCheck& g : goals) goalTable.addRow({g.goal, g.where, g.measured, metText(g.met)});
+
+        // Findings: per scene and variant at the largest size, the goals, the documents.
+        addSceneHeadlines(runs, variants, sides.back(), lastFrameText, out);
+        for (const std::string& line : goalHeadlines(goals)) out.headlines.push_back(line);
+        out.headlines.push_back(
+            "render-cache documents (GPU Render Cache, GeForce 6800): reconstruction " +
+            cellNumber(*documents.value("512", "ms"), 1) + " ms (" + cellNumber(*documents.value("512", "fps"), 0) +
+            " fps) at 512², " + cellNumber(*documents.value("1024", "ms"), 1) + " ms (" +
+            cellNumber(*documents.value("1024", "fps"), 0) + " fps) at 1024², " + paperRenderCacheCpu());
+        if (std::find(sides.begin(), sides.end(), 1024) == sides.end())
+            out.caveats.push_back("the 1024² goals (reconstruction ≤ " + cellNumber(kGoalReconstructionMs1024, 1) +
+                                  " ms, ≥ " + cellNumber(kGoalFps, 0) +
+                                  " fps end to end) are not measured at this "
+                                  "size; `raycache bench render-cache --full` runs 1024²");
+
+        // Plots.
+        out.plots = writePlots(context, runs, variants, sides, frames, documents);
+
+        std::string md = methodMarkdown(context.settings.size, sides, frames, lastFrameText);
+        md += "### Frame time: reconstruction and sample generation\n\n" + split.toMarkdown() + "\n";
+        md += "### Quality against the full render\n\n" + quality.toMarkdown() +
+              "\nPSNR is infinite for a frame identical to the full render; such frames are counted apart and left "
+              "out of the means.\n\n";
+        md += "### The documents' figures and our goals beside ours\n\n" + beside.toMarkdown() + "\nThe documents (" +
+              documents.source + ", " + documents.conditions + "): " + paperRenderCacheCpu() +
+              ". Their time excludes sample generation; it compares with our reconstruction column, on a CPU 20 "
+              "years newer.\n\n";
+        md += goalTable.toMarkdown() + "\n";
+        md += "Other processes used " + formatOthersShare(othersShare) +
+              " of the machine's CPU time while this experiment ran. Load average (1, 5, 15 min): " +
+              loadBefore.toString() + " before, " + loadAfter.toString() +
+              " after (it includes the bench's own earlier work).\n\n";
+        md +=
+            "Last frame of each path, with difference heat maps against the full render (×1: red = totally "
+            "different; ×4: red = 0.25):\n\n";
+        for (const std::string& image : out.images) md += "- [" + image + "](" + image + ")\n";
+        out.markdown = md;
+
+        writeResultsJson(context, runs, variants, sides, frames, documents, goals, loadBefore, loadAfter, othersShare,
+                         out.caveats);
+        writeTextFileAtomically(context.dir / "results.md", experimentMarkdown(out));
+        return out;
+    }
+
+private:
+    // Per scene and size: the full render and each variant's frame time split.
+    static MarkdownTable frameTimeTable(const std::vector<SceneRun>& runs, const std::vector<RcVariant>& variants) {
         MarkdownTable split({"scene", "size", "variant", "ms per frame", "reconstruction ms", "reprojection ms",
                              "maps ms", "filters ms", "MB counted", "GB/s", "sample generation ms", "trace ms",
                              "reshade ms", "× full render (95 % CI)", "fresh pixels", "holes", "reshaded"});
-        // Quality.
-        MarkdownTable quality({"scene", "size", "variant", "PSNR dB", "mean PSNR dB", "SSIM", "mirror pixels",
-                               "mirror PSNR dB", "mean mirror PSNR dB"});
         for (const SceneRun& r : runs) {
             split.addRow({r.scene, sideText(r.side), "full render (ray pipeline)", rangeCell(afterSkipped(r.fullMs), 1),
                           "–", "–", "–", "–", "–", "–", "–", "–", "–", "1.00×", "100 %", "–", "–"});
-            std::vector<double> mirrorShare;
-            for (std::int64_t m : r.mirrorPixels)
-                mirrorShare.push_back(100.0 * static_cast<double>(m) / (static_cast<double>(r.side) * r.side));
             for (std::size_t vi = 0; vi < variants.size(); ++vi) {
                 const std::vector<FrameRecord>& f = r.variants[vi].frames;
                 split.addRow(
@@ -263,6 +348,21 @@ public:
                      rangeCell(series(f, [](const FrameRecord& x) { return 100.0 * x.rc.freshShare(); }), 1) + " %",
                      rangeCell(series(f, [](const FrameRecord& x) { return static_cast<double>(x.rc.holes); }), 0),
                      rangeCell(series(f, [](const FrameRecord& x) { return static_cast<double>(x.rc.reshaded); }), 0)});
+            }
+        }
+        return split;
+    }
+
+    // Per scene, size and variant: PSNR and SSIM against the full render, and on the mirror pixels.
+    static MarkdownTable qualityTable(const std::vector<SceneRun>& runs, const std::vector<RcVariant>& variants) {
+        MarkdownTable quality({"scene", "size", "variant", "PSNR dB", "mean PSNR dB", "SSIM", "mirror pixels",
+                               "mirror PSNR dB", "mean mirror PSNR dB"});
+        for (const SceneRun& r : runs) {
+            std::vector<double> mirrorShare;
+            for (std::int64_t m : r.mirrorPixels)
+                mirrorShare.push_back(100.0 * static_cast<double>(m) / (static_cast<double>(r.side) * r.side));
+            for (std::size_t vi = 0; vi < variants.size(); ++vi) {
+                const std::vector<FrameRecord>& f = r.variants[vi].frames;
                 const std::vector<double> peak = series(f, [](const FrameRecord& x) { return x.metrics.psnr; });
                 const std::vector<double> mirror = series(f, [](const FrameRecord& x) { return x.mirrorPsnr; });
                 quality.addRow({r.scene, sideText(r.side), variants[vi].label, psnrCell(peak),
@@ -272,8 +372,11 @@ public:
                                 cellNumber(mean(finiteOnly(mirror)), 2)});
             }
         }
+        return quality;
+    }
 
-        // The documents' figures beside ours.
+    // The documents' GPU figures, our goals and our medians side by side, per size.
+    static MarkdownTable documentsBeside(const std::vector<SceneRun>& runs, const PaperTable& documents) {
         MarkdownTable beside({"size", "documents: reconstruction, GPU (GeForce 6800)", "goal: reconstruction",
                               "raycache: reconstruction ms, median (Render Cache / + re-evaluated reflections)",
                               "raycache: whole frame ms, median (Render Cache / + re-evaluated reflections)",
@@ -300,15 +403,14 @@ public:
                            full.empty() ? "not run at this size" : full});
         }
 
-        // Goals, from the measured numbers.
-        const std::vector<GoalCheck> goals = checkGoals(runs, variants);
-        MarkdownTable goalTable({"goal", "where", "measured", "verdict"});
-        for (const GoalCheck& g : goals) goalTable.addRow({g.goal, g.where, g.measured, metText(g.met)});
+        return beside;
+    }
 
-        // Findings: per scene and variant at the largest size, the goals, the documents.
-        const int largest = sides.back();
+    // One headline per scene and variant at `side`.
+    static void addSceneHeadlines(const std::vector<SceneRun>& runs, const std::vector<RcVariant>& variants, int side,
+                                  const std::string& lastFrameText, ExperimentOutput& out) {
         for (const SceneRun& r : runs) {
-            if (r.side != largest) continue;
+            if (r.side != side) continue;
             for (std::size_t vi = 0; vi < variants.size(); ++vi) {
                 const std::vector<FrameRecord>& f = r.variants[vi].frames;
                 out.headlines.push_back(
@@ -328,23 +430,14 @@ public:
                     " % of pixels fresh (" + lastFrameText + ")");
             }
         }
-        for (const std::string& line : goalHeadlines(goals)) out.headlines.push_back(line);
-        out.headlines.push_back(
-            "render-cache documents (GPU Render Cache, GeForce 6800): reconstruction " +
-            cellNumber(*documents.value("512", "ms"), 1) + " ms (" + cellNumber(*documents.value("512", "fps"), 0) +
-            " fps) at 512², " + cellNumber(*documents.value("1024", "ms"), 1) + " ms (" +
-            cellNumber(*documents.value("1024", "fps"), 0) + " fps) at 1024², " + paperRenderCacheCpu());
-        if (std::find(sides.begin(), sides.end(), 1024) == sides.end())
-            out.caveats.push_back("the 1024² goals (reconstruction ≤ " + cellNumber(kGoalReconstructionMs1024, 1) +
-                                  " ms, ≥ " + cellNumber(kGoalFps, 0) +
-                                  " fps end to end) are not measured at this "
-                                  "size; `raycache bench render-cache --full` runs 1024²");
+    }
 
-        // Plots.
-        out.plots = writePlots(context, runs, variants, sides, frames, documents);
-
-        std::string md = "Each scene's own camera path — `room`, `behind-32`, `glass` — for " + std::to_string(frames) +
-                         " frames at ";
+    // What the experiment does and how to read its tables.
+    static std::string methodMarkdown(BenchSize size, const std::vector<int>& sides, int frames,
+                                      const std::string& lastFrameText) {
+        const RenderCacheSettings rcDefaults;
+        std::string md = "Each scene's own camera path — " + sceneNamesListed(benchScenes(size), "`") + " — for " +
+                         std::to_string(frames) + " frames at ";
         for (std::size_t i = 0; i < sides.size(); ++i)
             md += (i ? " and " : "") + std::to_string(sides[i]) + "x" + std::to_string(sides[i]);
         md +=
@@ -375,37 +468,11 @@ public:
             "render over the variant's along the path, 95 % CI from the paired bootstrap over the frames "
             "(bench/SpeedupInterval). Cells are median (min–max) over " +
             lastFrameText + ".\n\n";
-        md += "### Frame time: reconstruction and sample generation\n\n" + split.toMarkdown() + "\n";
-        md += "### Quality against the full render\n\n" + quality.toMarkdown() +
-              "\nPSNR is infinite for a frame identical to the full render; such frames are counted apart and left "
-              "out of the means.\n\n";
-        md += "### The documents' figures and our goals beside ours\n\n" + beside.toMarkdown() + "\nThe documents (" +
-              documents.source + ", " + documents.conditions + "): " + paperRenderCacheCpu() +
-              ". Their time excludes sample generation; it compares with our reconstruction column, on a CPU 20 "
-              "years newer.\n\n";
-        md += goalTable.toMarkdown() + "\n";
-        md += "Other processes used " + formatOthersShare(othersShare) +
-              " of the machine's CPU time while this experiment ran. Load average (1, 5, 15 min): " +
-              loadBefore.toString() + " before, " + loadAfter.toString() +
-              " after (it includes the bench's own earlier work).\n\n";
-        md +=
-            "Last frame of each path, with difference heat maps against the full render (×1: red = totally "
-            "different; ×4: red = 0.25):\n\n";
-        for (const std::string& image : out.images) md += "- [" + image + "](" + image + ")\n";
-        out.markdown = md;
-
-        writeResultsJson(context, runs, variants, sides, frames, documents, goals, loadBefore, loadAfter, othersShare,
-                         out.caveats);
-        writeTextFileAtomically(context.dir / "results.md", experimentMarkdown(out));
-        return out;
+        return md;
     }
 
-private:
-    SceneRun runScene(ExperimentContext& context, const std::string& sceneName, int side, int frames,
-                      const std::vector<RcVariant>& variants, ExperimentOutput& out) const {
-        std::optional<Scene> maybeScene = makeBuiltinScene(sceneName);
-        if (!maybeScene) throw RuntimeError("built-in scene " + sceneName + " is missing");
-        const Scene& scene = *maybeScene;
+    SceneRun runScene(ExperimentContext& context, const Scene& scene, const std::string& sceneName, int side,
+                      int frames, const std::vector<RcVariant>& variants, ExperimentOutput& out) const {
         const TraceScene tracer(scene);
         const double mp = static_cast<double>(side) * side / 1e6;
         context.progress.step("render-cache: " + sceneName + " " + sideText(side) + ", " + std::to_string(frames) +
@@ -713,7 +780,7 @@ private:
                        {"title", title()},
                        {"size", toString(context.settings.size)},
                        {"settings",
-                        {{"scenes", kScenes},
+                        {{"scenes", benchScenes(context.settings.size)},
                          {"sides", sides},
                          {"frames", frames},
                          {"skipped_frames", kSkippedFrames},

@@ -86,8 +86,38 @@ private:
         SampleRequest* request = nullptr;
         std::int64_t merged = 0;
     };
-    // render() with `async` null; reconstruct() otherwise.
+    // What a frame carries from pass to pass (RenderCacheFrameContext.h).
+    struct FrameContext;
+
+    // render() with `async` null; reconstruct() otherwise: the passes below, in order.
     FrameStats frame(const Camera& camera, Image& film, AsyncFrame* async);
+    // The pool sized for the image and its margin (a new size drops every sample).
+    void sizePool(std::size_t imageSlots, int pixels);
+    // Ages, evicts and reprojects the samples to the frame's camera (and
+    // through the predicted next camera); the pool then holds each pixel's
+    // winner at its slot (ReprojectionPass.cpp).
+    void reprojectSamples(FrameContext& f);
+    // Per pixel: a hole, a culled sample or a reprojected one; its priority;
+    // a textured sample's albedo fetched again at the pixel's centre
+    // (PixelClassificationPass.cpp).
+    void classifyPixels(FrameContext& f);
+    // The frame's budget and its request map (RequestPass.cpp).
+    void requestSamples(FrameContext& f);
+    // render(): traces the requested pixels and keeps their samples;
+    // reconstruct(): hands the request over instead (NewSamplesPass.cpp).
+    void traceNewSamples(FrameContext& f);
+    // Where the predicted next camera will find holes, and rays through it
+    // there (PredictionPass.cpp).
+    void predictNextHoles(FrameContext& f);
+    // Highlights, reflections and refractions of reprojected samples from the
+    // new eye, then the end of the caches' frame (ReshadingPass.cpp).
+    void reshadeSamples(FrameContext& f);
+    // The film: samples where there are, the edge-aware fills in the holes,
+    // texture at the filled holes' centres, the environment where nothing
+    // reaches (ImagePass.cpp).
+    void makeImage(FrameContext& f);
+    // The counted bytes, the adaptive budget for the next frame, and the stats.
+    FrameStats endFrame(FrameContext& f);
     // Puts traced samples into the pool (see reconstruct()); returns how many.
     std::int64_t merge(std::span<const SampleBatch> batches);
     // Traces the camera rays through `pixels` in fixed chunks (the chunk
@@ -126,6 +156,10 @@ private:
     std::vector<PrimarySample> traced_;
     std::vector<ReshadeRequest> reshade_;
     std::vector<std::uint32_t> reshadeSlots_;
+    // Per row, from index 1: the reprojected samples that depend on the eye,
+    // counted by classifyPixels (less those traceNewSamples replaces), so
+    // that reshading places each row's requests without a walk of its own.
+    std::vector<std::size_t> reshadeRowStart_;
     std::vector<Rgb> reshadeColors_;
     std::optional<Camera> previousCamera_;
     std::uint64_t frame_ = 0;

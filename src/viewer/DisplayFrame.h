@@ -10,6 +10,7 @@
 #include "render/CacheLevelImage.h"
 #include "render/FrameStats.h"
 #include "scene/Camera.h"
+#include "viewer/AutoPipelineRule.h"
 
 namespace raycache {
 
@@ -22,6 +23,12 @@ struct DisplayFrame {
     int pathFrame = -1;              // frame of the camera path, or -1 for the interactive camera
     bool reducedResolution = false;  // rendered smaller while the camera moves
     FrameStats stats;
+    // Which way made the frame: a full frame or the Render Cache. Under
+    // pipeline auto the Render Cache asked for shows a full frame until its
+    // samples of the whole image have come (`renderCachePriming`).
+    bool autoPipeline = false;
+    ShownPipeline shown = ShownPipeline::FullFrame;
+    bool renderCachePriming = false;
     std::size_t cacheBytes = 0;      // memory of all caching cubes
 
     // Time on the render thread, milliseconds.

@@ -24,6 +24,9 @@ struct RenderRequest {
     float differenceGain = 1.0f;
     int renderCacheOverlay = 0;          // RenderCacheOverlay: what to paint over a Render Cache frame
     bool renderCacheAsync = false;       // the Render Cache at its own rate (still scenes; docs/viewer.md)
+    // Pipeline auto (kAutoPipelineChoice): show the Render Cache for this
+    // frame rather than a full frame (the UI thread's AutoPipelineRule decides).
+    bool showRenderCache = false;
     bool cacheLevels = false;            // paint the cube level that answered each pixel (ray and hybrid pipelines)
     int inspectObject = -1;              // object whose cube to unfold, -1 = none
     int inspectorFaceSize = 128;

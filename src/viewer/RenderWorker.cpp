@@ -10,6 +10,7 @@
 #include "viewer/CacheLevelOverlayImage.h"
 #include "viewer/CubeInspectorImage.h"
 #include "viewer/DifferenceHeatMap.h"
+#include "viewer/PipelineChoice.h"
 #include "viewer/RenderCacheOverlayImage.h"
 
 namespace raycache {
@@ -60,7 +61,7 @@ void RenderWorker::run() {
                 // going: the async Render Cache then when new samples came
                 // (without them its image would not change).
                 wake_.wait(lock, [&] {
-                    const bool keepGoing = request_ && request_->continuous && (async_ ? samplesArrived_ : true);
+                    const bool keepGoing = request_ && request_->continuous && (showsAsync_ ? samplesArrived_ : true);
                     return stop_ || (request_ && (requestSerial_ != renderedSerial || keepGoing ||
                                                   request_->playPath || setup_.scriptedFrames));
                 });
@@ -99,6 +100,7 @@ void RenderWorker::applyConfig(const ViewerRenderConfig& config, DisplayFrame&) 
     config_ = config;
     settings_ = applyViewerRenderConfig(setup_.base, config);
     async_.reset();    // its tracer uses the session's caches
+    renderCacheSession_.reset();
     session_.reset();  // free the old cubes before allocating the new ones
     RenderSettings uncached = settings_;
     uncached.cache.techniqueOverride = CacheTechnique::None;
@@ -167,12 +169,65 @@ void RenderWorker::reconstructAsync(const RenderRequest& request, const Camera& 
     lastMerged_ = counts.merged;
 }
 
+void RenderWorker::renderSessionFrame(const RenderRequest& request, const Camera& camera, DisplayFrame& frame) {
+    std::unique_lock<std::mutex> cachesHeld;
+    if (async_) cachesHeld = async_->holdCaches();
+    session_->resize(request.width, request.height);
+    frame.stats = session_->render(camera, film_);
+}
+
+void RenderWorker::renderFrame(const RenderRequest& request, const Camera& camera, DisplayFrame& frame) {
+    // The one place a frame is rendered, by the pipeline the settings ask
+    // for; the Render Cache at its own rate when asked and the scene is still
+    // (a scene that moves would move under its tracer).
+    const bool autoPipeline = config_->pipeline == kAutoPipelineChoice;
+    const bool stillScene = setup_.scene->animation.empty();
+    const bool renderCache = session_->settings().pipeline == PipelineKind::RenderCache ||
+                             (autoPipeline && request.showRenderCache && stillScene);
+    const bool async = renderCache && request.renderCacheAsync && stillScene;
+    frame.autoPipeline = autoPipeline;
+    frame.shown = renderCache ? ShownPipeline::RenderCache : ShownPipeline::FullFrame;
+    frame.renderCachePriming = false;
+    frame.asyncRenderCache = async;
+    showsAsync_ = async;
+    if (async) {
+        reconstructAsync(request, camera, frame);
+        // Auto: until the samples of the whole image have come, the full
+        // frame (the Render Cache would show the environment in their place).
+        if (autoPipeline && frame.stats.renderCache && frame.stats.renderCache->refreshedAll) {
+            frame.renderCachePriming = true;
+            frame.shown = ShownPipeline::FullFrame;
+            renderSessionFrame(request, camera, frame);
+        }
+    } else if (renderCache && autoPipeline) {
+        if (!renderCacheSession_) {
+            RenderSettings settings = settings_;
+            settings.pipeline = PipelineKind::RenderCache;
+            renderCacheSession_ = std::make_unique<RenderSession>(*setup_.scene, settings, *setup_.tracer, parallel_);
+        }
+        renderCacheSession_->resize(request.width, request.height);
+        frame.stats = renderCacheSession_->render(camera, film_);
+    } else {
+        // Auto keeps the async Render Cache's samples for the camera's next move.
+        if (!autoPipeline) async_.reset();
+        renderSessionFrame(request, camera, frame);
+    }
+}
+
+const RenderCacheOverlays* RenderWorker::shownOverlays(const DisplayFrame& frame) const {
+    if (frame.shown != ShownPipeline::RenderCache) return nullptr;
+    if (frame.asyncRenderCache) return async_->overlays();
+    if (frame.autoPipeline) return renderCacheSession_->renderCacheOverlays();
+    return session_->renderCacheOverlays();
+}
+
 void RenderWorker::renderOne(const RenderRequest& request, DisplayFrame& frame) {
     applyConfig(request.config, frame);
     if (request.clearCount != clearCount_) {
         clearCount_ = request.clearCount;
         async_.reset();  // its tracer may be using the caches; its samples go too
         session_->cache().clear();
+        if (renderCacheSession_) renderCacheSession_->cache().clear();
     }
     if (request.pathRestartCount != pathRestartCount_) {
         pathRestartCount_ = request.pathRestartCount;
@@ -190,20 +245,8 @@ void RenderWorker::renderOne(const RenderRequest& request, DisplayFrame& frame) 
     const bool showLevels = request.cacheLevels && !request.difference;
     session_->setRecordCacheLevels(showLevels && session_->settings().pipeline != PipelineKind::RenderCache);
 
-    // The one place a frame is rendered, by the pipeline the settings ask
-    // for; the Render Cache at its own rate when asked and the scene is still
-    // (a scene that moves would move under its tracer).
-    const bool async = request.renderCacheAsync && session_->settings().pipeline == PipelineKind::RenderCache &&
-                       setup_.scene->animation.empty();
     auto start = std::chrono::steady_clock::now();
-    frame.asyncRenderCache = async;
-    if (async) {
-        reconstructAsync(request, camera, frame);
-    } else {
-        async_.reset();
-        session_->resize(request.width, request.height);
-        frame.stats = session_->render(camera, film_);
-    }
+    renderFrame(request, camera, frame);
     frame.renderMs = millisecondsSince(start);
 
     start = std::chrono::steady_clock::now();
@@ -231,11 +274,11 @@ void RenderWorker::renderOne(const RenderRequest& request, DisplayFrame& frame) 
     frame.cacheBytes = cache.bytes();
     if (cachesHeld.owns_lock()) cachesHeld.unlock();
     // The difference view's heat map is made from the image without the overlays.
-    const RenderCacheOverlays* overlays = async ? async_->overlays() : session_->renderCacheOverlays();
+    const RenderCacheOverlays* overlays = shownOverlays(frame);
     if (overlays && !request.difference)
         paintRenderCacheOverlay(*overlays, static_cast<RenderCacheOverlay>(request.renderCacheOverlay), frame.rgba);
     frame.showsCacheLevels = false;
-    if (showLevels)
+    if (showLevels && frame.shown == ShownPipeline::FullFrame)
         if (const CacheLevelImage* levels = session_->cacheLevels()) {
             paintCacheLevelOverlay(*levels, frame.rgba);
             frame.cacheLevelPixels = levels->counts();

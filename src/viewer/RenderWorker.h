@@ -70,6 +70,14 @@ private:
     void encode(const Image& film, std::vector<std::uint8_t>& rgba) const;
     // The async Render Cache's display frame; makes the pair anew when the size changed.
     void reconstructAsync(const RenderRequest& request, const Camera& camera, DisplayFrame& frame);
+    // Makes the frame the request asks for into film_ and frame.stats (the
+    // configured pipeline; under auto, a full frame or the Render Cache).
+    void renderFrame(const RenderRequest& request, const Camera& camera, DisplayFrame& frame);
+    // A frame of the session's own pipeline, the async Render Cache's tracer
+    // kept out of the caches meanwhile (auto keeps it between its turns).
+    void renderSessionFrame(const RenderRequest& request, const Camera& camera, DisplayFrame& frame);
+    // The Render Cache's maps of the frame just made, if it made any.
+    const RenderCacheOverlays* shownOverlays(const DisplayFrame& frame) const;
 
     RenderWorkerSetup setup_;
     FrameHandoff& handoff_;
@@ -81,6 +89,10 @@ private:
     RenderSettings settings_;
     std::unique_ptr<RenderSession> session_;   // the configured pipeline and caches
     std::unique_ptr<RenderSession> uncached_;  // the same without caches, for the difference view
+    // Pipeline auto, synchronous Render Cache: its own session (and caches),
+    // sharing the tracer and threads; made when first shown.
+    std::unique_ptr<RenderSession> renderCacheSession_;
+    bool showsAsync_ = false;  // the last frame was the async Render Cache's
     std::string configError_;
     std::uint64_t clearCount_ = 0;
     std::uint64_t pathRestartCount_ = 0;

@@ -20,6 +20,7 @@
 #include "render/ImageWriter.h"
 #include "session/FrameReport.h"
 #include "trace/TraceScene.h"
+#include "viewer/AutoPipelineRule.h"
 #include "viewer/FrameHandoff.h"
 #include "viewer/FrameTimeHistory.h"
 #include "viewer/GlTexture.h"
@@ -114,10 +115,237 @@ void printScriptedSummary(const std::vector<ScriptedSample>& samples, int warmup
     line("trace Msamples/s ", samplesPerSecond, 3);
 }
 
+// Mouse and keys while the panel does not take them: the camera, a click
+// that picks the object to inspect, and the keys' one-off actions. Returns
+// whether the camera moved.
+bool applyInput(ViewerWindow& window, ViewerCamera& camera, float dt, const std::vector<int>& keyPresses,
+                const DisplayFrame& shown, const TraceScene& tracer, const std::vector<int>& cachedObjects,
+                ViewerUiState& state, ViewerActions& actions) {
+    ImGuiIO& io = ImGui::GetIO();
+    bool moved = false;
+    if (!io.WantCaptureMouse) {
+        const float dx = io.MouseDelta.x, dy = io.MouseDelta.y;
+        const bool dragged = dx != 0.0f || dy != 0.0f;
+        if (ImGui::IsMouseDown(ImGuiMouseButton_Left) && dragged) {
+            camera.orbit(-0.3f * dx, 0.3f * dy);
+            moved = true;
+        }
+        if (ImGui::IsMouseDown(ImGuiMouseButton_Right) && dragged) {
+            camera.look(0.2f * dx, -0.2f * dy);
+            moved = true;
+        }
+        if (ImGui::IsMouseDown(ImGuiMouseButton_Middle) && dragged) {
+            const float s = camera.distance() * 0.0015f;
+            camera.fly(0.0f, -dx * s, dy * s);
+            moved = true;
+        }
+        if (io.MouseWheel != 0.0f) {
+            camera.zoom(std::pow(0.9f, io.MouseWheel));
+            moved = true;
+        }
+        // A click that did not drag picks the object to inspect.
+        if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) &&
+            io.MouseDragMaxDistanceSqr[ImGuiMouseButton_Left] < io.MouseDragThreshold * io.MouseDragThreshold &&
+            shown.width > 0) {
+            int fbw = 0, fbh = 0;
+            window.framebufferSize(fbw, fbh);
+            const ViewportRect r = fitRect(shown.width, shown.height, fbw, fbh);
+            const float scaleX = io.DisplayFramebufferScale.x, scaleY = io.DisplayFramebufferScale.y;
+            const float px = (io.MousePos.x * scaleX - static_cast<float>(r.x)) / static_cast<float>(r.width);
+            const float py =
+                (io.MousePos.y * scaleY - static_cast<float>(fbh - r.y - r.height)) / static_cast<float>(r.height);
+            if (px >= 0.0f && px < 1.0f && py >= 0.0f && py < 1.0f) {
+                const CameraRays rays(shown.camera, shown.width, shown.height);
+                const TraceHit hit = tracer.intersect(rays.ray(static_cast<int>(px * static_cast<float>(shown.width)),
+                                                               static_cast<int>(py * static_cast<float>(shown.height))));
+                if (hit.hit() && std::find(cachedObjects.begin(), cachedObjects.end(), hit.objectId) != cachedObjects.end()) {
+                    state.inspectObject = hit.objectId;
+                    state.showInspector = true;
+                }
+            }
+        }
+    }
+    if (!io.WantCaptureKeyboard) {
+        GLFWwindow* w = window.handle();
+        const float speed = camera.distance() * 0.8f * dt * (glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) ? 4.0f : 1.0f);
+        const auto axis = [&](int plus, int minus) {
+            return (glfwGetKey(w, plus) == GLFW_PRESS ? 1.0f : 0.0f) - (glfwGetKey(w, minus) == GLFW_PRESS ? 1.0f : 0.0f);
+        };
+        const float f = axis(GLFW_KEY_W, GLFW_KEY_S), r = axis(GLFW_KEY_D, GLFW_KEY_A), u = axis(GLFW_KEY_E, GLFW_KEY_Q);
+        if (f != 0.0f || r != 0.0f || u != 0.0f) {
+            camera.fly(f * speed, r * speed, u * speed);
+            moved = true;
+        }
+    }
+    for (int key : keyPresses) {
+        if (key == GLFW_KEY_F12) actions.screenshot = true;
+        if (io.WantCaptureKeyboard) continue;  // typing into a field
+        switch (key) {
+        case GLFW_KEY_R: actions.resetCamera = true; break;
+        case GLFW_KEY_SPACE: state.playPath = !state.playPath; break;
+        case GLFW_KEY_C: actions.clearCaches = true; break;
+        case GLFW_KEY_X: state.difference = !state.difference; break;
+        case GLFW_KEY_L: state.cacheLevels = !state.cacheLevels; break;
+        case GLFW_KEY_TAB: state.showUi = !state.showUi; break;
+        case GLFW_KEY_ESCAPE: actions.quit = true; break;
+        default: break;
+        }
+    }
+    return moved;
+}
+
+std::int64_t pixelsOf(int framebufferWidth, int framebufferHeight, float scale) {
+    const auto side = [&](int n) { return std::max(1, static_cast<int>(std::lround(static_cast<float>(n) * scale))); };
+    return static_cast<std::int64_t>(side(framebufferWidth)) * side(framebufferHeight);
+}
+
+// The film size of the next frame, and under pipeline auto which way makes it.
+struct RequestSize {
+    int width = 1, height = 1;
+    bool reduced = false;           // lowered because the camera moves
+    bool showRenderCache = false;   // auto: the Render Cache rather than a full frame
+    std::int64_t autoFullPixels = 0, autoRenderCachePixels = 0;  // the sizes auto compared at
+};
+
+RequestSize requestSize(const ViewerUiState& state, int fbw, int fbh, bool moving, bool sceneMoves,
+                        AutoPipelineRule& autoRule) {
+    RequestSize size;
+    // Pipeline auto: full frames or the Render Cache (AutoPipelineRule).
+    const bool autoPipeline = state.config.pipeline == kAutoPipelineChoice;
+    const float movingFactor = moving && state.movingScale < 1.0f ? state.movingScale : 1.0f;
+    size.autoFullPixels = pixelsOf(fbw, fbh, state.resolutionScale * movingFactor);
+    size.autoRenderCachePixels = pixelsOf(fbw, fbh, state.resolutionScale);
+    size.showRenderCache = autoPipeline && autoRule.choose(moving && !state.playPath, !sceneMoves, size.autoFullPixels,
+                                                           size.autoRenderCachePixels) == ShownPipeline::RenderCache;
+    // The Render Cache reuses the last frame's pixels: a lower resolution
+    // while moving would throw them all away.
+    const bool showsRenderCache = state.config.pipeline == kRenderCacheChoice || size.showRenderCache;
+    size.reduced = moving && state.movingScale < 1.0f && !showsRenderCache;
+    const float scale = state.resolutionScale * (size.reduced ? state.movingScale : 1.0f);
+    size.width = std::max(1, static_cast<int>(std::lround(static_cast<float>(fbw) * scale)));
+    size.height = std::max(1, static_cast<int>(std::lround(static_cast<float>(fbh) * scale)));
+    return size;
+}
+
+// What the panel and the keys ask the render thread for.
+RenderRequest renderRequest(const ViewerUiState& state, const Camera& camera, const RequestSize& size,
+                            std::uint64_t clearCount, std::uint64_t pathRestartCount) {
+    RenderRequest request;
+    request.camera = camera;
+    request.width = size.width;
+    request.height = size.height;
+    request.reducedResolution = size.reduced;
+    request.showRenderCache = size.showRenderCache;
+    request.config = state.config;
+    request.clearCount = clearCount;
+    request.playPath = state.playPath;
+    request.time = state.animationTime;
+    request.pathRestartCount = pathRestartCount;
+    request.continuous = state.continuous;
+    request.difference = state.difference;
+    request.differenceGain = state.differenceGain;
+    request.renderCacheOverlay = state.renderCacheOverlay;
+    request.renderCacheAsync = state.renderCacheAsync;
+    request.cacheLevels = state.cacheLevels;
+    request.inspectObject = state.showInspector ? state.inspectObject : -1;
+    request.inspectorFaceSize = state.inspectorFaceSize;
+    return request;
+}
+
+// The frame fitted into the window, on a dark background.
+void drawFrame(const GlTexture& frameTexture, int fbw, int fbh) {
+    glViewport(0, 0, fbw, fbh);
+    glClearColor(0.05f, 0.05f, 0.05f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    frameTexture.blitTo(fitRect(frameTexture.width(), frameTexture.height(), fbw, fbh));
+}
+
+// A shown frame's render time teaches pipeline auto's rule what each way
+// costs. Left out: a Render Cache frame that traced every pixel (its first,
+// a cut) and a full frame made while the Render Cache waited for samples
+// (its time holds the Render Cache's reconstruction too).
+void teachAutoRule(const DisplayFrame& shown, AutoPipelineRule& rule) {
+    if (!shown.autoPipeline || shown.renderCachePriming) return;
+    if (shown.shown == ShownPipeline::RenderCache && shown.stats.renderCache && shown.stats.renderCache->refreshedAll)
+        return;
+    rule.observe(shown.shown, shown.renderMs, static_cast<std::int64_t>(shown.width) * shown.height);
+}
+
+// Writes the window as a screenshot when a scripted run ends with one, or
+// when F12 asked (where a failure does not end the session).
+void writeScreenshotIfAsked(bool scripted, bool asked, const std::string& optionPath, const std::string& sceneName,
+                            int& counter, int fbw, int fbh, std::ostream& out) {
+    if (!asked) return;
+    const std::filesystem::path path = scripted || !optionPath.empty() ? std::filesystem::path(optionPath)
+                                                                       : nextScreenshotPath(sceneName, counter);
+    if (scripted) {
+        writeScreenshot(fbw, fbh, path);  // a failure fails the run
+        out << "screenshot " << path.string() << " (" << fbw << "x" << fbh << ")" << std::endl;
+        return;
+    }
+    // A key press must not end an interactive session.
+    try {
+        writeScreenshot(fbw, fbh, path);
+        out << "screenshot " << path.string() << " (" << fbw << "x" << fbh << ")" << std::endl;
+    } catch (const std::exception& e) {
+        out << "screenshot not written: " << e.what() << std::endl;
+    }
+}
+
+// A scripted run's line for one shown frame.
+void printScriptedFrame(const DisplayFrame& shown, int frames, double intervalMs, const UiThreadTimes& uiTimes,
+                        std::ostream& out) {
+    FrameResult result;
+    result.frame = shown.pathFrame;
+    result.milliseconds = shown.renderMs;
+    result.stats = shown.stats;
+    out << formatFrameLine(result, frames) << "  | interval " << formatFixed(intervalMs, 1) << " encode "
+        << formatFixed(shown.encodeMs, 2) << " upload " << formatFixed(uiTimes.uploadMs, 2) << " ui "
+        << formatFixed(uiTimes.uiMs, 2) << " present " << formatFixed(uiTimes.presentMs, 2) << " ms";
+    if (shown.autoPipeline) out << " | auto: " << shownPipelineName(shown.shown);
+    if (shown.asyncRenderCache && shown.stats.renderCache)
+        out << " | async: merged " << shown.mergedSamples << " samples, tracer "
+            << formatFixed(shown.samplesPerSecond / 1.0e6, 3) << " Msamples/s, busy "
+            << formatFixed(100.0 * shown.traceBusyShare, 0) << " %, request map " << shown.stats.renderCache->budget
+            << " rays";
+    out << std::endl;
+}
+
 }  // namespace
 
 Viewer::Viewer(RenderJob job, const ViewerRenderConfig& config, const ViewerOptions& options)
     : job_(std::move(job)), config_(config), options_(options) {}
+
+ViewerUiState Viewer::startingUiState() const {
+    ViewerUiState state;
+    state.config = config_;
+    state.movingScale = options_.movingScale;
+    state.showUi = !options_.hideUi;
+    state.playPath = options_.scriptedFrames.has_value();
+    state.difference = options_.difference;
+    state.cacheLevels = options_.cacheLevels;
+    state.renderCacheAsync = options_.renderCacheDisplay == RenderCacheDisplay::Async;
+    if (options_.inspectObject) {
+        state.inspectObject = *options_.inspectObject;
+        state.showInspector = true;
+    }
+    return state;
+}
+
+RenderWorkerSetup Viewer::workerSetup(const TraceScene& tracer) const {
+    RenderWorkerSetup setup;
+    setup.scene = &job_.scene;
+    setup.tracer = &tracer;
+    setup.path = job_.path;
+    setup.timeline = job_.timeline;
+    setup.base = job_.settings;
+    setup.scriptedFrames = options_.scriptedFrames;
+    setup.renderCacheTraceThreads = options_.renderCacheTraceThreads;
+    setup.renderCacheDisplayThreads = options_.renderCacheDisplayThreads;
+    setup.renderCacheRequestFrames = options_.renderCacheRequestFrames;
+    setup.onPublished = &ViewerWindow::wake;
+    return setup;
+}
 
 void Viewer::run(std::ostream& out) {
     const Scene& scene = job_.scene;
@@ -131,18 +359,7 @@ void Viewer::run(std::ostream& out) {
     FrameHandoff handoff;
     GlTexture frameTexture, inspectorTexture;
 
-    ViewerUiState state;
-    state.config = config_;
-    state.movingScale = options_.movingScale;
-    state.showUi = !options_.hideUi;
-    state.playPath = scripted;
-    state.difference = options_.difference;
-    state.cacheLevels = options_.cacheLevels;
-    state.renderCacheAsync = options_.renderCacheDisplay == RenderCacheDisplay::Async;
-    if (options_.inspectObject) {
-        state.inspectObject = *options_.inspectObject;
-        state.showInspector = true;
-    }
+    ViewerUiState state = startingUiState();
     ViewerCamera camera(job_.path.cameraAt(scene.camera, 0));
     std::uint64_t clearCount = 0, pathRestartCount = 0;
     Clock::time_point lastMotion = Clock::now() - std::chrono::seconds(1);
@@ -153,6 +370,8 @@ void Viewer::run(std::ostream& out) {
 
     FrameTimeHistory intervals, renderTimes;
     UiThreadTimes uiTimes;
+    AutoPipelineRule autoRule(options_.targetFrameMs);
+    std::int64_t autoFullPixels = 0, autoRenderCachePixels = 0;
     std::vector<ScriptedSample> samples;
     Clock::time_point lastShown{};
     double lastIntervalMs = 0.0;
@@ -160,18 +379,7 @@ void Viewer::run(std::ostream& out) {
     bool screenshotPending = false;
     DisplayFrame shown;
 
-    RenderWorkerSetup setup;
-    setup.scene = &scene;
-    setup.tracer = &tracer;
-    setup.path = job_.path;
-    setup.timeline = job_.timeline;
-    setup.base = base;
-    setup.scriptedFrames = options_.scriptedFrames;
-    setup.renderCacheTraceThreads = options_.renderCacheTraceThreads;
-    setup.renderCacheDisplayThreads = options_.renderCacheDisplayThreads;
-    setup.renderCacheRequestFrames = options_.renderCacheRequestFrames;
-    setup.onPublished = &ViewerWindow::wake;
-    RenderWorker worker(std::move(setup), handoff);
+    RenderWorker worker(workerSetup(tracer), handoff);
 
     if (scripted)
         out << "scene " << scene.name << ": " << scene.objects.size() << " objects, " << scene.lights.size()
@@ -197,6 +405,7 @@ void Viewer::run(std::ostream& out) {
             lastIntervalMs = anyShown ? msBetween(lastShown, t0) : 0.0;
             if (anyShown) intervals.add(lastIntervalMs);
             renderTimes.add(shown.renderMs);
+            teachAutoRule(shown, autoRule);
             lastShown = t0;
             anyShown = true;
         }
@@ -205,101 +414,26 @@ void Viewer::run(std::ostream& out) {
         const Clock::time_point uiStart = Clock::now();
         const std::vector<int> keyPresses = window.takeKeyPresses();
         window.beginUiFrame();
-        ImGuiIO& io = ImGui::GetIO();
         ViewerActions actions;
-        bool moved = false;
-        if (!scripted) {
-            if (!io.WantCaptureMouse) {
-                const float dx = io.MouseDelta.x, dy = io.MouseDelta.y;
-                const bool dragged = dx != 0.0f || dy != 0.0f;
-                if (ImGui::IsMouseDown(ImGuiMouseButton_Left) && dragged) {
-                    camera.orbit(-0.3f * dx, 0.3f * dy);
-                    moved = true;
-                }
-                if (ImGui::IsMouseDown(ImGuiMouseButton_Right) && dragged) {
-                    camera.look(0.2f * dx, -0.2f * dy);
-                    moved = true;
-                }
-                if (ImGui::IsMouseDown(ImGuiMouseButton_Middle) && dragged) {
-                    const float s = camera.distance() * 0.0015f;
-                    camera.fly(0.0f, -dx * s, dy * s);
-                    moved = true;
-                }
-                if (io.MouseWheel != 0.0f) {
-                    camera.zoom(std::pow(0.9f, io.MouseWheel));
-                    moved = true;
-                }
-                // A click that did not drag picks the object to inspect.
-                if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) &&
-                    io.MouseDragMaxDistanceSqr[ImGuiMouseButton_Left] < io.MouseDragThreshold * io.MouseDragThreshold && shown.width > 0) {
-                    int fbw = 0, fbh = 0;
-                    window.framebufferSize(fbw, fbh);
-                    const ViewportRect r = fitRect(shown.width, shown.height, fbw, fbh);
-                    const float scaleX = io.DisplayFramebufferScale.x, scaleY = io.DisplayFramebufferScale.y;
-                    const float px = (io.MousePos.x * scaleX - static_cast<float>(r.x)) / static_cast<float>(r.width);
-                    const float py = (io.MousePos.y * scaleY - static_cast<float>(fbh - r.y - r.height)) /
-                                     static_cast<float>(r.height);
-                    if (px >= 0.0f && px < 1.0f && py >= 0.0f && py < 1.0f) {
-                        const CameraRays rays(shown.camera, shown.width, shown.height);
-                        const TraceHit hit = tracer.intersect(rays.ray(static_cast<int>(px * static_cast<float>(shown.width)),
-                                                                       static_cast<int>(py * static_cast<float>(shown.height))));
-                        if (hit.hit() && std::find(cachedObjects.begin(), cachedObjects.end(), hit.objectId) != cachedObjects.end()) {
-                            state.inspectObject = hit.objectId;
-                            state.showInspector = true;
-                        }
-                    }
-                }
-            }
-            if (!io.WantCaptureKeyboard) {
-                GLFWwindow* w = window.handle();
-                const float speed = camera.distance() * 0.8f * dt * (glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) ? 4.0f : 1.0f);
-                const auto axis = [&](int plus, int minus) {
-                    return (glfwGetKey(w, plus) == GLFW_PRESS ? 1.0f : 0.0f) - (glfwGetKey(w, minus) == GLFW_PRESS ? 1.0f : 0.0f);
-                };
-                const float f = axis(GLFW_KEY_W, GLFW_KEY_S), r = axis(GLFW_KEY_D, GLFW_KEY_A),
-                            u = axis(GLFW_KEY_E, GLFW_KEY_Q);
-                if (f != 0.0f || r != 0.0f || u != 0.0f) {
-                    camera.fly(f * speed, r * speed, u * speed);
-                    moved = true;
-                }
-            }
-            for (int key : keyPresses) {
-                if (key == GLFW_KEY_F12) actions.screenshot = true;
-                if (io.WantCaptureKeyboard) continue;  // typing into a field
-                switch (key) {
-                case GLFW_KEY_R: actions.resetCamera = true; break;
-                case GLFW_KEY_SPACE: state.playPath = !state.playPath; break;
-                case GLFW_KEY_C: actions.clearCaches = true; break;
-                case GLFW_KEY_X: state.difference = !state.difference; break;
-                case GLFW_KEY_L: state.cacheLevels = !state.cacheLevels; break;
-                case GLFW_KEY_TAB: state.showUi = !state.showUi; break;
-                case GLFW_KEY_ESCAPE: actions.quit = true; break;
-                default: break;
-                }
-            }
-        }
+        const bool moved = !scripted && applyInput(window, camera, dt, keyPresses, shown, tracer, cachedObjects,
+                                                   state, actions);
         const bool wasPlaying = state.playPath;
         if (state.showUi) {
-            ViewerPanelInput in;
-            in.scene = &scene;
-            in.frame = &shown;
-            in.intervals = &intervals;
-            in.renderTimes = &renderTimes;
-            in.uiTimes = uiTimes;
-            in.cachedObjects = cachedObjects;
-            in.inspectorTexture = inspectorTexture.id();
-            in.inspectorWidth = inspectorTexture.width();
-            in.inspectorHeight = inspectorTexture.height();
+            ViewerPanelInput in{&scene,         &shown,          &intervals,  &renderTimes,
+                                uiTimes,        cachedObjects,   inspectorTexture.id(),
+                                inspectorTexture.width(),        inspectorTexture.height(),
+                                &autoRule,      autoFullPixels,  autoRenderCachePixels};
             drawViewerPanel(in, state, actions);
         }
 
         // 3. What to render next.
         if (moved && state.playPath) state.playPath = false;  // the user takes the camera
         if (wasPlaying && !state.playPath && shown.pathFrame >= 0 && !moved) camera.setCamera(shown.camera);
+        bool cameraMoved = moved;
         if (actions.resetCamera) {
             camera = ViewerCamera(job_.path.cameraAt(scene.camera, 0));
             state.playPath = false;
-            moved = true;
+            cameraMoved = true;
         }
         if (actions.restartPath) {
             ++pathRestartCount;
@@ -307,76 +441,41 @@ void Viewer::run(std::ostream& out) {
         }
         if (actions.clearCaches) ++clearCount;
         if (actions.quit) window.requestClose();
-        if (moved) lastMotion = now;
+        if (cameraMoved) lastMotion = now;
         if (!(state.config == cachedObjectsConfig)) {
             cachedObjects = cachedObjectsUnder(scene, base, state.config);
             cachedObjectsConfig = state.config;
         }
 
-        RenderRequest request;
-        request.camera = camera.camera();
         const bool moving = std::chrono::duration<double>(now - lastMotion).count() < kMovingHoldSeconds;
-        if (scripted) {
-            request.width = base.width;
-            request.height = base.height;
-        } else {
-            int fbw = 0, fbh = 0;
-            window.framebufferSize(fbw, fbh);
-            // The Render Cache reuses the last frame's pixels: a lower
-            // resolution while moving would throw them all away.
-            const bool reduce = moving && state.movingScale < 1.0f && state.config.pipeline != kRenderCacheChoice;
-            const float scale = state.resolutionScale * (reduce ? state.movingScale : 1.0f);
-            request.width = std::max(1, static_cast<int>(std::lround(static_cast<float>(fbw) * scale)));
-            request.height = std::max(1, static_cast<int>(std::lround(static_cast<float>(fbh) * scale)));
-            request.reducedResolution = reduce;
-        }
-        request.config = state.config;
-        request.clearCount = clearCount;
-        request.playPath = state.playPath;
-        if (!scene.animation.empty() && state.playAnimation && !scripted)
-            state.animationTime += dt * state.animationSpeed;
-        request.time = state.animationTime;
-        request.pathRestartCount = pathRestartCount;
-        request.continuous = state.continuous;
-        request.difference = state.difference;
-        request.differenceGain = state.differenceGain;
-        request.renderCacheOverlay = state.renderCacheOverlay;
-        request.renderCacheAsync = state.renderCacheAsync;
-        request.cacheLevels = state.cacheLevels;
-        request.inspectObject = state.showInspector ? state.inspectObject : -1;
-        request.inspectorFaceSize = state.inspectorFaceSize;
         int fbw = 0, fbh = 0;
         window.framebufferSize(fbw, fbh);
+        if (!scene.animation.empty() && state.playAnimation && !scripted)
+            state.animationTime += dt * state.animationSpeed;
+        RequestSize size;
+        if (scripted) {
+            size.width = base.width;
+            size.height = base.height;
+        } else {
+            size = requestSize(state, fbw, fbh, moving, !scene.animation.empty(), autoRule);
+            autoFullPixels = size.autoFullPixels;
+            autoRenderCachePixels = size.autoRenderCachePixels;
+        }
+        const RenderRequest request = renderRequest(state, camera.camera(), size, clearCount, pathRestartCount);
         if (fbw > 0 && fbh > 0) worker.submit(request);
 
         // 4. Draw: the frame, then the panel over it.
-        glViewport(0, 0, fbw, fbh);
-        glClearColor(0.05f, 0.05f, 0.05f, 1.0f);
-        glClear(GL_COLOR_BUFFER_BIT);
-        frameTexture.blitTo(fitRect(frameTexture.width(), frameTexture.height(), fbw, fbh));
+        drawFrame(frameTexture, fbw, fbh);
         window.endUiFrame();
         uiTimes.uiMs = msBetween(uiStart, Clock::now());
 
         const bool lastScriptedFrame = scripted && newFrame && shown.pathFrame == frames - 1;
         if (actions.screenshot) screenshotPending = true;
-        if ((screenshotPending && !scripted && anyShown) || (lastScriptedFrame && !options_.screenshotPath.empty())) {
-            const std::filesystem::path path = scripted || !options_.screenshotPath.empty()
-                                                   ? std::filesystem::path(options_.screenshotPath)
-                                                   : nextScreenshotPath(scene.name, screenshotCounter);
-            screenshotPending = false;
-            if (scripted) {
-                writeScreenshot(fbw, fbh, path);  // a failure fails the run
-                out << "screenshot " << path.string() << " (" << fbw << "x" << fbh << ")" << std::endl;
-            } else {
-                // A key press must not end an interactive session.
-                try {
-                    writeScreenshot(fbw, fbh, path);
-                    out << "screenshot " << path.string() << " (" << fbw << "x" << fbh << ")" << std::endl;
-                } catch (const std::exception& e) {
-                    out << "screenshot not written: " << e.what() << std::endl;
-                }
-            }
-        }
+        const bool screenshot =
+            (screenshotPending && !scripted && anyShown) || (lastScriptedFrame && !options_.screenshotPath.empty());
+        writeScreenshotIfAsked(scripted, screenshot, options_.screenshotPath, scene.name, screenshotCounter, fbw, fbh,
+                               out);
+        if (screenshot) screenshotPending = false;
         const Clock::time_point presentStart = Clock::now();
         window.swapBuffers();
         glFinish();  // the swap is asynchronous: count the GPU's work in this frame's present time
@@ -385,19 +484,7 @@ void Viewer::run(std::ostream& out) {
         if (scripted && newFrame) {
             samples.push_back({lastIntervalMs, shown.renderMs, shown.encodeMs, uiTimes.uploadMs, uiTimes.uiMs,
                                uiTimes.presentMs, shown.asyncRenderCache ? shown.samplesPerSecond : -1.0});
-            FrameResult result;
-            result.frame = shown.pathFrame;
-            result.milliseconds = shown.renderMs;
-            result.stats = shown.stats;
-            out << formatFrameLine(result, frames) << "  | interval " << formatFixed(lastIntervalMs, 1) << " encode " << formatFixed(shown.encodeMs, 2) << " upload "
-                << formatFixed(uiTimes.uploadMs, 2) << " ui " << formatFixed(uiTimes.uiMs, 2) << " present "
-                << formatFixed(uiTimes.presentMs, 2) << " ms";
-            if (shown.asyncRenderCache)
-                out << " | async: merged " << shown.mergedSamples << " samples, tracer "
-                    << formatFixed(shown.samplesPerSecond / 1.0e6, 3) << " Msamples/s, busy "
-                    << formatFixed(100.0 * shown.traceBusyShare, 0) << " %, request map " << shown.stats.renderCache->budget
-                    << " rays";
-            out << std::endl;
+            printScriptedFrame(shown, frames, lastIntervalMs, uiTimes, out);
             if (lastScriptedFrame) break;
         }
     }

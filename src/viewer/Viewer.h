@@ -5,8 +5,10 @@
 #include <iosfwd>
 
 #include "session/RenderJob.h"
+#include "viewer/RenderWorker.h"
 #include "viewer/ViewerOptions.h"
 #include "viewer/ViewerRenderConfig.h"
+#include "viewer/ViewerUiState.h"
 
 namespace raycache {
 
@@ -22,6 +24,11 @@ public:
     void run(std::ostream& out);
 
 private:
+    // The panel's values at the start, from the options.
+    ViewerUiState startingUiState() const;
+    // What the render thread is made with.
+    RenderWorkerSetup workerSetup(const TraceScene& tracer) const;
+
     RenderJob job_;
     ViewerRenderConfig config_;
     ViewerOptions options_;

@@ -17,6 +17,9 @@ struct ViewerOptions {
     bool hideUi = false;         // start with the panel hidden (the window shows the frame only)
     bool vsync = true;           // interactive only; scripted runs never wait for the display
     float movingScale = 0.5f;    // resolution factor while the camera moves
+    // --pipeline auto: a full frame slower than this while the camera moves
+    // does not keep the display rate (AutoPipelineRule).
+    double targetFrameMs = 1000.0 / 30.0;
     bool difference = false;     // start showing the difference to the uncached image
     bool cacheLevels = false;    // start with the cube level per pixel overlay on
     std::optional<int> inspectObject;  // start with this object's cube in the inspector

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <imgui.h>
 #include <string>
 
@@ -53,6 +54,25 @@ void drawAnimationSection(const ViewerPanelInput& in, ViewerUiState& state) {
                     u->objectsChanged, u->lightsChanged, static_cast<long long>(u->texelsInvalidated));
 }
 
+// Pipeline auto: which way made the frame on screen, and the estimates the
+// choice was made from.
+void drawAutoPipelineLine(const ViewerPanelInput& in) {
+    const DisplayFrame& f = *in.frame;
+    if (!f.autoPipeline) return;
+    ImGui::Text("auto: showing %s%s", shownPipelineName(f.shown),
+                f.renderCachePriming ? " (the Render Cache's samples are on their way)" : "");
+    if (!in.autoRule) return;
+    const double full = in.autoRule->estimateMs(ShownPipeline::FullFrame, in.autoFullPixels);
+    const double renderCache = in.autoRule->estimateMs(ShownPipeline::RenderCache, in.autoRenderCachePixels);
+    const auto ms = [](double v) {
+        char text[32] = "not measured";
+        if (v >= 0.0) std::snprintf(text, sizeof text, "%.1f", v);
+        return std::string(text);
+    };
+    ImGui::Text("  estimated ms: full frame %s, render cache %s; target %.1f", ms(full).c_str(),
+                ms(renderCache).c_str(), in.autoRule->targetMs());
+}
+
 void drawRenderingSection(const ViewerPanelInput& in, ViewerUiState& state, ViewerActions& actions) {
     if (!ImGui::CollapsingHeader("Rendering", ImGuiTreeNodeFlags_DefaultOpen)) return;
     ViewerRenderConfig& config = state.config;
@@ -69,6 +89,7 @@ void drawRenderingSection(const ViewerPanelInput& in, ViewerUiState& state, View
                 config.pipeline = static_cast<int>(i);
         ImGui::EndCombo();
     }
+    drawAutoPipelineLine(in);
     if (ImGui::BeginCombo("accelerator", acceleratorName(config.accelerator))) {
         for (const Accelerator a : kAccelerators)
             if (ImGui::Selectable(acceleratorName(a), a == config.accelerator)) config.accelerator = a;

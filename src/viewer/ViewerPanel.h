@@ -5,6 +5,7 @@
 #include <span>
 
 #include "scene/Scene.h"
+#include "viewer/AutoPipelineRule.h"
 #include "viewer/DisplayFrame.h"
 #include "viewer/FrameTimeHistory.h"
 #include "viewer/ViewerUiState.h"
@@ -28,6 +29,9 @@ struct ViewerPanelInput {
     unsigned int inspectorTexture = 0;         // GL texture holding the inspector picture
     int inspectorWidth = 0;
     int inspectorHeight = 0;
+    const AutoPipelineRule* autoRule = nullptr;  // pipeline auto's rule (its estimates); may be null
+    long long autoFullPixels = 0;                // the sizes it compared at, full frame and Render Cache
+    long long autoRenderCachePixels = 0;
 };
 
 void drawViewerPanel(const ViewerPanelInput& in, ViewerUiState& state, ViewerActions& actions);

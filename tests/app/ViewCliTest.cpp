@@ -68,6 +68,9 @@ TEST_F(ViewCli, ScriptedRunShowsTheOfflineRenderOfTheSameCamera) {
     const RunResult view = run(underXvfb("view " + kJob + " --hide-ui --screenshot " + shot.string()), dir_);
     ASSERT_EQ(view.exitCode, 0) << view.err << view.out;
     EXPECT_NE(view.out.find("frame 6/6"), std::string::npos) << view.out;
+    // The default pipeline is auto; playing the path is not moving the camera: full frames.
+    EXPECT_NE(view.out.find("| auto: full frames"), std::string::npos) << view.out;
+    EXPECT_EQ(view.out.find("| auto: Render Cache"), std::string::npos) << view.out;
     EXPECT_NE(view.out.find("screenshot " + shot.string() + " (320x180)"), std::string::npos) << view.out;
     const RunResult render =
         run(std::string(RAYCACHE_BINARY) + " render " + kJob + " --out " + offline.string(), dir_);
@@ -179,7 +182,8 @@ TEST_F(ViewCli, BadInputIsOneLineAndExitTwoWithoutAWindow) {
           std::string("view --scene room --render-cache-display fast"),
           std::string("view --scene room --render-cache-trace-threads -1"),
           std::string("view --scene room --render-cache-display-threads -1"),
-          std::string("view --scene room --render-cache-request-frames -1")}) {
+          std::string("view --scene room --render-cache-request-frames -1"),
+          std::string("view --scene room --pipeline fastest"), std::string("view --scene room --target-fps 0")}) {
         const RunResult r = run("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(RAYCACHE_BINARY) + " " + args, dir_);
         EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.err;
         EXPECT_EQ(lineCount(r.err), 1) << args << "\n" << r.err;
@@ -204,6 +208,6 @@ TEST_F(ViewCli, HelpListsTheViewerOptions) {
     for (const char* option :
          {"--screenshot", "--frames", "--hide-ui", "--technique", "--moving-scale", "--level-overlay",
           "--render-cache-display", "--render-cache-trace-threads", "--render-cache-display-threads",
-          "--render-cache-request-frames"})
+          "--render-cache-request-frames", "--pipeline", "auto", "--target-fps"})
         EXPECT_NE(r.out.find(option), std::string::npos) << option;
 }

@@ -385,3 +385,92 @@ TEST(RenderWorker, AsyncRenderCacheWithAStillCameraConvergesToTheFullRender) {
         return f.samplesPerSecond > 0.0 && f.displayFps > 0.0;
     });
 }
+
+// Pipeline auto: full frames are the ray pipeline's, bit for bit; asked for
+// the Render Cache (at its own rate), the worker shows full frames until the
+// Render Cache's samples of the whole image have come, then the Render
+// Cache, which with the camera still shows the full render's codes again.
+TEST(RenderWorker, AutoPipelineShowsFullFramesAndTheRenderCacheWhenAsked) {
+    const Scene scene = *makeBuiltinScene("room");
+    const TraceScene tracer(scene);
+    RenderSettings settings = smallSettings();
+    settings.cache.techniqueOverride = CacheTechnique::None;
+    Image reference;
+    RenderSession(scene, settings).render(scene.camera, reference);  // the ray pipeline
+    const std::vector<std::uint8_t> expected = srgb8(reference);
+
+    FrameHandoff handoff;
+    RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, {}, smallSettings(), std::nullopt, {}};
+    RenderWorker worker(setup, handoff);
+    RenderRequest request;
+    request.camera = scene.camera;
+    request.width = settings.width;
+    request.height = settings.height;
+    request.config.technique = techniqueChoiceIndex(CacheTechnique::None);
+    request.config.pipeline = kAutoPipelineChoice;
+    request.renderCacheAsync = true;
+    worker.submit(request);
+    int fullFrames = 0;
+    takeFrames(handoff, worker, [&](const DisplayFrame& f) {
+        EXPECT_TRUE(f.autoPipeline);
+        EXPECT_EQ(f.shown, ShownPipeline::FullFrame);
+        EXPECT_FALSE(f.stats.renderCache.has_value());
+        EXPECT_EQ(f.rgba, expected) << "a full frame is the ray pipeline's";
+        return ++fullFrames == 3;
+    });
+
+    request.showRenderCache = true;
+    worker.submit(request);
+    // (The hand-over keeps only the newest frame: the test may not see the
+    // frames shown while the samples come; it checks them when it does.)
+    takeFrames(handoff, worker, [&](const DisplayFrame& f) {
+        if (f.renderCachePriming) {
+            EXPECT_EQ(f.shown, ShownPipeline::FullFrame);
+            EXPECT_EQ(f.rgba, expected) << "while its samples come, the full frame";
+        }
+        return f.shown == ShownPipeline::RenderCache && f.rgba == expected;
+    });
+
+    // Back to full frames (the camera stopped): the ray pipeline's again.
+    request.showRenderCache = false;
+    worker.submit(request);
+    takeFrames(handoff, worker, [&](const DisplayFrame& f) {
+        if (f.shown != ShownPipeline::FullFrame) return false;
+        EXPECT_EQ(f.rgba, expected);
+        return true;
+    });
+}
+
+// Pipeline auto with the synchronous Render Cache: its frames are the
+// offline Render Cache's along the same cameras.
+TEST(RenderWorker, AutoPipelineSyncRenderCacheFramesAreTheOfflineRenderCachesFrames) {
+    const Scene scene = *makeBuiltinScene("room");
+    const TraceScene tracer(scene);
+    RenderSettings settings = smallSettings();
+    settings.cache.techniqueOverride = CacheTechnique::None;
+    settings.pipeline = PipelineKind::RenderCache;
+    RenderSession offline(scene, settings);
+    FrameHandoff handoff;
+    RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, {}, smallSettings(), std::nullopt, {}};
+    RenderWorker worker(setup, handoff);
+    RenderRequest request;
+    request.width = settings.width;
+    request.height = settings.height;
+    request.config.technique = techniqueChoiceIndex(CacheTechnique::None);
+    request.config.pipeline = kAutoPipelineChoice;
+    request.showRenderCache = true;
+    request.continuous = false;
+    for (int i = 0; i < 3; ++i) {
+        request.camera = scene.cameraPath.cameraAt(scene.camera, i);
+        Image film;
+        offline.render(request.camera, film);
+        worker.submit(request);
+        takeFrames(handoff, worker, [&](const DisplayFrame& f) {
+            if (!(f.camera == request.camera)) return false;
+            EXPECT_EQ(f.shown, ShownPipeline::RenderCache);
+            EXPECT_TRUE(f.stats.renderCache.has_value());
+            EXPECT_EQ(f.rgba, srgb8(film)) << "frame " << i;
+            return true;
+        });
+    }
+}
