@@ -12,7 +12,9 @@
 # later frames read what the first ones cached), --scenes "a b c",
 # --pipelines "ray hybrid render-cache", --lanes "default avx2 baseline"
 # (RAYCACHE_LANES values; a level this processor lacks is skipped with a
-# note), --quick (fewer techniques). The Render Cache runs on Embree with
+# note), --quick (fewer techniques), --cache-res N (cube faces, default 64:
+# CDCT's pre-fill traces every texel of every cube, so the scenes' own 512
+# makes the matrix slow without testing more of the kernel). The Render Cache runs on Embree with
 # no caching and with CCT; the hybrid pipeline on Embree.
 set -euo pipefail
 
@@ -23,6 +25,7 @@ lanes="default avx2 baseline"
 quick=0
 compare=0
 pipelines="ray hybrid render-cache"
+cache_res=64
 args=()
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -31,9 +34,10 @@ while [ $# -gt 0 ]; do
     --scenes) scenes=$2; shift 2 ;;
     --lanes) lanes=$2; shift 2 ;;
     --pipelines) pipelines=$2; shift 2 ;;
+    --cache-res) cache_res=$2; shift 2 ;;
     --quick) quick=1; shift ;;
     --compare) compare=1; shift ;;
-    -h|--help) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,19p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) args+=("$1"); shift ;;
   esac
 done
@@ -91,7 +95,7 @@ for level in $lanes; do
           mkdir -p "$dir"
           if ! env "${env_lanes[@]}" "$binary" render --scene "$scene" --width "$size" --height "$size" \
               --frames "$frames" --threads 2 --pipeline "$pipeline" --accel "$accel" --technique "$technique" \
-              --gbuffer packets --out "$dir/frame_%02d.exr" >"$dir/log.txt" 2>&1; then
+              --gbuffer packets --cache-res "$cache_res" --out "$dir/frame_%02d.exr" >"$dir/log.txt" 2>&1; then
             echo "image-matrix: failed: $level $scene $pipeline $accel $technique (see $dir/log.txt)"
           fi
           count=$((count + 1))
