@@ -38,7 +38,7 @@ PaperTable paperFigure59();
 // What Figure 5.9 says about later frames, in words (no numbers per frame).
 std::string paperFigure59Later();
 
-// The GPU Render Cache (the GPU Render Cache paper, Section 4 and Figure 3):
+// The GPU Render Cache (Zhu, Wang and Luebke 2005, Section 4 and Figure 3):
 // reconstruction alone (sample generation excluded) on a GeForce 6800 with a
 // 2.8 GHz Pentium 4; rows "512", "1024" (image side); columns fps, ms.
 PaperTable paperRenderCache();
