@@ -138,7 +138,7 @@ class GridsExperiment : public Experiment {
 public:
     std::string name() const override { return "grids"; }
     std::string title() const override {
-        return "Grids vs Embree rebuilt every frame: build + primary + shadow rays (seed 004, Table 1)";
+        return "Grids vs Embree rebuilt every frame: build + primary + shadow rays (Guntury and Narayanan 2010, Table 1)";
     }
     double estimatedWork(const BenchSettings& settings) const override {
         const SizePlan plan = planFor(settings.size);

@@ -1,5 +1,5 @@
 #pragma once
-// `raycache bench grids` (issue 15, docs/grids.md): per model and frame,
+// `raycache bench grids` (docs/grids.md): per model and frame,
 // build and trace time of primary rays and of the shadow rays of their hits,
 // the grids against Embree rebuilt every frame at its fastest (LOW) and its
 // default (MEDIUM) build quality with 16-wide coherent packets; static

@@ -55,7 +55,7 @@ std::string paperFigure59Later() {
 }
 
 PaperTable paperRenderCache() {
-    return {"GPU Render Cache (seed 002), Section 4 and Figure 3",
+    return {"Zhu, Wang and Luebke 2005, Section 4 and Figure 3",
             "reconstruction only (sample generation excluded), GeForce 6800, Pentium 4 2.8 GHz",
             {"fps", "ms"},
             {{"512", {123, 1000.0 / 123}}, {"1024", {38, 1000.0 / 38}}}};

@@ -1,5 +1,5 @@
 #pragma once
-// The source documents' own figures (../shared/SPEC.md §5, distilled from
+// The source documents' own figures (from
 // Ruff's MSc thesis, UFF 2013, and the SIBGRAPI 2013 paper), kept as data in
 // this one place so every experiment prints them beside its own results.
 // They were measured on a GPU (OptiX) at 1024x1024 with 512^2 caches unless
@@ -38,7 +38,7 @@ PaperTable paperFigure59();
 // What Figure 5.9 says about later frames, in words (no numbers per frame).
 std::string paperFigure59Later();
 
-// The GPU Render Cache (SPEC §6, seed 002, Section 4 and Figure 3):
+// The GPU Render Cache (Zhu, Wang and Luebke 2005, Section 4 and Figure 3):
 // reconstruction alone (sample generation excluded) on a GeForce 6800 with a
 // 2.8 GHz Pentium 4; rows "512", "1024" (image side); columns fps, ms.
 PaperTable paperRenderCache();

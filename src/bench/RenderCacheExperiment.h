@@ -1,5 +1,5 @@
 #pragma once
-// The Render Cache (SPEC §6) along moving-camera paths: on room, behind-32
+// The Render Cache along moving-camera paths: on room, behind-32
 // and glass, each frame rendered in full (the ray pipeline: reference image
 // and speed baseline), by the plain Render Cache (reprojected colour) and by
 // the Render Cache with re-evaluated reflections, in turn. Frame time split

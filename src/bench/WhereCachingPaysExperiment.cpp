@@ -97,9 +97,8 @@ struct FrameTotals {
     }
     // The lookups' wall ms a frame: the reuse-lookup stage plus what the
     // secondary-ray stage took over the uncached frame's, scaled by the hits
-    // spawned from (lookups asked at spawn; without this the model saw no
-    // cost for them, and its error grew from 14 to 21-38 % once they moved
-    // there at 3db8201).
+    // spawned from (lookups are asked where the rays spawn; without this the
+    // model sees no cost for them and misses the measured speed-ups).
     double meanLookupWallMs(int threads, const FrameTotals& uncached) const {
         if (frames == 0) return 0.0;
         const auto perFrame = [](double total, int n) { return n > 0 ? total / n : 0.0; };

@@ -55,9 +55,9 @@ CubePolicy::Judgement CubePolicy::afterFrame(const CubeFrameCounts& counts) {
     // A sample that pays turns full caching on, whose first frame looks up
     // every ray and stores the misses of the fifteen sixteenths of texels
     // the sample left empty: an outlay the sample's net gain must repay
-    // within the first back-off, or full caching loses along the way (orbit:
-    // a fill frame of 17.7 ms against uncached frames of 5.5 ms, repaid by
-    // nothing). Both at the sample's scale.
+    // within the first back-off, or full caching loses along the way (on
+    // orbit a fill frame costs several uncached frames and nothing repays
+    // it). Both at the sample's scale.
     const double fill = sampling() ? static_cast<double>(counts.lookups) *
                                          (costs_.lookup + (1.0 - kSampledShare) * costs_.store) /
                                          static_cast<double>(kFirstBackoff)

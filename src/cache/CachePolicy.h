@@ -38,15 +38,11 @@ const char* cachePolicyModeName(CachePolicyMode mode);
 // What one operation costs, in units of one traced ray (a secondary or shadow
 // ray with the shading of its hit); ratios of CPU times, so roughly
 // machine-independent. Calibrated with `scripts/calibrate-cache-policy.sh`
-// (grid-32 orbit, 384², one thread) on 2026-11-27 with the waves in lanes,
-// quiet, the median of three runs: one traced ray 70.6 ns (70.5-71.9), a
-// lookup 36.8 ns (0.51-0.53 rays), a store 67.8 ns (0.87-1.01 rays), a CDCT
-// texel sampled 162.9 ns (2.28-2.31 rays; that figure carries the whole CDCT
-// lookup: its search, own-surface test and error control). docs/caching.md
-// has the earlier calibration. The tracked costs: orbit (animated, 384²,
-// 256² faces, one thread), one quiet run at edfb342 over that run's traced
-// ray (78.1 ns): a tracked lookup 19.8 ns more, a tracked store 167.5 ns
-// more, a region test 22.2 ns.
+// (grid-32 orbit, 384², one thread) on a quiet machine, the median of three
+// runs; the CDCT texel's figure carries the whole CDCT lookup: its search,
+// own-surface test and error control. The tracked costs come from orbit
+// (animated, 384², 256² faces, one thread). The measured times behind every
+// figure are in docs/caching.md ("Calibration").
 struct CachePolicyCosts {
     double lookup = 0.52;     // one lookup: address, validity, texel read
     double store = 0.94;      // one queued store: queue, merge, dependency record
@@ -107,9 +103,8 @@ public:
     // Frames bypassed before the first probe, and the most between probes.
     // A sample turns full caching on only if its net gain repays, within
     // kFirstBackoff frames, the first full frame's lookups and stores.
-    // A probe costs two sampled frames (on grid-32's orbit at 384², +1.3
-    // and +1.8 ms over uncached frames of 17.7 and 14.8 ms) or one full
-    // frame for a CDCT cube.
+    // A probe costs two sampled frames or one full frame for a CDCT cube
+    // (docs/caching.md, "Probes").
     static constexpr int kFirstBackoff = 8;
     static constexpr int kLongestBackoff = 64;
     // The sample: 1 run of texels in 2^kSampleBits.
@@ -117,13 +112,12 @@ public:
     static constexpr double kSampledShare = 1.0 / (1 << kSampleBits);
     // A cube caches only while its saving beats its cost by this factor.
     // The saving counts a hit's tree in one unit, a traced ray of grid-32,
-    // but what a traced ray costs differs by scene: that unit missed the
-    // secondary rays' trace time by 44 % rms over the 18 scenes of
-    // `bench where-caching-pays` (31-320 ns a ray against 51 ns;
-    // docs/log/2026-11-27-what-a-tree-costs.md). So a cube whose hits are
-    // worth 1/1.44 of what the unit says still does not cache at a loss:
-    // room-moving's mirror, judged to save 18.5 k rays for 14.5 k, spares
-    // about half what the unit says and lost 3-13 % caching.
+    // but what a traced ray costs differs by scene: the factor is that
+    // unit's rms error against the secondary rays' measured trace time over
+    // the scenes of `bench where-caching-pays`
+    // (docs/log/2026-11-27-what-a-tree-costs.md). So a cube whose hits are
+    // worth 1/kSavingMargin of what the unit says still does not cache at a
+    // loss (room-moving's mirror spares about half what the unit says).
     static constexpr double kSavingMargin = 1.44;
 
     CubePolicy() = default;

@@ -1,8 +1,8 @@
 #pragma once
 // Six square faces around one object, one RGB9E5 word per texel, holding the
 // color that secondary rays leaving the object in each direction brought back
-// (CCT, SPEC §2). Texels start invalid and are written once.
-// A CDCT cube (SPEC §3) also keeps, per texel, the distance from the centre to
+// (CCT, Ruff, Clua and Fernandes 2013). Texels start invalid and are written once.
+// A CDCT cube (Ruff's MSc thesis, 2013) also keeps, per texel, the distance from the centre to
 // what the texel shows (a 32-bit float, -1 while invalid), and has a box: the
 // axis-aligned bounds of the object around the centre, where its search starts.
 // A CCT cube may be resampled to another resolution (resampled()); a texel

@@ -1,5 +1,5 @@
 #pragma once
-// The CDCT searches (SPEC §3): find where a secondary ray leaving a cube's
+// The CDCT searches (Ruff's MSc thesis, 2013): find where a secondary ray leaving a cube's
 // object meets the surface the cube's depths describe, relief-mapping style,
 // and return the color cached there. Two variants:
 //  - parity: the thesis's Algorithm 4 as specified (fixed steps delta along

@@ -1,5 +1,5 @@
 #pragma once
-// Per-object ray caching (SPEC §2): the answer to "what does the ray leaving
+// Per-object ray caching (Ruff, Clua and Fernandes 2013): the answer to "what does the ray leaving
 // object o at point p in direction s bring back?", when an earlier frame
 // already traced it.
 //
@@ -469,11 +469,9 @@ private:
         // (CubePolicy::sampledTexel), the rays of the tree its colour came
         // from (capped at 255; 0: unknown), so that the hits on sampled
         // texels tell what a hit spares (CubeFrameCounts::recordedHitRays).
-        // Written for sampled texels, read only while the cube samples: with
-        // a record read on every hit, filled grid-32 and reflective-32 ran
-        // 1.56× and 1.57× uncached under `auto` against 1.82× and 1.77× under
-        // `always` (one where-caching-pays run at 384²), and 1.74× and 1.72×
-        // against 1.84× and 1.82× with the sampled texels' records read.
+        // Written for sampled texels, read only while the cube samples: a
+        // record read on every hit made filled caches measurably slower under
+        // `auto` than under `always` (docs/log/2026-11-27-cache-policy-sampling.md).
         std::vector<std::uint8_t> treeRays;
         // Block-against-region tests the last scene change made for this
         // cube's texels (CubeFrameCounts::regionTests), until endFrame.

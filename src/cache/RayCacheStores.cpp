@@ -150,9 +150,9 @@ void RayCache::orderBatches(std::span<CacheWorker> workers) {
 void RayCache::mergeStores(std::span<CacheWorker> workers, const PartitionRunner& runPartitions, int partitions,
                            FrameCacheStats& stats) {
     const bool skipping = skipStoresReachingChanges_ && (!lastChangeRegions_.empty() || lastChangeLit_);
-    // One partition per thread: each scans all queued stores once (a 1024²
-    // grid-32 CCT frame merged 15-20 % faster on 2 threads with 2 partitions
-    // than with 4, and 30 % faster on 1 thread with 1: docs/cluster.md).
+    // One partition per thread: each scans all queued stores once, so more
+    // partitions than threads only repeat the scan (measured in
+    // docs/log/2026-11-28-moved-from-reference-pages.md, from cluster.md).
     const int parts = runPartitions ? std::clamp(partitions, 1, std::max(1, static_cast<int>(cubes_.size()))) : 1;
     // A frame with nothing to merge (every cube standing aside) starts no
     // parallel work.

@@ -15,7 +15,7 @@ constexpr float kBoundsInfinity = std::numeric_limits<float>::infinity();
 struct ParameterRange {
     double lo, hi;
     // Keeps the s with a * s <= b.
-    // Comparisons, not std::fmin/fmax (calls into libm, about 1 % of an
+    // Comparisons, not std::fmin/fmax (calls into libm, measurable in an
     // animated CCT frame); a NaN bound is ignored either way.
     void keepAtMost(double a, double b) {
         if (a > 0.0) {

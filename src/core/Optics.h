@@ -1,5 +1,5 @@
 #pragma once
-// Mirror reflection and Snell refraction, in the form given by SPEC §1:
+// Mirror reflection and Snell refraction, in the form the source documents give:
 // `incident` points toward the surface, `normal` is unit length and faces the
 // side the incident ray comes from (dot(incident, normal) <= 0).
 #include <cmath>

@@ -1,5 +1,5 @@
 #pragma once
-// Difference heat maps as the documents show them (SPEC §5, Quality): the
+// Difference heat maps as the documents show them (the thesis's quality figures): the
 // per-pixel absolute RGB difference of two images as displayed, colored from
 // blue (same) through cyan, green and yellow to red (totally different), with
 // a labelled color bar beside the picture.

@@ -1,5 +1,5 @@
 #pragma once
-// The G-buffer of the hybrid pipeline (SPEC §4): what the primary visibility
+// The G-buffer of the hybrid pipeline (Ruff's MSc thesis, 2013): what the primary visibility
 // pass leaves for the deferred passes, per pixel. OpenGL writes it in exactly
 // this layout and the deferred passes read it in place (from the mapped
 // readback buffer), so the packet-based fallback fills the same layout.

@@ -1,5 +1,5 @@
 #pragma once
-// The hybrid pipeline's G-buffer by rasterization (SPEC §4 step 1): OpenGL 4.5
+// The hybrid pipeline's G-buffer by rasterization (its first step): OpenGL 4.5
 // core draws the scene into multiple render targets (position + ray distance,
 // normal, albedo, object/primitive id, depth) and reads them back once per
 // frame into a persistently mapped pixel buffer, which the deferred passes

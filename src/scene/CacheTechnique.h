@@ -11,8 +11,8 @@
 
 namespace raycache {
 
-// Cct: color only (SPEC §2). CdctParity: color + depth with the thesis's
-// search as specified (SPEC §3). Cdct: the improved color + depth technique
+// Cct: color only (Ruff, Clua and Fernandes 2013). CdctParity: color + depth with the thesis's
+// search as specified (Ruff's MSc thesis, 2013). Cdct: the improved color + depth technique
 // (pre-filled cubes, texel-space search, error control; docs/caching.md).
 enum class CacheTechnique { None, Cct, CdctParity, Cdct };
 

@@ -8,7 +8,7 @@
 
 namespace raycache {
 
-// The CDCT search (SPEC §3, thesis Algorithm 4), in scene units. The thesis
+// The CDCT search (Ruff's MSc thesis, 2013, Algorithm 4), in scene units. The thesis
 // measured step/epsilon pairs 2/0.2, 0.4/0.05, 0.2/0.02 and 0.02/0.002 with
 // depths 0..100; the defaults are its middle pair. Valid: all finite and > 0,
 // epsilon < step.

@@ -1,7 +1,7 @@
 #pragma once
 // How a frame is made: primary rays per tile (Ray); a G-buffer followed by
-// deferred shadow and secondary passes (Hybrid, SPEC §4); or reprojected
-// samples of earlier frames plus a budget of new rays (RenderCache, SPEC §6).
+// deferred shadow and secondary passes (Hybrid, as in Ruff's thesis); or reprojected
+// samples of earlier frames plus a budget of new rays (RenderCache, after Walter et al. 1999).
 // The pipelines themselves live in render/ and rendercache/; their names are
 // here, below them, because the scene format names them too ("pipeline"):
 // the scene file, the command line and the reports read them from here.

@@ -185,7 +185,7 @@ Scene dragonHallScene(const MeshSearchPath& searchPath) {
 // The dragon among large mirrors: three mirror balls behind and beside it
 // and a glass ball before it, together a third or more of the view, so that
 // most cached trees meet the dragon's 871k triangles. Where the hall keeps
-// its mirrors small and far (17 % of the image), this one asks whether
+// its mirrors small and far, this one asks whether
 // caching pays on a real mesh when mirrors and glass fill the view
 // (docs/caching.md, "When caching pays").
 Scene dragonMirrorsScene(const MeshSearchPath& searchPath) {

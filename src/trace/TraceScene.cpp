@@ -263,8 +263,8 @@ TraceScene::TraceScene(const Scene& scene, const TraceOptions& options) : impl_(
     // Without the dynamic flag Embree 3.13 (kernels/common/scene.cpp,
     // commit_task) makes a committed scene's structures immutable and builds
     // every geometry again at the next commit: the still meshes, and the
-    // deforming ones despite REFIT (13–25 ms for the 90k-triangle cloth,
-    // 1–2 ms refitted; docs/dynamic-scenes.md).
+    // deforming ones despite REFIT (a refit is several times cheaper for the
+    // 90k-triangle cloth; docs/dynamic-scenes.md).
     if (animated) rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_DYNAMIC);
     impl_->spheres.resize(scene.objects.size());
     impl_->instanced.assign(scene.objects.size(), nullptr);

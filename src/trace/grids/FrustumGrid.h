@@ -1,5 +1,5 @@
 #pragma once
-// A grid over a frustum, rebuilt every frame (SPEC §7): cells are a regular
+// A grid over a frustum, rebuilt every frame (Guntury and Narayanan 2010): cells are a regular
 // nx x ny lattice of the frame's 2D grid coordinates (s, t) (GridFrame.h)
 // times nz slices of depth z. Built by listing a (cell, primitive) pair for
 // every cell a primitive's conservative bounds overlap, sorting the pairs by

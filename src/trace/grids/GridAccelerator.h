@@ -1,5 +1,5 @@
 #pragma once
-// The grids of one frame (SPEC §7, docs/grids.md): a perspective grid over
+// The grids of one frame (Guntury and Narayanan 2010, docs/grids.md): a perspective grid over
 // the camera's frustum for primary rays, and one light-space grid per light
 // for the shadow rays of primary hits, all rebuilt from the posed scene by
 // buildFrame. Queries answer exactly or refuse (a ray outside what the grids
