@@ -49,8 +49,8 @@ public:
     // levels): the kernel then
     // renders the frame exactly as without a cache. Its other paths (lookups
     // in lanes, dependency tracking in animated scenes, bypass counting) cost
-    // a frame 2-30 % (docs/log/2026-11-27-policy-that-never-costs.md) for
-    // rays no cube would look at.
+    // a frame a measurable share (docs/log/2026-11-27-policy-that-never-costs.md)
+    // for rays no cube would look at.
     CacheWorker* worker(int index) { return asks_ ? &workers_[static_cast<std::size_t>(index)] : nullptr; }
 
     // Exchanges the queued stores with the other processes (if any),

@@ -1,5 +1,5 @@
 #pragma once
-// Improved CDCT's pre-fill (SPEC §3 "what to beat"): a cube the frame asked
+// Improved CDCT's pre-fill: a cube the frame asked
 // for is filled whole from its centre, so the search never meets an invalid
 // texel (the thesis's main cause of failed lookups). By default before the
 // next frame; with RayCacheSettings::prefillTexelsPerFrame, a budget of face

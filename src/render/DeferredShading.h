@@ -1,5 +1,5 @@
 #pragma once
-// The deferred passes of the hybrid pipeline (SPEC §4 steps 2-4), shared by
+// The deferred passes of the hybrid pipeline (its steps 2-4 in Ruff et al. 2013), shared by
 // both G-buffer producers: the tile kernel (render/TileKernel.h) starting from
 // the G-buffer's surfaces, so shadow rays go only to pixels that hold a
 // surface and reflection/refraction rays only to pixels whose material needs

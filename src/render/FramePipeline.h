@@ -1,10 +1,10 @@
 #pragma once
 // How a frame is made (`--pipeline ray|hybrid|render-cache`): the ray
 // pipeline (FrameRenderer: primary rays as packets, then Whitted shading per
-// pixel); the hybrid pipeline (SPEC §4: a G-buffer, by OpenGL or by
+// pixel); the hybrid pipeline (Ruff et al. 2013: a G-buffer, by OpenGL or by
 // primary-ray packets, then deferred shadow, secondary and composition
 // passes), which gives the ray pipeline's images and reports its phase
-// times; or the Render Cache (SPEC §6, rendercache/RenderCachePipeline.h),
+// times; or the Render Cache (rendercache/RenderCachePipeline.h),
 // which reuses reprojected samples and traces only some pixels per frame.
 #include <memory>
 #include <string>

@@ -11,7 +11,7 @@
 namespace raycache {
 
 // Wall time of the hybrid pipeline's phases in one frame, in milliseconds
-// (SPEC §4). `raster` is the G-buffer pass: OpenGL drawing, or the
+// (Ruff et al. 2013). `raster` is the G-buffer pass: OpenGL drawing, or the
 // primary-ray packets of the fallback (whose `readback` is then 0).
 struct PhaseTimes {
     double raster = 0.0;

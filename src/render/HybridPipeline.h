@@ -1,5 +1,5 @@
 #pragma once
-// The hybrid raster + ray tracing pipeline (SPEC §4): a G-buffer (OpenGL, or
+// The hybrid raster + ray tracing pipeline (Ruff, Clua and Fernandes 2013): a G-buffer (OpenGL, or
 // primary-ray packets), then the deferred passes (render/DeferredShading.h).
 #include <memory>
 #include <string>

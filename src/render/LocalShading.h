@@ -1,5 +1,5 @@
 #pragma once
-// Local shading of Whitted ray tracing (SPEC §1): Blinn-Phong with one shadow
+// Local shading of Whitted ray tracing (Whitted 1980): Blinn-Phong with one shadow
 // ray per light, and what a ray that hits nothing sees. The rays themselves
 // (shadow, reflected, refracted) are traced by the tile kernel
 // (render/TileKernel.h), a whole wave at a time.

@@ -1,5 +1,5 @@
 #pragma once
-// Options of the Render Cache pipeline (SPEC §6, `--pipeline render-cache`):
+// Options of the Render Cache pipeline (Walter et al. 1999; Zhu, Wang and Luebke 2005; `--pipeline render-cache`):
 // how many rays a frame may trace, how requests are spread, how long a
 // reprojected sample lives, and whether view-dependent colour is shaded
 // again from the new eye. Plain data; validateRenderCacheSettings() checks it.

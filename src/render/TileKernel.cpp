@@ -46,7 +46,7 @@ void TileKernel::renderCameraTile(const CameraRays& cameraRays, const TileRange&
     s.beginTile(n);
     if (levels) beginLevelRecord(s, n);
     // The film's lines this tile will write, fetched while it traces: the
-    // pixels' stores missed the cache, 4 % of grid-32's ideal frame.
+    // otherwise the pixels' stores miss the cache at the tile's end.
     for (int y = tile.y0; y < tile.y1; ++y) {
         const auto* row = reinterpret_cast<const char*>(&film.at(tile.x0, y));
         const auto* end = reinterpret_cast<const char*>(&film.at(tile.x1 - 1, y) + 1);
@@ -209,8 +209,8 @@ void TileKernel::beginWaves(TileScratch& s, CacheWorker* cache) const {
     s.countTreeRays = cache && cache_;
     // Bounds are kept for tracked nodes only, which emitSecondaryRay makes
     // and resets one by one: the camera rays' nodes (most of a tile's) are
-    // never tracked, and clearing 168 bytes for each of them took 2.4 % of
-    // perf's samples on orbit (`always`, 30 frames).
+    // never tracked, and clearing a bounds record for each of them showed
+    // in profiles of animated scenes.
     if (s.trackTrees && s.nodeBounds.size() < s.nodes.size()) s.nodeBounds.resize(s.nodes.size());
 }
 

@@ -105,8 +105,8 @@ private:
         int store = -1;
         // trackTrees: a ray leaving a caching object, or below one (its bounds
         // matter); 0 or 1. Four bytes, not a bool: with a one-byte field last,
-        // GCC 12 filled each tile's nodes (80 bytes a pixel) with overlapping
-        // unaligned stores, six times slower: 9 % of an uncached frame.
+        // GCC 12 filled each tile's nodes with overlapping unaligned stores,
+        // several times slower than aligned ones.
         std::uint32_t tracked = 0;
         // With a cache: rays traced for this node's tree (its own ray, the
         // shadow rays at its hit, its children's trees), what a store of it
@@ -180,7 +180,7 @@ private:
     // Whether this tile counts each node's traced rays (Node::tracedRays):
     // only when the frame has cube workers, whose stores tell the cache
     // policy what a hit spares. In a frame where every cube stands aside
-    // the count went nowhere and cost 0.6 % of grid-32's frame (callgrind).
+    // the count would go nowhere and still cost instructions.
     bool countTreeRays = false;
     std::vector<float> rootHitDistance;
     // The first hits' view-independent light, recorded for PrimarySample.

@@ -306,12 +306,12 @@ void TileKernel::shadePackets(TileScratch& s, CacheWorker* cache, bool surfacesK
     } else {
         // Every packet's rays first, then their nodes and lookups: the memory
         // the lookups read is fetched for the whole wave at once, its
-        // latencies overlapping (packet by packet they added up: 11 % of
-        // grid-32's ideal frame stalled on the validity bits). Without
-        // lookups the detour cost the uncached frame 5-8 %.
+        // latencies overlapping (packet by packet they added up, and the
+        // ideal frame stalled on the validity bits); without lookups the
+        // detour only costs, so it is taken only with them.
         // Between the two, the texels of valid bits are fetched: a filled
-        // cube's hits read them (without this step CCT with filled cubes
-        // lost 25 % on grid-32).
+        // cube's hits read them, and CCT with filled cubes waited on them
+        // (docs/log/2026-11-27-lookups-at-spawn.md).
         if (s.spawnLanes.size() < packets) s.spawnLanes.resize(packets);
         for (std::size_t p = 0; p < packets; ++p) packetSpawnLanes(s.packets[p], s.spawnLanes[p], cache, true);
         for (std::size_t p = 0; p < packets; ++p) {

@@ -1,5 +1,5 @@
 #pragma once
-// Image generation of the Render Cache (SPEC §6; enhanced Render Cache,
+// Image generation of the Render Cache (Zhu, Wang and Luebke 2005; enhanced Render Cache,
 // Walter et al. 2002): pixels without a sample take the weighted mean of
 // the samples among their 3x3 neighbours (edge neighbours count twice,
 // corners once); pixels the 3x3 filter cannot reach take the mean of the

@@ -23,8 +23,8 @@ void RenderCachePipeline::makeImage(FrameContext& f) {
     std::vector<PixelState>& state = overlays_.state;
     const CameraRays rays(camera, width, height);
     // A background sample shows what it saw, like any other: looking up an
-    // image environment along every pixel's ray again cost 12 ms per frame
-    // at 1024x1024 on `room`.
+    // image environment along every pixel's ray again cost more than the
+    // rest of this pass.
     const SampleColors colors{pool_.look.data(), image_.pixelIndex(0, 0), static_cast<std::size_t>(image_.stride())};
     // Edge-aware: a hole takes the samples of one surface around it.
     const SampleSurfaces surfaces{&image_, pool_.point.data(), image_.pixelIndex(0, 0),

@@ -78,7 +78,7 @@ void RenderCachePipeline::classifyPixels(FrameContext& f) {
                 rowPriority[i] = ageShare * static_cast<float>(look.age);
                 // Re-fetched below when the frame re-fetches; added without a
                 // branch (a counter inside the re-fetch's branch cost this
-                // pass 4 % of its instructions).
+                // pass measurably more instructions).
                 rowTextured += look.textured ? 1 : 0;
                 rowViewDependent += look.viewDependent ? 1 : 0;
                 if (refetching && look.textured) {

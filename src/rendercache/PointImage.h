@@ -1,5 +1,5 @@
 #pragma once
-// The reprojected samples as an image (SPEC §6): at most one sample per
+// The reprojected samples as an image (Walter et al. 1999): at most one sample per
 // pixel, the nearest, over the image plus a margin past each edge where
 // samples are kept though not shown. A pixel holds only its sample's depth:
 // the sample itself sits in the pixel's own slot of the sample pool

@@ -1,6 +1,6 @@
 #pragma once
 // The bytes a Render Cache frame's reconstruction moves, as a counted model
-// (issue 38 item 5; docs/render-cache.md, "What reconstruction costs"): for
+// (docs/render-cache.md, "What reconstruction costs"): for
 // each pass, the records it reads and writes (sizeof of the real records:
 // SamplePoint, SampleLook, ReshadeInputs, SampleTexturing, PointImage's
 // keys, PixelState, the priority map's floats, the film's Rgb, ...) times

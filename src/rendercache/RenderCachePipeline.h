@@ -1,5 +1,5 @@
 #pragma once
-// The Render Cache as a pipeline (SPEC §6, `--pipeline render-cache`):
+// The Render Cache as a pipeline (Walter et al. 1999; Zhu, Wang and Luebke 2005; `--pipeline render-cache`):
 // frames are made from the point samples of earlier frames, reprojected to
 // the new camera, plus a budget of new camera rays traced where the request
 // map asks (holes, old samples, and where the predicted next camera will

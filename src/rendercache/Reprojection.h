@@ -1,16 +1,16 @@
 #pragma once
-// Reprojection, the heart of the Render Cache (SPEC §6): every sample is aged,
+// Reprojection, the heart of the Render Cache (Walter et al. 1999): every sample is aged,
 // evicted past its maximum age, and otherwise moved to where the new camera
 // sees it (v' = P'M'v0, the object's current origin plus the sample's offset
 // from it). The nearer sample wins a pixel. A sample that loses gets a
 // second chance: the nearest of its 8 neighbouring pixels that no sample
 // landed in. Without it, samples traced in different frames sit
 // at unrelated sub-pixel offsets, pairs of them fall into one pixel beside
-// an empty one, and on `room`'s orbit the holes grew to 40 % of the image
-// at a budget of 10 % of the pixels per frame. Samples that still win no
+// an empty one, and on a moving camera the holes grow to a large share of
+// the image. Samples that still win no
 // pixel are freed, as on the GPU Render Cache, where samples and pixels
-// correspond one to one. (Keeping them while hidden was tried: 8 % fewer
-// holes, twice the samples to reproject.)
+// correspond one to one. (Keeping them while hidden was tried: a few
+// holes fewer for twice the samples to reproject.)
 //
 // As on the GPU, the winners are copied into a second pool at their pixel's
 // slot (SamplePool): the next frame, the image passes and new samples then

@@ -1,5 +1,5 @@
 #pragma once
-// Where a frame's rays go (SPEC §6; Walter et al. 1999, Zhu et al.): the
+// Where a frame's rays go (Walter et al. 1999; Zhu, Wang and Luebke 2005): the
 // image is cut into square tiles; a tile's priority Q is the sum of its
 // pixels' priorities (holes count 1, samples their age's share of the
 // maximum); the request map gives each tile the share

@@ -32,9 +32,9 @@ void RenderCachePipeline::reshadeSamples(FrameContext& f) {
         std::vector<std::uint32_t>& slots = reshadeSlots_;
         // On all threads, in pixel order (the order keys the cache's
         // stores): each row's samples written at its offset, from the counts
-        // classifyPixels took on its trip over the image. (One thread walking
-        // the image cost 5-9 ms a frame at 1024²; a walk of its own to count
-        // them, 1 % of the frame's instructions.)
+        // classifyPixels took on its trip over the image: one thread walking
+        // the image was a large share of the frame, and a walk of its own to
+        // count them a visible one (docs/log/2026-11-28-render-cache-earns-its-place.md).
         const auto reshaded = [&](int x, int y) {
             return state[static_cast<std::size_t>(y * width + x)] == PixelState::Reprojected &&
                    pool_.look[image_.pixelIndex(x, y)].viewDependent;

@@ -1,5 +1,5 @@
 #pragma once
-// The Render Cache's point samples (SPEC §6): each slot empty or holding
+// The Render Cache's point samples (Walter et al. 1999): each slot empty or holding
 // what one camera ray found: where it hit, in its object's frame so the
 // sample follows the object; the colour it brought back; how many frames the
 // sample has been reprojected; and what shading it again from a new eye

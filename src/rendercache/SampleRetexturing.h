@@ -1,5 +1,5 @@
 #pragma once
-// Texture re-fetch of the Render Cache (issue 38 item 2): a reprojected
+// Texture re-fetch of the Render Cache: a reprojected
 // sample sits up to half a pixel off its new pixel's centre, so on a
 // texture it shows the texel of the wrong point, and a checkerboard's edges
 // come out jagged and shifted. A textured sample keeps its colour taken

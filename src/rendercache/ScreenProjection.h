@@ -1,6 +1,6 @@
 #pragma once
 // The inverse of CameraRays: where a point lands on the image of a pinhole
-// camera (v' = P'M'v, SPEC §6), in continuous pixel coordinates whose pixel
+// camera (v' = P'M'v, Zhu, Wang and Luebke 2005), in continuous pixel coordinates whose pixel
 // (x, y) covers [x, x+1) x [y, y+1), and its depth along the view axis.
 #include "core/Vec3.h"
 #include "scene/Camera.h"
@@ -36,7 +36,7 @@ public:
     static constexpr float kRange = 1.0e8f;
     // The pixel column or row a continuous coordinate lies in: its floor,
     // for |v| < 2^31. (std::floor without SSE4.1 is a sequence of masks and
-    // subtractions, and was 7 % of a Render Cache frame.)
+    // subtractions, a visible share of a Render Cache frame.)
     static int pixelOf(float v) {
         const int truncated = static_cast<int>(v);
         return truncated - (static_cast<float>(truncated) > v ? 1 : 0);

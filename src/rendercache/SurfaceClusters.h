@@ -1,5 +1,5 @@
 #pragma once
-// The edge-aware part of the Render Cache's hole fills (issue 38 item 3):
+// The edge-aware part of the Render Cache's hole fills:
 // the samples around a hole are grouped by the surface they lie on, and the
 // hole takes the mean of one group only, so that a hole on a silhouette
 // shows either the object or what lies behind it, never a blend of the two

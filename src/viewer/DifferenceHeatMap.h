@@ -1,5 +1,5 @@
 #pragma once
-// The viewer's difference view (SPEC §5 "Quality"): per pixel, the mean
+// The viewer's difference view (the quality measures of Ruff 2013): per pixel, the mean
 // absolute difference of the displayed (8-bit sRGB) channels of two images,
 // in [0, 1], shown as a heat map: blue = same, through cyan, green and
 // yellow, to red = totally different.
