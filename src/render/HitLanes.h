@@ -80,6 +80,19 @@ struct SurfaceLanes16 {
     alignas(64) int frontFace[16];  // 1: the ray arrived from outside
 };
 
+// Lane k of `s` as one surface point (its albedo aside): what the kernel's
+// per-hit steps read, and what the tests compare with surfacePointAt.
+inline SurfacePoint laneSurface(const SurfaceLanes16& s, int k) {
+    SurfacePoint sp;
+    sp.position = {s.positionX[k], s.positionY[k], s.positionZ[k]};
+    sp.normal = {s.normalX[k], s.normalY[k], s.normalZ[k]};
+    sp.geometricNormal = {s.geometricX[k], s.geometricY[k], s.geometricZ[k]};
+    sp.u = s.u[k];
+    sp.v = s.v[k];
+    sp.frontFace = s.frontFace[k] != 0;
+    return sp;
+}
+
 // One light as sixteen surfaces see it: the direction toward it, the spot
 // factor, whether a shadow ray was traced toward it (0: the light faces
 // away) and whether it came back clear (1) or was blocked or never traced (0).

@@ -55,17 +55,6 @@ void setLaneHit(RayHitLanes16& packet, int k, const TraceHit& hit) {
     packet.hit.v[k] = hit.v;
 }
 
-SurfacePoint laneSurface(const SurfaceLanes16& s, int k) {
-    SurfacePoint sp;
-    sp.position = {s.positionX[k], s.positionY[k], s.positionZ[k]};
-    sp.normal = {s.normalX[k], s.normalY[k], s.normalZ[k]};
-    sp.geometricNormal = {s.geometricX[k], s.geometricY[k], s.geometricZ[k]};
-    sp.u = s.u[k];
-    sp.v = s.v[k];
-    sp.frontFace = s.frontFace[k] != 0;
-    return sp;
-}
-
 void setLaneSurface(SurfaceLanes16& s, int k, const SurfacePoint& sp) {
     s.positionX[k] = sp.position.x, s.positionY[k] = sp.position.y, s.positionZ[k] = sp.position.z;
     s.normalX[k] = sp.normal.x, s.normalY[k] = sp.normal.y, s.normalZ[k] = sp.normal.z;

@@ -30,17 +30,6 @@ void expectSameBits(const Vec3& a, const Vec3& b, const char* what, int k) {
     EXPECT_EQ(bits(a.z), bits(b.z)) << what << " z, lane " << k;
 }
 
-SurfacePoint laneSurface(const SurfaceLanes16& s, int k) {
-    SurfacePoint sp;
-    sp.position = {s.positionX[k], s.positionY[k], s.positionZ[k]};
-    sp.normal = {s.normalX[k], s.normalY[k], s.normalZ[k]};
-    sp.geometricNormal = {s.geometricX[k], s.geometricY[k], s.geometricZ[k]};
-    sp.u = s.u[k];
-    sp.v = s.v[k];
-    sp.frontFace = s.frontFace[k] != 0;
-    return sp;
-}
-
 Vec3 randomUnit(std::mt19937& rng) {
     std::normal_distribution<float> g;
     return normalize(Vec3{g(rng), g(rng), g(rng)});
