@@ -54,6 +54,11 @@ void addRenderCacheOptions(CLI::App& command, raycache::RenderJobOptions& job) {
         "through the caching cubes" +
             theDefault(defaults.reflections == raycache::ReprojectedReflections::Reshade) + ") or reproject (as traced" +
             theDefault(defaults.reflections == raycache::ReprojectedReflections::Reproject) + ")");
+    command.add_option("--rc-reshade-every", job.renderCache.reshadeInterval,
+                       "Render cache: a moving frame reshades one in N reprojected mirror/glass/glossy samples, each "
+                       "in turn; the first still frame the rest, 1.." +
+                           std::to_string(raycache::kMaxReshadeInterval) + " (default " +
+                           std::to_string(defaults.reshadeInterval) + ": all, every frame)");
     raycache::addChoiceOption(command, "--rc-texture", job.renderCache.textureRefetch, raycache::kTextureRefetchValues,
                               raycache::textureRefetchName,
                               "Render cache: reprojected textured samples: refetch (the albedo where the pixel's "

@@ -21,6 +21,9 @@ void validateRenderCacheSettings(const RenderCacheSettings& s) {
         throw InputError("--rc-budget must be a share of the pixels in (0, 1] (got " + formatGeneral(s.budget) + ")");
     if (!within(s.targetFrameMs, 0.0f, 60000.0f))
         throw InputError("--rc-target-ms must be between 0 (off) and 60000 (got " + formatGeneral(s.targetFrameMs) + ")");
+    if (s.reshadeInterval < 1 || s.reshadeInterval > kMaxReshadeInterval)
+        throw InputError("--rc-reshade-every must be between 1 and " + std::to_string(kMaxReshadeInterval) +
+                         " frames (got " + std::to_string(s.reshadeInterval) + ")");
     if (s.maxAge < 1 || s.maxAge > 65000)
         throw InputError("--rc-max-age must be between 1 and 65000 frames (got " + std::to_string(s.maxAge) + ")");
     if (!within(s.predictShare, 0.0f, 0.9f))

@@ -35,12 +35,24 @@ struct RenderCacheSettings {
     // every pixel is traced.
     float refreshAllHoleShare = 0.5f;
     ReprojectedReflections reflections = ReprojectedReflections::Reshade;
+    // With reflections reshaded: a frame whose camera moved reshades one in
+    // this many of the reprojected view-dependent samples (a fixed pattern
+    // that shifts every frame, so each is reshaded once in this many moving
+    // frames); the others keep the colour of an older eye until their turn,
+    // and the first still frame reshades them all. 1 (the default) reshades
+    // every one every frame; larger values bound reshading's share of a
+    // display frame (rendercache/ReshadeSelection.h).
+    int reshadeInterval = 1;
     // A textured sample shows the albedo its pixel's centre sees on its
     // primitive, multiplied by its stored lighting (rendercache/SampleRetexturing.h);
     // off, the colour it was traced with (as the 2002 Render Cache).
     bool textureRefetch = true;
     std::uint64_t seed = 1;
 };
+
+// The largest RenderCacheSettings::reshadeInterval: a reflection older than
+// this many moving frames shows plainly at the camera speeds of the viewer.
+inline constexpr int kMaxReshadeInterval = 16;
 
 // Throws InputError naming the option (as `--rc-...`) when a value is out of
 // range: alpha outside [0, 1], budget outside (0, 1], negative target, ...

@@ -45,7 +45,7 @@ void RenderCachePipeline::traceNewSamples(FrameContext& f) {
             fresh += image_.hasSample(p.x, p.y) ? 0 : 1;
             PixelState& s = state[static_cast<std::size_t>(p.y * width + p.x)];
             // A reprojected sample replaced is not reshaded: out of its row's count.
-            if (s == PixelState::Reprojected && pool_.look[slot].viewDependent)
+            if (s == PixelState::Reprojected && f.reshading.chooses(pool_.look[slot], p.x, p.y))
                 std::atomic_ref<std::size_t>(reshadeRowStart_[static_cast<std::size_t>(p.y) + 1])
                     .fetch_sub(1, std::memory_order_relaxed);
             keep(slot, traced[i], rays, p);

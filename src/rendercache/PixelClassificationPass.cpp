@@ -61,6 +61,7 @@ void RenderCachePipeline::classifyPixels(FrameContext& f) {
         const bool culling = cull, refetching = retexture;
         const float ageShare = agePriority;
         const int columns = width;
+        const ReshadeSelection reshading = f.reshading;
         RowRetexturing retexturing(scene_.objects, centreRays, y);
         for (int x = 0; x < columns; ++x) {
             const auto i = static_cast<std::size_t>(x);
@@ -80,7 +81,7 @@ void RenderCachePipeline::classifyPixels(FrameContext& f) {
                 // branch (a counter inside the re-fetch's branch cost this
                 // pass measurably more instructions).
                 rowTextured += look.textured ? 1 : 0;
-                rowViewDependent += look.viewDependent ? 1 : 0;
+                rowViewDependent += reshading.chooses(look, x, y) ? 1 : 0;
                 if (refetching && look.textured) {
                     const int object = points[i].objectId;
                     const auto distance = [&] {

@@ -17,14 +17,15 @@
 #include "rendercache/ReconstructionBytes.h"
 #include "rendercache/RenderCachePipeline.h"
 #include "rendercache/Reprojection.h"
+#include "rendercache/ReshadeSelection.h"
 #include "rendercache/ScreenProjection.h"
 
 namespace raycache {
 
 struct RenderCachePipeline::FrameContext {
     FrameContext(const Camera& frameCamera, Image& frameFilm, AsyncFrame* asyncFrame, const RenderSettings& settings,
-                 int frameMargin, std::size_t slots, bool cameraMoved, const std::optional<Camera>& previousCamera,
-                 const Scene& scene);
+                 int frameMargin, std::size_t slots, bool cameraMoved, std::uint32_t movingFrames,
+                 const std::optional<Camera>& previousCamera, const Scene& scene);
 
     // What the frame is asked for.
     const Camera& camera;
@@ -35,6 +36,7 @@ struct RenderCachePipeline::FrameContext {
     const int margin;              // pool slots past each edge of the image
     const std::size_t imageSlots;  // pool slots of the image and its margin
     const bool moved;              // the camera differs from the last frame's
+    const ReshadeSelection reshading;  // which reprojected samples reshading takes
     // The asynchronous mode asks for samples only when the last request is
     // traced and merged; meanwhile it makes no request map.
     const bool wantsRequests;

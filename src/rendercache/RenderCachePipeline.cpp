@@ -159,11 +159,12 @@ FrameStats RenderCachePipeline::reconstruct(const Camera& camera, Image& film, s
 
 RenderCachePipeline::FrameContext::FrameContext(const Camera& frameCamera, Image& frameFilm, AsyncFrame* asyncFrame,
                                                const RenderSettings& settings, int frameMargin, std::size_t slots,
-                                               bool cameraMoved, const std::optional<Camera>& previousCamera,
-                                               const Scene& scene)
+                                               bool cameraMoved, std::uint32_t movingFrames,
+                                               const std::optional<Camera>& previousCamera, const Scene& scene)
     : camera(frameCamera), film(frameFilm), async(asyncFrame), rc(settings.renderCache), width(settings.width),
       height(settings.height), pixels(settings.width * settings.height), margin(frameMargin), imageSlots(slots),
-      moved(cameraMoved), wantsRequests(!asyncFrame || asyncFrame->request),
+      moved(cameraMoved), reshading{cameraMoved, settings.renderCache.reshadeInterval, movingFrames},
+      wantsRequests(!asyncFrame || asyncFrame->request),
       predicts(cameraMoved && settings.renderCache.predictShare > 0.0f && wantsRequests),
       next(predicts ? predictNextCamera(*previousCamera, frameCamera) : frameCamera),
       projection(frameCamera, settings.width, settings.height), nextProjection(next, settings.width, settings.height),
@@ -193,7 +194,7 @@ FrameStats RenderCachePipeline::frame(const Camera& camera, Image& film, AsyncFr
     sizePool(imageSlots, width * height);
     const std::int64_t merged = async ? merge(async->batches) : 0;
     const bool moved = previousCamera_ && !(*previousCamera_ == camera);
-    FrameContext f(camera, film, async, settings_, margin, imageSlots, moved, previousCamera_, scene_);
+    FrameContext f(camera, film, async, settings_, margin, imageSlots, moved, movingFrames_, previousCamera_, scene_);
     if (async) async->merged = merged;
     f.stats.pixels = f.pixels;
     scratch_.resize(static_cast<std::size_t>(parallel_.threadCount()));
@@ -229,6 +230,7 @@ FrameStats RenderCachePipeline::endFrame(FrameContext& f) {
         adaptiveBudget_ = adaptiveBudget_ > 0.0 ? 0.5 * adaptiveBudget_ + 0.5 * wanted : wanted;
     }
     previousCamera_ = f.camera;
+    if (f.moved) ++movingFrames_;
     ++frame_;
     f.frameStats.renderCache = stats;
     return f.frameStats;

@@ -162,6 +162,7 @@ private:
     std::vector<std::size_t> reshadeRowStart_;
     std::vector<Rgb> reshadeColors_;
     std::optional<Camera> previousCamera_;
+    std::uint32_t movingFrames_ = 0;  // frames whose camera moved: the reshading pattern's shift
     std::uint64_t frame_ = 0;
     double adaptiveBudget_ = 0.0;  // rays, when a target frame time is set
     // Asynchronous mode: the caches take one frame at a time (a CacheFrame

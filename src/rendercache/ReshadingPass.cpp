@@ -24,7 +24,7 @@ void RenderCachePipeline::reshadeSamples(FrameContext& f) {
         f.cacheFrame.emplace(cache_, parallel_.threadCount());
     }
     auto start = std::chrono::steady_clock::now();
-    if (f.moved && f.rc.reflections == ReprojectedReflections::Reshade) {
+    if (f.reshading.any() && f.rc.reflections == ReprojectedReflections::Reshade) {
         const int width = f.width, height = f.height;
         const Camera& camera = f.camera;
         const std::vector<PixelState>& state = overlays_.state;
@@ -35,9 +35,15 @@ void RenderCachePipeline::reshadeSamples(FrameContext& f) {
         // classifyPixels took on its trip over the image: one thread walking
         // the image was a large share of the frame, and a walk of its own to
         // count them a visible one (docs/log/2026-11-28-render-cache-earns-its-place.md).
+        const ReshadeSelection reshading = f.reshading;
+        // Reprojected view-dependent samples out of their turn keep the
+        // colour of an older eye, marked so that a still frame reshades them.
         const auto reshaded = [&](int x, int y) {
-            return state[static_cast<std::size_t>(y * width + x)] == PixelState::Reprojected &&
-                   pool_.look[image_.pixelIndex(x, y)].viewDependent;
+            if (state[static_cast<std::size_t>(y * width + x)] != PixelState::Reprojected) return false;
+            SampleLook& look = pool_.look[image_.pixelIndex(x, y)];
+            if (reshading.chooses(look, x, y)) return true;
+            if (look.viewDependent != 0 && reshading.moved) look.viewDependent |= kShadedFromAnOlderEye;
+            return false;
         };
         std::vector<std::size_t>& rowStart = reshadeRowStart_;
         for (std::size_t y = 0; y < static_cast<std::size_t>(height); ++y) rowStart[y + 1] += rowStart[y];
@@ -88,7 +94,10 @@ void RenderCachePipeline::reshadeSamples(FrameContext& f) {
                                     f.cacheFrame->worker(worker), std::span(colors.data() + begin, end - begin));
         });
         forEachTraceChunk(parallel_, slots.size(), [&](std::size_t begin, std::size_t end, int, int) {
-            for (std::size_t i = begin; i < end; ++i) pool_.look[slots[i]].color = colors[i];
+            for (std::size_t i = begin; i < end; ++i) {
+                pool_.look[slots[i]].color = colors[i];
+                pool_.look[slots[i]].viewDependent = kViewDependent;
+            }
         });
         f.stats.reshaded = static_cast<std::int64_t>(slots.size());
     }

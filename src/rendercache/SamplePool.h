@@ -31,11 +31,16 @@ static_assert(sizeof(SamplePoint) == 16);
 struct SampleLook {
     Rgb color;                       // what the pixel showed when last traced or reshaded
     std::uint16_t age = 0;           // reprojections since it was traced
-    unsigned char viewDependent = 0; // mirror, glass or highlight: its colour depends on the eye
+    // Non-zero: a mirror, glass or highlight, whose colour depends on the
+    // eye: kViewDependent, plus kShadedFromAnOlderEye while a moving frame
+    // has left it unreshaded (rendercache/ReshadeSelection.h).
+    unsigned char viewDependent = 0;
     unsigned char textured = 0;      // its albedo comes from a texture: SampleTexturing holds its colour's parts
     bool operator==(const SampleLook&) const = default;
 };
 static_assert(sizeof(SampleLook) == 16);
+inline constexpr unsigned char kViewDependent = 1;
+inline constexpr unsigned char kShadedFromAnOlderEye = 2;
 
 // A textured sample's colour taken apart (only meaningful where
 // SampleLook::textured is set): colour = albedo * lighting + rest, where

@@ -15,7 +15,7 @@ namespace raycache {
 // scene file or the command line sets; those left unset keep their value.
 struct RenderCacheOverrides {
     std::optional<float> budget, targetFrameMs, alpha, predictShare, margin, depthCullThreshold;
-    std::optional<int> maxAge, requestTileSize;
+    std::optional<int> maxAge, requestTileSize, reshadeInterval;
     std::optional<std::uint64_t> seed;
     std::optional<ReprojectedReflections> reflections;
     std::optional<bool> textureRefetch;      // RenderCacheSettings::textureRefetch (command line only)

@@ -42,6 +42,7 @@ void applyRenderCacheOverrides(const RenderCacheOverrides& o, RenderCacheSetting
     if (o.requestTileSize) rc.requestTileSize = *o.requestTileSize;
     if (o.reflections) rc.reflections = *o.reflections;
     if (o.textureRefetch) rc.textureRefetch = *o.textureRefetch;
+    if (o.reshadeInterval) rc.reshadeInterval = *o.reshadeInterval;
 }
 
 void validateRenderJobOptions(const RenderJobOptions& o) {

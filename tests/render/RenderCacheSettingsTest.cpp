@@ -67,6 +67,8 @@ TEST(RenderCacheSettings, ValuesOutOfRangeNameTheirOption) {
         {[](RenderCacheSettings& s) { s.depthCullThreshold = 1.5f; }, "--rc-depth-cull"},
         {[](RenderCacheSettings& s) { s.requestTileSize = 0; }, "--rc-tile"},
         {[](RenderCacheSettings& s) { s.requestTileSize = 257; }, "--rc-tile"},
+        {[](RenderCacheSettings& s) { s.reshadeInterval = 0; }, "--rc-reshade-every"},
+        {[](RenderCacheSettings& s) { s.reshadeInterval = kMaxReshadeInterval + 1; }, "--rc-reshade-every"},
         {[](RenderCacheSettings& s) { s.refreshAllHoleShare = 1.5f; }, "refresh-all"},
     };
     for (const auto& c : cases) {

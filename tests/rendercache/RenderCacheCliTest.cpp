@@ -44,6 +44,8 @@ TEST_F(RenderCacheCli, BadOptionsAreOneErrorLineNamingTheOptionAndExit2) {
         {"--pipeline render-cache --rc-margin 0.6", "--rc-margin"},
         {"--pipeline render-cache --rc-depth-cull -0.1", "--rc-depth-cull"},
         {"--pipeline render-cache --rc-tile 0", "--rc-tile"},
+        {"--pipeline render-cache --rc-reshade-every 0", "--rc-reshade-every"},
+        {"--pipeline render-cache --rc-reshade-every 17", "--rc-reshade-every"},
         {"--pipeline bogus", "--pipeline"},
     };
     for (const auto& c : cases) {
