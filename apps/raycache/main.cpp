@@ -292,6 +292,11 @@ void addViewCommand(CLI::App& app, Commands& c) {
                         "Async Render Cache: a request map asks for what the tracer traces in this many display "
                         "frames (at least --rc-budget); 0: --rc-budget alone, leaving more of the cores to the display")
         ->capture_default_str();
+    viewCmd->add_option("--render-cache-reshade-ms", view.renderCacheReshadeMs,
+                        "Async Render Cache: keep reshading mirror/glass/glossy samples within this many ms a display "
+                        "frame by reshading them in turns (--rc-reshade-every chosen each frame); 0: every sample "
+                        "every frame")
+        ->capture_default_str();
 }
 
 // raycache diff: image difference metrics and heat map.

@@ -23,6 +23,9 @@ void runViewCommand(const ViewCommandOptions& options, std::ostream& out, std::o
     if (!(std::isfinite(options.renderCacheRequestFrames) && options.renderCacheRequestFrames >= 0.0 &&
           options.renderCacheRequestFrames <= 100.0))
         throw InputError("--render-cache-request-frames must be between 0 and 100");
+    if (!(std::isfinite(options.renderCacheReshadeMs) && options.renderCacheReshadeMs >= 0.0 &&
+          options.renderCacheReshadeMs <= 1000.0))
+        throw InputError("--render-cache-reshade-ms must be between 0 and 1000");
     if (!(std::isfinite(options.targetFps) && options.targetFps >= 1.0 && options.targetFps <= 1000.0))
         throw InputError("--target-fps must be between 1 and 1000");
     if (options.job.cacheIdeal) throw InputError("--cache-ideal is a benchmark switch; the viewer does not take it");
@@ -65,6 +68,7 @@ void runViewCommand(const ViewCommandOptions& options, std::ostream& out, std::o
     viewer.renderCacheTraceThreads = options.renderCacheTraceThreads;
     viewer.renderCacheDisplayThreads = options.renderCacheDisplayThreads;
     viewer.renderCacheRequestFrames = options.renderCacheRequestFrames;
+    viewer.renderCacheReshadeMs = options.renderCacheReshadeMs;
     if (!options.inspectObject.empty()) {
         const auto& objects = job.scene.objects;
         const auto found = std::find_if(objects.begin(), objects.end(),

@@ -7,6 +7,7 @@
 
 #include "session/RenderJob.h"
 #include "viewer/PipelineChoice.h"
+#include "rendercache/ReshadeBudget.h"
 #include "viewer/RenderCacheDisplay.h"
 
 namespace raycache {
@@ -30,6 +31,7 @@ struct ViewCommandOptions {
     int renderCacheTraceThreads = 0;    // --render-cache-trace-threads, 0 = half of --threads
     int renderCacheDisplayThreads = 0;  // --render-cache-display-threads, 0 = --threads
     double renderCacheRequestFrames = 2.0;  // --render-cache-request-frames
+    double renderCacheReshadeMs = kDefaultReshadeBudgetMs;  // --render-cache-reshade-ms
 };
 
 // Checks every option (InputError) before opening a window, then runs the

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/Elapsed.h"
+#include "rendercache/ReshadeBudget.h"
 
 namespace raycache {
 
@@ -116,6 +117,11 @@ FrameStats AsyncRenderCache::reconstruct(const Camera& camera, Image& film) {
         wake_.notify_all();
     }
     reconstructSeconds_ = millisecondsSince(start) / 1000.0;
+    const bool moved = lastCamera_ && !(*lastCamera_ == camera);
+    lastCamera_ = camera;
+    if (moved && stats.renderCache)
+        pipeline_.setReshadeInterval(
+            reshadeIntervalWithin(reshadeBudgetMs_, pipeline_.reshadeInterval(), stats.renderCache->reshadeMs));
     return stats;
 }
 

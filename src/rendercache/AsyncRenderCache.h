@@ -91,6 +91,13 @@ public:
     AsyncRenderCacheThreads threads() const { return threads_; }
     // Display thread: see above; >= 0.
     void setRequestFrames(double frames) { requestFrames_ = frames; }
+    // Display thread: after each display frame whose camera moved, the
+    // reshading interval is chosen to keep reshading within `ms` a frame
+    // (rendercache/ReshadeBudget.h); 0 (the default) reshades every sample
+    // every frame.
+    void setReshadeBudgetMs(double ms) { reshadeBudgetMs_ = ms; }
+    // The interval the next display frame reshades with.
+    int reshadeInterval() const { return pipeline_.reshadeInterval(); }
     // Keeps the tracer out of the caches while held (it merges its stores
     // into them between batches): for reading them on another thread.
     std::unique_lock<std::mutex> holdCaches() { return std::unique_lock<std::mutex>(pipeline_.cacheMutex()); }
@@ -113,6 +120,8 @@ private:
     std::vector<SampleBatch> merging_;
     double reconstructSeconds_ = 0.0;  // the last display frame's
     double requestFrames_ = 2.0;
+    double reshadeBudgetMs_ = 0.0;
+    std::optional<Camera> lastCamera_;  // the last display frame's
 
     // Tracer thread only.
     std::vector<TileScratch> traceScratch_;

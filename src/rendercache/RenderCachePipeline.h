@@ -70,6 +70,10 @@ public:
     std::mutex& cacheMutex() { return cacheMutex_; }
     std::string description() const override;
     const RenderCacheOverlays* renderCacheOverlays() const override { return &overlays_; }
+    // RenderCacheSettings::reshadeInterval from the next frame on (the
+    // asynchronous display's budget, rendercache/ReshadeBudget.h).
+    void setReshadeInterval(int interval) { settings_.renderCache.reshadeInterval = interval; }
+    int reshadeInterval() const { return settings_.renderCache.reshadeInterval; }
 
     // Drops every sample: the next frame traces every pixel.
     void forget();

@@ -63,6 +63,7 @@ struct DisplayFrame {
     double requestsPerSecond = 0.0;   // request maps it traced to their end per second
     double traceBusyShare = 0.0;      // share of the time the tracer was tracing
     std::int64_t mergedSamples = 0;   // samples this frame merged into the pool
+    int reshadeInterval = 1;          // this frame reshaded one in this many view-dependent samples
 
     std::string configError;  // why the last requested settings were rejected; empty if they were used
 };

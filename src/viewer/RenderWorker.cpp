@@ -141,6 +141,7 @@ void RenderWorker::reconstructAsync(const RenderRequest& request, const Camera& 
                                                         wake_.notify_all();
                                                     });
         async_->setRequestFrames(setup_.renderCacheRequestFrames);
+        async_->setReshadeBudgetMs(setup_.renderCacheReshadeMs);
         for (RateMeter* meter : {&displayRate_, &sampleRate_, &batchRate_, &requestRate_, &busyRate_}) meter->clear();
         lastMerged_ = 0;
         film_ = Image(request.width, request.height);
@@ -150,6 +151,7 @@ void RenderWorker::reconstructAsync(const RenderRequest& request, const Camera& 
         std::lock_guard lock(mutex_);
         samplesArrived_ = false;
     }
+    frame.reshadeInterval = async_->reshadeInterval();
     frame.stats = async_->reconstruct(camera, film_);
     const AsyncTraceCounts counts = async_->counts();
     const auto now = RateMeter::Clock::now();

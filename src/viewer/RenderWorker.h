@@ -44,6 +44,7 @@ struct RenderWorkerSetup {
     int renderCacheTraceThreads = 0;
     int renderCacheDisplayThreads = 0;
     double renderCacheRequestFrames = 2.0;  // AsyncRenderCache::setRequestFrames
+    double renderCacheReshadeMs = 0.0;      // AsyncRenderCache::setReshadeBudgetMs
 };
 
 class RenderWorker {

@@ -307,7 +307,7 @@ void printScriptedFrame(const DisplayFrame& shown, int frames, double intervalMs
         out << " | async: merged " << shown.mergedSamples << " samples, tracer "
             << formatFixed(shown.samplesPerSecond / 1.0e6, 3) << " Msamples/s, busy "
             << formatFixed(100.0 * shown.traceBusyShare, 0) << " %, request map " << shown.stats.renderCache->budget
-            << " rays";
+            << " rays, reshading 1 in " << shown.reshadeInterval;
     out << std::endl;
 }
 
@@ -343,6 +343,7 @@ RenderWorkerSetup Viewer::workerSetup(const TraceScene& tracer) const {
     setup.renderCacheTraceThreads = options_.renderCacheTraceThreads;
     setup.renderCacheDisplayThreads = options_.renderCacheDisplayThreads;
     setup.renderCacheRequestFrames = options_.renderCacheRequestFrames;
+    setup.renderCacheReshadeMs = options_.renderCacheReshadeMs;
     setup.onPublished = &ViewerWindow::wake;
     return setup;
 }

@@ -3,6 +3,7 @@
 #include <optional>
 #include <string>
 
+#include "rendercache/ReshadeBudget.h"
 #include "viewer/RenderCacheDisplay.h"
 
 namespace raycache {
@@ -29,6 +30,7 @@ struct ViewerOptions {
     int renderCacheTraceThreads = 0;
     int renderCacheDisplayThreads = 0;  // 0: all
     double renderCacheRequestFrames = 2.0;  // display frames of tracing one request asks for
+    double renderCacheReshadeMs = kDefaultReshadeBudgetMs;  // async reshading's budget a frame, 0: none
 };
 
 }  // namespace raycache

@@ -248,6 +248,8 @@ void drawRenderCacheSection(const ViewerPanelInput& in, ViewerUiState& state) {
                     f.batchesPerSecond, f.requestsPerSecond, 100.0 * f.traceBusyShare);
         ImGui::Text("merged %lld samples, request map %lld rays", static_cast<long long>(f.mergedSamples),
                     static_cast<long long>(c.budget));
+        ImGui::Text("reshading: one in %d mirror/glass samples a moving frame (--render-cache-reshade-ms)",
+                    f.reshadeInterval);
     } else {
         ImGui::Text("display sync (one request map traced per frame): %.1f fps, %.3f Msamples/s", in.intervals->fps(),
                     in.intervals->fps() * static_cast<double>(c.fresh + c.predicted) / 1.0e6);

@@ -159,6 +159,33 @@ TEST(AsyncRenderCache, AfterTheCameraMovesAndStopsTheImageConvergesToTheFullRend
     EXPECT_LE(differingPixels(film, reference), 64 * 48 / 100);
 }
 
+TEST(AsyncRenderCache, AReshadingBudgetReshadesInTurnsWhileMovingAndCatchesUpWhenStill) {
+    const Scene scene = *makeBuiltinScene("room");  // a mirror ball and glossy walls
+    const TraceScene tracer(scene, oneBuildThread());
+    const RenderSettings settings = settingsFor(64, 48, PipelineKind::RenderCache, CacheTechnique::None);
+    AsyncRenderCache pair(scene, tracer, settings, nullptr, {1, 1});
+    EXPECT_EQ(pair.reshadeInterval(), 1);
+    // A budget no frame can keep: the interval climbs to its largest.
+    pair.setReshadeBudgetMs(1e-6);
+    Image film;
+    displayUntil(pair, scene.cameraPath.cameraAt(scene.camera, 0), film, 1);
+    std::int64_t firstMoving = -1, lastMoving = -1;
+    for (int frame = 1; frame <= 4; ++frame) {
+        const FrameStats s = pair.reconstruct(scene.cameraPath.cameraAt(scene.camera, frame), film);
+        EXPECT_TRUE(finite(film)) << frame;
+        if (frame == 1) firstMoving = s.renderCache->reshaded;
+        lastMoving = s.renderCache->reshaded;
+    }
+    EXPECT_EQ(pair.reshadeInterval(), kMaxReshadeInterval);
+    ASSERT_GT(firstMoving, 100) << "the first moving frame reshades every sample";
+    EXPECT_LT(lastMoving, firstMoving / 4) << "later ones one in sixteen";
+    // The camera stops: the first still frame reshades what older eyes shaded.
+    const Camera still = scene.cameraPath.cameraAt(scene.camera, 4);
+    const FrameStats catchUp = pair.reconstruct(still, film);
+    EXPECT_GT(catchUp.renderCache->reshaded, lastMoving);
+    EXPECT_EQ(pair.reconstruct(still, film).renderCache->reshaded, 0);
+}
+
 TEST(AsyncRenderCache, WithCachingCubesTheDisplayAndTheTracerTakeTheCachesInTurns) {
     const Scene scene = *makeBuiltinScene("room");
     const TraceScene tracer(scene, oneBuildThread());
