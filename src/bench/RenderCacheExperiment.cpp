@@ -6,6 +6,7 @@
 #include <numeric>
 #include <optional>
 
+#include "bench/AsyncDisplayMeasurement.h"
 #include "bench/ImageComparison.h"
 #include "bench/MachineLoad.h"
 #include "bench/MarkdownTable.h"
@@ -16,10 +17,12 @@
 #include "core/AtomicFile.h"
 #include "core/Errors.h"
 #include "core/SampleSummary.h"
+#include "core/TextFormat.h"
 #include "metrics/Heatmap.h"
 #include "metrics/ImageMetrics.h"
 #include "render/CameraRays.h"
 #include "render/ImageWriter.h"
+#include "rendercache/ReshadeBudget.h"
 #include "scene/BuiltinScenes.h"
 #include "scene/MeshSearchPath.h"
 #include "scene/RealMeshScenes.h"
@@ -118,12 +121,27 @@ struct VariantRun {
     SpeedupInterval speedup;  // end to end over the full render, frames after the first
 };
 
+// The asynchronous display's two reshading budgets: every sample every
+// frame, and the viewer's default.
+struct AsyncBudget {
+    std::string key;
+    std::string label;
+    double reshadeMs;
+};
+
+std::vector<AsyncBudget> asyncBudgets() {
+    return {{"async_every_frame", "async display, every sample reshaded every frame", 0.0},
+            {"async_budget", "async display, reshading within " + formatShortestFloat(static_cast<float>(kDefaultReshadeBudgetMs)) + " ms",
+             kDefaultReshadeBudgetMs}};
+}
+
 struct SceneRun {
     std::string scene;
     int side = 0;
     std::vector<double> fullMs;
     std::vector<std::int64_t> mirrorPixels;  // per frame
     std::vector<VariantRun> variants;        // as rcVariants()
+    std::vector<AsyncDisplayResult> async;   // as asyncBudgets()
 };
 
 // The values of frames after the skipped ones.
@@ -232,7 +250,7 @@ public:
         double work = 0.0;
         for (int side : imageSides(settings.size))
             work += renderCacheFrameCount(settings.size) * static_cast<double>(benchScenes(settings.size).size()) *
-                    std::pow(side, 2) / 1e6 * 2.5;
+                    std::pow(side, 2) / 1e6 * 3.5;  // the full render, two variants, two async displays
         return work;
     }
 
@@ -264,6 +282,7 @@ public:
         const std::string lastFrameText = "frames 2–" + std::to_string(frames);
 
         MarkdownTable split = frameTimeTable(runs, variants);
+        MarkdownTable asyncDisplay = asyncTable(runs);
         MarkdownTable quality = qualityTable(runs, variants);
 
         // The documents' figures beside ours.
@@ -293,6 +312,12 @@ public:
 
         std::string md = methodMarkdown(context.settings.size, sides, frames, lastFrameText);
         md += "### Frame time: reconstruction and sample generation\n\n" + split.toMarkdown() + "\n";
+        md += "### Displayed at its own rate\n\n" + asyncDisplay.toMarkdown() +
+              "\nThe viewer's asynchronous mode without a window (rendercache/AsyncRenderCache.h): display frames "
+              "along the same path, each reconstructed for the next camera as soon as the last is done, while the "
+              "tracer threads feed samples; threads split as the viewer splits them. Not included: the viewer's "
+              "8-bit encoding, upload and present (benchmarks/render_cache_async_speed.sh measures them under "
+              "Xvfb). Images depend on timing here, so they have no quality column.\n\n";
         md += "### Quality against the full render\n\n" + quality.toMarkdown() +
               "\nPSNR is infinite for a frame identical to the full render; such frames are counted apart and left "
               "out of the means.\n\n";
@@ -351,6 +376,24 @@ private:
             }
         }
         return split;
+    }
+
+    // Per scene and size: the asynchronous display's rate, and the full render's beside it.
+    static MarkdownTable asyncTable(const std::vector<SceneRun>& runs) {
+        MarkdownTable table({"scene", "size", "display", "display fps", "full render fps", "tracer Msamples/s",
+                             "reconstruction ms (median)", "reshade ms (median)", "reshading: one in"});
+        const std::vector<AsyncBudget> budgets = asyncBudgets();
+        for (const SceneRun& r : runs) {
+            const double fullMs = medianOf(afterSkipped(r.fullMs));
+            for (std::size_t b = 0; b < r.async.size(); ++b) {
+                const AsyncDisplayResult& a = r.async[b];
+                table.addRow({r.scene, sideText(r.side), budgets[b].label, cellNumber(a.displayFps, 1),
+                              fullMs > 0.0 ? cellNumber(1000.0 / fullMs, 1) : "–",
+                              cellNumber(a.samplesPerSecond / 1e6, 2), cellNumber(a.medianReconstructionMs, 1),
+                              cellNumber(a.medianReshadeMs, 1), std::to_string(a.lastReshadeInterval)});
+            }
+        }
+        return table;
     }
 
     // Per scene, size and variant: PSNR and SSIM against the full render, and on the mirror pixels.
@@ -525,6 +568,16 @@ private:
                 record.mirrorPsnr = maskedPsnr(images[vi], reference, mask);
             }
             context.progress.advance(0.5 * mp);
+        }
+
+        // The asynchronous display along the same path, after the timed
+        // synchronous frames, on a session of its own (its caching cubes).
+        for (const AsyncBudget& budget : asyncBudgets()) {
+            RenderSettings s = fullSettings;
+            s.pipeline = PipelineKind::RenderCache;
+            RenderSession session(scene, s, tracer, context.parallel);
+            run.async.push_back(measureAsyncDisplay(scene, tracer, s, &session.cache(), frames - 1, budget.reshadeMs));
+            context.progress.advance(0.5 * mp * frames);
         }
 
         BootstrapSettings bootstrap;
@@ -758,13 +811,27 @@ private:
                       {"mae", get([](const FrameRecord& x) { return x.metrics.mae; })},
                       {"mirror_psnr_db", get([](const FrameRecord& x) { return x.mirrorPsnr; })}}}};
             }
+            nlohmann::json asyncJson = nlohmann::json::object();
+            const std::vector<AsyncBudget> budgets = asyncBudgets();
+            for (std::size_t b = 0; b < r.async.size(); ++b) {
+                const AsyncDisplayResult& a = r.async[b];
+                asyncJson[budgets[b].key] = {{"label", budgets[b].label},
+                                             {"reshade_budget_ms", budgets[b].reshadeMs},
+                                             {"display_frames", a.displayFrames},
+                                             {"display_fps", a.displayFps},
+                                             {"tracer_samples_per_s", a.samplesPerSecond},
+                                             {"median_reconstruction_ms", a.medianReconstructionMs},
+                                             {"median_reshade_ms", a.medianReshadeMs},
+                                             {"last_reshade_interval", a.lastReshadeInterval}};
+            }
             runsJson.push_back(
                 {{"scene", r.scene},
                  {"width", r.side},
                  {"height", r.side},
                  {"full", {{"frame_ms", r.fullMs}, {"summary", {{"ms", summaryJson(afterSkipped(r.fullMs))}}}}},
                  {"mirror_pixels", r.mirrorPixels},
-                 {"variants", variantsJson}});
+                 {"variants", variantsJson},
+                 {"async", asyncJson}});
         }
         nlohmann::json goalsJson = nlohmann::json::array();
         for (const GoalCheck& g : goals)
