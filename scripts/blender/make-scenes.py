@@ -178,7 +178,7 @@ def black_world():
 # Roughness 0.25, not 1: Blender's Principled diffuse is Burley's, whose
 # retro-reflection grows with roughness; at 0.25 it stays within 0.6 %
 # (point) and 3.3 % (sun) of Lambert over these views, at 1 it is up to
-# 3.1x Lambert near the horizon (scripts/blender/check-lambert.py).
+# 3.1x Lambert near the horizon (check-lambert.py's formula for that diffuse).
 LAMBERT = dict(base=(0.8, 0.8, 0.8), metallic=0.0, roughness=0.25, specular=0.0)
 
 
