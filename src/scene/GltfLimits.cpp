@@ -34,7 +34,8 @@ std::uint64_t saturatingMultiply(std::uint64_t a, std::uint64_t b) {
 std::optional<std::uint64_t> unsignedMember(const json& object, const char* key) {
     if (!object.is_object()) return std::nullopt;
     const auto it = object.find(key);
-    if (it == object.end() || !it->is_number_unsigned()) return std::nullopt;
+    if (it == object.end() || !it->is_number_integer()) return std::nullopt;
+    if (!it->is_number_unsigned() && it->get<std::int64_t>() < 0) return std::nullopt;
     return it->get<std::uint64_t>();
 }
 
@@ -71,7 +72,7 @@ std::optional<std::uint64_t> base64DataBytes(const std::string& uri) {
 }
 
 // A URI as a path: %XX escapes decoded (glTF URIs are RFC 3986).
-std::string decodedUri(const std::string& uri) {
+std::string percentDecoded(const std::string& uri) {
     std::string out;
     for (std::size_t i = 0; i < uri.size(); ++i) {
         if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
@@ -100,14 +101,26 @@ public:
         checkGltfNodeGraph(path_, root_);
         // glTF 1.0 names its buffers, views and accessors by id, and only the
         // counts and the node graph are checked there.
-        if (!root_.contains("buffers") || root_["buffers"].is_array()) checkBuffers();
-        if (!root_.contains("bufferViews") || root_["bufferViews"].is_array()) checkBufferViews();
-        if (root_.contains("accessors") && root_["accessors"].is_array()) checkAccessors();
+        if (byIndex("buffers")) checkBuffers();
+        if (byIndex("bufferViews")) checkBufferViews();
+        if (byIndex("accessors")) checkAccessors();
     }
 
 private:
     [[noreturn]] void fail(const std::string& pointer, const std::string& what) const {
         throw InputError(InputLocation{.file = path_.string(), .jsonPath = pointer}, what);
+    }
+
+    // Whether `key` is absent or an array (glTF 2.0), not glTF 1.0's object of ids.
+    bool byIndex(const char* key) const {
+        const auto it = root_.find(key);
+        return it == root_.end() || it->is_array();
+    }
+
+    // The array under `key`, or an empty one (never a copy).
+    const json& arrayOf(const char* key) const {
+        const auto it = root_.find(key);
+        return it != root_.end() && it->is_array() ? *it : empty_;
     }
 
     void checkCount(const char* key, std::size_t limit) const {
@@ -133,7 +146,7 @@ private:
             return bytes;
         }
         if (text.rfind("data:", 0) == 0) return std::nullopt;
-        for (const std::string& name : {text, decodedUri(text)}) {
+        for (const std::string& name : {text, percentDecoded(text)}) {
             std::error_code ec;
             const fs::path file = path_.parent_path() / name;
             if (!fs::is_regular_file(file, ec)) continue;
@@ -146,7 +159,7 @@ private:
     }
 
     void checkBuffers() {
-        const json& buffers = root_.contains("buffers") ? root_["buffers"] : json::array();
+        const json& buffers = arrayOf("buffers");
         std::uint64_t total = 0;
         for (std::size_t i = 0; i < buffers.size(); ++i) {
             const std::uint64_t bytes = unsignedMember(buffers[i], "byteLength").value_or(0);
@@ -164,7 +177,7 @@ private:
     }
 
     void checkBufferViews() {
-        const json& views = root_.contains("bufferViews") ? root_["bufferViews"] : json::array();
+        const json& views = arrayOf("bufferViews");
         for (std::size_t i = 0; i < views.size(); ++i) {
             const json& view = views[i];
             const std::string pointer = "/bufferViews/" + std::to_string(i);
@@ -201,7 +214,7 @@ private:
     }
 
     void checkAccessors() const {
-        const json& accessors = root_["accessors"];
+        const json& accessors = arrayOf("accessors");
         for (std::size_t i = 0; i < accessors.size(); ++i) {
             const json& accessor = accessors[i];
             const std::string pointer = "/accessors/" + std::to_string(i);
@@ -247,6 +260,7 @@ private:
     const fs::path& path_;
     const json& root_;
     const GltfFileLayout& layout_;
+    const json empty_ = json::array();
     std::vector<std::uint64_t> bufferBytes_;
     std::vector<std::uint64_t> viewBytes_;
     std::vector<std::uint64_t> viewStrides_;

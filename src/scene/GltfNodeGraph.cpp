@@ -1,6 +1,7 @@
 #include "scene/GltfNodeGraph.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -84,7 +85,8 @@ private:
             if (it == indexOfId_.end()) fail(pointer, entry.dump() + " names no node");
             return it->second;
         }
-        if (!entry.is_number_unsigned()) fail(pointer, "not a node index (an integer >= 0)");
+        if (!entry.is_number_integer() || (!entry.is_number_unsigned() && entry.get<std::int64_t>() < 0))
+            fail(pointer, "not a node index (an integer >= 0)");
         const auto index = entry.get<std::uint64_t>();
         if (index >= nodes_.size())
             fail(pointer, "node " + std::to_string(index) + " does not exist (the file has " +
@@ -147,9 +149,9 @@ private:
         }
         std::vector<std::size_t> upward{onCycle};
         for (std::size_t n = parent_[onCycle]; n != onCycle; n = parent_[n]) upward.push_back(n);
-        // Parent to child, back to the first: the last link is the one named.
-        std::vector<std::size_t> down(upward.rbegin(), upward.rend());
-        down.push_back(down.front());
+        // Parent to child from that node round to it again; the link out of it is named.
+        std::vector<std::size_t> down{onCycle};
+        down.insert(down.end(), upward.rbegin(), upward.rend());
         constexpr std::size_t kNamed = 6;
         std::string cycle;
         for (std::size_t i = 0; i < down.size(); ++i) {
