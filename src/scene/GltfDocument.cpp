@@ -180,6 +180,11 @@ GltfDocument readGltfDocument(const fs::path& path) {
             column = static_cast<int>(e.byte - lineStart);
         }
         fail(path, "not valid glTF JSON: " + what, line, column);
+    } catch (const json::out_of_range& e) {
+        // A number beyond a double (1e391): "[json.exception.out_of_range.406] number overflow parsing '1e391'".
+        std::string what = e.what();
+        if (const std::size_t at = what.find("] "); at != std::string::npos) what = what.substr(at + 2);
+        fail(path, "not valid glTF JSON: " + what);
     }
     if (!root.is_object()) fail(path, "not a glTF file: its JSON is not an object");
     checkGltfLimits(path, root, file.layout);

@@ -362,6 +362,25 @@ TEST_F(GltfLimitsTest, SparseAccessorsMustLieWithinTheirViews) {
     expectRefused("noindices.gltf", sparse, "/accessors/0/sparse/indices: missing");
 }
 
+// Found by fuzzing: a number beyond a double's range escaped the JSON
+// reader as another exception than a parse error (tests/fuzz/findings/).
+TEST_F(GltfLimitsTest, NumberBeyondADoubleIsOneError) {
+    json document = box();
+    document["nodes"][0]["translation"] = {0, 0, 0};
+    std::string text = document.dump();
+    text.replace(text.find("[0,0,0]"), 7, "[0,1e391,0]");
+    std::ofstream(path("huge.gltf"), std::ios::binary) << text;
+    try {
+        (void)loadGltfScene(path("huge.gltf"));
+        ADD_FAILURE() << "loaded";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("not valid glTF JSON: number overflow parsing '1e391'"), std::string::npos)
+            << e.what();
+    }
+    // As a mesh it is left to Assimp's reader, which refuses it too.
+    EXPECT_THROW((void)loadMeshFile(path("huge.gltf")), InputError);
+}
+
 // glTF 1.0 files still load as meshes; Assimp's 1.0 reader recursed too.
 TEST_F(GltfLimitsTest, Version1NodeGraphIsCheckedForMeshes) {
     const fs::path twoBoxes = "/usr/share/assimp/models/glTF/TwoBoxes/TwoBoxes.gltf";
