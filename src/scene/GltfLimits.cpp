@@ -1,5 +1,6 @@
 #include "scene/GltfLimits.h"
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <limits>
@@ -104,6 +105,7 @@ public:
         if (byIndex("buffers")) checkBuffers();
         if (byIndex("bufferViews")) checkBufferViews();
         if (byIndex("accessors")) checkAccessors();
+        if (byIndex("images")) checkImageTypes();
     }
 
 private:
@@ -255,6 +257,36 @@ private:
             checkWithinView(*it, partPointer, unsignedMember(*it, "bufferView").value_or(kSaturated),
                             unsignedMember(*it, "byteOffset").value_or(0), replaced, partBytes, 0);
         }
+    }
+
+    // Assimp 5.2 takes what follows the '/' of an embedded image's MIME type
+    // as its format hint without looking whether there is one (a crash,
+    // found by fuzzing): its "mimeType", or its data: URI's media type.
+    void checkImageTypes() const {
+        const json& images = arrayOf("images");
+        for (std::size_t i = 0; i < images.size(); ++i) {
+            if (!images[i].is_object()) continue;
+            const std::string pointer = "/images/" + std::to_string(i);
+            if (const auto type = images[i].find("mimeType"); type != images[i].end() && type->is_string()) {
+                const std::string text = type->get<std::string>();
+                if (text.find('/') == std::string::npos)
+                    fail(pointer + "/mimeType", quoted(text) + " is not a MIME type (type/subtype, e.g. image/png)");
+            }
+            const auto uri = images[i].find("uri");
+            if (uri == images[i].end() || !uri->is_string()) continue;
+            const std::string text = uri->get<std::string>();
+            const std::size_t comma = text.find(',');
+            if (text.rfind("data:", 0) != 0 || comma == std::string::npos) continue;
+            // The media type runs to the first ';' or ','; without one, text/plain is meant.
+            const std::string mediaType = text.substr(5, std::min(text.find(';', 5), comma) - 5);
+            if (!mediaType.empty() && mediaType.find('/') == std::string::npos)
+                fail(pointer + "/uri", "the data: URI's media type " + quoted(mediaType) +
+                                           " is not a MIME type (type/subtype, e.g. image/png)");
+        }
+    }
+
+    static std::string quoted(const std::string& text) {
+        return json(text).dump(-1, ' ', false, json::error_handler_t::replace);
     }
 
     const fs::path& path_;

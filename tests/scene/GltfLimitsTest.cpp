@@ -381,6 +381,24 @@ TEST_F(GltfLimitsTest, NumberBeyondADoubleIsOneError) {
     EXPECT_THROW((void)loadMeshFile(path("huge.gltf")), InputError);
 }
 
+// Found by fuzzing: Assimp 5.2 read past the '/' an embedded image's MIME
+// type did not have (a crash).
+TEST_F(GltfLimitsTest, EmbeddedImagesNeedAMimeType) {
+    const std::string png = "iVBORw0KGgoAAAANSUhEUgAAAAIAAAACCAIAAAD91JpzAAAAEklEQVR4nGP4z8DAAMIM/4EAAB/uBfsL2WiLAAAAAElFTkSuQmCC";
+    json document = box();
+    document["images"] = {{{"uri", "data:imagepng;base64," + png}}};
+    document["textures"] = {{{"source", 0}}};
+    document["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
+    document["meshes"][0]["primitives"][0]["material"] = 0;
+    expectRefused("uri.gltf", document,
+                  "/images/0/uri: the data: URI's media type \"imagepng\" is not a MIME type (type/subtype, e.g. "
+                  "image/png)");
+    document["images"][0]["uri"] = "data:image/png;base64," + png;
+    expectLoads("png.gltf", document);
+    document["images"][0] = {{"bufferView", 0}, {"mimeType", "png"}};
+    expectRefused("view.gltf", document, "/images/0/mimeType: \"png\" is not a MIME type");
+}
+
 // glTF 1.0 files still load as meshes; Assimp's 1.0 reader recursed too.
 TEST_F(GltfLimitsTest, Version1NodeGraphIsCheckedForMeshes) {
     const fs::path twoBoxes = "/usr/share/assimp/models/glTF/TwoBoxes/TwoBoxes.gltf";
