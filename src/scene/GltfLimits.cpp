@@ -22,11 +22,11 @@ namespace fs = std::filesystem;
 
 constexpr std::uint64_t kSaturated = std::numeric_limits<std::uint64_t>::max();
 
-std::uint64_t saturatingAdd(std::uint64_t a, std::uint64_t b) {
+std::uint64_t sumOrMax(std::uint64_t a, std::uint64_t b) {
     return a > kSaturated - b ? kSaturated : a + b;
 }
 
-std::uint64_t saturatingMultiply(std::uint64_t a, std::uint64_t b) {
+std::uint64_t productOrMax(std::uint64_t a, std::uint64_t b) {
     return b != 0 && a > kSaturated / b ? kSaturated : a * b;
 }
 
@@ -167,7 +167,7 @@ private:
             const std::uint64_t bytes = unsignedMember(buffers[i], "byteLength").value_or(0);
             bufferBytes_.push_back(bytes);
             const std::string pointer = "/buffers/" + std::to_string(i) + "/byteLength";
-            total = saturatingAdd(total, bytes);
+            total = sumOrMax(total, bytes);
             if (total > kMaxGltfBufferBytes)
                 fail(pointer, "the buffers hold " + std::to_string(total) + " bytes up to this one, more than the limit of " +
                                   std::to_string(kMaxGltfBufferBytes) + " for all together");
@@ -188,8 +188,8 @@ private:
                 fail(pointer + "/buffer", "names no buffer (the file has " + std::to_string(bufferBytes_.size()) + ")");
             const std::uint64_t offset = unsignedMember(view, "byteOffset").value_or(0);
             const std::uint64_t length = unsignedMember(view, "byteLength").value_or(0);
-            if (saturatingAdd(offset, length) > bufferBytes_[buffer])
-                fail(pointer, "bytes " + std::to_string(offset) + " to " + std::to_string(saturatingAdd(offset, length)) +
+            if (sumOrMax(offset, length) > bufferBytes_[buffer])
+                fail(pointer, "bytes " + std::to_string(offset) + " to " + std::to_string(sumOrMax(offset, length)) +
                                   " lie beyond the " + std::to_string(bufferBytes_[buffer]) + " bytes of buffer " +
                                   std::to_string(buffer));
             viewBytes_.push_back(length);
@@ -207,7 +207,7 @@ private:
                                                                        : "missing");
         if (count == 0 || bytes == 0) return;
         const std::uint64_t step = stride != 0 ? stride : bytes;
-        const std::uint64_t end = saturatingAdd(saturatingAdd(offset, saturatingMultiply(count - 1, step)), bytes);
+        const std::uint64_t end = sumOrMax(sumOrMax(offset, productOrMax(count - 1, step)), bytes);
         if (end > viewBytes_[view])
             fail(pointer, std::to_string(count) + " elements of " + std::to_string(bytes) + " bytes, " +
                               std::to_string(step) + " bytes apart from byte " + std::to_string(offset) +
@@ -229,7 +229,7 @@ private:
                 const std::uint64_t stride = *view < viewStrides_.size() ? viewStrides_[*view] : 0;
                 checkWithinView(accessor, pointer, *view, unsignedMember(accessor, "byteOffset").value_or(0), count,
                                 bytes, stride);
-            } else if (saturatingMultiply(count, bytes) > kMaxGltfBufferBytes) {
+            } else if (productOrMax(count, bytes) > kMaxGltfBufferBytes) {
                 fail(pointer + "/count", std::to_string(count) + " elements of " + std::to_string(bytes) +
                                              " bytes without a buffer view (zeros), more than the limit of " +
                                              std::to_string(kMaxGltfBufferBytes) + " bytes");
