@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/Errors.h"
+#include "scene/GltfDocument.h"
 #include "scene/MeshLimits.h"
 #include "scene/MeshTextCheck.h"
 
@@ -98,6 +99,14 @@ std::string noReaderForTheExtension(const Assimp::Importer& importer, const std:
     return "not a " + path.extension().string() + " file: Assimp's readers for it refuse its content";
 }
 
+// Whether Assimp's glTF readers take the file by its name (.gltf, .glb).
+bool namedGltf(const std::filesystem::path& path) {
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    return extension == ".gltf" || extension == ".glb";
+}
+
 std::span<const aiMesh* const> assimpMeshesOf(const aiScene& scene) {
     if (!scene.mMeshes) return {};
     return {scene.mMeshes, scene.mNumMeshes};
@@ -131,7 +140,7 @@ std::string nonFiniteVertices(const aiScene& scene) {
 
 }  // namespace
 
-AssimpFileReader::AssimpFileReader(const std::filesystem::path& path) : path_(path) {
+AssimpFileReader::AssimpFileReader(const std::filesystem::path& path, GltfJson gltfJson) : path_(path) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) fail(path, "mesh file not found");
     if (!std::filesystem::is_regular_file(path, ec)) fail(path, "not a regular file");
@@ -149,6 +158,9 @@ AssimpFileReader::AssimpFileReader(const std::filesystem::path& path) : path_(pa
     }
     if (const std::string chunk = ec ? std::string() : glbChunkBeyondTheEnd(path, bytes); !chunk.empty())
         fail(path, chunk);
+    // Before any glTF reader looks at it: their look parses the JSON
+    // recursively, and reading it follows the node graph recursively.
+    if (gltfJson == GltfJson::CheckHere && namedGltf(path)) checkGltfBeforeAssimp(path);
 
     if (const std::string why = noReaderForTheExtension(importer_, path); !why.empty()) fail(path, why);
     // Assimp's default logger is silent: listen from here on.

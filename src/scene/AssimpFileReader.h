@@ -2,7 +2,8 @@
 // One model file read through Assimp under the project's refusal rules
 // (docs/scene-format.md, "Meshes: what is refused, what is repaired"): the
 // checks that must run before Assimp sees the file (size, the strict text
-// checks, GLB chunk lengths, a reader that claims the extension), Assimp's
+// checks, GLB chunk lengths, a glTF file's JSON and its limits, a reader
+// that claims the extension), Assimp's
 // own validation, faces without vertices and non-finite vertices before any
 // post-processing, and, after it, every repair Assimp only admits in its log.
 // Shared by the mesh loader (one merged mesh) and the glTF scene loader (a
@@ -21,10 +22,14 @@ namespace raycache {
 
 class AssimpFileReader {
 public:
+    // Whether a glTF file's JSON was checked already (readGltfDocument, by
+    // the scene loader), or is checked here (checkGltfBeforeAssimp).
+    enum class GltfJson { CheckHere, AlreadyChecked };
+
     // Reads and validates `path`, not yet post-processed. Throws InputError
     // naming the file for everything listed above. Holds Assimp's one
     // process-wide log (AssimpLogCapture) for its lifetime.
-    explicit AssimpFileReader(const std::filesystem::path& path);
+    explicit AssimpFileReader(const std::filesystem::path& path, GltfJson gltfJson = GltfJson::CheckHere);
     AssimpFileReader(const AssimpFileReader&) = delete;
     AssimpFileReader& operator=(const AssimpFileReader&) = delete;
 

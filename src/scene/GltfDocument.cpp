@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include "core/Errors.h"
+#include "scene/GltfLimits.h"
 #include "scene/MeshLimits.h"
 
 namespace raycache {
@@ -37,22 +38,59 @@ std::uint32_t littleEndianWord(const std::string& bytes, std::size_t at) {
     return word;
 }
 
-// Binary glTF: the JSON chunk's text, or empty for a glTF 1.0 file (whose
-// content raycache does not read: version 1 is refused anyway).
-std::string glbJson(const fs::path& path, std::uintmax_t fileBytes, bool& version1) {
+// The JSON of a glTF file, and where the file keeps its binary data.
+struct GltfJsonText {
+    std::string text;  // empty for a binary glTF 1.0 file whose content is not JSON
+    GltfFileLayout layout;
+    bool version1Binary = false;
+};
+
+// A binary glTF 1.0 file: a 20-byte header whose fourth word is the
+// content's length and fifth its format (0: JSON), then the content.
+GltfJsonText glb1Json(const fs::path& path, std::uintmax_t fileBytes, const std::string& header) {
+    GltfJsonText file{.layout = {.binary = true}, .version1Binary = true};
+    const std::uint32_t length = littleEndianWord(header, 12);
+    if (length > fileBytes - 20)
+        fail(path, "binary glTF 1.0 content claims " + std::to_string(length) + " bytes, more than the " +
+                       std::to_string(fileBytes - 20) + " left in the file");
+    if (littleEndianWord(header, 16) == 0) file.text = readBytes(path, 20, length);
+    return file;
+}
+
+// Binary glTF: the JSON chunk's text and the length of the BIN chunk after it.
+GltfJsonText glbJson(const fs::path& path, std::uintmax_t fileBytes) {
     if (fileBytes < 20)
         fail(path, "binary glTF file of " + std::to_string(fileBytes) + " bytes: too short for its header");
     const std::string header = readBytes(path, 0, 20);
     const std::uint32_t version = littleEndianWord(header, 4);
-    version1 = version == 1;
-    if (version1) return {};
+    if (version == 1) return glb1Json(path, fileBytes, header);
     if (version != 2) fail(path, "binary glTF version " + std::to_string(version) + " (expected 2)");
     const std::uint32_t length = littleEndianWord(header, 12);
     if (std::memcmp(header.data() + 16, "JSON", 4) != 0) fail(path, "binary glTF: the first chunk is not JSON");
     if (length > fileBytes - 20)
         fail(path, "binary glTF: the JSON chunk claims " + std::to_string(length) + " bytes, more than the " +
                        std::to_string(fileBytes - 20) + " left in the file");
-    return readBytes(path, 20, length);
+    GltfJsonText file{.text = readBytes(path, 20, length), .layout = {.binary = true}};
+    // The BIN chunk, if any, follows: its length, "BIN\0", its bytes.
+    const std::uintmax_t binAt = 20 + std::uintmax_t{length};
+    if (fileBytes >= binAt + 8) {
+        const std::string binHeader = readBytes(path, binAt, 8);
+        if (std::memcmp(binHeader.data() + 4, "BIN\0", 4) == 0)
+            file.layout.binaryChunkBytes =
+                std::min<std::uint64_t>(littleEndianWord(binHeader, 0), fileBytes - binAt - 8);
+    }
+    return file;
+}
+
+GltfJsonText gltfJsonText(const fs::path& path) {
+    std::error_code ec;
+    const std::uintmax_t bytes = fs::file_size(path, ec);
+    if (ec) fail(path, "cannot read glTF file: " + ec.message());
+    if (bytes > kMaxMeshFileBytes)
+        fail(path, "glTF file is " + std::to_string(bytes) + " bytes, more than the limit of " +
+                       std::to_string(kMaxMeshFileBytes));
+    if (bytes >= 4 && readBytes(path, 0, 4) == "glTF") return glbJson(path, bytes);
+    return {.text = readBytes(path, 0, bytes)};
 }
 
 std::vector<std::string> stringsOf(const json& document, const char* key) {
@@ -106,27 +144,25 @@ bool nestedTooDeep(const std::string& text) {
     return false;
 }
 
+void refuseDeepNesting(const fs::path& path, const std::string& text) {
+    if (nestedTooDeep(text))
+        fail(path, "glTF JSON nested more than " + std::to_string(kMaxNesting) +
+                       " levels deep (arrays and objects inside each other)");
+}
+
 }  // namespace
 
 GltfDocument readGltfDocument(const fs::path& path) {
-    std::error_code ec;
-    const std::uintmax_t bytes = fs::file_size(path, ec);
-    if (ec) fail(path, "cannot read glTF file: " + ec.message());
-    if (bytes > kMaxMeshFileBytes)
-        fail(path, "glTF file is " + std::to_string(bytes) + " bytes, more than the limit of " +
-                       std::to_string(kMaxMeshFileBytes));
-    const bool binary = bytes >= 4 && readBytes(path, 0, 4) == "glTF";
-    bool version1 = false;
-    const std::string text = binary ? glbJson(path, bytes, version1) : readBytes(path, 0, bytes);
+    const GltfJsonText file = gltfJsonText(path);
+    const std::string& text = file.text;
+    const bool binary = file.layout.binary;
     GltfDocument document;
-    if (version1) {
+    if (file.version1Binary) {
         document.version = "1.0";
         return document;
     }
 
-    if (nestedTooDeep(text))
-        fail(path, "glTF JSON nested more than " + std::to_string(kMaxNesting) +
-                       " levels deep (arrays and objects inside each other)");
+    refuseDeepNesting(path, text);
     json root;
     try {
         root = json::parse(text);
@@ -144,8 +180,14 @@ GltfDocument readGltfDocument(const fs::path& path) {
             column = static_cast<int>(e.byte - lineStart);
         }
         fail(path, "not valid glTF JSON: " + what, line, column);
+    } catch (const json::out_of_range& e) {
+        // A number beyond a double (1e391): "[json.exception.out_of_range.406] number overflow parsing '1e391'".
+        std::string what = e.what();
+        if (const std::size_t at = what.find("] "); at != std::string::npos) what = what.substr(at + 2);
+        fail(path, "not valid glTF JSON: " + what);
     }
     if (!root.is_object()) fail(path, "not a glTF file: its JSON is not an object");
+    checkGltfLimits(path, root, file.layout);
     if (const auto asset = root.find("asset"); asset != root.end() && asset->is_object())
         if (const auto version = asset->find("version"); version != asset->end() && version->is_string())
             document.version = version->get<std::string>();
@@ -162,6 +204,19 @@ GltfDocument readGltfDocument(const fs::path& path) {
     if (const auto materials = root.find("materials"); materials != root.end())
         document.textureTransformSetsTexCoord = transformSetsTexCoord(*materials);
     return document;
+}
+
+}  // namespace raycache
+
+namespace raycache {
+
+void checkGltfBeforeAssimp(const fs::path& path) {
+    const GltfJsonText file = gltfJsonText(path);
+    refuseDeepNesting(path, file.text);
+    const json root = json::parse(file.text, nullptr, /*allow_exceptions=*/false);
+    // Not JSON, or not a glTF document: Assimp's glTF readers refuse it.
+    if (root.is_discarded() || !root.is_object()) return;
+    checkGltfLimits(path, root, file.layout);
 }
 
 }  // namespace raycache

@@ -33,6 +33,14 @@ struct GltfDocument {
 // the file if it cannot be read, is larger than a mesh file may be, is not
 // JSON (with the line and column of a .gltf file's syntax error), or its
 // binary header or chunks do not fit in the file.
+// It also checks the limits of GltfLimits.h (node graph, counts, sizes).
 GltfDocument readGltfDocument(const std::filesystem::path& path);
+
+// For a file Assimp is about to read as glTF (by its name), when it is not
+// read as a scene: what keeps Assimp's glTF readers from running out of
+// stack or memory, the JSON's nesting and the limits of GltfLimits.h.
+// Content that is not a JSON object is left to Assimp's readers, which
+// refuse it. Throws InputError naming the file.
+void checkGltfBeforeAssimp(const std::filesystem::path& path);
 
 }  // namespace raycache

@@ -775,7 +775,7 @@ Scene loadGltfScene(const fs::path& path, const GltfSceneOverrides& overrides) {
                                     ", which raycache cannot read");
     }
 
-    AssimpFileReader reader(path);
+    AssimpFileReader reader(path, AssimpFileReader::GltfJson::AlreadyChecked);
     // The node hierarchy is kept (no PreTransformVertices): objects, cameras
     // and lights are placed by it here. Normals are made by the mesh policy
     // (repairMesh), as for mesh files.

@@ -1,6 +1,7 @@
 // Every input the fuzzers found (tests/fuzz/findings/, docs/testing.md) goes
-// through the loader its fuzzer fed: it loads, or gives one InputError naming
-// the file, never a crash, a hang or another exception. A new finding is
+// through the loader its fuzzer fed (a glTF file through both, as a mesh and
+// as a scene): it loads, or gives one InputError naming the file, never a
+// crash, a hang or another exception. A new finding is
 // tested by adding its file there; one of an unknown kind fails here until
 // this test knows its loader.
 #include <gtest/gtest.h>
@@ -13,6 +14,7 @@
 #include <string>
 
 #include "core/Errors.h"
+#include "scene/GltfScene.h"
 #include "scene/ImageLoader.h"
 #include "scene/MeshLoader.h"
 
@@ -34,6 +36,17 @@ std::function<void(const std::filesystem::path&)> loaderFor(const std::filesyste
     static const std::set<std::string> meshes = {".obj", ".gltf", ".glb", ".off", ".stl", ".dae", ".ply"};
     const std::string ext = lowerExtension(path);
     if (images.count(ext)) return [](const std::filesystem::path& p) { (void)loadImageFile(p); };
+    // A glTF file is fed to both of its loaders (fuzz_mesh_loader, fuzz_gltf_scene).
+    if (ext == ".gltf" || ext == ".glb")
+        return [](const std::filesystem::path& p) {
+            try {
+                (void)loadMeshFile(p);
+            } catch (const InputError& e) {
+                EXPECT_EQ(e.where().file, p.string()) << e.what();
+                EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+            }
+            (void)loadGltfScene(p);
+        };
     if (meshes.count(ext)) return [](const std::filesystem::path& p) { (void)loadMeshFile(p); };
     return nullptr;
 }
