@@ -34,6 +34,7 @@ struct RenderWorkerSetup {
     CameraPath path;
     FrameTimeline timeline;               // scripted runs: the moment each path frame shows
     RenderSettings base;                  // threads, min weight, command-line cache overrides
+    DisplaySettings display;              // exposure and view transform of the shown frames
     // Scripted run: render path frames 0 .. frames-1 exactly once each, every
     // one handed over (lossless), then stop. Empty: interactive.
     std::optional<int> scriptedFrames;
@@ -67,7 +68,8 @@ private:
     void run();
     void renderOne(const RenderRequest& request, DisplayFrame& frame);
     void applyConfig(const ViewerRenderConfig& config, DisplayFrame& frame);
-    void encode(const Image& film, std::vector<std::uint8_t>& rgba) const;
+    // `display`: how the image's light is shown (null: the values as they are).
+    void encode(const Image& film, std::vector<std::uint8_t>& rgba, const DisplayTransform* display = nullptr) const;
     // The async Render Cache's display frame; makes the pair anew when the size changed.
     void reconstructAsync(const RenderRequest& request, const Camera& camera, DisplayFrame& frame);
     // Makes the frame the request asks for into film_ and frame.stats (the
@@ -83,6 +85,7 @@ private:
     FrameHandoff& handoff_;
     Parallel parallel_;
     Srgb8Encoder encoder_;
+    DisplayTransform display_;
 
     // Render-thread state.
     std::optional<ViewerRenderConfig> config_;  // in use; empty before the first frame
