@@ -13,7 +13,7 @@ FilteredFilm::FilteredFilm(int width, int height)
       weights_(sums_.size(), 0.0f) {}
 
 void FilteredFilm::addLayer(const Image& layer, const PixelSamples& samples, int sample, const Parallel& parallel) {
-    static_assert(kReach >= PixelFilter::kRadius + 0.5f, "a sample lies within [n, n + 1] of its pixel n");
+    static_assert(kReach + 1 >= PixelFilter::kRadius + 0.5f, "every sample within the filter's reach is gathered");
     const auto at = [&](int x, int y) {
         return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
     };

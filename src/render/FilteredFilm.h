@@ -29,8 +29,10 @@ public:
 
 private:
     // Per pixel n of the layer being added, its sample's weight along x in
-    // the output pixels n - kReach .. n + kReach, and along y likewise.
-    static constexpr int kReach = 2;
+    // the output pixels n - kReach .. n + kReach, and along y likewise. A
+    // sample of pixel n lies in [n, n + 1]; it reaches an output centre
+    // x + 0.5 closer than the filter's radius only when |n - x| < radius + 0.5.
+    static constexpr int kReach = 1;
     static constexpr int kSpan = 2 * kReach + 1;
 
     int width_, height_;

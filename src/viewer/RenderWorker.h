@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "cache/RayCache.h"
+#include "core/DisplayTransform.h"
 #include "core/Image.h"
 #include "core/Parallel.h"
 #include "render/RenderSettings.h"
@@ -34,7 +35,6 @@ struct RenderWorkerSetup {
     CameraPath path;
     FrameTimeline timeline;               // scripted runs: the moment each path frame shows
     RenderSettings base;                  // threads, min weight, command-line cache overrides
-    DisplaySettings display;              // exposure and view transform of the shown frames
     // Scripted run: render path frames 0 .. frames-1 exactly once each, every
     // one handed over (lossless), then stop. Empty: interactive.
     std::optional<int> scriptedFrames;
@@ -45,6 +45,7 @@ struct RenderWorkerSetup {
     int renderCacheTraceThreads = 0;
     int renderCacheDisplayThreads = 0;
     double renderCacheRequestFrames = 2.0;  // AsyncRenderCache::setRequestFrames
+    DisplaySettings display;                // exposure and view transform of the shown frames
 };
 
 class RenderWorker {

@@ -62,7 +62,7 @@ TEST(FilteredFilm, WeightsAreNormalised) {
 
 TEST(PixelSamples, AreStratifiedAndFixed) {
     const PixelSamples samples(16);
-    for (const auto [x, y] : {std::pair{0, 0}, std::pair{5, 9}, std::pair{511, 3}}) {
+    for (const auto& [x, y] : {std::pair{0, 0}, std::pair{5, 9}, std::pair{511, 3}}) {
         std::set<std::pair<int, int>> strata;
         for (int s = 0; s < 16; ++s) {
             const PixelOffset o = samples.offset(x, y, s);
@@ -94,7 +94,7 @@ TEST(FilteredFilm, AnEdgeGetsItsFilterWeightedCoverage) {
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x) {
                 const PixelOffset o = samples.offset(x, y, s);
-                layer.at(x, y) = Rgb(inside(x + o.x, y + o.y) ? 1.0f : 0.0f);
+                layer.at(x, y) = Rgb(inside(static_cast<double>(x) + o.x, static_cast<double>(y) + o.y) ? 1.0f : 0.0f);
             }
         film.addLayer(layer, samples, s, parallel);
     }
