@@ -17,8 +17,10 @@ struct PixelFilter {
     static float weight1d(float d) {
         if (!(std::fabs(d) < kRadius)) return 0.0f;
         const double v = 2.0 * std::numbers::pi * (static_cast<double>(d) / (2.0 * kRadius) + 0.5);
-        return static_cast<float>(0.35875 - 0.48829 * std::cos(v) + 0.14128 * std::cos(2.0 * v) -
-                                  0.01168 * std::cos(3.0 * v));
+        // cos 2v and cos 3v from cos v (Chebyshev's identities): one cosine, not three.
+        const double c = std::cos(v);
+        const double cos2 = 2.0 * c * c - 1.0, cos3 = c * (4.0 * c * c - 3.0);
+        return static_cast<float>(0.35875 - 0.48829 * c + 0.14128 * cos2 - 0.01168 * cos3);
     }
     static float weight(float dx, float dy) { return weight1d(dx) * weight1d(dy); }
 };
