@@ -10,7 +10,7 @@ namespace raycache {
 namespace {
 
 // NaN and negative light count as none.
-float nonNegative(float v) { return v > 0.0f ? v : 0.0f; }
+float lightOrNone(float v) { return v > 0.0f ? v : 0.0f; }
 
 // Khronos PBR Neutral (KhronosGroup/ToneMapping, PBR_Neutral/README.md), term
 // for term: F90 = 0.04, Ks = 0.8 - F90, Kd = 0.15.
@@ -113,7 +113,7 @@ std::optional<ViewTransform> viewTransformFromName(std::string_view name) {
 
 Rgb applyViewTransform(ViewTransform transform, const Rgb& sceneLinear) {
     if (transform == ViewTransform::Standard) return sceneLinear;
-    const Rgb c{nonNegative(sceneLinear.r), nonNegative(sceneLinear.g), nonNegative(sceneLinear.b)};
+    const Rgb c{lightOrNone(sceneLinear.r), lightOrNone(sceneLinear.g), lightOrNone(sceneLinear.b)};
     switch (transform) {
         case ViewTransform::Filmic: return {filmicChannel(c.r), filmicChannel(c.g), filmicChannel(c.b)};
         case ViewTransform::Agx: return agx(c);
