@@ -17,6 +17,7 @@
 #include "core/ProcessAgreement.h"
 #include "core/ProgressBar.h"
 #include "core/TextFormat.h"
+#include "core/ViewTransform.h"
 #include "render/RenderCacheSettings.h"
 #include "render/VisibleSurfaceFill.h"
 #include "scene/CacheTechnique.h"
@@ -94,6 +95,19 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
         ->capture_default_str();
     command.add_option("--fps", job.fps, "Animated scenes: frames per second of animation time (default: the scene's, 30)");
     command.add_option("--threads", job.threads, "Worker threads, 0 = all cores")->capture_default_str();
+    command.add_option("--spp", job.samplesPerPixel,
+                       "Camera rays per pixel, 1..4096: 1 = one ray through each pixel's centre; N > 1 = stratified "
+                       "jittered rays from a fixed sequence, filtered with Blackman-Harris 1.5 px as Cycles does "
+                       "(ray pipeline only; images do not depend on the thread count; docs/usage.md)")
+        ->capture_default_str();
+    command.add_option("--exposure", job.exposure,
+                       "Exposure of PNG images and the viewer, in stops: the light is multiplied by 2^EV before the "
+                       "view transform; EXR images stay scene-linear (default: the scene file's exposure, else 0)");
+    raycache::addChoiceOption(
+        command, "--view-transform", job.viewTransform, raycache::kViewTransforms, raycache::viewTransformName,
+        "How PNG images and the viewer show light: standard (clamp to [0, 1], then sRGB: Blender's Standard), "
+        "filmic (Blender 3's Filmic, base contrast), agx (Blender 4's AgX), khronos-pbr-neutral (docs/usage.md; "
+        "default: the scene file's viewTransform, else standard)");
     command.add_option("--max-depth", job.maxDepth, "Longest ray path (primary ray = 1)")->capture_default_str();
     command.add_option("--min-weight", job.minWeight, "Stop a path when its kr/kt product falls below this")
         ->capture_default_str();

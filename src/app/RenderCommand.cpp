@@ -85,7 +85,7 @@ void runRenderCommand(const RenderCommandOptions& options, std::ostream& out, st
         const bool lastFrame = r.frame + 1 == frames;
         // Files count from 1 like the progress lines: "frame 1/N" is _0001.
         if (writesFiles && !options.out.empty() && (outPattern.perFrame() || lastFrame))
-            writeImage(film, outPattern.pathFor(r.frame + 1));
+            writeImage(film, outPattern.pathFor(r.frame + 1), job.display);
         if (options.statsPath.empty()) return;  // the statistics are only for --stats
         nlohmann::json frameJson = frameStatsJson(r);
         if (r.stats.sceneUpdate) frameJson["time"] = job.timeline.timeOf(r.frame);

@@ -29,6 +29,9 @@ void runViewCommand(const ViewCommandOptions& options, std::ostream& out, std::o
     if (!(std::isfinite(options.targetFps) && options.targetFps >= 1.0 && options.targetFps <= 1000.0))
         throw InputError("--target-fps must be between 1 and 1000");
     if (options.job.cacheIdeal) throw InputError("--cache-ideal is a benchmark switch; the viewer does not take it");
+    if (options.job.samplesPerPixel != 1)
+        throw InputError("--spp: the viewer renders one ray per pixel; anti-aliased images come from `raycache render "
+                         "--spp N`");
 
     RenderJob job = prepareRenderJob(options.job);
     printSceneNotes(job.scene, notes);

@@ -34,6 +34,23 @@ struct CameraFrame {
     nx = dx * inverse, ny = dy * inverse, nz = dz * inverse;
 }
 
+// rowDirections for one sample of each pixel: its offsets in the pixel per lane.
+[[gnu::always_inline]] inline void jitteredRowDirections(const CameraFrame& c, int x0, int y, const FloatLanes& offsetX,
+                                                        const FloatLanes& offsetY, FloatLanes& nx, FloatLanes& ny,
+                                                        FloatLanes& nz) {
+    const IntLanes16 column = IntLanes16{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15} + x0;
+    const FloatLanes x = __builtin_convertvector(column, FloatLanes);
+    const FloatLanes sx = 2.0f * (x + offsetX) * c.invWidth - 1.0f;
+    const FloatLanes sy = 1.0f - 2.0f * (static_cast<float>(y) + offsetY) * c.invHeight;
+    const FloatLanes dx = c.forward.x + c.right.x * sx + c.up.x * sy;
+    const FloatLanes dy = c.forward.y + c.right.y * sx + c.up.y * sy;
+    const FloatLanes dz = c.forward.z + c.right.z * sx + c.up.z * sy;
+    FloatLanes length;
+    sqrtLanes(dx * dx + dy * dy + dz * dz, length);
+    const FloatLanes inverse = 1.0f / length;
+    nx = dx * inverse, ny = dy * inverse, nz = dz * inverse;
+}
+
 // GCC resolves a function's clones in the file that defines them: the
 // rowOfRays overloads call these.
 RAYCACHE_WIDE_LANE_CLONES
@@ -44,9 +61,19 @@ void rowLanes(const CameraFrame& c, int x0, int y, int count, Ray* out) {
 }
 
 RAYCACHE_WIDE_LANE_CLONES
-void rowLanes(const CameraFrame& c, int x0, int y, RayLanes16& out) {
+void rowLanes(const CameraFrame& c, int x0, int y, RayLanes16& out, const PixelSamples* samples, int sample) {
     FloatLanes nx, ny, nz;
-    rowDirections(c, x0, y, nx, ny, nz);
+    if (samples) {
+        FloatLanes offsetX, offsetY;
+        for (int k = 0; k < kFloatLanes; ++k) {
+            const PixelOffset o = samples->offset(x0 + k, y, sample);
+            offsetX[k] = o.x;
+            offsetY[k] = o.y;
+        }
+        jitteredRowDirections(c, x0, y, offsetX, offsetY, nx, ny, nz);
+    } else {
+        rowDirections(c, x0, y, nx, ny, nz);
+    }
     storeLanes(nx, out.directionX);
     storeLanes(ny, out.directionY);
     storeLanes(nz, out.directionZ);
@@ -65,6 +92,12 @@ void rowLanes(const CameraFrame& c, int x0, int y, RayLanes16& out) {
 
 }  // namespace
 
+CameraRays::CameraRays(const Camera& camera, int width, int height, const PixelSamples& samples, int sample)
+    : CameraRays(camera, width, height) {
+    samples_ = &samples;
+    sample_ = sample;
+}
+
 CameraRays::CameraRays(const Camera& camera, int width, int height)
     : origin_(camera.position),
       invWidth_(1.0f / static_cast<float>(width)),
@@ -80,11 +113,15 @@ CameraRays::CameraRays(const Camera& camera, int width, int height)
 }
 
 void CameraRays::rowOfRays(int x0, int y, int count, Ray* out) const {
+    if (samples_) {
+        for (int k = 0; k < count; ++k) out[k] = ray(x0 + k, y);
+        return;
+    }
     rowLanes({origin_, forward_, right_, up_, invWidth_, invHeight_}, x0, y, count, out);
 }
 
 void CameraRays::rowOfRays(int x0, int y, RayLanes16& out) const {
-    rowLanes({origin_, forward_, right_, up_, invWidth_, invHeight_}, x0, y, out);
+    rowLanes({origin_, forward_, right_, up_, invWidth_, invHeight_}, x0, y, out, samples_, sample_);
 }
 
 }  // namespace raycache

@@ -1,6 +1,8 @@
 #pragma once
-// Primary rays of a pinhole camera through pixel centres.
+// Primary rays of a pinhole camera through pixel centres, or through one
+// sample of each pixel's jittered set (render/PixelSamples.h, `--spp`).
 #include "core/Ray.h"
+#include "render/PixelSamples.h"
 #include "trace/RayPacket.h"
 #include "scene/Camera.h"
 
@@ -15,11 +17,15 @@ struct PixelCoord {
 class CameraRays {
 public:
     CameraRays(const Camera& camera, int width, int height);
+    // The rays of sample `sample` of every pixel instead of the centres;
+    // `samples` must outlive this object.
+    CameraRays(const Camera& camera, int width, int height, const PixelSamples& samples, int sample);
 
-    // Ray through the centre of pixel (x, y); y = 0 is the top row.
+    // Ray through the centre of pixel (x, y) (or its sample); y = 0 is the top row.
     Ray ray(int x, int y) const {
-        const float sx = (2.0f * (static_cast<float>(x) + 0.5f) * invWidth_ - 1.0f);
-        const float sy = (1.0f - 2.0f * (static_cast<float>(y) + 0.5f) * invHeight_);
+        const PixelOffset o = samples_ ? samples_->offset(x, y, sample_) : PixelOffset{};
+        const float sx = (2.0f * (static_cast<float>(x) + o.x) * invWidth_ - 1.0f);
+        const float sy = (1.0f - 2.0f * (static_cast<float>(y) + o.y) * invHeight_);
         return Ray{origin_, normalize(forward_ + right_ * sx + up_ * sy)};
     }
 
@@ -35,6 +41,8 @@ public:
     float pixelSpread() const { return 2.0f * pixelSpread_ * invHeight_; }
 
 private:
+    const PixelSamples* samples_ = nullptr;  // null: pixel centres
+    int sample_ = 0;
     float pixelSpread_ = 0.0f;  // tan(fov / 2)
     Vec3 origin_, forward_, right_, up_;  // right_/up_ scaled to the image plane at distance 1
     float invWidth_, invHeight_;

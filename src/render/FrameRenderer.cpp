@@ -48,10 +48,12 @@ FrameRenderer::FrameRenderer(const Scene& scene, const TraceScene& tracer, const
         throw InputError("the per-pixel cache-level record is made by a single process only");
 }
 
-FrameStats FrameRenderer::render(const Camera& camera, Image& film, CacheLevelImage* levels) const {
+FrameStats FrameRenderer::render(const Camera& camera, Image& film, CacheLevelImage* levels,
+                                 const PixelSamples* samples, int sample) const {
     if (film.width() != settings_.width || film.height() != settings_.height)
         film = Image(settings_.width, settings_.height);
-    const CameraRays cameraRays(camera, settings_.width, settings_.height);
+    const CameraRays cameraRays = samples ? CameraRays(camera, settings_.width, settings_.height, *samples, sample)
+                                          : CameraRays(camera, settings_.width, settings_.height);
     if (group_) return renderDistributed(cameraRays, film);
     kernel_.prepareFrame();  // meshes that moved since the last frame  // never with the record (see the constructor)
     if (!settings_.recordCacheLevels) levels = nullptr;

@@ -36,7 +36,10 @@ public:
     // With settings.recordCacheLevels and `levels`, `levels` (resized to the
     // film's size) gets the frame's cache-level record; otherwise it is not
     // touched. The film is the same either way.
-    FrameStats render(const Camera& camera, Image& film, CacheLevelImage* levels = nullptr) const;
+    // With `samples`, every pixel's ray passes through its sample `sample`
+    // (render/PixelSamples.h) instead of its centre.
+    FrameStats render(const Camera& camera, Image& film, CacheLevelImage* levels = nullptr,
+                      const PixelSamples* samples = nullptr, int sample = 0) const;
 
 private:
     FrameStats renderDistributed(const CameraRays& cameraRays, Image& film) const;

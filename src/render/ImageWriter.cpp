@@ -30,10 +30,11 @@ std::string lowerImageExtension(const std::filesystem::path& path) {
 }
 
 // Returns an error message, empty on success.
-std::string savePng(const Image& image, const std::filesystem::path& file) {
+std::string savePng(const Image& image, const DisplayTransform& display, const std::filesystem::path& file) {
     std::vector<unsigned char> bytes;
     bytes.reserve(image.pixels().size() * 3);
-    for (const Rgb& px : image.pixels()) {
+    for (const Rgb& film : image.pixels()) {
+        const Rgb px = display.identity() ? film : display(film);
         bytes.push_back(linearToSrgb8(px.r));
         bytes.push_back(linearToSrgb8(px.g));
         bytes.push_back(linearToSrgb8(px.b));
@@ -89,14 +90,14 @@ void checkWritableImagePath(const std::filesystem::path& path) {
         throw InputError(where, "output directory '" + parent.string() + "' does not exist");
 }
 
-void writeImage(const Image& image, const std::filesystem::path& path) {
+void writeImage(const Image& image, const std::filesystem::path& path, const DisplaySettings& display) {
     checkWritableImagePath(path);
     if (image.empty())
         throw RuntimeError("cannot write " + path.string() + ": the image is empty");
 
     const bool png = lowerImageExtension(path) == ".png";
     writeFileAtomically(path, [&](const std::filesystem::path& temp) {
-        const std::string error = png ? savePng(image, temp) : saveExr(image, temp);
+        const std::string error = png ? savePng(image, DisplayTransform(display), temp) : saveExr(image, temp);
         if (!error.empty()) throw RuntimeError(error);
     });
 }

@@ -30,6 +30,10 @@ struct RenderSettings {
     // along its path falls below this.
     float minWeight = 0.01f;
     int threads = 0;  // 0 = all hardware threads
+    // Camera rays per pixel (`--spp`, ray pipeline only): 1 is a ray through
+    // each pixel's centre; N > 1 stratified jittered rays filtered with
+    // Blackman-Harris (render/FilteredFilm.h).
+    int samplesPerPixel = 1;
     int tileSize = 16;
     // Which objects cache their secondary rays, and how (see RayCache).
     RayCacheSettings cache;

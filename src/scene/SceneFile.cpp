@@ -21,6 +21,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/DisplayTransform.h"
 #include "core/Errors.h"
 #include "core/TextFormat.h"
 #include "core/Transform.h"
@@ -139,6 +140,7 @@ constexpr std::array<Choice<E>, N> choicesOf(const std::array<E, N>& values, Nam
 constexpr auto kPathKinds = choicesOf(kCameraPathKinds, cameraPathKindName);
 constexpr auto kPipelineChoices = choicesOf(kPipelineKinds, pipelineKindName);
 constexpr auto kAcceleratorChoices = choicesOf(kAccelerators, acceleratorName);
+constexpr auto kViewTransformChoices = choicesOf(kViewTransforms, viewTransformName);
 constexpr auto kReflectionChoices = choicesOf(kReprojectedReflections, reprojectedReflectionsName);
 constexpr std::array<Choice<Interpolation>, 2> kInterpolations{
     {{"linear", Interpolation::Linear}, {"smooth", Interpolation::Smooth}}};
@@ -223,7 +225,7 @@ public:
     Scene read(const json& root, const std::string& defaultName) {
         const Node r{&root, ""};
         expectObject(r, {"name", "include", "camera", "path", "frames", "fps", "environment", "lights", "materials",
-                         "objects", "pipeline", "accel", "renderCache", "cacheBudget"});
+                         "objects", "pipeline", "accel", "renderCache", "cacheBudget", "exposure", "viewTransform"});
         Scene scene;
         // An included glTF scene is where the scene starts; every key below changes it.
         const Node include = child(r, "include");
@@ -245,6 +247,9 @@ public:
         if (const Node n = child(r, "accel")) scene.render.accel = oneOf(n, kAcceleratorChoices);
         if (const Node n = child(r, "cacheBudget")) scene.render.cacheBudgetMiB = number(n, {0.0, 1e9, false, true});
         if (const Node n = child(r, "renderCache")) renderCache(n, scene.render.renderCache);
+        if (const Node n = child(r, "exposure"))
+            scene.render.exposure = number(n, closed(-kMaxExposureStops, kMaxExposureStops));
+        if (const Node n = child(r, "viewTransform")) scene.render.viewTransform = oneOf(n, kViewTransformChoices);
 
         if (const Node n = child(r, "environment")) scene.environment = environment(n);
         if (const Node n = child(r, "fps")) scene.fps = number(n, {0.0, 1000.0, false, true});

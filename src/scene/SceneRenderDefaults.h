@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 
+#include "core/ViewTransform.h"
 #include "scene/Accelerator.h"
 #include "scene/PipelineKind.h"
 #include "scene/ReprojectedReflections.h"
@@ -25,6 +26,8 @@ struct SceneRenderDefaults {
     std::optional<PipelineKind> pipeline;
     std::optional<Accelerator> accel;      // docs/grids.md
     std::optional<double> cacheBudgetMiB;  // the caching cubes' memory budget (cache/CubeBudget.h)
+    std::optional<float> exposure;             // stops (core/DisplayTransform.h)
+    std::optional<ViewTransform> viewTransform;
     RenderCacheOverrides renderCache;
 };
 

@@ -14,6 +14,7 @@ namespace {
 
 constexpr int kMaxImageSide = 16384;
 constexpr int kMaxJobFrames = 1000000;
+constexpr int kMaxSamplesPerPixel = 4096;
 
 CameraPath chooseCameraPath(const Scene& scene, const std::optional<CameraPathKind>& override) {
     if (!override) return scene.cameraPath;
@@ -58,6 +59,12 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
     if (o.maxDepth < 1 || o.maxDepth > 64) throw InputError("--max-depth must be between 1 and 64");
     if (!(o.minWeight >= 0.0f && o.minWeight <= 1.0f)) throw InputError("--min-weight must be in [0, 1]");
     if (o.threads < 0 || o.threads > 1024) throw InputError("--threads must be between 0 (all) and 1024");
+    if (o.samplesPerPixel < 1 || o.samplesPerPixel > kMaxSamplesPerPixel)
+        throw InputError("--spp must be between 1 and " + std::to_string(kMaxSamplesPerPixel) + " (got " +
+                         std::to_string(o.samplesPerPixel) + ")");
+    if (o.exposure && !(std::isfinite(*o.exposure) && std::fabs(*o.exposure) <= kMaxExposureStops))
+        throw InputError("--exposure must be a finite number of stops within ±" +
+                         std::to_string(static_cast<int>(kMaxExposureStops)));
     const auto positive = [](const std::optional<float>& v, const char* flag) {
         if (v && !(std::isfinite(*v) && *v > 0.0f))
             throw InputError(std::string(flag) + " must be a finite number > 0");
@@ -106,6 +113,7 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     settings.maxDepth = options.maxDepth;
     settings.minWeight = options.minWeight;
     settings.threads = options.threads;
+    settings.samplesPerPixel = options.samplesPerPixel;
     settings.cache.techniqueOverride = options.technique;
     settings.cache.cdctStepOverride = options.cdctStep;
     settings.cache.cdctEpsilonOverride = options.cdctEpsilon;
@@ -126,9 +134,14 @@ RenderJob prepareRenderJob(const RenderJobOptions& options) {
     const SceneRenderDefaults& fromScene = job.scene.render;
     settings.pipeline = options.pipeline.value_or(fromScene.pipeline.value_or(PipelineKind::Ray));
     settings.trace.accelerator = options.accel.value_or(fromScene.accel.value_or(Accelerator::Embree));
+    if (settings.samplesPerPixel != 1 && settings.pipeline != PipelineKind::Ray)
+        throw InputError("--spp " + std::to_string(settings.samplesPerPixel) + " needs --pipeline ray (the " +
+                         pipelineKindName(settings.pipeline) + " pipeline renders one ray per pixel)");
     applyRenderCacheOverrides(fromScene.renderCache, settings.renderCache);
     applyRenderCacheOverrides(options.renderCache, settings.renderCache);
     settings.gbuffer = options.gbuffer;
+    job.display.exposure = options.exposure.value_or(fromScene.exposure.value_or(0.0f));
+    job.display.view = options.viewTransform.value_or(fromScene.viewTransform.value_or(ViewTransform::Standard));
     // The cubes' budget: the option, else the scene file's, else half the machine's memory.
     const double budgetMiB = options.cacheBudgetMiB.value_or(
         fromScene.cacheBudgetMiB.value_or(static_cast<double>(physicalMemoryBytes()) / 2.0 / (1024.0 * 1024.0)));

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "cache/CachePolicy.h"
+#include "core/DisplayTransform.h"
 #include "render/RenderSettings.h"
 #include "scene/CameraPath.h"
 #include "scene/Scene.h"
@@ -29,6 +30,9 @@ struct RenderJobOptions {
     float time = 0.0f;                // seconds of an animated scene the first frame shows
     std::optional<float> fps;         // frames per second of animation time; default: the scene's
     int threads = 0;
+    int samplesPerPixel = 1;              // --spp: camera rays per pixel (RenderSettings::samplesPerPixel)
+    std::optional<float> exposure;        // stops; default: the scene file's, else 0
+    std::optional<ViewTransform> viewTransform;  // default: the scene file's, else standard
     int maxDepth = 6;
     float minWeight = 0.01f;
     std::optional<CacheTechnique> technique;  // default: each material's own setting
@@ -62,6 +66,7 @@ struct RenderJob {
     CameraPath path;
     FrameTimeline timeline;  // the moment of the animation each frame shows
     RenderSettings settings;
+    DisplaySettings display;  // how 8-bit images and the viewer show the film
     int frames = 1;
     std::string cacheBudgetNote;  // what the cubes' memory budget lowered (RayCache::budgetNote), or empty
 };

@@ -16,7 +16,8 @@
 namespace raycache {
 
 RenderWorker::RenderWorker(RenderWorkerSetup setup, FrameHandoff& handoff)
-    : setup_(std::move(setup)), handoff_(handoff), parallel_(setup_.base.threads), settings_(setup_.base),
+    : setup_(std::move(setup)), handoff_(handoff), parallel_(setup_.base.threads), display_(setup_.display),
+      settings_(setup_.base),
       thread_([this] { run(); }) {}
 
 RenderWorker::~RenderWorker() {
@@ -114,13 +115,13 @@ void RenderWorker::applyConfig(const ViewerRenderConfig& config, DisplayFrame&) 
     }
 }
 
-void RenderWorker::encode(const Image& film, std::vector<std::uint8_t>& rgba) const {
+void RenderWorker::encode(const Image& film, std::vector<std::uint8_t>& rgba, const DisplayTransform* display) const {
     rgba.resize(static_cast<std::size_t>(film.width()) * static_cast<std::size_t>(film.height()) * 4);
     constexpr int kRowsPerTask = 8;
     const int tasks = (film.height() + kRowsPerTask - 1) / kRowsPerTask;
     parallel_.forEachIndex(tasks, [&](int task, int) {
         const int y0 = task * kRowsPerTask;
-        encoder_.encodeRows(film, y0, std::min(y0 + kRowsPerTask, film.height()), rgba);
+        encoder_.encodeRows(film, y0, std::min(y0 + kRowsPerTask, film.height()), rgba, display);
     });
 }
 
@@ -252,7 +253,7 @@ void RenderWorker::renderOne(const RenderRequest& request, DisplayFrame& frame) 
     frame.renderMs = millisecondsSince(start);
 
     start = std::chrono::steady_clock::now();
-    encode(film_, frame.rgba);
+    encode(film_, frame.rgba, &display_);
     frame.inspectedObject = -1;
     frame.inspectorRgba.clear();
     // The async Render Cache's tracer merges stores into the caches between

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "cache/RayCache.h"
+#include "core/DisplayTransform.h"
 #include "core/Image.h"
 #include "core/Parallel.h"
 #include "render/RenderSettings.h"
@@ -45,6 +46,7 @@ struct RenderWorkerSetup {
     int renderCacheDisplayThreads = 0;
     double renderCacheRequestFrames = 2.0;  // AsyncRenderCache::setRequestFrames
     double renderCacheReshadeMs = 0.0;      // AsyncRenderCache::setReshadeBudgetMs
+    DisplaySettings display;                // exposure and view transform of the shown frames
 };
 
 class RenderWorker {
@@ -68,7 +70,8 @@ private:
     void run();
     void renderOne(const RenderRequest& request, DisplayFrame& frame);
     void applyConfig(const ViewerRenderConfig& config, DisplayFrame& frame);
-    void encode(const Image& film, std::vector<std::uint8_t>& rgba) const;
+    // `display`: how the image's light is shown (null: the values as they are).
+    void encode(const Image& film, std::vector<std::uint8_t>& rgba, const DisplayTransform* display = nullptr) const;
     // The async Render Cache's display frame; makes the pair anew when the size changed.
     void reconstructAsync(const RenderRequest& request, const Camera& camera, DisplayFrame& frame);
     // Makes the frame the request asks for into film_ and frame.stats (the
@@ -84,6 +87,7 @@ private:
     FrameHandoff& handoff_;
     Parallel parallel_;
     Srgb8Encoder encoder_;
+    DisplayTransform display_;
 
     // Render-thread state.
     std::optional<ViewerRenderConfig> config_;  // in use; empty before the first frame

@@ -26,12 +26,14 @@ Srgb8Encoder::Srgb8Encoder() {
         bucketStart_[b] = linearToSrgb8(std::bit_cast<float>(b << kBucketShift));
 }
 
-void Srgb8Encoder::encodeRows(const Image& image, int y0, int y1, std::span<std::uint8_t> rgba) const {
+void Srgb8Encoder::encodeRows(const Image& image, int y0, int y1, std::span<std::uint8_t> rgba,
+                              const DisplayTransform* display) const {
+    if (display && display->identity()) display = nullptr;
     const auto width = static_cast<std::size_t>(image.width());
     for (int y = y0; y < y1; ++y) {
         std::uint8_t* out = rgba.data() + static_cast<std::size_t>(y) * width * 4;
         for (int x = 0; x < image.width(); ++x) {
-            const Rgb& p = image.at(x, y);
+            const Rgb p = display ? (*display)(image.at(x, y)) : image.at(x, y);
             *out++ = encode(p.r);
             *out++ = encode(p.g);
             *out++ = encode(p.b);

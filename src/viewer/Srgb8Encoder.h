@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "core/DisplayTransform.h"
 #include "core/Image.h"
 
 namespace raycache {
@@ -27,8 +28,10 @@ public:
     }
 
     // Writes rows [y0, y1) of `image` as RGBA (alpha 255) into `rgba`, which
-    // holds the whole image (4 bytes per pixel, row 0 first).
-    void encodeRows(const Image& image, int y0, int y1, std::span<std::uint8_t> rgba) const;
+    // holds the whole image (4 bytes per pixel, row 0 first). With `display`
+    // (not the identity), each pixel goes through it first.
+    void encodeRows(const Image& image, int y0, int y1, std::span<std::uint8_t> rgba,
+                    const DisplayTransform* display = nullptr) const;
 
     // The smallest positive float that encodes to `code` or more (code 1..255).
     float threshold(int code) const { return thresholds_[static_cast<std::size_t>(code)]; }

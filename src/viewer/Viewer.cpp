@@ -339,6 +339,7 @@ RenderWorkerSetup Viewer::workerSetup(const TraceScene& tracer) const {
     setup.path = job_.path;
     setup.timeline = job_.timeline;
     setup.base = job_.settings;
+    setup.display = job_.display;
     setup.scriptedFrames = options_.scriptedFrames;
     setup.renderCacheTraceThreads = options_.renderCacheTraceThreads;
     setup.renderCacheDisplayThreads = options_.renderCacheDisplayThreads;

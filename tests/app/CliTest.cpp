@@ -253,6 +253,12 @@ TEST_F(Cli, RenderRejectsBadCachingOptionsWithOneLine) {
                                     "render --scene behind-1 --cache-fill bogus --out " + png,
                                     "render --scene behind-1 --cache-fill --out " + png,
                                     "render --scene behind-1 --cache-res-from-view 3 --out " + png,
+                                    "render --scene behind-1 --exposure nan --out " + png,
+                                    "render --scene behind-1 --exposure 65 --out " + png,
+                                    "render --scene behind-1 --spp 0 --out " + png,
+                                    "render --scene behind-1 --spp 5000 --out " + png,
+                                    "render --scene behind-1 --spp 4 --pipeline hybrid --gbuffer packets --out " + png,
+                                    "render --scene behind-1 --spp 4 --pipeline render-cache --out " + png,
                                     // grid-32's 32 cubes need 12.5 KiB even at 4² faces.
                                     "render --scene grid-32 --cache-budget 0.001 --out " + png}) {
         const RunResult r = runRaycache(args, dir_);
@@ -285,6 +291,7 @@ TEST_F(Cli, BadNamesAreOneLineListingTheNames) {
         {"--technique CCT", "--technique: must be none, cct, cdct or cdct-parity (got 'CCT')"},
         {"--pipeline 1", "--pipeline: must be ray, hybrid or render-cache (got '1')"},
         {"--rc-texture 1", "--rc-texture: must be refetch or reproject (got '1')"},
+        {"--view-transform foo", "--view-transform: must be standard, filmic, agx or khronos-pbr-neutral (got 'foo')"},
     };
     for (const auto& c : cases) {
         for (const std::string& command :

@@ -10,6 +10,8 @@
 #include <cstddef>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -210,4 +212,31 @@ TEST(ImageWriter, FailedWriteThrowsRuntimeErrorAndCleansUp) {
 }
 
 }  // namespace
+// Exposure and view transform change the PNG's codes only: the defaults
+// write today's bytes, +1 EV writes the codes of the doubled film, and an
+// EXR keeps the film's own values whatever the display settings.
+TEST(ImageWriter, DisplaySettingsShapePngsOnly) {
+    TempDir dir;
+    const Image original = testImage();
+    const auto bytes = [](const std::filesystem::path& p) {
+        std::ifstream in(p, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    writeImage(original, dir.path() / "plain.png");
+    writeImage(original, dir.path() / "defaults.png", DisplaySettings{0.0f, ViewTransform::Standard});
+    EXPECT_EQ(bytes(dir.path() / "plain.png"), bytes(dir.path() / "defaults.png"));
+
+    Image doubled = original;
+    for (Rgb& p : doubled.pixels()) p *= 2.0f;
+    writeImage(original, dir.path() / "plus1.png", DisplaySettings{1.0f, ViewTransform::Standard});
+    writeImage(doubled, dir.path() / "doubled.png");
+    EXPECT_EQ(bytes(dir.path() / "plus1.png"), bytes(dir.path() / "doubled.png"));
+
+    writeImage(original, dir.path() / "agx.png", DisplaySettings{2.0f, ViewTransform::Agx});
+    EXPECT_NE(bytes(dir.path() / "agx.png"), bytes(dir.path() / "plain.png"));
+    writeImage(original, dir.path() / "plain.exr");
+    writeImage(original, dir.path() / "agx.exr", DisplaySettings{2.0f, ViewTransform::Agx});
+    EXPECT_EQ(bytes(dir.path() / "plain.exr"), bytes(dir.path() / "agx.exr"));
+}
+
 }  // namespace raycache

@@ -160,7 +160,7 @@ TEST_F(SceneFileTest, UnknownKeySuggestionIgnoresCase) {
 TEST_F(SceneFileTest, UnknownKeyWithoutCloseMatchListsValidKeys) {
     expectError("{@\"wibble\": 1, \"objects\": []}", "/wibble",
                 "unknown key \"wibble\" (valid keys: name, include, camera, path, frames, fps, environment, lights, "
-                "materials, objects, pipeline, accel, renderCache, cacheBudget)");
+                "materials, objects, pipeline, accel, renderCache, cacheBudget, exposure, viewTransform)");
 }
 
 TEST_F(SceneFileTest, RenderCacheKeysAreReadAndChecked) {
@@ -194,6 +194,18 @@ TEST_F(SceneFileTest, CacheBudgetKeyIsReadAndChecked) {
     expectError("{\"objects\": [],\n \"cacheBudget\": @0}", "/cacheBudget", "(got 0)");
     expectError("{\"objects\": [],\n \"cacheBudget\": @\"big\"}", "/cacheBudget", "a number");
     expectError("{\"objects\": [],\n \"cacheBudget\": @2e9}", "/cacheBudget", "(got 2000000000)");
+}
+
+TEST_F(SceneFileTest, ExposureAndViewTransformKeysAreReadAndChecked) {
+    const Scene scene = load(R"({"exposure": -9.4, "viewTransform": "khronos-pbr-neutral", "objects": []})");
+    EXPECT_EQ(scene.render.exposure, std::optional<float>(-9.4f));
+    EXPECT_EQ(scene.render.viewTransform, ViewTransform::KhronosPbrNeutral);
+    EXPECT_FALSE(load(R"({"objects": []})").render.exposure);
+    EXPECT_FALSE(load(R"({"objects": []})").render.viewTransform);
+    expectError("{\"objects\": [],\n \"exposure\": @70}", "/exposure", "(got 70)");
+    expectError("{\"objects\": [],\n \"exposure\": @\"bright\"}", "/exposure", "a number");
+    expectError("{\"objects\": [],\n \"viewTransform\": @\"Filmic\"}", "/viewTransform",
+                "must be one of standard, filmic, agx, khronos-pbr-neutral (got 'Filmic')");
 }
 
 TEST_F(SceneFileTest, FirstUnknownKeyInFileOrderIsReported) {
