@@ -143,7 +143,7 @@ public:
     Scene build() {
         Scene scene;
         scene.name = path_.stem().string();
-        scene.environment = Environment::constant(kGltfSkyColor);
+        scene.environment = Environment::constant(kGltfBackground);
         noteExtensions();
         placeNodes();
         buildObjects(scene);

@@ -191,7 +191,7 @@ TEST_F(GltfSceneTest, LoadsAsTheSameSceneWrittenInOurJson) {
         number(3 - std::sin(down15)) + ", " + number(9 - std::cos(down15)) + R"(],
                  "up": [0, )" +
         number(std::cos(down15)) + ", " + number(-std::sin(down15)) + R"(], "fov": )" + number(0.7 * degrees) + R"(},
-      "environment": {"type": "color", "color": [0.35, 0.45, 0.65]},
+      "environment": {"type": "color", "color": [0, 0, 0]},
       "lights": [
         {"type": "point", "position": [3, 6, 4], "intensity": [)" +
         number(pointScale) + ", " + number(0.9 * pointScale) + ", " + number(0.8 * pointScale) + R"(], "physical": true},
@@ -261,7 +261,11 @@ TEST_F(GltfSceneTest, WithoutCameraAndLightsFramesTheSceneAndLightsItOverTheShou
     const Vec3 forward = normalize(scene.camera.lookAt - scene.camera.position);
     EXPECT_GT(dot(scene.lights[0].direction, forward), 0.5f);
     EXPECT_LT(scene.lights[0].direction.y, 0.0f);
-    EXPECT_EQ(scene.environment.lookup({0, 1, 0}), (Rgb{0.35f, 0.45f, 0.65f}));
+    // Physical, pi W/m^2: a white Lambert surface facing it shows 1.
+    EXPECT_TRUE(scene.lights[0].physical);
+    EXPECT_FLOAT_EQ(scene.lights[0].intensity.r, std::numbers::pi_v<float>);
+    // A glTF file has no environment: black, as Blender renders it.
+    EXPECT_EQ(scene.environment.lookup({0, 1, 0}), (Rgb{0.0f, 0.0f, 0.0f}));
 }
 
 // The base colour factor multiplies the texture: baked into the texture's pixels.
