@@ -85,6 +85,13 @@ void addRenderCacheOptions(CLI::App& command, raycache::RenderJobOptions& job) {
 void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
     command.add_option("--scene", job.scene, "Built-in scene name (see `raycache scenes`), scene .json file, or glTF 2.0 scene (.gltf, .glb)")
         ->capture_default_str();
+    command
+        .add_option_function<std::string>(
+            "--gltf-materials",
+            [&job](const std::string& mapping) { job.blinnPhongGltfMaterials = mapping == "blinn-phong"; },
+            "glTF scenes: metallic-roughness (glTF's BRDF, default) or blinn-phong (the Whitted mapping, for "
+            "comparisons)")
+        ->check(CLI::IsMember({"metallic-roughness", "blinn-phong"}));
     command.add_option("--width", job.width, "Image width in pixels")->capture_default_str();
     command.add_option("--height", job.height, "Image height in pixels")->capture_default_str();
     command.add_option("--frames", job.frames, "Frames to render (default: the scene's path length)");

@@ -4,6 +4,7 @@
 
 #include "core/FloatLanes.h"
 #include "core/LaneLevels.h"
+#include "render/MetallicRoughness.h"
 #include "render/SpecularPower.h"
 
 namespace raycache {

@@ -8,6 +8,7 @@
 #include "core/Errors.h"
 #include "core/Optics.h"
 #include "render/HitLanes.h"
+#include "render/MetallicRoughness.h"
 #include "render/SpecularPower.h"
 
 namespace raycache {
@@ -34,9 +35,12 @@ LocalShading::LocalShading(const Scene& scene) : scene_(scene) {
         throw InputError("scene has " + std::to_string(scene.lights.size()) + " lights; at most " +
                          std::to_string(kMaxLights) + " are supported");
     // The cone's cosines, once per light rather than once per shadow query.
-    for (const Light& light : scene.lights)
-        spotCosines_.push_back(
-            {cosDegrees(light.coneAngleDeg), cosDegrees(light.coneAngleDeg - light.falloffAngleDeg)});
+    for (const Light& light : scene.lights) {
+        SpotCone cone{cosDegrees(light.coneAngleDeg), cosDegrees(light.coneAngleDeg - light.falloffAngleDeg)};
+        cone.angleScale = 1.0f / std::max(0.001f, cone.inner - cone.outer);
+        cone.angleOffset = -cone.outer * cone.angleScale;
+        spotCosines_.push_back(cone);
+    }
 }
 
 int LocalShading::shadowQueries(const SurfacePoint& sp, ShadowQuery* out) const {
@@ -55,9 +59,14 @@ int LocalShading::shadowQueries(const SurfacePoint& sp, ShadowQuery* out) const 
             const float inverseDistance = 1.0f / std::sqrt(dot(d, d));
             distance = dot(d, d) * inverseDistance;
             toLight = d * inverseDistance;
-            if (light.type == LightType::Spot)
+            if (light.physical) {
+                strength = physicalFalloff(light, dot(d, d), distance);
+                if (light.type == LightType::Spot)
+                    strength = physicalSpotFactor(spotCosines_[i], dot(-toLight, light.direction)) * strength;
+            } else if (light.type == LightType::Spot) {
                 strength = smoothstep(spotCosines_[i].outer, spotCosines_[i].inner,
                                       dot(-toLight, light.direction));
+            }
         }
         // Lights below the geometric surface would leak through interpolated normals.
         if (strength <= 0.0f || dot(sp.normal, toLight) <= 0.0f || dot(sp.geometricNormal, toLight) <= 0.0f)
@@ -70,6 +79,22 @@ int LocalShading::shadowQueries(const SurfacePoint& sp, ShadowQuery* out) const 
 Rgb LocalShading::directLight(const Material& material, const Rgb& albedo, const SurfacePoint& sp,
                               const Vec3& toViewer, std::span<const ShadowQuery> queries,
                               std::span<const unsigned char> occluded) const {
+    if (material.model == ShadingModel::MetallicRoughness) {
+        // The lanes' order (HitLaneKernels.inc, metallicRoughnessLightLanes).
+        Rgb color = material.emission;
+        const Rgb diffuse = albedo * diffuseFactor(material);
+        const bool lobe = hasSpecularLobe(material);
+        for (std::size_t q = 0; q < queries.size(); ++q) {
+            if (occluded[q]) continue;
+            const ShadowQuery& query = queries[q];
+            const Vec3& toLight = query.ray.direction;
+            Rgb lit = diffuse;
+            if (lobe) lit += ggxSpecular(material, albedo, sp.normal, toLight, toViewer);
+            lit *= dot(sp.normal, toLight);
+            color += lit * scene_.lights[static_cast<std::size_t>(query.lightIndex)].intensity * query.strength;
+        }
+        return color;
+    }
     Rgb color = material.ambient * albedo;
     for (std::size_t q = 0; q < queries.size(); ++q) {
         if (occluded[q]) continue;
@@ -89,21 +114,34 @@ Rgb LocalShading::viewIndependentLight(const Material& material, const Rgb& albe
                                        std::span<const ShadowQuery> queries, std::span<const unsigned char> occluded,
                                        std::uint64_t& litMask) const {
     static_assert(kMaxLights <= 64, "one bit per light");
-    Rgb color = material.ambient * albedo;
+    const bool physical = material.model == ShadingModel::MetallicRoughness;
+    Rgb color = physical ? material.emission : material.ambient * albedo;
+    const Rgb diffuse = physical ? albedo * diffuseFactor(material) : albedo;
     litMask = 0;
     for (std::size_t q = 0; q < queries.size(); ++q) {
         if (occluded[q]) continue;
         const ShadowQuery& query = queries[q];
         litMask |= std::uint64_t{1} << query.lightIndex;
-        color += albedo * dot(sp.normal, query.ray.direction) *
+        color += diffuse * dot(sp.normal, query.ray.direction) *
                  scene_.lights[static_cast<std::size_t>(query.lightIndex)].intensity * query.strength;
     }
     return color;
 }
 
-Rgb LocalShading::highlights(const Material& material, const SurfacePoint& sp, const Vec3& toViewer,
-                             std::span<const ShadowQuery> queries, std::uint64_t litMask) const {
+Rgb LocalShading::highlights(const Material& material, const Rgb& albedo, const SurfacePoint& sp,
+                             const Vec3& toViewer, std::span<const ShadowQuery> queries,
+                             std::uint64_t litMask) const {
     Rgb color;
+    if (material.model == ShadingModel::MetallicRoughness) {
+        if (!hasSpecularLobe(material)) return color;
+        for (const ShadowQuery& query : queries) {
+            if (!(litMask >> query.lightIndex & 1u)) continue;
+            const Vec3& toLight = query.ray.direction;
+            color += ggxSpecular(material, albedo, sp.normal, toLight, toViewer) * dot(sp.normal, toLight) *
+                     scene_.lights[static_cast<std::size_t>(query.lightIndex)].intensity * query.strength;
+        }
+        return color;
+    }
     if (material.specular.isBlack()) return color;
     for (const ShadowQuery& query : queries) {
         if (!(litMask >> query.lightIndex & 1u)) continue;

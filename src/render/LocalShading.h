@@ -1,6 +1,6 @@
 #pragma once
-// Local shading of Whitted ray tracing (Whitted 1980): Blinn-Phong with one shadow
-// ray per light, and what a ray that hits nothing sees. The rays themselves
+// Local shading of Whitted ray tracing (Whitted 1980): Blinn-Phong or glTF's
+// metallic-roughness BRDF (render/MetallicRoughness.h) with one shadow ray per light, and what a ray that hits nothing sees. The rays themselves
 // (shadow, reflected, refracted) are traced by the tile kernel
 // (render/TileKernel.h), a whole wave at a time.
 #include <cstdint>
@@ -17,14 +17,36 @@ namespace raycache {
 struct ShadowQuery {
     Ray ray;          // from the surface toward the light, bounded at the light
     int lightIndex;   // into Scene::lights
-    float strength;   // spot-cone factor, 1 for other lights
+    float strength;   // spot-cone factor, 1 for other lights; a physical light's also its falloff (scene/Light.h)
 };
 
 // A spot light's cone: the cosines of its half-angle and of the angle where
-// its falloff starts.
+// its falloff starts; for a physical spot, KHR_lights_punctual's
+// angleScale = 1 / max(0.001, inner - outer) and angleOffset = -outer * angleScale.
 struct SpotCone {
     float outer, inner;
+    float angleScale = 0.0f, angleOffset = 0.0f;
 };
+
+// A physical light's falloff at distance^2 `squared` and distance
+// `distance`: the range window over the squared distance (scene/Light.h).
+inline float physicalFalloff(const Light& light, float squared, float distance) {
+    float window = 1.0f;
+    if (light.range > 0.0f) {
+        const float ratio = distance / light.range;
+        const float ratio2 = ratio * ratio;
+        window = 1.0f - ratio2 * ratio2;
+        window = window < 0.0f ? 0.0f : (1.0f < window ? 1.0f : window);
+    }
+    return window / squared;
+}
+
+// KHR_lights_punctual's spot factor at the cosine `cosine` of the angle to the spot's axis.
+inline float physicalSpotFactor(const SpotCone& spot, float cosine) {
+    float t = cosine * spot.angleScale + spot.angleOffset;
+    t = t < 0.0f ? 0.0f : (1.0f < t ? 1.0f : t);
+    return t * t;
+}
 
 class LocalShading {
 public:
@@ -49,8 +71,9 @@ public:
                              std::span<const ShadowQuery> queries, std::span<const unsigned char> occluded,
                              std::uint64_t& litMask) const;
     // The second: the highlights of the lights in `litMask` seen from
-    // `toViewer` (queries as shadowQueries(sp) writes them).
-    Rgb highlights(const Material& material, const SurfacePoint& sp, const Vec3& toViewer,
+    // `toViewer` (queries as shadowQueries(sp) writes them); `albedo` is the
+    // base colour that tints a metallic-roughness metal's highlight.
+    Rgb highlights(const Material& material, const Rgb& albedo, const SurfacePoint& sp, const Vec3& toViewer,
                    std::span<const ShadowQuery> queries, std::uint64_t litMask) const;
 
     const Scene& scene() const { return scene_; }

@@ -518,8 +518,10 @@ void TileKernel::reshadePacket(TileScratch& s, std::size_t p) const {
         const Material& material = scene_.objects[static_cast<std::size_t>(packet.objectId[k])].material;
         const auto count = static_cast<std::size_t>(shading_.shadowQueries(sp, queries.data()));
         const Vec3 toViewer = -laneRay(packet.rays.ray, k).direction;
-        s.nodes[node].direct = request.viewIndependent +
-                               shading_.highlights(material, sp, toViewer, std::span(queries.data(), count), request.litMask);
+        const Rgb albedo{packet.surface.albedoR[k], packet.surface.albedoG[k], packet.surface.albedoB[k]};
+        s.nodes[node].direct = request.viewIndependent + shading_.highlights(material, albedo, sp, toViewer,
+                                                                             std::span(queries.data(), count),
+                                                                             request.litMask);
     }
 }
 

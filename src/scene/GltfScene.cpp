@@ -41,6 +41,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Blender's glTF exporter's luminous efficacy (PBR_WATTS_TO_LUMENS): the
+// factor between its watts and the file's candela and lux.
+constexpr float kLumensPerWatt = 683.0f;
+
 // As many objects as a JSON scene may have (docs/scene-format.md, "Limits").
 constexpr std::size_t kMaxGltfObjects = 100000;
 
@@ -139,13 +143,13 @@ public:
     Scene build() {
         Scene scene;
         scene.name = path_.stem().string();
-        scene.environment = Environment::constant(kGltfSkyColor);
+        scene.environment = Environment::constant(kGltfBackground);
         noteExtensions();
         placeNodes();
         buildObjects(scene);
         const Box3 bounds = sceneBounds(scene);
         chooseCamera(scene, bounds);
-        if (!overrides_.lights) buildLights(scene, bounds);
+        if (!overrides_.lights) buildLights(scene);
         noteWhatIsNotDrawn();
         scene.notes = std::move(notes_);
         return scene;
@@ -279,9 +283,17 @@ private:
             }
             noteSampler(m, textureType);
         }
-        mapped.textured = blinnPhongFromPbr(pbr);
+        if (!overrides_.blinnPhongMaterials) {
+            aiColor4D emissive(0, 0, 0, 0);
+            m.Get(AI_MATKEY_COLOR_EMISSIVE, emissive);
+            pbr.emission = Rgb{emissive.r, emissive.g, emissive.b};
+            if (!isFinite(pbr.emission) || pbr.emission.r < 0.0f || pbr.emission.g < 0.0f || pbr.emission.b < 0.0f)
+                fail(name + ": emissiveFactor must be finite and not negative");
+        }
+        const auto mapping = overrides_.blinnPhongMaterials ? blinnPhongFromPbr : metallicRoughnessFromPbr;
+        mapped.textured = mapping(pbr);
         pbr.baseColorTexture = nullptr;
-        mapped.plain = blinnPhongFromPbr(pbr);
+        mapped.plain = mapping(pbr);
         const PbrMaterialKind kind = pbrMaterialKind(pbr);
         if (kind == PbrMaterialKind::Mirror && !isGrey(pbr.baseColor)) ++tintedMirrors_;
         if (kind == PbrMaterialKind::Glass && !isGrey(pbr.baseColor)) ++tintedGlass_;
@@ -303,9 +315,9 @@ private:
     void noteIgnoredMaterialParts(const aiMaterial& m) {
         aiColor4D emissive(0, 0, 0, 0);
         m.Get(AI_MATKEY_COLOR_EMISSIVE, emissive);
-        if (emissive.r > 0.0f || emissive.g > 0.0f || emissive.b > 0.0f ||
-            m.GetTextureCount(aiTextureType_EMISSIVE) > 0)
+        if (overrides_.blinnPhongMaterials && (emissive.r > 0.0f || emissive.g > 0.0f || emissive.b > 0.0f))
             ++emissive_;
+        if (m.GetTextureCount(aiTextureType_EMISSIVE) > 0) ++emissiveTextures_;
         if (m.GetTextureCount(aiTextureType_NORMALS) > 0) ++normalTextures_;
         if (m.GetTextureCount(aiTextureType_LIGHTMAP) > 0) ++occlusionTextures_;
         if (m.GetTextureCount(aiTextureType_METALNESS) > 0 || m.GetTextureCount(aiTextureType_DIFFUSE_ROUGHNESS) > 0)
@@ -577,10 +589,8 @@ private:
 
     // ---- lights -----------------------------------------------------------
 
-    void buildLights(Scene& scene, const Box3& bounds) {
-        const Vec3 centre = (bounds.lo + bounds.hi) * 0.5f;
-        const float radius = 0.5f * length(bounds.hi - bounds.lo);
-        std::size_t unplaced = 0, otherTypes = 0, ranged = 0;
+    void buildLights(Scene& scene) {
+        std::size_t unplaced = 0, otherTypes = 0;
         for (unsigned i = 0; i < ai_.mNumLights; ++i) {
             const aiLight& l = *ai_.mLights[i];
             const std::string name = nameOf(l.mName, "light", i);
@@ -604,22 +614,25 @@ private:
                 ++unplaced;
                 continue;
             }
-            float range = 0.0f;
-            if (node->node->mMetaData && node->node->mMetaData->Get("PBR_LightRange", range)) ++ranged;
-            // Assimp gives color * intensity.
+            // Assimp gives color * intensity: candela (point, spot) or lux
+            // (directional), made radiometric (W/sr, W/m^2) by the 683 lm/W
+            // that Blender's exporter multiplied its watts by, so that a
+            // Blender scene renders at Blender's brightness (scene/Light.h).
             const Rgb power{l.mColorDiffuse.r, l.mColorDiffuse.g, l.mColorDiffuse.b};
             if (!isFinite(power) || power.r < 0.0f || power.g < 0.0f || power.b < 0.0f)
                 fail(name + ": color times intensity must be finite and not negative");
-            light.intensity = power;
+            light.physical = true;
+            light.intensity = power * (1.0f / kLumensPerWatt);
+            float range = 0.0f;
+            if (light.type != LightType::Directional && node->node->mMetaData &&
+                node->node->mMetaData->Get("PBR_LightRange", range)) {
+                if (!(range > 0.0f) || !std::isfinite(range)) fail(name + ": range must be finite and > 0");
+                light.range = range;
+            }
             if (light.type != LightType::Directional) {
                 light.position = node->world.applyToPoint(vec3Of(l.mPosition));
                 if (!raycache::isFinite(light.position))
                     fail(name + ": its node's transform puts it at no finite place");
-                // Candela to raycache's lights, which do not fall off: the
-                // illuminance the light gives at the scene's centre, or at the
-                // distance of the scene's bounding sphere from a light within it.
-                const float distance = std::max(length(light.position - centre), radius);
-                light.intensity = power * (1.0f / (distance * distance));
             }
             if (light.type != LightType::Point) {
                 const Vec3 direction = node->world.applyToVector(vec3Of(l.mDirection));
@@ -645,10 +658,14 @@ private:
         if (otherTypes > 0)
             note("ignored " + gltfCounted(otherTypes, "light", "lights") + " of a type glTF does not define");
         if (unplaced > 0) note("ignored " + gltfCounted(unplaced, "light", "lights") + " that no node of the scene places");
-        if (ranged > 0)
-            note("ignored the range of " + gltfCounted(ranged, "light", "lights") + " (raycache's lights do not fall off)");
         if (scene.lights.empty()) {
-            scene.lights.push_back(lightOverTheShoulder(scene.camera));
+            Light fallback = lightOverTheShoulder(scene.camera);
+            if (!overrides_.blinnPhongMaterials) {
+                // pi W/m^2: a white Lambert surface facing it shows 1, as under the Blinn-Phong mapping.
+                fallback.physical = true;
+                fallback.intensity = Rgb(std::numbers::pi_v<float>);
+            }
+            scene.lights.push_back(fallback);
             note("no lights in the file: a directional light over the camera's left shoulder is used");
         }
     }
@@ -680,7 +697,10 @@ private:
                  "specular colour and specular-glossiness texture are ignored");
         if (emissive_ > 0)
             note("ignored the emission of " + gltfCounted(emissive_, "material", "materials") +
-                 " (raycache's surfaces do not glow)");
+                 " (the Blinn-Phong mapping's surfaces do not glow)");
+        if (emissiveTextures_ > 0)
+            note("ignored the emissive textures of " + gltfCounted(emissiveTextures_, "material", "materials") +
+                 " (their factors are used)");
         if (normalTextures_ > 0)
             note("ignored the normal textures of " + gltfCounted(normalTextures_, "material", "materials"));
         if (occlusionTextures_ > 0)
@@ -703,7 +723,10 @@ private:
         if (texturedWithoutUvs_ > 0)
             note(gltfCounted(texturedWithoutUvs_, "mesh has", "meshes have") +
                  " a base colour texture but not its texture coordinates: drawn with the base colour factor");
-        if (tintedMirrors_ > 0)
+        if (tintedMirrors_ > 0 && !overrides_.blinnPhongMaterials)
+            note(gltfCounted(tintedMirrors_, "mirror material reflects", "mirror materials reflect") +
+                 " untinted (the mirror ray's weight is one number): the base colour tints only the highlight");
+        if (tintedMirrors_ > 0 && overrides_.blinnPhongMaterials)
             note(gltfCounted(tintedMirrors_, "mirror material reflects", "mirror materials reflect") +
                  " untinted (kr is one number): the base colour tints only the highlight and the diffuse rest");
         if (tintedGlass_ > 0)
@@ -739,7 +762,7 @@ private:
     std::string firstUnusableUvs_;
     std::size_t otherPrimitives_ = 0, skinnedMeshes_ = 0, morphedMeshes_ = 0, coloredMeshes_ = 0,
                 collapsedInstances_ = 0, texturedWithoutUvs_ = 0;
-    std::size_t specularGlossiness_ = 0, emissive_ = 0, normalTextures_ = 0, occlusionTextures_ = 0,
+    std::size_t specularGlossiness_ = 0, emissive_ = 0, emissiveTextures_ = 0, normalTextures_ = 0, occlusionTextures_ = 0,
                 metallicRoughnessTextures_ = 0, transmissionTextures_ = 0, alphaMaterials_ = 0,
                 clampedOrMirroredTextures_ = 0, nearestTextures_ = 0, tintedMirrors_ = 0, tintedGlass_ = 0;
 };

@@ -1,7 +1,7 @@
 #pragma once
 // A glTF 2.0 file (.gltf, .glb) as a whole scene: its node hierarchy baked
-// into world-space mesh objects, its materials mapped to Blinn-Phong
-// (scene/PbrToBlinnPhong.h), its first camera and its KHR_lights_punctual
+// into world-space mesh objects, its materials shaded by glTF's
+// metallic-roughness BRDF (or mapped to Blinn-Phong, scene/PbrToBlinnPhong.h), its first camera and its KHR_lights_punctual
 // lights. What raycache cannot show (skins, morph targets, animations,
 // emission, ...) is said in one note per feature. docs/scene-format.md,
 // "glTF 2.0 scenes", has the rules.
@@ -21,6 +21,9 @@ struct GltfSceneOverrides {
     bool camera = false;
     // The lights: the file's are not read and no default light is added.
     bool lights = false;
+    // The materials under the Blinn-Phong mapping (scene/PbrToBlinnPhong.h,
+    // blinnPhongFromPbr) instead of glTF's own BRDF: for comparisons.
+    bool blinnPhongMaterials = false;
 };
 
 // Reads the glTF 2.0 file at `path` as a scene. Throws InputError, one line

@@ -9,8 +9,10 @@
 
 namespace raycache {
 
-// The built-in scenes' sky colour.
-inline constexpr Rgb kGltfSkyColor{0.35f, 0.45f, 0.65f};
+// What rays that leave a glTF scene see: black. A glTF file carries no
+// environment (Blender's exporter writes none), and Blender renders such a
+// scene with no world light as black.
+inline constexpr Rgb kGltfBackground{0.0f, 0.0f, 0.0f};
 
 // A 45° camera looking at the centre of `bounds` from the front (glTF's
 // +z), a little to the right and above: from the direction (0.4, 0.3, 1),

@@ -34,7 +34,23 @@ struct CacheSettings {
     CdctParameters cdct;       // used when technique is Cdct or CdctParity
 };
 
+// How a surface reflects the lights: Whitted's Blinn-Phong (ambient, diffuse
+// albedo * cos, specular * cos(n, h)^shininess), or glTF 2.0's
+// metallic-roughness BRDF (render/MetallicRoughness.h: Lambert diffuse
+// (1 - metallic) * baseColor / pi, GGX specular with height-correlated Smith
+// visibility and Schlick Fresnel, no ambient), with `diffuse` (and its
+// texture) as the base colour.
+enum class ShadingModel { BlinnPhong, MetallicRoughness };
+
+// Metallic-roughness surfaces smoother than this reflect as perfect mirrors
+// and have no GGX lobe toward lights; rougher ones spawn no mirror ray.
+inline constexpr float kSmoothRoughness = 0.1f;
+
 struct Material {
+    ShadingModel model = ShadingModel::BlinnPhong;
+    float metallic = 0.0f;   // metallic-roughness only
+    float roughness = 1.0f;  // metallic-roughness only: perceptual roughness, alpha = roughness^2
+    Rgb emission{0.0f};      // metallic-roughness only: radiance added to the surface
     Rgb ambient{0.1f};                    // ambient reflectance, multiplies the albedo
     Rgb diffuse{0.8f};                    // albedo when there is no texture
     std::optional<Texture> diffuseTexture;  // overrides `diffuse` when present

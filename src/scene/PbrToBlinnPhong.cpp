@@ -93,4 +93,37 @@ Material blinnPhongFromPbr(const PbrMaterial& pbr) {
     return m;
 }
 
+Material metallicRoughnessFromPbr(const PbrMaterial& pbr) {
+    Material m;
+    m.model = ShadingModel::MetallicRoughness;
+    m.ambient = Rgb(0.0f);  // Cycles with no world light has none
+    m.specular = Rgb(0.0f);
+    m.metallic = pbr.metallic;
+    m.roughness = pbr.roughness;
+    m.emission = pbr.emission;
+    m.ior = pbr.ior;
+    const float transmitted = pbr.transmission * (1.0f - pbr.metallic);
+    if (transmitted > 0.0f) {
+        const float f0 = std::pow((pbr.ior - 1.0f) / (pbr.ior + 1.0f), 2.0f);
+        m.reflectivity = f0;
+        m.transmissivity = transmitted * (1.0f - f0);
+        m.cache = kPbrCached;
+    } else if (pbr.roughness < kSmoothRoughness) {
+        m.reflectivity = std::clamp(luminance(mix(Rgb(kDielectricF0), pbr.baseColor, pbr.metallic)), 0.0f, 1.0f);
+        m.cache = kPbrCached;
+    }
+    const Rgb albedo = pbr.baseColor * (1.0f - transmitted);
+    m.diffuse = albedo;
+    if (pbr.baseColorTexture) {
+        std::shared_ptr<const Image> pixels = pbr.baseColorTexture;
+        if (!(albedo == Rgb(1.0f))) {
+            auto scaled = std::make_shared<Image>(*pbr.baseColorTexture);
+            for (Rgb& p : scaled->pixels()) p *= albedo;
+            pixels = std::move(scaled);
+        }
+        m.diffuseTexture = Texture::image(std::move(pixels));
+    }
+    return m;
+}
+
 }  // namespace raycache

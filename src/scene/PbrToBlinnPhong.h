@@ -21,6 +21,7 @@ struct PbrMaterial {
     float roughness = 1.0f;
     float transmission = 0.0f;  // KHR_materials_transmission's transmissionFactor
     float ior = 1.5f;           // KHR_materials_ior
+    Rgb emission{0.0f};         // emissiveFactor (the metallic-roughness model shows it)
 };
 
 enum class PbrMaterialKind { Diffuse, Mirror, Glass };
@@ -42,5 +43,13 @@ float luminance(const Rgb& c);
 // albedo) as its diffuse texture. Mirrors and glass cache their secondary
 // rays with CCT at 512² unless the command line chooses otherwise.
 Material blinnPhongFromPbr(const PbrMaterial& pbr);
+
+// The material under glTF's own BRDF (ShadingModel::MetallicRoughness): the
+// base colour (times 1 - transmission) as its albedo, its texture unscaled
+// when the factor is white, emission as given, no ambient. Its secondary
+// rays: smooth surfaces (roughness < kSmoothRoughness) reflect with the
+// luminance of F0 (the Blinn-Phong mapping's mirror, untinted), glass
+// reflects F0 and transmits transmission * (1 - F0), as blinnPhongFromPbr's.
+Material metallicRoughnessFromPbr(const PbrMaterial& pbr);
 
 }  // namespace raycache

@@ -657,17 +657,27 @@ private:
     }
 
     Light light(const Node& n) const {
-        expectObject(n, {"type", "position", "direction", "intensity", "cone", "falloff", "animation"});
+        expectObject(n, {"type", "position", "direction", "intensity", "cone", "falloff", "physical", "range", "animation"});
         const Node type = required(n, "type");
         Light l;
         l.type = choice(type, "light type", kLightTypes);
         const std::string variant = "light type " + quote(type->get<std::string>());
         switch (l.type) {
-        case LightType::Point: expectKeysApply(n, {"type", "position", "intensity", "animation"}, variant); break;
+        case LightType::Point:
+            expectKeysApply(n, {"type", "position", "intensity", "physical", "range", "animation"}, variant);
+            break;
         case LightType::Directional:
-            expectKeysApply(n, {"type", "direction", "intensity", "animation"}, variant);
+            expectKeysApply(n, {"type", "direction", "intensity", "physical", "animation"}, variant);
             break;
         case LightType::Spot: break;  // uses every key
+        }
+        if (const Node p = child(n, "physical")) {
+            if (!p->is_boolean()) failType(p, "true or false");
+            l.physical = p->get<bool>();
+        }
+        if (const Node r = child(n, "range")) {
+            if (!l.physical) fail(r, "\"range\" applies to physical lights only (set \"physical\": true)");
+            l.range = number(r, {0.0, {}, true, true});
         }
         if (l.type != LightType::Directional) l.position = vec3(required(n, "position"));
         if (l.type != LightType::Point) l.direction = normalize(nonZeroVec3(required(n, "direction")));

@@ -9,6 +9,8 @@ namespace raycache {
 // with its meshes on meshSearchPathFromEnvironment()), or a scene file by path: glTF 2.0 (.gltf, .glb,
 // any case: scene/GltfScene.h), else our JSON (scene/SceneFile.h). Throws
 // InputError naming the argument when it is neither.
-Scene loadScene(const std::string& builtinNameOrPath);
+// `blinnPhongGltfMaterials`: a glTF scene's materials under the Blinn-Phong
+// mapping (GltfSceneOverrides::blinnPhongMaterials) instead of glTF's BRDF.
+Scene loadScene(const std::string& builtinNameOrPath, bool blinnPhongGltfMaterials = false);
 
 }  // namespace raycache

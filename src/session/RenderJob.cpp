@@ -102,7 +102,7 @@ void validateRenderJobOptions(const RenderJobOptions& o) {
 RenderJob prepareRenderJob(const RenderJobOptions& options) {
     validateRenderJobOptions(options);
     RenderJob job;
-    job.scene = loadScene(options.scene);
+    job.scene = loadScene(options.scene, options.blinnPhongGltfMaterials);
     job.path = chooseCameraPath(job.scene, options.path);
     job.frames = options.frames.value_or(job.scene.defaultFrames);
     job.timeline = FrameTimeline{options.time, options.fps.value_or(job.scene.fps)};

@@ -23,6 +23,7 @@ inline constexpr std::array kPathOptionKinds{CameraPathKind::Static, CameraPathK
 
 struct RenderJobOptions {
     std::string scene = "room";
+    bool blinnPhongGltfMaterials = false;  // --gltf-materials blinn-phong
     int width = 512;
     int height = 512;
     std::optional<int> frames;        // default: the scene's path length

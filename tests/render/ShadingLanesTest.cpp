@@ -14,6 +14,7 @@
 #include "core/Optics.h"
 #include "render/HitLanes.h"
 #include "render/LocalShading.h"
+#include "render/MetallicRoughness.h"
 #include "render/RayCone.h"
 
 using namespace raycache;
@@ -104,7 +105,10 @@ void expectSameRay(const float* x, const float* y, const float* z, const float* 
 
 }  // namespace
 
-TEST(ShadingLanes, DirectLightEqualsLocalShading) {
+// directLightLanes16 against LocalShading::directLight for the materials
+// `materialOf(round, rng)` gives, under classic and physical lights.
+template <typename MaterialOf>
+void expectDirectLightEqualsLocalShading(MaterialOf materialOf) {
     Scene scene;
     Light point;
     point.position = {3.0f, 9.0f, -2.0f};
@@ -117,17 +121,24 @@ TEST(ShadingLanes, DirectLightEqualsLocalShading) {
     spot.direction = normalize(Vec3{0.5f, -1.0f, 0.0f});
     spot.coneAngleDeg = 40.0f;
     spot.falloffAngleDeg = 15.0f;
-    scene.lights = {point, directional, spot};
+    // Physical lights (scene/Light.h): inverse-square falloff, one with a
+    // range window that cuts some surfaces off, and glTF's spot cone.
+    Light physicalPoint = point;
+    physicalPoint.physical = true;
+    physicalPoint.position = {-2.0f, 3.0f, 4.0f};
+    physicalPoint.range = 60.0f;
+    Light physicalSpot = spot;
+    physicalSpot.physical = true;
+    physicalSpot.intensity = Rgb{40.0f, 30.0f, 20.0f};
+    Light physicalSun = directional;
+    physicalSun.physical = true;
+    scene.lights = {point, directional, spot, physicalPoint, physicalSpot, physicalSun};
     const LocalShading shading(scene);
     std::mt19937 rng(17);
     std::uniform_int_distribution<int> coin(0, 1);
     int lit = 0;
     for (int round = 0; round < 1500; ++round) {
-        Material material;
-        material.diffuse = Rgb{0.7f, 0.4f, 0.2f};
-        material.ambient = Rgb{0.05f, 0.1f, 0.02f};
-        material.specular = Rgb{0.3f, 0.5f, 0.9f};
-        material.shininess = round % 3 == 0 ? 7.5f : static_cast<float>(1 + round % 64);  // whole and not
+        const Material material = materialOf(round, rng);
         const LaneHits h = randomLaneHits(rng);
         alignas(64) int selected[16];
         for (int k = 0; k < 16; ++k) selected[k] = k % 5 == 4 ? 0 : -1;
@@ -164,9 +175,34 @@ TEST(ShadingLanes, DirectLightEqualsLocalShading) {
             EXPECT_EQ(floatBits(g[k]), floatBits(expected.g)) << "lane " << k;
             EXPECT_EQ(floatBits(b[k]), floatBits(expected.b)) << "lane " << k;
         }
-        if (HasFailure()) return;
+        if (::testing::Test::HasFailure()) return;
     }
     EXPECT_GT(lit, 1500 * 4);  // lights do reach surfaces: not a vacuous comparison
+}
+
+TEST(ShadingLanes, DirectLightEqualsLocalShading) {
+    expectDirectLightEqualsLocalShading([](int round, std::mt19937&) {
+        Material material;
+        material.diffuse = Rgb{0.7f, 0.4f, 0.2f};
+        material.ambient = Rgb{0.05f, 0.1f, 0.02f};
+        material.specular = Rgb{0.3f, 0.5f, 0.9f};
+        material.shininess = round % 3 == 0 ? 7.5f : static_cast<float>(1 + round % 64);  // whole and not
+        return material;
+    });
+}
+
+// glTF's BRDF, every roughness (smooth ones without the lobe) and metallic.
+TEST(ShadingLanes, MetallicRoughnessEqualsLocalShading) {
+    expectDirectLightEqualsLocalShading([](int round, std::mt19937& rng) {
+        std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+        Material material;
+        material.model = ShadingModel::MetallicRoughness;
+        material.ambient = Rgb(0.0f);
+        material.metallic = round % 4 == 0 ? 1.0f : (round % 4 == 1 ? 0.0f : unit(rng));
+        material.roughness = round % 5 == 0 ? 0.05f * unit(rng) : (round % 5 == 1 ? 1.0f : unit(rng));
+        material.emission = round % 3 == 0 ? Rgb{0.2f, 0.0f, 0.7f} : Rgb(0.0f);
+        return material;
+    });
 }
 
 TEST(ShadingLanes, SecondaryRaysEqualWhittedsSpawn) {

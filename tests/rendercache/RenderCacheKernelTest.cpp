@@ -106,7 +106,7 @@ TEST_P(RenderCacheKernel, CameraPixelsInAnyOrderMatchTheRayPipelineAndTheTracer)
         const Rgb direct = shading.directLight(material, albedo, sp, -ray.direction, std::span(queries.data(), count),
                                                std::span(occluded.data(), count));
         const Rgb highlights =
-            shading.highlights(material, sp, -ray.direction, std::span(queries.data(), count), s.litMask);
+            shading.highlights(material, albedo, sp, -ray.direction, std::span(queries.data(), count), s.litMask);
         Rgb split = s.viewIndependent;
         split += highlights;
         EXPECT_TRUE(close(split, direct, 1e-5f, 1e-7f)) << p.x << "," << p.y << ": " << split.r << " vs " << direct.r;

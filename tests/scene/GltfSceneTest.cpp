@@ -176,13 +176,11 @@ TEST_F(GltfSceneTest, LoadsAsTheSameSceneWrittenInOurJson) {
     meshFile("plane.gltf", plane);
     meshFile("sphere.gltf", sphere);
     meshFile("box.gltf", box);
-    // The scene's bounds: x and z within +-4 (the floor), y within [0, 2]
-    // (the ball's top): centre (0, 1, 0), bounding sphere radius sqrt(132) / 2.
-    const double radius = std::sqrt(132.0) / 2.0;
-    // Point light: 40 candela at the distance of the centre, sqrt(50).
-    const double pointScale = 40.0 / 50.0;
-    // Spot light: within the bounding sphere (sqrt(29) < radius), so at its radius.
-    const double spotIntensity = 30.0 / (radius * radius);
+    // glTF's lights are physical (inverse-square falloff, glTF's spot cone),
+    // their candela and lux made W/sr and W/m^2 by 683 lm/W.
+    const double lumensPerWatt = 683.0;
+    const double pointScale = 40.0 / lumensPerWatt;
+    const double spotIntensity = 30.0 / lumensPerWatt;
     const double degrees = 180.0 / std::numbers::pi;
     const double down15 = 15.0 / degrees, down60 = 60.0 / degrees;
     // Glass: F0 = ((ior - 1) / (ior + 1))^2 reflected, the rest transmitted.
@@ -193,16 +191,16 @@ TEST_F(GltfSceneTest, LoadsAsTheSameSceneWrittenInOurJson) {
         number(3 - std::sin(down15)) + ", " + number(9 - std::cos(down15)) + R"(],
                  "up": [0, )" +
         number(std::cos(down15)) + ", " + number(-std::sin(down15)) + R"(], "fov": )" + number(0.7 * degrees) + R"(},
-      "environment": {"type": "color", "color": [0.35, 0.45, 0.65]},
+      "environment": {"type": "color", "color": [0, 0, 0]},
       "lights": [
         {"type": "point", "position": [3, 6, 4], "intensity": [)" +
-        number(pointScale) + ", " + number(0.9 * pointScale) + ", " + number(0.8 * pointScale) + R"(]},
+        number(pointScale) + ", " + number(0.9 * pointScale) + ", " + number(0.8 * pointScale) + R"(], "physical": true},
         {"type": "spot", "position": [-3, 5, 2], "direction": [0, -1, 0], "intensity": )" +
         number(spotIntensity) + R"(, "cone": )" + number(0.5 * degrees) + R"(, "falloff": )" + number(0.3 * degrees) +
-        R"(},
+        R"(, "physical": true},
         {"type": "directional", "direction": [0, )" +
         number(-std::sin(down60)) + ", " + number(-std::cos(down60)) +
-        R"(], "intensity": 0.3}
+        R"(], "intensity": )" + number(0.3 / lumensPerWatt) + R"(, "physical": true}
       ],
       "objects": [
         {"name": "floor", "shape": "mesh", "file": "plane.gltf", "transform": {"scale": [8, 1, 8]},
@@ -220,7 +218,8 @@ TEST_F(GltfSceneTest, LoadsAsTheSameSceneWrittenInOurJson) {
     })";
     writeText(path("ours.json"), ours);
 
-    const Scene gltf = loadGltfScene(path("scene.gltf"));
+    // The Blinn-Phong mapping, which the JSON above writes out by hand.
+    const Scene gltf = loadGltfScene(path("scene.gltf"), GltfSceneOverrides{.blinnPhongMaterials = true});
     const Scene ourJson = loadSceneFile(path("ours.json"));
     EXPECT_TRUE(gltf.notes.empty()) << allNotes(gltf);
     ASSERT_EQ(gltf.objects.size(), 3u);
@@ -262,7 +261,11 @@ TEST_F(GltfSceneTest, WithoutCameraAndLightsFramesTheSceneAndLightsItOverTheShou
     const Vec3 forward = normalize(scene.camera.lookAt - scene.camera.position);
     EXPECT_GT(dot(scene.lights[0].direction, forward), 0.5f);
     EXPECT_LT(scene.lights[0].direction.y, 0.0f);
-    EXPECT_EQ(scene.environment.lookup({0, 1, 0}), (Rgb{0.35f, 0.45f, 0.65f}));
+    // Physical, pi W/m^2: a white Lambert surface facing it shows 1.
+    EXPECT_TRUE(scene.lights[0].physical);
+    EXPECT_FLOAT_EQ(scene.lights[0].intensity.r, std::numbers::pi_v<float>);
+    // A glTF file has no environment: black, as Blender renders it.
+    EXPECT_EQ(scene.environment.lookup({0, 1, 0}), (Rgb{0.0f, 0.0f, 0.0f}));
 }
 
 // The base colour factor multiplies the texture: baked into the texture's pixels.

@@ -391,6 +391,26 @@ TEST_F(SceneFileTest, SpotFalloffWiderThanCone) {
                 "/lights/0/falloff", "must be between 0 and 10 (got 20)");
 }
 
+TEST_F(SceneFileTest, RangeNeedsAPhysicalLight) {
+    expectError("{\"lights\": [{\"type\": \"point\", \"position\": [0, 1, 0], \"range\": @5}], \"objects\": []}",
+                "/lights/0/range", "applies to physical lights only");
+}
+
+TEST_F(SceneFileTest, PhysicalMustBeABoolean) {
+    expectError("{\"lights\": [{\"type\": \"point\", \"position\": [0, 1, 0], \"physical\": @1}], \"objects\": []}",
+                "/lights/0/physical", "true or false");
+}
+
+TEST_F(SceneFileTest, PhysicalLightKeysAreRead) {
+    const Scene scene = loadSceneFile(write("physical.json",
+        "{\"lights\": [{\"type\": \"point\", \"position\": [0, 1, 0], \"physical\": true, \"range\": 5},"
+        " {\"type\": \"directional\", \"direction\": [0, -1, 0]}], \"objects\": []}"));
+    ASSERT_EQ(scene.lights.size(), 2u);
+    EXPECT_TRUE(scene.lights[0].physical);
+    EXPECT_EQ(scene.lights[0].range, 5.0f);
+    EXPECT_FALSE(scene.lights[1].physical);  // the default: classic Whitted lights
+}
+
 TEST_F(SceneFileTest, CameraUpParallelToView) {
     expectError("{\"camera\": {\"position\": [0, 5, 0], \"lookAt\": [0, 0, 0], \"up\": @[0, 1, 0]}, \"objects\": []}",
                 "/camera/up", "parallel to the viewing direction");
