@@ -59,7 +59,9 @@ TEST(ViewTransform, EveryTransformMapsBlackToBlackIsMonotoneAndStaysInRange) {
     for (const ViewTransform t : kViewTransforms) {
         const Rgb black = applyViewTransform(t, Rgb(0.0f));
         EXPECT_EQ(linearToSrgb8(black.r), 0) << viewTransformName(t);
-        if (t == ViewTransform::KhronosPbrNeutral || t == ViewTransform::Standard) EXPECT_EQ(black.r, 0.0f);
+        if (t == ViewTransform::KhronosPbrNeutral || t == ViewTransform::Standard) {
+            EXPECT_EQ(black.r, 0.0f);
+        }
         float last = -1.0f;
         for (double ev = -14.0; ev <= 8.0; ev += 1.0 / 16.0) {
             const float v = applyViewTransform(t, Rgb(static_cast<float>(std::exp2(ev)))).g;
