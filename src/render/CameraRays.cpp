@@ -16,14 +16,15 @@ struct CameraFrame {
     float invWidth, invHeight;
 };
 
-// CameraRays::ray's steps for sixteen pixels of one row.
-[[gnu::always_inline]] inline void rowDirections(const CameraFrame& c, int x0, int y, FloatLanes& nx, FloatLanes& ny,
-                                                FloatLanes& nz) {
-    // static_cast<float>(x0 + k) for every lane k, as whole vectors.
+// The directions of the rays through sixteen pixels of row y from column
+// x0, each at its offsets in its pixel (½, ½: the centre).
+[[gnu::always_inline]] inline void jitteredRowDirections(const CameraFrame& c, int x0, int y, const FloatLanes& offsetX,
+                                                        const FloatLanes& offsetY, FloatLanes& nx, FloatLanes& ny,
+                                                        FloatLanes& nz) {
     const IntLanes16 column = IntLanes16{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15} + x0;
     const FloatLanes x = __builtin_convertvector(column, FloatLanes);
-    const FloatLanes sx = 2.0f * (x + 0.5f) * c.invWidth - 1.0f;
-    const float sy = 1.0f - 2.0f * (static_cast<float>(y) + 0.5f) * c.invHeight;
+    const FloatLanes sx = 2.0f * (x + offsetX) * c.invWidth - 1.0f;
+    const FloatLanes sy = 1.0f - 2.0f * (static_cast<float>(y) + offsetY) * c.invHeight;
     // normalize(forward + right * sx + up * sy), in Vec3's order of operations.
     const FloatLanes dx = c.forward.x + c.right.x * sx + c.up.x * sy;
     const FloatLanes dy = c.forward.y + c.right.y * sx + c.up.y * sy;
@@ -34,21 +35,11 @@ struct CameraFrame {
     nx = dx * inverse, ny = dy * inverse, nz = dz * inverse;
 }
 
-// rowDirections for one sample of each pixel: its offsets in the pixel per lane.
-[[gnu::always_inline]] inline void jitteredRowDirections(const CameraFrame& c, int x0, int y, const FloatLanes& offsetX,
-                                                        const FloatLanes& offsetY, FloatLanes& nx, FloatLanes& ny,
-                                                        FloatLanes& nz) {
-    const IntLanes16 column = IntLanes16{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15} + x0;
-    const FloatLanes x = __builtin_convertvector(column, FloatLanes);
-    const FloatLanes sx = 2.0f * (x + offsetX) * c.invWidth - 1.0f;
-    const FloatLanes sy = 1.0f - 2.0f * (static_cast<float>(y) + offsetY) * c.invHeight;
-    const FloatLanes dx = c.forward.x + c.right.x * sx + c.up.x * sy;
-    const FloatLanes dy = c.forward.y + c.right.y * sx + c.up.y * sy;
-    const FloatLanes dz = c.forward.z + c.right.z * sx + c.up.z * sy;
-    FloatLanes length;
-    sqrtLanes(dx * dx + dy * dy + dz * dz, length);
-    const FloatLanes inverse = 1.0f / length;
-    nx = dx * inverse, ny = dy * inverse, nz = dz * inverse;
+// The rays through the pixels' centres.
+[[gnu::always_inline]] inline void rowDirections(const CameraFrame& c, int x0, int y, FloatLanes& nx, FloatLanes& ny,
+                                                FloatLanes& nz) {
+    const FloatLanes half = FloatLanes{} + 0.5f;
+    jitteredRowDirections(c, x0, y, half, half, nx, ny, nz);
 }
 
 // GCC resolves a function's clones in the file that defines them: the

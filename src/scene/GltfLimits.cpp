@@ -13,6 +13,7 @@
 
 #include "core/Errors.h"
 #include "scene/GltfNodeGraph.h"
+#include "scene/GltfUri.h"
 
 namespace raycache {
 namespace {
@@ -70,21 +71,6 @@ std::optional<std::uint64_t> base64DataBytes(const std::string& uri) {
     std::uint64_t digits = uri.size() - comma - 1;
     for (std::size_t i = uri.size(); i > comma + 1 && uri[i - 1] == '='; --i) --digits;
     return digits * 3 / 4;
-}
-
-// A URI as a path: %XX escapes decoded (glTF URIs are RFC 3986).
-std::string percentDecoded(const std::string& uri) {
-    std::string out;
-    for (std::size_t i = 0; i < uri.size(); ++i) {
-        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
-            std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
-            out += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-            i += 2;
-        } else {
-            out += uri[i];
-        }
-    }
-    return out;
 }
 
 class GltfLimitCheck {
@@ -148,7 +134,7 @@ private:
             return bytes;
         }
         if (text.rfind("data:", 0) == 0) return std::nullopt;
-        for (const std::string& name : {text, percentDecoded(text)}) {
+        for (const std::string& name : {text, percentDecodedUri(text)}) {
             std::error_code ec;
             const fs::path file = path_.parent_path() / name;
             if (!fs::is_regular_file(file, ec)) continue;

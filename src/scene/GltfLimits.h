@@ -16,10 +16,9 @@
 namespace raycache {
 
 // Levels of the node tree, a root node being level 1. Assimp 5.2's glTF 2.0
-// reader, which recurses once per level, overflowed the default 8 MiB stack
-// at about 17 400 levels (the same under AddressSanitizer: Debian's Assimp
-// is not instrumented), about 480 bytes a level, so this many take about
-// half a MiB of stack; skeletons and CAD assemblies stay below a few hundred.
+// reader recurses once per level: this limit keeps it far below where the
+// default stack overflows (docs/log/2026-11-28-fuzz-findings.md, "glTF node
+// depth"), while skeletons and CAD assemblies stay below a few hundred.
 inline constexpr std::size_t kMaxGltfNodeDepth = 1024;
 inline constexpr std::size_t kMaxGltfNodes = 200000;  // twice the objects a scene may have
 inline constexpr std::size_t kMaxGltfMeshes = 100000;  // as many as a scene's objects

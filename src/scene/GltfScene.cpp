@@ -31,6 +31,7 @@
 #include "scene/GltfDocument.h"
 #include "scene/GltfSceneDefaults.h"
 #include "scene/GltfTextureTransform.h"
+#include "scene/GltfUri.h"
 #include "scene/ImageLoader.h"
 #include "scene/MeshLimits.h"
 #include "scene/MeshRepair.h"
@@ -95,21 +96,6 @@ bool isFinite(const Rgb& c) {
 
 bool isGrey(const Rgb& c) {
     return c.r == c.g && c.g == c.b;
-}
-
-// A texture URI as a path: %XX escapes decoded (glTF URIs are RFC 3986).
-std::string decodedUri(const std::string& uri) {
-    std::string out;
-    for (std::size_t i = 0; i < uri.size(); ++i) {
-        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
-            std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
-            out += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-            i += 2;
-        } else {
-            out += uri[i];
-        }
-    }
-    return out;
 }
 
 // A node and where the hierarchy puts it.
@@ -350,7 +336,7 @@ private:
             }
             return cached;
         }
-        const fs::path file = path_.parent_path() / fs::path(decodedUri(ref));
+        const fs::path file = path_.parent_path() / fs::path(percentDecodedUri(ref));
         std::error_code ec;
         if (!fs::is_regular_file(file, ec))
             fail(materialName + ": base colour texture file not found: \"" + ref + "\" (looked for " + file.string() +
