@@ -10,8 +10,9 @@ Sources and targets:
   docs/performance.md between `<!-- figures:where-caching-pays -->` and
   `<!-- /figures -->`, and README.md's `--cache-policy auto` row;
 - docs/render-cache-run/results.json (`raycache bench render-cache`): the
-  block between `<!-- figures:render-cache -->` and `<!-- /figures -->`, and
-  README.md's Render Cache row.
+  block between `<!-- figures:render-cache -->` and `<!-- /figures -->`, the
+  Render Cache rows of its "Goals at a glance", and README.md's Render Cache
+  row.
 Each block is a table with one provenance line; a README row must contain its
 generated phrase (the check looks for it in the row). A ctest test
 (`doc_figures`) runs the check mode.
@@ -137,6 +138,89 @@ def render_cache_figures(run):
     return "\n".join(lines), phrase
 
 
+def render_cache_goal_rows(run):
+    """The Render Cache rows of performance.md's "Goals at a glance", whole,
+    each keyed by its first two cells: every figure from the same run as the
+    block."""
+    env, targets = run["environment"], run["goal_targets"]
+    sides = sorted(run["settings"]["sides"])
+    side = sides[-1]
+    at = {w: [r for r in run["runs"] if r["width"] == w] for w in sides}
+    level = run["environment"]["version"]["lanes"]
+
+    def per_scene(rows, value, fmt):
+        return ", ".join(f"{r['scene']} {fmt(value(r))}" for r in rows)
+
+    def reconstruction(r):
+        return r["variants"]["reshade"]["summary"]["reconstruction_ms"]["median"]
+
+    big = at[side]
+    limit = targets["reconstruction_ms_1024"] if side == 1024 else None
+    recon = per_scene(big, reconstruction, lambda v: f"{v:.1f} ms")
+    if len(sides) > 1:
+        recon += f"; {sides[0]}²: " + per_scene(at[sides[0]], reconstruction, lambda v: f"{v:.1f}")
+    recon_met = "–" if limit is None else ("yes" if all(reconstruction(r) <= limit for r in big) else "no")
+
+    def psnr(r):
+        return r["variants"]["reshade"]["summary"]["psnr_db"]["mean"]
+
+    psnr_met = sum(1 for r in big if psnr(r) >= targets["mean_psnr_db"])
+
+    def fps(r):
+        return 1000.0 / r["variants"]["reshade"]["summary"]["ms"]["median"]
+
+    fps_met = sum(1 for r in big if fps(r) >= targets["end_to_end_fps"] and psnr(r) >= targets["mean_psnr_db"])
+
+    def faster(r):
+        return r["variants"]["reshade"]["speedup_vs_full"]["speedup"]
+
+    faster_met = sum(1 for r in big if (r["variants"]["reshade"]["speedup_vs_full"]["ci95_low"] or 0) > 1.0)
+    room = next((r for r in big if r["scene"] == "room"), big[0])
+    a = room["async"]
+    display = a["async_budget"]["display_fps"]
+    gains = [g for g in run["goals"] if g["goal"].startswith("re-evaluated reflections") and g["where"].endswith(f"{side}²")]
+    gain_values = [float(g["measured"].split(" dB")[0]) for g in gains]
+    gain_met = sum(1 for g in gains if g["met"])
+    where = f"{side}², {level}"
+    return {
+        "| Render Cache | a frame faster than the full render": (
+            f"| Render Cache | a frame faster than the full render, reflections reshaded ({where}) | "
+            f"{per_scene(big, faster, lambda v: f'{v:.2f}×')} | {faster_met} of {len(big)} |"),
+        "| Render Cache | reconstruction": (
+            f"| Render Cache | reconstruction ≤ {targets['reconstruction_ms_1024']:g} ms at 1024² "
+            f"(≤ {targets['reconstruction_ms_512']:g} ms at 512²) | {recon} | {recon_met} |"),
+        "| Render Cache | mean PSNR": (
+            f"| Render Cache | mean PSNR of frames 2–{run['settings']['frames']} ≥ {targets['mean_psnr_db']:g} dB "
+            f"at 5 % of the pixels a frame | {per_scene(big, psnr, lambda v: f'{v:.1f} dB')} | "
+            f"{psnr_met} of {len(big)} |"),
+        "| Render Cache | a whole frame": (
+            f"| Render Cache | a whole frame ≤ {1000.0 / targets['end_to_end_fps']:.1f} ms "
+            f"({targets['end_to_end_fps']:g} fps) with mean PSNR ≥ {targets['mean_psnr_db']:g} dB | "
+            f"{per_scene(big, fps, lambda v: f'{v:.1f} fps')} | {fps_met} of {len(big)} |"),
+        "| Render Cache | the async display": (
+            f"| Render Cache | the async display on `room` ≥ {targets['end_to_end_fps']:g} fps while the tracer "
+            f"feeds samples (bench, no window) | {display:.1f} fps (every sample reshaded: "
+            f"{a['async_every_frame']['display_fps']:.1f}; full frames {1000.0 / room['full']['summary']['ms']['median']:.1f}) | "
+            f"{'yes' if display >= targets['end_to_end_fps'] else 'no'} |"),
+        "| Render Cache | re-evaluated reflections": (
+            f"| Render Cache | re-evaluated reflections ≥ {targets['mirror_gain_db']:g} dB better on mirror pixels | "
+            + (f"+{min(gain_values):.1f} to +{max(gain_values):.1f} dB" if gain_values else "not measured")
+            + f" | {gain_met} of {len(gains)} |"),
+    }
+
+
+def replace_rows(text, rows, path):
+    """`text` with the one line starting with each key of `rows` replaced by
+    that key's row."""
+    lines = text.split("\n")
+    for start, row in rows.items():
+        found = [i for i, l in enumerate(lines) if l.startswith(start)]
+        if len(found) != 1:
+            sys.exit(f"doc-figures: {path} needs exactly one row starting with {start} (has {len(found)})")
+        lines[found[0]] = row
+    return "\n".join(lines)
+
+
 def replace_block(text, block, path, begin=BEGIN):
     i = text.find(begin)
     j = text.find(END, i)
@@ -168,14 +252,16 @@ def main():
     with open(SOURCE, encoding="utf-8") as f:
         block, readme_phrase = figures(json.load(f))
     with open(RENDER_CACHE_SOURCE, encoding="utf-8") as f:
-        rc_block, rc_phrase = render_cache_figures(json.load(f))
+        render_cache_run = json.load(f)
+    rc_block, rc_phrase = render_cache_figures(render_cache_run)
     with open(PERFORMANCE, encoding="utf-8") as f:
         performance = f.read()
     expected = replace_block(performance, block, PERFORMANCE)
     expected = replace_block(expected, rc_block, PERFORMANCE, RENDER_CACHE_BEGIN)
+    expected = replace_rows(expected, render_cache_goal_rows(render_cache_run), PERFORMANCE)
+    failures = []
     with open(README, encoding="utf-8") as f:
         readme = f.read()
-    failures = []
     if expected != performance:
         if args.check:
             failures.append(f"{PERFORMANCE}: a generated block differs from {SOURCE} or {RENDER_CACHE_SOURCE}")
