@@ -26,19 +26,20 @@ namespace {
 // nor then the outcome on the thread count.
 constexpr int kBandRows = 32;
 constexpr std::uint64_t kEmptyKey = std::numeric_limits<std::uint64_t>::max();
-// Marks a second-chance offer in its key (the depth's sign bit, which no
-// depth sets): such offers go only to pixels no sample landed in, so among
-// themselves they still order by depth and slot, a tagged key is farther
-// than any first-round key and nearer than none, and it tells the other
-// losers that the pixel was empty after the first round.
-constexpr std::uint64_t kSecondChanceTag = std::uint64_t{1} << 63;
+// Marks a second-chance offer in its key (the slot's top bit, which no slot
+// sets): such offers go only to pixels no sample landed in, so among
+// themselves they still order by depth, then slot, and the mark tells the
+// other losers that the pixel was empty after the first round. In the low
+// half, the key's upper half stays the depth's bits alone: the image's key.
+constexpr std::uint64_t kSecondChanceTag = std::uint64_t{1} << 31;
+constexpr std::uint64_t kSlotBits = kSecondChanceTag - 1;
 
 std::uint64_t depthSlotKey(float depth, std::uint32_t slot) {
     return (static_cast<std::uint64_t>(PointImage::key(depth)) << 32) | slot;
 }
-std::uint32_t slotOf(std::uint64_t key) { return static_cast<std::uint32_t>(key); }
-// The PointImage key of a depth-test key's depth, its mark removed.
-std::uint32_t depthKeyOf(std::uint64_t key) { return static_cast<std::uint32_t>((key & ~kSecondChanceTag) >> 32); }
+std::size_t slotOf(std::uint64_t key) { return static_cast<std::size_t>(key & kSlotBits); }
+// The PointImage key of a depth-test key: its depth's bits (emptyKey() for kEmptyKey).
+std::uint32_t depthKeyOf(std::uint64_t key) { return static_cast<std::uint32_t>(key >> 32); }
 
 bool emptyAfterFirstRound(std::uint64_t key) { return (key & kSecondChanceTag) != 0; }  // kEmptyKey too
 
@@ -72,8 +73,8 @@ struct DepthTest {
 
     // The sample of source slot `slot`, pushed out of a pixel by a nearer
     // one, to `list`, projected again.
-    void pushOut(std::uint32_t slot, std::vector<Landed>& list) const {
-        Landed pushedOut{slot, 0.0f, 0.0f, 0.0f};
+    void pushOut(std::size_t slot, std::vector<Landed>& list) const {
+        Landed pushedOut{static_cast<std::uint32_t>(slot), 0.0f, 0.0f, 0.0f};
         projectPoint(from.point[slot], origins, projection, pushedOut.x, pushedOut.y, pushedOut.depth);
         list.push_back(pushedOut);
     }
@@ -254,16 +255,13 @@ CopiedCounts copyWinnersOfRow(const DepthTest& test, int row, SamplePool& to, st
     const std::size_t rowEnd = (static_cast<std::size_t>(row) + 1) * test.stride;
     for (std::size_t pixel = static_cast<std::size_t>(row) * test.stride; pixel < rowEnd; ++pixel) {
         const std::uint64_t key = keys[pixel];
-        keys[pixel] = kEmptyKey;
         if (key == kEmptyKey) {
-            imageKeys[pixel] = PointImage::emptyKey();
             toPoint[pixel].objectId = SamplePool::kEmpty;
             if (nextOfPixel) nextOfPixel[pixel] = -1;
             continue;
         }
-        imageKeys[pixel] = depthKeyOf(key);
         const std::size_t source = slotOf(key);
-        if (key & kSecondChanceTag) ++counts.moved;
+        counts.moved += emptyAfterFirstRound(key) ? 1 : 0;
         if (nextOfPixel) nextOfPixel[pixel] = nextOfWinner[source];
         toPoint[pixel] = points[source];
         // The look copied whole (one load and one store; field by field it
@@ -281,6 +279,13 @@ CopiedCounts copyWinnersOfRow(const DepthTest& test, int row, SamplePool& to, st
             ++counts.textured;
         }
         ++counts.placed;
+    }
+    // Then the row's depths to the image and its keys emptied for the next
+    // frame, a loop of its own that the compiler puts in vector registers
+    // (in the loop above, one more pointer spilled its counters to memory).
+    for (std::size_t pixel = static_cast<std::size_t>(row) * test.stride; pixel < rowEnd; ++pixel) {
+        imageKeys[pixel] = depthKeyOf(keys[pixel]);
+        keys[pixel] = kEmptyKey;
     }
     return counts;
 }
@@ -301,6 +306,7 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
     if (to.capacity() != from.capacity() || to.pixelSlots != image.pixelCount() ||
         from.pixelSlots != image.pixelCount() || (next && !nextPixel))
         throw RuntimeError("reproject: the pools do not fit the image");
+    if (from.capacity() > kSlotBits) throw RuntimeError("reproject: more samples than the depth test's keys can name");
     const std::vector<Vec3> origins = objectOrigins(scene);
     const int rows = image.rows();
     const int bands = (rows + kBandRows - 1) / kBandRows;
