@@ -3,11 +3,9 @@
 // pixel, the nearest, over the image plus a margin past each edge where
 // samples are kept though not shown. A pixel holds only its sample's depth:
 // the sample itself sits in the pixel's own slot of the sample pool
-// (pixelIndex), so the image needs no slot. Four bytes per pixel, for the
-// passes after reprojection (culling, hole filling), which read it row by
-// row; reprojection's depth test runs on keys of its own that also name the
-// winner's source slot (rendercache/Reprojection.cpp) and writes every
-// pixel's depth here when it copies the winners.
+// (pixelIndex), so the image needs no slot. Four bytes per pixel: the
+// depth test reads and writes the image once per sample, and its size is
+// what that costs.
 #include <bit>
 #include <cstdint>
 #include <limits>
@@ -19,11 +17,6 @@ class PointImage {
 public:
     // width x height pixels plus `margin` on each side, all without a sample.
     void reset(int width, int height, int margin);
-    // width x height pixels plus `margin` on each side, the keys left as
-    // they are (new ones without a sample): for a caller that writes every
-    // key next (reproject()), which clearing them first would cost a trip
-    // over the image.
-    void resize(int width, int height, int margin);
 
     int width() const { return width_; }
     int height() const { return height_; }

@@ -19,7 +19,7 @@ constexpr std::int64_t kLook = sizeof(SampleLook);
 constexpr std::int64_t kReshade = sizeof(ReshadeInputs);
 constexpr std::int64_t kTexturing = sizeof(SampleTexturing);
 constexpr std::int64_t kKey = sizeof(PointImage::emptyKey());  // a depth-image pixel
-constexpr std::int64_t kTestKey = sizeof(decltype(ReprojectionScratch::keys)::value_type);  // the depth test's
+constexpr std::int64_t kWinner = sizeof(decltype(ReprojectionScratch::winner)::value_type);
 constexpr std::int64_t kNextPixel = sizeof(decltype(ReprojectionScratch::nextPixel)::value_type);
 constexpr std::int64_t kLanded = sizeof(ReprojectionScratch::Landed);
 constexpr std::int64_t kState = sizeof(PixelState);
@@ -52,32 +52,32 @@ ReconstructionBytes reconstructionBytes(const ReconstructionCounts& c) {
     const std::int64_t pixels = c.width * c.height;
     ReconstructionBytes b;
 
-    // First round (Reprojection.cpp): every used slot's point projected,
-    // every live sample's look read for its age, then the depth test on its
-    // keys (depth and slot in one, left empty by the last frame's copy) and
-    // the second chance for the losers.
+    // First round (Reprojection.cpp): the depth image cleared, every used
+    // slot's point projected, every live sample's look read for its age, then
+    // the depth test on the keys and the second chance for the losers.
     std::int64_t& first = b.firstRound;
+    first += c.pixelSlots * kKey;                       // PointImage::reset writes every key
     first += c.usedSlots * kPoint;                      // points read sixteen slots at a time, empty ones too
     first += c.liveSamples * kLook;                     // a live sample's age (an empty slot's look is not read)
     if (c.predicts) first += c.usedSlots * kNextPixel;  // the next camera's pixel, written for every slot
-    first += c.offered * kTestKey;                      // each offer reads its pixel's key
-    first += (c.placed - c.moved) * kTestKey;           // a first-round winner's key written (a winner
-                                                        // pushed out later wrote it too: not counted)
+    first += c.offered * kKey;                          // each offer reads its pixel's key
+    first += (c.placed - c.moved) * (kKey + kWinner);   // a first-round winner's key and slot written (a winner
+                                                        // pushed out later wrote them too: not counted)
     first += c.farOffers * 2 * kLanded;                 // listed, then read back on one thread
     first += c.secondChances * 2 * kLanded;             // each loser listed, then read back
-    first += c.secondChances * kNeighbours * kTestKey;  // its neighbours' keys read
-    first += c.moved * kTestKey;                        // a neighbour won: its key written
+    first += c.secondChances * kNeighbours * kKey;      // its neighbours' keys read
+    first += c.moved * (kKey + kWinner);                // a neighbour won: key and slot written
 
-    // Copy (Reprojection.cpp): every pixel slot's depth-test key read and
-    // left empty, its depth written to the image's key; an empty pixel's
+    // Copy (Reprojection.cpp): every pixel slot's key read; an empty pixel's
     // slot marked empty (its point's object written: the record counts
-    // whole); a winner's point and look read from its source slot (in its
-    // key) and written to the pixel's, with the records only some samples
-    // have; the next camera's pixel follows its sample.
+    // whole); a winner's point and look read from its source slot and
+    // written to the pixel's, with the records only some samples have; the
+    // next camera's pixel follows its sample.
     std::int64_t& copy = b.copy;
-    copy += c.pixelSlots * (2 * kTestKey + kKey);  // every pixel's keys
-    copy += (c.pixelSlots - c.placed) * kPoint;    // empty slots marked
-    copy += c.placed * (2 * kPoint + 2 * kLook);   // the winner's point and look moved
+    copy += c.pixelSlots * kKey;                            // every pixel's key
+    copy += (c.pixelSlots - c.placed) * kPoint;             // empty slots marked
+    copy += c.placed * (kWinner + 2 * kPoint + 2 * kLook);  // the winner's source slot read, its point and look moved
+    copy += c.moved * kKey;                                 // the second chance's mark cleared
     copy += c.reshadeCopied * 2 * kReshade;                 // samples that depend on the eye
     copy += c.texturingCopied * 2 * kTexturing;             // textured samples
     if (c.predicts) copy += (c.pixelSlots + c.placed) * kNextPixel;  // written per pixel slot, read per winner

@@ -18,30 +18,19 @@ namespace {
 // every other band at a time; a band touches only the rows within half a
 // band of its own, which the bands running beside it never do. Samples
 // that land farther (fast motion, the overflow's predicted samples) are
-// tested afterwards on one thread. Each pixel holds a 64-bit key, the
-// offer's depth bits above its source slot (ReprojectionScratch::keys): the
-// smallest key is the nearest offer and, among equal depths, the lower
-// slot, so the test is a plain compare-min, the winner's slot comes out of
-// the key, and a minimum does not depend on the order in which it is taken,
-// nor then the outcome on the thread count.
+// tested afterwards on one thread. The nearest offer wins, equal depths
+// going to the lower slot (looked up only on a tie: the image holds depths
+// alone); a minimum does not depend on the order in which it is taken, so
+// neither does the outcome.
 constexpr int kBandRows = 32;
-constexpr std::uint64_t kEmptyKey = std::numeric_limits<std::uint64_t>::max();
-// Marks a second-chance offer in its key (the slot's top bit, which no slot
+// Marks a second-chance offer in its key (the sign bit, which no depth
 // sets): such offers go only to pixels no sample landed in, so among
-// themselves they still order by depth, then slot, and the mark tells the
-// other losers that the pixel was empty after the first round. In the low
-// half, the key's upper half stays the depth's bits alone: the image's key.
-constexpr std::uint64_t kSecondChanceTag = std::uint64_t{1} << 31;
-constexpr std::uint64_t kSlotBits = kSecondChanceTag - 1;
+// themselves they still order by depth, a tagged key is farther than any
+// first-round key and nearer than none, and it tells the other losers that
+// the pixel was empty after the first round.
+constexpr std::uint32_t kSecondChanceTag = 1u << 31;
 
-std::uint64_t depthSlotKey(float depth, std::uint32_t slot) {
-    return (static_cast<std::uint64_t>(PointImage::key(depth)) << 32) | slot;
-}
-std::size_t slotOf(std::uint64_t key) { return static_cast<std::size_t>(key & kSlotBits); }
-// The PointImage key of a depth-test key: its depth's bits (emptyKey() for kEmptyKey).
-std::uint32_t depthKeyOf(std::uint64_t key) { return static_cast<std::uint32_t>(key >> 32); }
-
-bool emptyAfterFirstRound(std::uint64_t key) { return (key & kSecondChanceTag) != 0; }  // kEmptyKey too
+bool emptyAfterFirstRound(std::uint32_t key) { return (key & kSecondChanceTag) != 0; }  // emptyKey() too
 
 using Landed = ReprojectionScratch::Landed;
 
@@ -52,16 +41,18 @@ struct BandCounts {
     std::int64_t live = 0, evicted = 0;
 };
 
-// What the steps of one reprojection share: the depth test's keys. Addresses
-// in members copied to locals by each step's loop: through the image and the
-// vectors the compiler reloaded every address and size after each store (it
-// cannot tell a store into the image from one into a vector's own fields), a
-// third of the first round's instructions.
+// What the steps of one reprojection share: the image's depths and, per
+// pixel, the source slot holding it. Addresses in members copied to locals
+// by each step's loop: through the image and the vectors the compiler
+// reloaded every address and size after each store (it cannot tell a store
+// into the image from one into a vector's own fields), a third of the first
+// round's instructions.
 struct DepthTest {
     const SamplePool& from;
     const ScreenProjection& projection;
     const ScreenProjection* next;
-    std::uint64_t* keys;
+    std::uint32_t* keys;
+    std::uint32_t* winner;
     const Vec3* origins;
     int width, height, margin, rows, bands;
     std::size_t stride;
@@ -71,30 +62,27 @@ struct DepthTest {
         return static_cast<std::size_t>(y + margin) * stride + static_cast<std::size_t>(x + margin);
     }
 
-    // The sample of source slot `slot`, pushed out of a pixel by a nearer
-    // one, to `list`, projected again.
-    void pushOut(std::size_t slot, std::vector<Landed>& list) const {
-        Landed pushedOut{static_cast<std::uint32_t>(slot), 0.0f, 0.0f, 0.0f};
-        projectPoint(from.point[slot], origins, projection, pushedOut.x, pushedOut.y, pushedOut.depth);
+    // Offers `sample` to pixel (x, y); the one that loses goes to `list`
+    // (of the band that reached the pixel, so also reaches its
+    // neighbours), a sample it pushed out projected again.
+    void offer(int x, int y, const Landed& sample, std::vector<Landed>& list) const {
+        const std::uint32_t key = PointImage::key(sample.depth);
+        const std::size_t pixel = pixelOfImage(x, y);
+        const std::uint32_t held = keys[pixel];
+        if (key > held || (key == held && sample.slot > winner[pixel])) {
+            list.push_back(sample);
+            return;
+        }
+        keys[pixel] = key;
+        const std::uint32_t loser = winner[pixel];
+        winner[pixel] = sample.slot;
+        if (held == PointImage::emptyKey()) return;
+        Landed pushedOut{loser, 0.0f, 0.0f, 0.0f};
+        projectPoint(from.point[loser], origins, projection, pushedOut.x, pushedOut.y, pushedOut.depth);
         list.push_back(pushedOut);
     }
 
-    // Offers `sample` to pixel (x, y); the one that loses goes to `list`
-    // (of the band that reached the pixel, so also reaches its
-    // neighbours).
-    void offer(int x, int y, const Landed& sample, std::vector<Landed>& list) const {
-        const std::uint64_t key = depthSlotKey(sample.depth, sample.slot);
-        std::uint64_t& held = keys[pixelOfImage(x, y)];
-        if (key < held) {
-            const std::uint64_t pushed = held;
-            held = key;
-            if (pushed != kEmptyKey) pushOut(slotOf(pushed), list);
-        } else {
-            list.push_back(sample);
-        }
-    }
-
-// Runs body(begin, end, band, counts) over every band's slots, every
+    // Runs body(begin, end, band, counts) over every band's slots, every
     // other band at a time, then body(begin, end, -1, counts) over the
     // overflow slots on this thread.
     template <typename Body>
@@ -137,9 +125,11 @@ void firstRoundOfBand(const DepthTest& test, std::size_t begin, std::size_t end,
         band < 0 ? std::numeric_limits<int>::min() : band * kBandRows - kBandRows / 2 + 1 - imageMargin;
     const int reachEnd =
         band < 0 ? std::numeric_limits<int>::max() : (band + 1) * kBandRows + kBandRows / 2 - 1 - imageMargin;
-    // The depth test inline (through `offer` the image's address, stride
-    // and margin were reloaded for every sample).
-    std::uint64_t* const imageKeys = test.keys;
+    // The depth test's common case, a sample landing in a pixel still
+    // empty, without the call to `offer` (which reloaded the image's
+    // address, stride and margin for every sample).
+    std::uint32_t* const imageKeys = test.keys;
+    std::uint32_t* const winners = test.winner;
     const std::size_t rowStride = test.stride;
     // Sixteen samples projected at a time (both cameras), then offered one by one.
     ProjectedSamples projected;
@@ -171,13 +161,12 @@ void firstRoundOfBand(const DepthTest& test, std::size_t begin, std::size_t end,
             }
             const std::size_t pixel =
                 static_cast<std::size_t>(y + imageMargin) * rowStride + static_cast<std::size_t>(x + imageMargin);
-            const std::uint64_t key = depthSlotKey(sample.depth, sample.slot);
-            const std::uint64_t held = imageKeys[pixel];
-            if (key < held) {
-                imageKeys[pixel] = key;
-                if (held != kEmptyKey) test.pushOut(slotOf(held), lost);
+            const std::uint32_t key = PointImage::key(sample.depth);
+            if (imageKeys[pixel] == PointImage::emptyKey() && key != PointImage::emptyKey()) {
+                imageKeys[pixel] = key;  // what offer() does there: the offer wins, nobody is pushed out
+                winners[pixel] = sample.slot;
             } else {
-                lost.push_back(sample);
+                test.offer(x, y, sample, lost);
             }
         }
     }
@@ -187,7 +176,7 @@ void firstRoundOfBand(const DepthTest& test, std::size_t begin, std::size_t end,
 // Second chance: a loser offers itself to the nearest neighbouring pixel
 // that the first round left empty (first-round winners stay).
 void giveSecondChance(const DepthTest& test, const Landed& l) {
-    const std::uint64_t* const keys = test.keys;
+    std::uint32_t* const keys = test.keys;
     const int coverX0 = test.coverX0, coverX1 = test.coverX1, coverY1 = test.coverY1;
     const std::size_t stride = test.stride;
     const int x = ScreenProjection::pixelOf(l.x), y = ScreenProjection::pixelOf(l.y);
@@ -218,9 +207,13 @@ void giveSecondChance(const DepthTest& test, const Landed& l) {
             }
         }
     if (nearest == std::numeric_limits<float>::infinity()) return;
-    const std::uint64_t key = depthSlotKey(l.depth, l.slot) | kSecondChanceTag;
-    std::uint64_t& held = test.keys[test.pixelOfImage(bestX, bestY)];
-    held = std::min(held, key);
+    const std::uint32_t key = PointImage::key(l.depth) | kSecondChanceTag;
+    const std::size_t pixel = test.pixelOfImage(bestX, bestY);
+    const std::uint32_t held = keys[pixel];
+    if (key < held || (key == held && l.slot < test.winner[pixel])) {
+        keys[pixel] = key;
+        test.winner[pixel] = l.slot;
+    }
 }
 
 // What copying the winners found, per row.
@@ -230,16 +223,15 @@ struct CopiedCounts {
 
 // One row of pixel slots: each pixel's winner to its own slot of `to` (two
 // 16-byte records and, for a sample that depends on the eye, its reshading
-// inputs, for a textured one its colour's parts) and its depth to the
-// image's key (every key written); the depth test's keys left empty for the
-// next frame.
-CopiedCounts copyWinnersOfRow(const DepthTest& test, int row, SamplePool& to, std::uint32_t* imageKeys,
-                              const std::int32_t* nextOfSource, std::vector<std::int32_t>* nextPixel, int ageStep) {
+// inputs, for a textured one its colour's parts); the image's keys lose
+// their second-chance marks.
+CopiedCounts copyWinnersOfRow(const DepthTest& test, int row, SamplePool& to, const std::int32_t* nextOfSource,
+                              std::vector<std::int32_t>* nextPixel, int ageStep) {
     // The arrays' addresses in locals: the compiler cannot tell that the
     // stores do not change the vectors, and reloaded their addresses for
     // every sample.
     const SamplePool& from = test.from;
-    std::uint64_t* const keys = test.keys;
+    std::uint32_t* const keys = test.keys;
     const ReshadeInputs* fromReshade = from.reshade.data();
     SamplePoint* toPoint = to.point.data();
     SampleLook* toLook = to.look.data();
@@ -247,6 +239,7 @@ CopiedCounts copyWinnersOfRow(const DepthTest& test, int row, SamplePool& to, st
     const SampleTexturing* fromTexturing = from.texturing.data();
     SampleTexturing* toTexturing = to.texturing.data();
     std::int32_t* nextOfPixel = test.next ? nextPixel->data() : nullptr;
+    const std::uint32_t* const winners = test.winner;
     const std::int32_t* const nextOfWinner = nextOfSource;
     const SamplePoint* const points = from.point.data();
     const SampleLook* const looks = from.look.data();
@@ -254,14 +247,17 @@ CopiedCounts copyWinnersOfRow(const DepthTest& test, int row, SamplePool& to, st
     CopiedCounts counts;
     const std::size_t rowEnd = (static_cast<std::size_t>(row) + 1) * test.stride;
     for (std::size_t pixel = static_cast<std::size_t>(row) * test.stride; pixel < rowEnd; ++pixel) {
-        const std::uint64_t key = keys[pixel];
-        if (key == kEmptyKey) {
+        const std::uint32_t key = keys[pixel];
+        if (key == PointImage::emptyKey()) {
             toPoint[pixel].objectId = SamplePool::kEmpty;
             if (nextOfPixel) nextOfPixel[pixel] = -1;
             continue;
         }
-        const std::size_t source = slotOf(key);
-        counts.moved += emptyAfterFirstRound(key) ? 1 : 0;
+        const std::size_t source = winners[pixel];
+        if (key & kSecondChanceTag) {
+            keys[pixel] = key & ~kSecondChanceTag;
+            ++counts.moved;
+        }
         if (nextOfPixel) nextOfPixel[pixel] = nextOfWinner[source];
         toPoint[pixel] = points[source];
         // The look copied whole (one load and one store; field by field it
@@ -279,13 +275,6 @@ CopiedCounts copyWinnersOfRow(const DepthTest& test, int row, SamplePool& to, st
             ++counts.textured;
         }
         ++counts.placed;
-    }
-    // Then the row's depths to the image and its keys emptied for the next
-    // frame, a loop of its own that the compiler puts in vector registers
-    // (in the loop above, one more pointer spilled its counters to memory).
-    for (std::size_t pixel = static_cast<std::size_t>(row) * test.stride; pixel < rowEnd; ++pixel) {
-        imageKeys[pixel] = depthKeyOf(keys[pixel]);
-        keys[pixel] = kEmptyKey;
     }
     return counts;
 }
@@ -306,7 +295,6 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
     if (to.capacity() != from.capacity() || to.pixelSlots != image.pixelCount() ||
         from.pixelSlots != image.pixelCount() || (next && !nextPixel))
         throw RuntimeError("reproject: the pools do not fit the image");
-    if (from.capacity() > kSlotBits) throw RuntimeError("reproject: more samples than the depth test's keys can name");
     const std::vector<Vec3> origins = objectOrigins(scene);
     const int rows = image.rows();
     const int bands = (rows + kBandRows - 1) / kBandRows;
@@ -314,9 +302,9 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
         scratch.nextPixel.resize(from.capacity());  // written for every live slot, read for the winners
         nextPixel->resize(to.pixelSlots);           // every pixel slot written below
     }
-    // Per pixel, the depth test's key: left empty by the last reprojection's
-    // copy, so filled only when the image's size changes.
-    if (scratch.keys.size() != image.pixelCount()) scratch.keys.assign(image.pixelCount(), kEmptyKey);
+    // Per pixel, the slot of `from` whose sample holds it: written when an
+    // offer wins, read on a tie and where the image holds a key.
+    scratch.winner.resize(image.pixelCount());
     std::vector<std::vector<Landed>>& far = scratch.far;
     far.resize(static_cast<std::size_t>(bands));
     // The last list: losers of the offers made on one thread.
@@ -325,8 +313,8 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
     for (std::vector<Landed>& list : far) list.clear();
     for (std::vector<Landed>& list : losers) list.clear();
     const int margin = image.margin();
-    const DepthTest test{from,          projection,     next,          scratch.keys.data(),
-                         origins.data(), image.width(), image.height(),
+    const DepthTest test{from,          projection,     next,          image.keyData(),
+                         scratch.winner.data(), origins.data(), image.width(), image.height(),
                          margin,        rows,           bands,         static_cast<std::size_t>(image.stride()),
                          -margin,       image.width() + margin, image.height() + margin};
     std::int32_t* const nextOfSource = scratch.nextPixel.data();
@@ -349,11 +337,10 @@ ReprojectionCounts reproject(const SamplePool& from, SamplePool& to, const Scene
         });
     for (const Landed& loser : losers.back()) giveSecondChance(test, loser);
 
-    // 3. Each pixel's winner copied to its own slot of `to`, its depth to the image.
-    std::uint32_t* const imageKeys = image.keyData();
+    // 3. Each pixel's winner copied to its own slot of `to`.
     std::vector<CopiedCounts> copiedPerRow(static_cast<std::size_t>(rows));
     parallel.forEachIndex(rows, [&](int row, int) {
-        copiedPerRow[static_cast<std::size_t>(row)] = copyWinnersOfRow(test, row, to, imageKeys, nextOfSource, nextPixel, ageStep);
+        copiedPerRow[static_cast<std::size_t>(row)] = copyWinnersOfRow(test, row, to, nextOfSource, nextPixel, ageStep);
     });
     to.overflowUsed = 0;
 

@@ -57,9 +57,7 @@ struct ReprojectionScratch {
     std::vector<std::vector<Landed>> far;     // per band
     std::vector<std::vector<Landed>> losers;  // per band, then those of the offers made on one thread
     std::vector<std::int32_t> nextPixel;      // per slot of the source pool, see reproject()
-    // Per pixel, the depth test's key: the nearest offer's depth bits above
-    // its source slot (Reprojection.cpp); all empty between reprojections.
-    std::vector<std::uint64_t> keys;
+    std::vector<std::uint32_t> winner;        // per pixel: the source slot holding it in the depth test
 };
 
 // Every object's origin, indexed like Scene::objects: a sample's position
@@ -123,16 +121,15 @@ inline std::int32_t imagePixelThrough(const SamplePool& pool, std::size_t slot, 
 // Ages every sample of `from` (its used slots) by `ageStep` (one frame;
 // the asynchronous mode ages by the sample requests completed since the
 // last display frame, so samples do not age while no new ones come), drops those
-// older than `maxAge`, gives each pixel of `image` (sized by the caller;
-// every key is written) the nearest sample that lands in it, then lets
+// older than `maxAge`, gives each pixel of `image` (reset by the caller to
+// the new size, and empty) the nearest sample that lands in it, then lets
 // the losers try a neighbour, and copies each pixel's winner into `to` at
 // the pixel's slot (image.pixelIndex). `to` must have `from`'s capacity and
 // image.pixelCount() pixel slots, as `from` must; its pixel slots are all
 // written (empty where no sample won), its overflow left unused. `image`
 // ends holding each winner's depth (the winner sits at the pixel's slot). `from` is not
-// changed. Ties in depth go to the lower slot of `from` (the depth test's
-// keys order by depth, then slot): the outcome does not depend on the
-// thread count.
+// changed. Ties in depth go to the lower slot of `from`: the outcome does
+// not depend on the thread count.
 // When `next` is given (the predicted camera of the next frame), `nextPixel`
 // is resized to `to`'s pixel slots and gets, for each, imagePixelThrough()
 // `next` of the sample it now holds (-1 where it holds none): projected

@@ -14,7 +14,7 @@ void RenderCachePipeline::reprojectSamples(FrameContext& f) {
     touched.usedSlots = static_cast<std::int64_t>(pool_.used());
 
     const auto start = std::chrono::steady_clock::now();
-    image_.resize(f.width, f.height, f.margin);  // reproject() writes every key
+    image_.reset(f.width, f.height, f.margin);
     f.reprojected = reproject(pool_, spare_, scene_, f.projection, f.rc.maxAge, image_, parallel_,
                               reprojectionScratch_, f.predicts ? &f.nextProjection : nullptr, &nextPixel_,
                               f.async ? f.async->ageStep : 1);

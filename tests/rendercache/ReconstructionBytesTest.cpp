@@ -24,9 +24,7 @@ namespace {
 // The record sizes, from the types themselves.
 constexpr std::int64_t kPoint = sizeof(SamplePoint), kLook = sizeof(SampleLook), kReshade = sizeof(ReshadeInputs),
                        kTexturing = sizeof(SampleTexturing);
-// The image's key is a depth; the depth test's is a depth above a slot.
-constexpr std::int64_t kKey = sizeof(float), kTestKey = sizeof(float) + sizeof(std::uint32_t),
-                       kNext = sizeof(std::int32_t);
+constexpr std::int64_t kKey = sizeof(std::uint32_t), kSlot = sizeof(std::uint32_t), kNext = sizeof(std::int32_t);
 constexpr std::int64_t kLanded = sizeof(ReprojectionScratch::Landed), kState = sizeof(PixelState);
 constexpr std::int64_t kFloat = sizeof(float), kInt = sizeof(int), kByte = 1, kRequest = sizeof(PixelCoord),
                        kFilm = sizeof(Rgb), kSource = sizeof(std::int32_t);
@@ -78,17 +76,16 @@ ReconstructionCounts tinyFrame() {
 TEST(ReconstructionBytes, ATinyFrameCountsEveryPassFromItsRecords) {
     const ReconstructionBytes b = reconstructionBytes(tinyFrame());
 
-    // First round: 17 points and 5 looks read; 17 next pixels written; 4
-    // depth-test keys read by the offers; 3 first-round winners and the 1
-    // second-chance winner write one; the far sample and the loser are
-    // listed and read back; the loser reads 8 keys.
-    EXPECT_EQ(b.firstRound, 17 * kPoint + 5 * kLook + 17 * kNext + 4 * kTestKey + 3 * kTestKey + 1 * 2 * kLanded +
-                                1 * 2 * kLanded + 1 * 8 * kTestKey + 1 * kTestKey);
-    // Copy: 16 depth-test keys read and cleared, 16 image keys written; 12
-    // empty slots marked; 4 winners: point and look read and written; 1
-    // reshading and 2 texturing records read and written; 16 next pixels
-    // written, 4 read.
-    EXPECT_EQ(b.copy, 16 * (2 * kTestKey + kKey) + 12 * kPoint + 4 * (2 * kPoint + 2 * kLook) + 1 * 2 * kReshade +
+    // First round: 16 keys cleared; 17 points and 5 looks read; 17 next
+    // pixels written; 4 keys read by the offers; 3 first-round winners and
+    // the 1 second-chance winner write a key and a slot; the far sample and
+    // the loser are listed and read back; the loser reads 8 keys.
+    EXPECT_EQ(b.firstRound, 16 * kKey + 17 * kPoint + 5 * kLook + 17 * kNext + 4 * kKey + 3 * (kKey + kSlot) +
+                                1 * 2 * kLanded + 1 * 2 * kLanded + 1 * 8 * kKey + 1 * (kKey + kSlot));
+    // Copy: 16 keys read; 12 empty slots marked; 4 winners: slot read, point
+    // and look read and written; 1 mark cleared; 1 reshading and 2 texturing
+    // records read and written; 16 next pixels written, 4 read.
+    EXPECT_EQ(b.copy, 16 * kKey + 12 * kPoint + 4 * (kSlot + 2 * kPoint + 2 * kLook) + 1 * kKey + 1 * 2 * kReshade +
                           2 * 2 * kTexturing + 16 * kNext + 4 * kNext);
     // Holes: 4 keys, 4 culling flags written and read, 4 states and
     // priorities, 3 looks, 1 re-fetch (point, parts, look).
@@ -134,10 +131,10 @@ TEST(ReconstructionBytes, OneMoreWinningSampleAddsExactlyItsRecords) {
     ++more.offered;
     ++more.placed;
     const ReconstructionBytes m = reconstructionBytes(more);
-    EXPECT_EQ(m.firstRound - before.firstRound, kLook + kTestKey + kTestKey);
+    EXPECT_EQ(m.firstRound - before.firstRound, kLook + kKey + (kKey + kSlot));
     // Its slot is no longer marked empty; its point and look move, and where
     // it lands through the next camera is read.
-    EXPECT_EQ(m.copy - before.copy, -kPoint + 2 * kPoint + 2 * kLook + kNext);
+    EXPECT_EQ(m.copy - before.copy, -kPoint + kSlot + 2 * kPoint + 2 * kLook + kNext);
     EXPECT_EQ(m.holes, before.holes);
     EXPECT_EQ(m.fills, before.fills);
 }
