@@ -18,7 +18,8 @@
 //     (core/Optics.h); the reflected ray weighs F, the refracted ray
 //     (1 - F) * transmission * (1 - metallic) * baseColorFactor
 //     (Material::transmissionTint); beyond the critical angle F is 1 and
-//     nothing is refracted.
+//     nothing is refracted. A metallic factor on glass only lowers its
+//     transmission: its reflection stays the dielectric's, untinted.
 // The specification's fresnel_mix also weighs the base layer (the diffuse
 // term) by 1 - F; raycache's diffuse term leaves that factor out, as
 // Cycles' Principled BSDF (Blender 3.x) does, so that it stays independent
