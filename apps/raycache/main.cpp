@@ -117,7 +117,9 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
         "filmic (Blender 3's Filmic, base contrast), agx (Blender 4's AgX), khronos-pbr-neutral (docs/usage.md; "
         "default: the scene file's viewTransform, else standard)");
     command.add_option("--max-depth", job.maxDepth, "Longest ray path (primary ray = 1)")->capture_default_str();
-    command.add_option("--min-weight", job.minWeight, "Stop a path when its kr/kt product falls below this")
+    command.add_option("--min-weight", job.minWeight,
+                       "Stop a path when the product of its ray weights (kr, kt; glTF: Fresnel's, largest "
+                       "channel) falls below this")
         ->capture_default_str();
     raycache::addChoiceOption(
         command, "--technique", job.technique,
