@@ -105,7 +105,8 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
     command.add_option("--spp", job.samplesPerPixel,
                        "Camera rays per pixel, 1..4096: 1 = one ray through each pixel's centre; N > 1 = stratified "
                        "jittered rays from a fixed sequence, filtered with Blackman-Harris 1.5 px as Cycles does "
-                       "(ray pipeline only; images do not depend on the thread count; docs/usage.md)")
+                       "(ray pipeline only; images do not depend on the thread count; `view` refines a still view to N, one "
+                       "sample layer a frame; docs/usage.md)")
         ->capture_default_str();
     command.add_option("--exposure", job.exposure,
                        "Exposure of PNG images and the viewer, in stops: the light is multiplied by 2^EV before the "
@@ -116,7 +117,9 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
         "filmic (Blender 3's Filmic, base contrast), agx (Blender 4's AgX), khronos-pbr-neutral (docs/usage.md; "
         "default: the scene file's viewTransform, else standard)");
     command.add_option("--max-depth", job.maxDepth, "Longest ray path (primary ray = 1)")->capture_default_str();
-    command.add_option("--min-weight", job.minWeight, "Stop a path when its kr/kt product falls below this")
+    command.add_option("--min-weight", job.minWeight,
+                       "Stop a path when the product of its ray weights (kr, kt; glTF: Fresnel's, largest "
+                       "channel) falls below this")
         ->capture_default_str();
     raycache::addChoiceOption(
         command, "--technique", job.technique,

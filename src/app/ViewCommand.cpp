@@ -29,11 +29,16 @@ void runViewCommand(const ViewCommandOptions& options, std::ostream& out, std::o
     if (!(std::isfinite(options.targetFps) && options.targetFps >= 1.0 && options.targetFps <= 1000.0))
         throw InputError("--target-fps must be between 1 and 1000");
     if (options.job.cacheIdeal) throw InputError("--cache-ideal is a benchmark switch; the viewer does not take it");
-    if (options.job.samplesPerPixel != 1)
-        throw InputError("--spp: the viewer renders one ray per pixel; anti-aliased images come from `raycache render "
-                         "--spp N`");
+    if (options.job.samplesPerPixel != 1 && options.pipeline != ViewerPipeline::Ray &&
+        options.pipeline != ViewerPipeline::Auto)
+        throw InputError("--spp: the viewer refines full frames of the ray pipeline (--pipeline ray or auto); the " +
+                         std::string(viewerPipelineName(options.pipeline)) + " pipeline shows one ray per pixel");
 
-    RenderJob job = prepareRenderJob(options.job);
+    // The viewer renders one ray per pixel and refines a still view itself
+    // (viewer/ProgressiveFilm.h), one sample layer a frame.
+    RenderJobOptions oneRayPerPixel = options.job;
+    oneRayPerPixel.samplesPerPixel = 1;
+    RenderJob job = prepareRenderJob(oneRayPerPixel);
     printSceneNotes(job.scene, notes);
     // An interactive frame must not stall for seconds while improved CDCT
     // fills whole cubes (1.5 M rays per 512² cube): spread it, about half
@@ -72,6 +77,7 @@ void runViewCommand(const ViewCommandOptions& options, std::ostream& out, std::o
     viewer.renderCacheDisplayThreads = options.renderCacheDisplayThreads;
     viewer.renderCacheRequestFrames = options.renderCacheRequestFrames;
     viewer.renderCacheReshadeMs = options.renderCacheReshadeMs;
+    viewer.samplesPerPixel = options.job.samplesPerPixel;
     if (!options.inspectObject.empty()) {
         const auto& objects = job.scene.objects;
         const auto found = std::find_if(objects.begin(), objects.end(),

@@ -11,7 +11,7 @@ struct RayTreeRecord {
     RayTreeBounds bounds;
     Vec3 origin, direction;   // the ray leaving the caching object
     int depth = 0;            // rays on its path, itself included (Whitted's depth rule)
-    float pathWeight = 1.0f;  // product of kr/kt up to and including it (the minimum-weight rule)
+    float pathWeight = 1.0f;  // product of its weights' largest channels up to and including it (minimum-weight rule)
 };
 
 }  // namespace raycache

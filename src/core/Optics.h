@@ -1,5 +1,6 @@
 #pragma once
-// Mirror reflection and Snell refraction, in the form the source documents give:
+// Mirror reflection, Snell refraction and Fresnel's reflectance of a
+// dielectric boundary, in the form the source documents give:
 // `incident` points toward the surface, `normal` is unit length and faces the
 // side the incident ray comes from (dot(incident, normal) <= 0).
 #include <cmath>
@@ -22,6 +23,26 @@ inline std::optional<Vec3> refract(const Vec3& incident, const Vec3& normal, flo
     const float cos2T = 1.0f - eta * eta * (1.0f - cosI * cosI);
     if (cos2T < 0.0f) return std::nullopt;
     return incident * eta + normal * (eta * cosI - std::sqrt(cos2T));
+}
+
+// Fresnel's reflectances of a smooth boundary between two dielectrics, for
+// light polarised perpendicular (s) and parallel (p) to the plane of
+// incidence, from cos(θi) and cos(θt) (as refract() finds it: cos²θt =
+// 1 - η²(1 - cos²θi)) and η = η1/η2:
+//   rs = (η cosθi - cosθt) / (η cosθi + cosθt),  rp = (η cosθt - cosθi) / (η cosθt + cosθi),
+// each squared. Both are 1 at grazing incidence, rp is 0 at Brewster's
+// angle, and the same pair results from the other side (θt, 1/η).
+struct FresnelReflectance {
+    float s, p;
+    float unpolarised() const { return 0.5f * (s + p); }
+};
+
+inline FresnelReflectance dielectricFresnel(float cosI, float cosT, float eta) {
+    const float a = eta * cosI;
+    const float rs = (a - cosT) / (a + cosT);
+    const float b = eta * cosT;
+    const float rp = (b - cosI) / (b + cosI);
+    return {rs * rs, rp * rp};
 }
 
 }  // namespace raycache

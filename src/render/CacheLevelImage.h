@@ -9,7 +9,7 @@
 // A tree may ask the caches several times: a glass object's outer reflection
 // and the light leaving it again, or a chain of mirrors whose first lookup
 // was traced. The record keeps the lookup whose ray weighs most in the pixel
-// (the product of kr and kt along its path), the first asked on equal weight:
+// (the product of its weights along its path), the first asked on equal weight:
 // the one whose answer makes most of what the pixel shows. Along a chain of
 // mirrors the weights only shrink, so that is the first mirror's lookup; for
 // glass it is the refracted light leaving the object, not the faint outer

@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "core/Errors.h"
 #include "core/Image.h"
 #include "core/Parallel.h"
 #include "core/ProcessGroup.h"
@@ -22,6 +23,7 @@
 namespace raycache {
 
 class CacheLevelImage;
+class PixelSamples;
 class RayCache;
 struct RenderCacheOverlays;
 
@@ -32,6 +34,15 @@ public:
     // returns what the frame did. Images and caches do not depend on the
     // thread count. Call from one thread (the hybrid one may own a GL context).
     virtual FrameStats render(const Camera& camera, Image& film) = 0;
+    // Fills `layer` with one jittered sample layer (render/PixelSamples.h):
+    // pixel (x, y)'s ray through samples.offset(x, y, sample). What `--spp N`
+    // gathers N of (render/FilteredFilm.h), and what the viewer refines a
+    // still view with. Only the ray pipeline renders layers: RuntimeError
+    // elsewhere.
+    virtual FrameStats renderSample(const Camera& camera, Image& layer, const PixelSamples& samples, int sample) {
+        (void)camera, (void)layer, (void)samples, (void)sample;
+        throw RuntimeError(description() + " renders one ray per pixel; sample layers need the ray pipeline");
+    }
     // One line saying which pipeline this is and, for the hybrid one, where
     // its G-buffer comes from and why ("pipeline: hybrid, G-buffer by OpenGL (...)").
     virtual std::string description() const = 0;

@@ -127,15 +127,17 @@ void directLightLanes16(const Material& material, std::span<const Light> lights,
 // coordinates of the surfaces k selected by `lanes`, into their albedo lanes.
 void checkerAlbedoLanes16(const Checkerboard& pattern, const int* lanes, SurfaceLanes16& surfaces);
 
-// The secondary rays of sixteen hits of one material:
-// Whitted's reflected and refracted rays, with total internal reflection
-// adding the transmitted share to the reflected one.
+// The secondary rays of sixteen hits of one material: the reflected and
+// refracted rays and their weights per channel (secondaryRayWeights,
+// render/SecondaryRayWeights.h: Whitted's constants, or Fresnel's for
+// metallic-roughness materials).
 struct SecondaryRayLanes16 {
     alignas(64) float reflectedX[16], reflectedY[16], reflectedZ[16];  // unit directions
     alignas(64) float aboveX[16], aboveY[16], aboveZ[16];              // their origins, lifted off the surface
     alignas(64) float refractedX[16], refractedY[16], refractedZ[16];
     alignas(64) float belowX[16], belowY[16], belowZ[16];              // the refracted rays' origins
-    alignas(64) float reflectWeight[16];  // kr, plus kt where the light is totally reflected
+    alignas(64) float reflectR[16], reflectG[16], reflectB[16];  // the reflected ray's weight
+    alignas(64) float refractR[16], refractG[16], refractB[16];  // the refracted ray's weight
     alignas(64) float coneWidth[16], coneSpread[16];
     alignas(64) int reflects[16], refracts[16];  // 1: the ray is spawned
     // The CCT texel each ray addresses on its object's cube, where the tile
@@ -152,7 +154,9 @@ struct SecondaryRayLanes16 {
 // The rays surfaces k (selected by `lanes`) of `material` spawn, hit by
 // `rays` at their tFar, whose paths weigh pathWeight[k] and whose cones are
 // {coneWidth[k], coneSpread[k]}: `curvature` as coneCurvature gives it,
-// `minWeight` RenderSettings::minWeight (render/RayCone.h).
+// `minWeight` RenderSettings::minWeight (render/RayCone.h). A ray is
+// spawned where its path weight times its weight's largest channel is at
+// least minWeight (and that channel is above 0).
 void secondaryRayLanes16(const Material& material, float curvature, float minWeight, const SurfaceLanes16& surfaces,
                          const RayLanes16& rays, const float* pathWeight, const float* coneWidth,
                          const float* coneSpread, const int* lanes, SecondaryRayLanes16& out);

@@ -26,8 +26,8 @@ struct RenderSettings {
     // Longest ray path, counting the primary ray as 1: with maxDepth = 1 only
     // primary and shadow rays are traced.
     int maxDepth = 6;
-    // A secondary ray is not traced when the product of the kr/kt factors
-    // along its path falls below this.
+    // A secondary ray is not traced when the product of its weights along
+    // its path (each weight's largest channel) falls below this.
     float minWeight = 0.01f;
     int threads = 0;  // 0 = all hardware threads
     // Camera rays per pixel (`--spp`, ray pipeline only): 1 is a ray through

@@ -226,7 +226,7 @@ void TileKernel::runWaves(TileScratch& s, CacheWorker* cache) const {
 
 void TileKernel::emitSecondaryRay(TileScratch& s, CacheWorker* cache, int parent, float parentPathWeight,
                                   int parentDepth, int objectId, const Ray& ray, const RayCone& cone,
-                                  TileScratch::Kind kind, float share, bool leavesObject,
+                                  TileScratch::Kind kind, const Rgb& weight, bool leavesObject,
                                   const SpawnedRayLookup& lookup) const {
     // Every secondary ray gets a node of its own, whether a cache answers it
     // or not, so caching never changes how the colours are summed.
@@ -239,8 +239,8 @@ void TileKernel::emitSecondaryRay(TileScratch& s, CacheWorker* cache, int parent
         else s.nodeBounds[static_cast<std::size_t>(node)] = RayTreeBounds{};
     }
     added.parent = parent;
-    added.weightInParent = share;
-    const float pathWeight = parentPathWeight * share;
+    added.weightInParent = weight;
+    const float pathWeight = parentPathWeight * weight.maxComponent();
     // A cube that stands aside this frame (cache/CachePolicy.h), or a ray
     // out of a sampling cube's sample, is not asked: such rays go straight
     // to tracing, as without a cache, and cost no lookup, no miss

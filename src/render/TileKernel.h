@@ -91,13 +91,15 @@ private:
     };
     // What one ray brings back: the light at its hit (or the background, or
     // the cache's answer) plus its reflected and refracted rays' colours times
-    // kr and kt, gathered from its child nodes once the tile is done; the
-    // same sums, in the same order, as the recursive form.
+    // their weights (render/SecondaryRayWeights.h), gathered from its child
+    // nodes once the tile is done; the same sums, in the same order, as the
+    // recursive form. A node's own colour is unweighted: that is what a
+    // cube stores for a leaving ray, its weight applying at the parent.
     struct Node {
         Rgb direct;
         Rgb secondary;
         int parent = -1;            // -1: a pixel or texel of the caller's
-        float weightInParent = 0.0f;
+        Rgb weightInParent;         // per channel
         // A ray leaving a caching object whose cache missed it: its store
         // record (an index into TileScratch::stores), stored when done; -1
         // for every other node. Apart, so that the node every ray gets stays
@@ -133,7 +135,9 @@ private:
         SurfaceLanes16 surface;
         alignas(64) float directR[16], directG[16], directB[16];
         alignas(64) int node[16];          // the node each ray's colour adds to
-        alignas(64) float pathWeight[16];  // product of kr/kt since the camera, for the minimum-weight rule
+        // Product of the weights since the camera, each its largest channel:
+        // for the minimum-weight rule.
+        alignas(64) float pathWeight[16];
         alignas(64) int depth[16];         // rays on its path so far, the primary ray being 1
         // The pixel's cone along the ray (zero where no pixel stands behind it).
         alignas(64) float coneWidth[16], coneSpread[16];
@@ -329,11 +333,12 @@ private:
                           bool lookUpInLanes) const;
     void packetEmit(TileScratch& s, const TileScratch::HitPacket& packet, SecondaryRayLanes16& spawned,
                     CacheWorker* cache) const;
-    // One secondary ray of the hit of node `parent`: its node, then the
-    // cache's lookup batch (a ray leaving a caching object whose cube asks)
-    // or the rays to trace.
+    // One secondary ray of the hit of node `parent`, of weight `weight` there:
+    // its node, then the cache's lookup batch (a ray leaving a caching object
+    // whose cube asks) or the rays to trace. Its path weight is the
+    // parent's times the weight's largest channel.
     void emitSecondaryRay(TileScratch& s, CacheWorker* cache, int parent, float parentPathWeight, int parentDepth,
-                          int objectId, const Ray& ray, const RayCone& cone, TileScratch::Kind kind, float share,
+                          int objectId, const Ray& ray, const RayCone& cone, TileScratch::Kind kind, const Rgb& weight,
                           bool leavesObject, const SpawnedRayLookup& lookup = {}) const;
     void lookupReuse(TileScratch& s, CacheWorker& cache) const;
     // The cache-level record: every root starts with no caching ray; each

@@ -591,16 +591,17 @@ void TileKernel::packetEmit(TileScratch& s, const TileScratch::HitPacket& packet
             emitSecondaryRay(s, cache, packet.node[k], packet.pathWeight[k], packet.depth[k], objectId,
                              Ray{{spawned.aboveX[k], spawned.aboveY[k], spawned.aboveZ[k]},
                                  {spawned.reflectedX[k], spawned.reflectedY[k], spawned.reflectedZ[k]}},
-                             cone, TileScratch::Kind::Reflection, spawned.reflectWeight[k], frontFace, lookup);
+                             cone, TileScratch::Kind::Reflection,
+                             Rgb{spawned.reflectR[k], spawned.reflectG[k], spawned.reflectB[k]}, frontFace, lookup);
         }
         if (spawned.refracts[k]) {
             SpawnedRayLookup lookup{spawned.refractedTexel[k], spawned.refractedAnswered[k], {}};
             if (lookup.answered == SecondaryRayLanes16::kAskedAtEmit) lookup.answered = cache_->lookupAddressed(objectId, lookup.texel, lookup.color, *cache);
-            const Material& material = scene_.objects[static_cast<std::size_t>(objectId)].material;
             emitSecondaryRay(s, cache, packet.node[k], packet.pathWeight[k], packet.depth[k], objectId,
                              Ray{{spawned.belowX[k], spawned.belowY[k], spawned.belowZ[k]},
                                  {spawned.refractedX[k], spawned.refractedY[k], spawned.refractedZ[k]}},
-                             cone, TileScratch::Kind::Refraction, material.transmissivity, !frontFace, lookup);
+                             cone, TileScratch::Kind::Refraction,
+                             Rgb{spawned.refractR[k], spawned.refractG[k], spawned.refractB[k]}, !frontFace, lookup);
         }
     }
 }

@@ -278,11 +278,16 @@ private:
         }
         const auto mapping = overrides_.blinnPhongMaterials ? blinnPhongFromPbr : metallicRoughnessFromPbr;
         mapped.textured = mapping(pbr);
+        const bool textured = pbr.baseColorTexture != nullptr;
         pbr.baseColorTexture = nullptr;
         mapped.plain = mapping(pbr);
         const PbrMaterialKind kind = pbrMaterialKind(pbr);
-        if (kind == PbrMaterialKind::Mirror && !isGrey(pbr.baseColor)) ++tintedMirrors_;
-        if (kind == PbrMaterialKind::Glass && !isGrey(pbr.baseColor)) ++tintedGlass_;
+        if (overrides_.blinnPhongMaterials) {
+            if (kind == PbrMaterialKind::Mirror && !isGrey(pbr.baseColor)) ++tintedMirrors_;
+            if (kind == PbrMaterialKind::Glass && !isGrey(pbr.baseColor)) ++tintedGlass_;
+        } else if (kind == PbrMaterialKind::Glass && textured) {
+            ++texturedGlass_;
+        }
         noteIgnoredMaterialParts(m);
         return materials_.emplace(index, std::move(mapped)).first->second;
     }
@@ -709,15 +714,16 @@ private:
         if (texturedWithoutUvs_ > 0)
             note(gltfCounted(texturedWithoutUvs_, "mesh has", "meshes have") +
                  " a base colour texture but not its texture coordinates: drawn with the base colour factor");
-        if (tintedMirrors_ > 0 && !overrides_.blinnPhongMaterials)
-            note(gltfCounted(tintedMirrors_, "mirror material reflects", "mirror materials reflect") +
-                 " untinted (the mirror ray's weight is one number): the base colour tints only the highlight");
-        if (tintedMirrors_ > 0 && overrides_.blinnPhongMaterials)
+        if (tintedMirrors_ > 0)
             note(gltfCounted(tintedMirrors_, "mirror material reflects", "mirror materials reflect") +
                  " untinted (kr is one number): the base colour tints only the highlight and the diffuse rest");
         if (tintedGlass_ > 0)
             note(gltfCounted(tintedGlass_, "glass material transmits", "glass materials transmit") +
                  " untinted (kt is one number): the base colour tints only the diffuse rest");
+        if (texturedGlass_ > 0)
+            note(gltfCounted(texturedGlass_, "glass material's", "glass materials'") +
+                 " transmission is tinted by the base colour factor only (the base colour texture tints the "
+                 "diffuse rest)");
         std::vector<std::string> repaired = repairs_.phrases();
         if (allDegenerateTriangles_ > 0)
             repaired.push_back("left out meshes of degenerate triangles only (" +
@@ -751,6 +757,7 @@ private:
     std::size_t specularGlossiness_ = 0, emissive_ = 0, emissiveTextures_ = 0, normalTextures_ = 0, occlusionTextures_ = 0,
                 metallicRoughnessTextures_ = 0, transmissionTextures_ = 0, alphaMaterials_ = 0,
                 clampedOrMirroredTextures_ = 0, nearestTextures_ = 0, tintedMirrors_ = 0, tintedGlass_ = 0;
+    std::size_t texturedGlass_ = 0;  // metallic-roughness glass whose base colour is textured
 };
 
 }  // namespace

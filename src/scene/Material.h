@@ -56,9 +56,15 @@ struct Material {
     std::optional<Texture> diffuseTexture;  // overrides `diffuse` when present
     Rgb specular{0.0f};                   // Blinn-Phong highlight color
     float shininess = 32.0f;              // Blinn-Phong exponent
-    float reflectivity = 0.0f;            // kr, weight of the mirror-reflected ray
-    float transmissivity = 0.0f;          // kt, weight of the refracted ray
+    // Blinn-Phong: kr and kt, the weights of the mirror-reflected and the
+    // refracted ray. Metallic-roughness: a mirror ray is spawned where
+    // reflectivity > 0, and transmissivity is the share of the light the
+    // base layer transmits (transmission * (1 - metallic)); each ray's
+    // weight is Fresnel's at its hit (render/SecondaryRayWeights.h).
+    float reflectivity = 0.0f;
+    float transmissivity = 0.0f;
     float ior = 1.5f;                     // index of refraction of the inside
+    Rgb transmissionTint{1.0f};           // metallic-roughness only: what tints the refracted ray (baseColorFactor)
     CacheSettings cache;
 
     bool reflects() const { return reflectivity > 0.0f; }

@@ -103,13 +103,15 @@ Material metallicRoughnessFromPbr(const PbrMaterial& pbr) {
     m.emission = pbr.emission;
     m.ior = pbr.ior;
     const float transmitted = pbr.transmission * (1.0f - pbr.metallic);
+    // The rays' weights are Fresnel's at each hit (render/SecondaryRayWeights.h):
+    // here only whether the rays are spawned, and the transmitted share.
     if (transmitted > 0.0f) {
-        const float f0 = std::pow((pbr.ior - 1.0f) / (pbr.ior + 1.0f), 2.0f);
-        m.reflectivity = f0;
-        m.transmissivity = transmitted * (1.0f - f0);
+        m.reflectivity = 1.0f;
+        m.transmissivity = transmitted;
+        m.transmissionTint = pbr.baseColor;
         m.cache = kPbrCached;
     } else if (pbr.roughness < kSmoothRoughness) {
-        m.reflectivity = std::clamp(luminance(mix(Rgb(kDielectricF0), pbr.baseColor, pbr.metallic)), 0.0f, 1.0f);
+        m.reflectivity = 1.0f;
         m.cache = kPbrCached;
     }
     const Rgb albedo = pbr.baseColor * (1.0f - transmitted);

@@ -47,9 +47,10 @@ Material blinnPhongFromPbr(const PbrMaterial& pbr);
 // The material under glTF's own BRDF (ShadingModel::MetallicRoughness): the
 // base colour (times 1 - transmission) as its albedo, its texture unscaled
 // when the factor is white, emission as given, no ambient. Its secondary
-// rays: smooth surfaces (roughness < kSmoothRoughness) reflect with the
-// luminance of F0 (the Blinn-Phong mapping's mirror, untinted), glass
-// reflects F0 and transmits transmission * (1 - F0), as blinnPhongFromPbr's.
+// rays: smooth surfaces (roughness < kSmoothRoughness) and glass reflect a
+// mirror ray (reflectivity 1), glass also refracts (transmissivity
+// transmission * (1 - metallic), tinted by baseColorFactor); what each ray
+// weighs is Fresnel's at its hit (render/SecondaryRayWeights.h).
 Material metallicRoughnessFromPbr(const PbrMaterial& pbr);
 
 }  // namespace raycache

@@ -25,6 +25,9 @@ public:
         if (samples_.count() == 1) return renderer_.render(camera, film, &cacheLevels_);
         return renderSamples(camera, film);
     }
+    FrameStats renderSample(const Camera& camera, Image& layer, const PixelSamples& samples, int sample) override {
+        return renderer_.render(camera, layer, nullptr, &samples, sample);
+    }
     std::string description() const override { return "pipeline: ray (primary rays as packets)"; }
     const CacheLevelImage* cacheLevels() const override { return recordsLevels_ ? &cacheLevels_ : nullptr; }
 
@@ -39,7 +42,7 @@ private:
         RayCounts rays;
         std::optional<StageTimes> stages;
         for (int s = 0; s < samples_.count(); ++s) {
-            stats = renderer_.render(camera, layer_, nullptr, &samples_, s);
+            stats = renderSample(camera, layer_, samples_, s);
             rays += stats.rays;
             if (stats.stages && stages) *stages += *stats.stages;
             else if (stats.stages) stages = stats.stages;

@@ -35,12 +35,13 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings,
 
 RenderSession::~RenderSession() = default;
 
-FrameStats RenderSession::render(const Camera& camera, Image& film) {
+template <typename Make>
+FrameStats RenderSession::frame(const Camera& camera, Make&& make) {
     // The grids are rebuilt every frame from the posed scene; their build is part of the frame.
     const auto buildStart = Clock::now();
     tracer_->prepareFrame(scene_, camera, settings_.width, settings_.height, *parallel_);
     const double gridBuildMs = millisecondsSince(buildStart);
-    FrameStats stats = pipeline_->render(camera, film);
+    FrameStats stats = make();
     if (tracer_->accelerator() == Accelerator::Grids) {
         stats.trace = tracer_->frameStats();
         stats.gridBuildMs = gridBuildMs;
@@ -48,6 +49,14 @@ FrameStats RenderSession::render(const Camera& camera, Image& film) {
     stats.sceneUpdate = pendingUpdate_;
     pendingUpdate_.reset();
     return stats;
+}
+
+FrameStats RenderSession::render(const Camera& camera, Image& film) {
+    return frame(camera, [&] { return pipeline_->render(camera, film); });
+}
+
+FrameStats RenderSession::renderSample(const Camera& camera, Image& layer, const PixelSamples& samples, int sample) {
+    return frame(camera, [&] { return pipeline_->renderSample(camera, layer, samples, sample); });
 }
 
 SceneUpdateStats RenderSession::setTime(float seconds) {

@@ -42,6 +42,10 @@ public:
     // Images and caches do not depend on the thread count. The stats include
     // the scene update of setTime calls since the last frame.
     FrameStats render(const Camera& camera, Image& film);
+    // Renders one jittered sample layer of what `camera` sees into `layer`
+    // (FramePipeline::renderSample): the ray pipeline only (RuntimeError
+    // otherwise).
+    FrameStats renderSample(const Camera& camera, Image& layer, const PixelSamples& samples, int sample);
     // Puts an animated scene in its pose at `seconds`: moves the tracer's
     // objects, invalidates what the caches saw of what changed, tells the
     // pipeline. Does nothing for a still scene. A session that shares its
@@ -71,6 +75,12 @@ public:
     const CacheLevelImage* cacheLevels() const { return pipeline_->cacheLevels(); }
 
 private:
+    // A frame made by `make` (the pipeline's render or renderSample): the
+    // tracer prepared for the camera first, the grids' build and the scene
+    // update since the last frame added to its stats.
+    template <typename Make>
+    FrameStats frame(const Camera& camera, Make&& make);
+
     const Scene& source_;
     std::unique_ptr<Scene> posed_;  // the current pose of an animated scene; null when still
     const Scene& scene_;            // *posed_, or source_ when still

@@ -30,6 +30,13 @@ struct DisplayFrame {
     ShownPipeline shown = ShownPipeline::FullFrame;
     bool renderCachePriming = false;
     std::size_t cacheBytes = 0;      // memory of all caching cubes
+    // --spp N on a still view (viewer/ProgressiveFilm.h): the sample layers
+    // the shown image holds, of `refinementTarget` (0 when not refining; 0
+    // layers: the plain frame). `refinementReused`: the refinement was
+    // complete, nothing was rendered and `stats` are the last layer's.
+    int refinedSamples = 0;
+    int refinementTarget = 0;
+    bool refinementReused = false;
 
     // Time on the render thread, milliseconds.
     double renderMs = 0.0;      // the ray traced frame

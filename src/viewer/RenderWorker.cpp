@@ -18,6 +18,7 @@ namespace raycache {
 RenderWorker::RenderWorker(RenderWorkerSetup setup, FrameHandoff& handoff)
     : setup_(std::move(setup)), handoff_(handoff), parallel_(setup_.base.threads), display_(setup_.display),
       settings_(setup_.base),
+      refinement_(setup_.samplesPerPixel > 1 ? std::optional<ProgressiveFilm>(setup_.samplesPerPixel) : std::nullopt),
       thread_([this] { run(); }) {}
 
 RenderWorker::~RenderWorker() {
@@ -60,9 +61,11 @@ void RenderWorker::run() {
                 std::unique_lock lock(mutex_);
                 // Render again when the request changed, or when asked to keep
                 // going: the async Render Cache then when new samples came
-                // (without them its image would not change).
+                // (without them its image would not change); not once a
+                // refined still view is complete (nothing would change).
                 wake_.wait(lock, [&] {
-                    const bool keepGoing = request_ && request_->continuous && (showsAsync_ ? samplesArrived_ : true);
+                    const bool keepGoing = request_ && request_->continuous && !refinementComplete_ &&
+                                           (showsAsync_ ? samplesArrived_ : true);
                     return stop_ || (request_ && (requestSerial_ != renderedSerial || keepGoing ||
                                                   request_->playPath || setup_.scriptedFrames));
                 });
@@ -176,7 +179,39 @@ void RenderWorker::renderSessionFrame(const RenderRequest& request, const Camera
     std::unique_lock<std::mutex> cachesHeld;
     if (async_) cachesHeld = async_->holdCaches();
     session_->resize(request.width, request.height);
+    if (refines(request)) return refineFrame(request, camera, frame);
+    refinedView_.reset();
     frame.stats = session_->render(camera, film_);
+}
+
+bool RenderWorker::refines(const RenderRequest& request) const {
+    // The difference view and the level overlay compare with or paint over
+    // a plain frame, one ray through each pixel's centre.
+    return refinement_ && session_->settings().pipeline == PipelineKind::Ray && !request.difference &&
+           !request.cacheLevels;
+}
+
+void RenderWorker::refineFrame(const RenderRequest& request, const Camera& camera, DisplayFrame& frame) {
+    const RefinedView view{camera, request.width, request.height, *config_, frameTime_, clearCount_};
+    frame.refinementTarget = refinement_->target();
+    if (refinedView_ != view) {
+        // A view shown for the first time (every frame while the camera
+        // moves) is the plain frame, as without --spp; its refinement starts
+        // when the same view is asked for again.
+        refinedView_ = view;
+        refinement_->restart(request.width, request.height);
+        frame.stats = session_->render(camera, film_);
+        frame.refinedSamples = 0;
+        return;
+    }
+    if (refinement_->complete()) {
+        frame.refinedSamples = refinement_->target();  // film_ holds it already
+        frame.refinementReused = true;
+        return;
+    }
+    frame.stats = session_->renderSample(camera, layer_, refinement_->samples(), refinement_->nextSample());
+    refinement_->add(layer_, film_, parallel_);
+    frame.refinedSamples = refinement_->nextSample();
 }
 
 void RenderWorker::renderFrame(const RenderRequest& request, const Camera& camera, DisplayFrame& frame) {
@@ -248,8 +283,13 @@ void RenderWorker::renderOne(const RenderRequest& request, DisplayFrame& frame) 
     const bool showLevels = request.cacheLevels && !request.difference;
     session_->setRecordCacheLevels(showLevels && session_->settings().pipeline != PipelineKind::RenderCache);
 
+    frameTime_ = setup_.scene->animation.empty() ? 0.0f : time;  // a still scene looks the same at any time
+    frame.refinedSamples = 0;
+    frame.refinementTarget = 0;
+    frame.refinementReused = false;
     auto start = std::chrono::steady_clock::now();
     renderFrame(request, camera, frame);
+    refinementComplete_ = frame.refinementReused || (frame.refinementTarget > 0 && frame.refinedSamples == frame.refinementTarget);
     frame.renderMs = millisecondsSince(start);
 
     start = std::chrono::steady_clock::now();

@@ -23,6 +23,7 @@
 #include "trace/TraceScene.h"
 #include "rendercache/AsyncRenderCache.h"
 #include "viewer/FrameHandoff.h"
+#include "viewer/ProgressiveFilm.h"
 #include "viewer/RateMeter.h"
 #include "viewer/RenderRequest.h"
 #include "viewer/Srgb8Encoder.h"
@@ -47,6 +48,9 @@ struct RenderWorkerSetup {
     double renderCacheRequestFrames = 2.0;  // AsyncRenderCache::setRequestFrames
     double renderCacheReshadeMs = 0.0;      // AsyncRenderCache::setReshadeBudgetMs
     DisplaySettings display;                // exposure and view transform of the shown frames
+    // `--spp N`: a still view's full frames (ray pipeline) are refined to N
+    // samples per pixel, one sample layer a frame (ProgressiveFilm); 1: off.
+    int samplesPerPixel = 1;
 };
 
 class RenderWorker {
@@ -80,6 +84,13 @@ private:
     // A frame of the session's own pipeline, the async Render Cache's tracer
     // kept out of the caches meanwhile (auto keeps it between its turns).
     void renderSessionFrame(const RenderRequest& request, const Camera& camera, DisplayFrame& frame);
+    // Whether the session's frame for `request` is refined (ProgressiveFilm):
+    // --spp above 1, the ray pipeline, no overlay that needs a plain frame.
+    bool refines(const RenderRequest& request) const;
+    // The next frame of a still view's refinement into film_: the plain
+    // frame when the view is new, then one sample layer a frame, then
+    // nothing more to do once complete.
+    void refineFrame(const RenderRequest& request, const Camera& camera, DisplayFrame& frame);
     // The Render Cache's maps of the frame just made, if it made any.
     const RenderCacheOverlays* shownOverlays(const DisplayFrame& frame) const;
 
@@ -109,6 +120,22 @@ private:
     RateMeter displayRate_, sampleRate_, batchRate_, requestRate_, busyRate_;
     std::int64_t displayFrames_ = 0;
     std::int64_t lastMerged_ = 0;
+    // --spp: what shapes the refined view's image; a change starts it again.
+    struct RefinedView {
+        Camera camera;
+        int width = 0, height = 0;
+        ViewerRenderConfig config;
+        float time = 0.0f;
+        std::uint64_t clearCount = 0;
+        bool operator==(const RefinedView&) const = default;
+    };
+    std::optional<ProgressiveFilm> refinement_;  // set when setup_.samplesPerPixel > 1
+    std::optional<RefinedView> refinedView_;
+    Image layer_;
+    float frameTime_ = 0.0f;         // the moment the frame being made shows (0 for a still scene)
+    // The last frame was a complete refinement: nothing left to render until
+    // the request changes (read by the wait's predicate, on this thread).
+    bool refinementComplete_ = false;
 
     // Shared with the UI thread.
     mutable std::mutex mutex_;

@@ -263,9 +263,10 @@ void drawFrame(const GlTexture& frameTexture, int fbw, int fbh) {
 // A shown frame's render time teaches pipeline auto's rule what each way
 // costs. Left out: a Render Cache frame that traced every pixel (its first,
 // a cut) and a full frame made while the Render Cache waited for samples
-// (its time holds the Render Cache's reconstruction too).
+// (its time holds the Render Cache's reconstruction too), and a complete
+// refinement shown again (nothing was rendered).
 void teachAutoRule(const DisplayFrame& shown, AutoPipelineRule& rule) {
-    if (!shown.autoPipeline || shown.renderCachePriming) return;
+    if (!shown.autoPipeline || shown.renderCachePriming || shown.refinementReused) return;
     if (shown.shown == ShownPipeline::RenderCache && shown.stats.renderCache && shown.stats.renderCache->refreshedAll)
         return;
     rule.observe(shown.shown, shown.renderMs, static_cast<std::int64_t>(shown.width) * shown.height);
@@ -303,6 +304,9 @@ void printScriptedFrame(const DisplayFrame& shown, int frames, double intervalMs
         << formatFixed(shown.encodeMs, 2) << " upload " << formatFixed(uiTimes.uploadMs, 2) << " ui "
         << formatFixed(uiTimes.uiMs, 2) << " present " << formatFixed(uiTimes.presentMs, 2) << " ms";
     if (shown.autoPipeline) out << " | auto: " << shownPipelineName(shown.shown);
+    if (shown.refinementTarget > 0)
+        out << " | spp " << shown.refinedSamples << "/" << shown.refinementTarget
+            << (shown.refinedSamples == 0 ? " (the plain frame)" : "");
     if (shown.asyncRenderCache && shown.stats.renderCache)
         out << " | async: merged " << shown.mergedSamples << " samples, tracer "
             << formatFixed(shown.samplesPerSecond / 1.0e6, 3) << " Msamples/s, busy "
@@ -345,6 +349,7 @@ RenderWorkerSetup Viewer::workerSetup(const TraceScene& tracer) const {
     setup.renderCacheDisplayThreads = options_.renderCacheDisplayThreads;
     setup.renderCacheRequestFrames = options_.renderCacheRequestFrames;
     setup.renderCacheReshadeMs = options_.renderCacheReshadeMs;
+    setup.samplesPerPixel = options_.samplesPerPixel;
     setup.onPublished = &ViewerWindow::wake;
     return setup;
 }

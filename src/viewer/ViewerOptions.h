@@ -31,6 +31,7 @@ struct ViewerOptions {
     int renderCacheDisplayThreads = 0;  // 0: all
     double renderCacheRequestFrames = 2.0;  // display frames of tracing one request asks for
     double renderCacheReshadeMs = kDefaultReshadeBudgetMs;  // async reshading's budget a frame, 0: none
+    int samplesPerPixel = 1;  // --spp: a still view refined to this many (RenderWorkerSetup::samplesPerPixel)
 };
 
 }  // namespace raycache

@@ -54,6 +54,17 @@ void drawAnimationSection(const ViewerPanelInput& in, ViewerUiState& state) {
                     u->objectsChanged, u->lightsChanged, static_cast<long long>(u->texelsInvalidated));
 }
 
+// --spp N: how far the still view's anti-aliasing has come.
+void drawRefinementLine(const DisplayFrame& f) {
+    if (f.refinementTarget == 0) return;
+    if (f.refinedSamples == 0)
+        ImGui::Text("anti-aliasing: waits for the camera to stop (%d samples per pixel then)", f.refinementTarget);
+    else if (f.refinedSamples < f.refinementTarget)
+        ImGui::Text("anti-aliasing: %d of %d samples per pixel", f.refinedSamples, f.refinementTarget);
+    else
+        ImGui::Text("anti-aliased: %d samples per pixel", f.refinementTarget);
+}
+
 // Pipeline auto: which way made the frame on screen, and the estimates the
 // choice was made from.
 void drawAutoPipelineLine(const ViewerPanelInput& in) {
@@ -90,6 +101,7 @@ void drawRenderingSection(const ViewerPanelInput& in, ViewerUiState& state, View
         ImGui::EndCombo();
     }
     drawAutoPipelineLine(in);
+    drawRefinementLine(*in.frame);
     if (ImGui::BeginCombo("accelerator", acceleratorName(config.accelerator))) {
         for (const Accelerator a : kAccelerators)
             if (ImGui::Selectable(acceleratorName(a), a == config.accelerator)) config.accelerator = a;

@@ -93,6 +93,32 @@ TEST_F(ViewCli, ScriptedRunShowsTheOfflineRenderOfTheSameCamera) {
     EXPECT_TRUE(std::isinf(psnr)) << psnr;
 }
 
+// `view --spp N` refines a still view, one sample layer a frame: a scripted
+// run on a still path shows `raycache render --spp N`'s image once the plain
+// frame and N layers have been shown.
+TEST_F(ViewCli, ScriptedRunRefinesAStillViewToTheOfflineSampledImage) {
+    if (!haveXvfbRun()) {
+        RAYCACHE_SKIP_OR_FAIL_IN_CI("xvfb-run is not installed (scripts/install-deps.sh installs xvfb)");
+    }
+    const std::string job = "--scene glass --width 160 --height 120 --frames 5 --path static --threads 2 "
+                            "--technique none --spp 4";
+    const fs::path shot = dir_ / "view.png", offline = dir_ / "offline.png";
+    const RunResult view = run(underXvfb("view " + job + " --hide-ui --screenshot " + shot.string()), dir_);
+    ASSERT_EQ(view.exitCode, 0) << view.err << view.out;
+    EXPECT_NE(view.out.find("| spp 0/4 (the plain frame)"), std::string::npos) << view.out;
+    EXPECT_NE(view.out.find("| spp 4/4"), std::string::npos) << view.out;
+    const RunResult render = run(std::string(RAYCACHE_BINARY) + " render " + job + " --out " + offline.string(), dir_);
+    ASSERT_EQ(render.exitCode, 0) << render.err;
+    const raycache::Image shown = raycache::loadImageFile(shot);
+    const raycache::Image reference = raycache::loadImageFile(offline);
+    ASSERT_EQ(shown.width(), reference.width());
+    ASSERT_EQ(shown.height(), reference.height());
+    int differing = 0;
+    for (int y = 0; y < shown.height(); ++y)
+        for (int x = 0; x < shown.width(); ++x) differing += !(shown.at(x, y) == reference.at(x, y));
+    EXPECT_EQ(differing, 0);
+}
+
 // The Render Cache in a scripted run is synchronous unless asked: the
 // window shows `raycache render`'s frame. Asked for async, it runs, saying
 // what it merged and how fast its tracer traced.
@@ -183,7 +209,9 @@ TEST_F(ViewCli, BadInputIsOneLineAndExitTwoWithoutAWindow) {
           std::string("view --scene room --render-cache-trace-threads -1"),
           std::string("view --scene room --render-cache-display-threads -1"),
           std::string("view --scene room --render-cache-request-frames -1"),
-          std::string("view --scene room --pipeline fastest"), std::string("view --scene room --target-fps 0")}) {
+          std::string("view --scene room --pipeline fastest"), std::string("view --scene room --target-fps 0"),
+          std::string("view --scene room --spp 4 --pipeline render-cache"),
+          std::string("view --scene room --spp 4 --pipeline hybrid"), std::string("view --scene room --spp 0")}) {
         const RunResult r = run("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(RAYCACHE_BINARY) + " " + args, dir_);
         EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.err;
         EXPECT_EQ(lineCount(r.err), 1) << args << "\n" << r.err;

@@ -1,9 +1,11 @@
 // The tile kernel's direct light and secondary rays in lanes against the
 // scalar rules they implement, bit for bit: LocalShading::directLight, and
-// Whitted's spawn written out below as the specification (mirror
-// reflection, Snell refraction, total internal reflection adding the
-// transmitted share to the reflected one, the minimum-weight rule, origins
-// lifted off the surface, the ray cone carried on).
+// the spawn written out below as the specification (mirror reflection,
+// Snell refraction, the rays' weights as secondaryRayWeights gives them
+// (Whitted's constants, total internal reflection adding the transmitted
+// share to the reflected one; Fresnel's for metallic-roughness materials),
+// the minimum-weight rule on the weights' largest channel, origins lifted
+// off the surface, the ray cone carried on).
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -16,6 +18,7 @@
 #include "render/LocalShading.h"
 #include "render/MetallicRoughness.h"
 #include "render/RayCone.h"
+#include "render/SecondaryRayWeights.h"
 
 using namespace raycache;
 
@@ -65,32 +68,38 @@ LaneHits randomLaneHits(std::mt19937& rng) {
     return h;
 }
 
-// The rays one hit spawns (the specification secondaryRayLanes16 implements).
+// The rays one hit spawns (the specification secondaryRayLanes16 implements),
+// with their weights as secondaryRayWeights gives them.
 struct SpawnRuleRays {
     std::optional<Ray> reflected, refracted;
-    float reflectWeight = 0.0f;
+    SecondaryRayWeights weights;
     RayCone cone;
 };
 
 SpawnRuleRays spawnRule(const Material& material, float curvature, float minWeight, const SurfacePoint& sp,
-                  const Ray& ray, float t, float pathWeight, const RayCone& cone) {
+                        const Rgb& albedo, const Ray& ray, float t, float pathWeight, const RayCone& cone) {
     SpawnRuleRays out;
     const float offset = surfaceOffset(sp.position);
     out.cone = cone.bounced(t, curvature);
-    out.reflectWeight = material.reflectivity;
+    out.weights = secondaryRayWeights(material, albedo, -dot(ray.direction, sp.normal), sp.frontFace);
     if (material.refracts()) {
         // Entering: air -> material; leaving: material -> air.
         const float eta = sp.frontFace ? 1.0f / material.ior : material.ior;
-        if (const auto direction = refract(ray.direction, sp.normal, eta)) {
-            if (pathWeight * material.transmissivity >= minWeight)
-                out.refracted = Ray{sp.position - sp.geometricNormal * offset, normalize(*direction)};
-        } else {
-            out.reflectWeight += material.transmissivity;  // total internal reflection
-        }
+        const auto direction = refract(ray.direction, sp.normal, eta);
+        EXPECT_EQ(direction.has_value(), !out.weights.totalInternal);
+        if (direction && pathWeight * out.weights.refracted.maxComponent() >= minWeight)
+            out.refracted = Ray{sp.position - sp.geometricNormal * offset, normalize(*direction)};
     }
-    if (out.reflectWeight > 0.0f && pathWeight * out.reflectWeight >= minWeight)
+    const float reflectWeight = out.weights.reflected.maxComponent();
+    if (reflectWeight > 0.0f && pathWeight * reflectWeight >= minWeight)
         out.reflected = Ray{sp.position + sp.geometricNormal * offset, normalize(reflect(ray.direction, sp.normal))};
     return out;
+}
+
+void expectSameWeight(const float* r, const float* g, const float* b, int k, const Rgb& expected, const char* what) {
+    EXPECT_EQ(floatBits(r[k]), floatBits(expected.r)) << what << " lane " << k;
+    EXPECT_EQ(floatBits(g[k]), floatBits(expected.g)) << what << " lane " << k;
+    EXPECT_EQ(floatBits(b[k]), floatBits(expected.b)) << what << " lane " << k;
 }
 
 void expectSameRay(const float* x, const float* y, const float* z, const float* ox, const float* oy, const float* oz,
@@ -205,15 +214,19 @@ TEST(ShadingLanes, MetallicRoughnessEqualsLocalShading) {
     });
 }
 
-TEST(ShadingLanes, SecondaryRaysEqualWhittedsSpawn) {
+// secondaryRayLanes16 against the spawn rule above for the materials
+// `materialOf(round, rng)` gives; counts how often each branch was taken.
+struct SpawnCounts {
+    int reflected = 0, refracted = 0, totalInternal = 0, belowMinWeight = 0, tinted = 0;
+};
+
+template <typename MaterialOf>
+SpawnCounts expectSecondaryRaysEqualSpawnRule(MaterialOf materialOf) {
     std::mt19937 rng(23);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-    int reflected = 0, refracted = 0, totalInternal = 0, belowMinWeight = 0;
+    SpawnCounts counts;
     for (int round = 0; round < 3000; ++round) {
-        Material material;
-        material.reflectivity = round % 7 == 0 ? 0.0f : unit(rng);
-        material.transmissivity = round % 2 == 0 ? unit(rng) : 0.0f;
-        material.ior = 1.0f + unit(rng);
+        const Material material = materialOf(round, rng);
         const float curvature = round % 3 == 0 ? 0.0f : 1.0f / (0.1f + 5.0f * unit(rng));
         const float minWeight = round % 4 == 0 ? 0.3f : 0.001f;
         const LaneHits h = randomLaneHits(rng);
@@ -234,32 +247,74 @@ TEST(ShadingLanes, SecondaryRaysEqualWhittedsSpawn) {
                 EXPECT_EQ(out.refracts[k], 0) << "a lane left out spawns, lane " << k;
                 continue;
             }
-            const SpawnRuleRays expected = spawnRule(material, curvature, minWeight, h.points[k], h.scalarRays[k],
-                                               h.rays.tFar[k], pathWeight[k], {coneWidth[k], coneSpread[k]});
+            const Rgb albedo{h.lanes.albedoR[k], h.lanes.albedoG[k], h.lanes.albedoB[k]};
+            const SpawnRuleRays expected =
+                spawnRule(material, curvature, minWeight, h.points[k], albedo, h.scalarRays[k], h.rays.tFar[k],
+                          pathWeight[k], {coneWidth[k], coneSpread[k]});
             EXPECT_EQ(floatBits(out.coneWidth[k]), floatBits(expected.cone.width)) << "lane " << k;
             EXPECT_EQ(floatBits(out.coneSpread[k]), floatBits(expected.cone.spread)) << "lane " << k;
-            ASSERT_EQ(out.reflects[k] != 0, expected.reflected.has_value()) << "round " << round << " lane " << k;
-            ASSERT_EQ(out.refracts[k] != 0, expected.refracted.has_value()) << "round " << round << " lane " << k;
+            EXPECT_EQ(out.reflects[k] != 0, expected.reflected.has_value()) << "round " << round << " lane " << k;
+            EXPECT_EQ(out.refracts[k] != 0, expected.refracted.has_value()) << "round " << round << " lane " << k;
+            if (::testing::Test::HasFailure()) return counts;
             if (expected.reflected) {
-                ++reflected;
-                EXPECT_EQ(floatBits(out.reflectWeight[k]), floatBits(expected.reflectWeight)) << "lane " << k;
+                ++counts.reflected;
+                expectSameWeight(out.reflectR, out.reflectG, out.reflectB, k, expected.weights.reflected, "reflected");
                 expectSameRay(out.reflectedX, out.reflectedY, out.reflectedZ, out.aboveX, out.aboveY, out.aboveZ, k,
                               *expected.reflected, "reflected");
+                const Rgb& w = expected.weights.reflected;
+                if (w.r != w.g || w.g != w.b) ++counts.tinted;
             }
             if (expected.refracted) {
-                ++refracted;
+                ++counts.refracted;
+                expectSameWeight(out.refractR, out.refractG, out.refractB, k, expected.weights.refracted, "refracted");
                 expectSameRay(out.refractedX, out.refractedY, out.refractedZ, out.belowX, out.belowY, out.belowZ, k,
                               *expected.refracted, "refracted");
             }
-            if (material.refracts() && expected.reflectWeight > material.reflectivity) ++totalInternal;
-            if (material.refracts() && !expected.refracted && expected.reflectWeight == material.reflectivity)
-                ++belowMinWeight;
+            if (material.refracts() && expected.weights.totalInternal) ++counts.totalInternal;
+            if (material.refracts() && !expected.refracted && !expected.weights.totalInternal) ++counts.belowMinWeight;
         }
-        if (HasFailure()) return;
+        if (::testing::Test::HasFailure()) return counts;
     }
+    return counts;
+}
+
+TEST(ShadingLanes, SecondaryRaysEqualWhittedsSpawn) {
+    const SpawnCounts counts = expectSecondaryRaysEqualSpawnRule([](int round, std::mt19937& rng) {
+        std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+        Material material;
+        material.reflectivity = round % 7 == 0 ? 0.0f : unit(rng);
+        material.transmissivity = round % 2 == 0 ? unit(rng) : 0.0f;
+        material.ior = 1.0f + unit(rng);
+        return material;
+    });
     // Every branch of the rule was taken.
-    EXPECT_GT(reflected, 1000);
-    EXPECT_GT(refracted, 1000);
-    EXPECT_GT(totalInternal, 100);
-    EXPECT_GT(belowMinWeight, 100);
+    EXPECT_GT(counts.reflected, 1000);
+    EXPECT_GT(counts.refracted, 1000);
+    EXPECT_GT(counts.totalInternal, 100);
+    EXPECT_GT(counts.belowMinWeight, 100);
+}
+
+// Metallic-roughness mirrors (Schlick's Fresnel, tinted by the albedo for
+// metals) and glass (the exact dielectric Fresnel, a tinted transmission).
+TEST(ShadingLanes, MetallicRoughnessSecondaryRaysEqualFresnelWeights) {
+    const SpawnCounts counts = expectSecondaryRaysEqualSpawnRule([](int round, std::mt19937& rng) {
+        std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+        Material material;
+        material.model = ShadingModel::MetallicRoughness;
+        material.metallic = round % 4 == 0 ? 1.0f : (round % 4 == 1 ? 0.0f : unit(rng));
+        material.roughness = 0.05f * unit(rng);
+        material.reflectivity = 1.0f;
+        if (round % 2 == 0) {
+            material.metallic = round % 8 == 0 ? 0.0f : material.metallic;
+            material.transmissivity = round % 6 == 0 ? 1.0f : unit(rng);
+            material.ior = round % 10 == 0 ? 1.0f : 1.0f + unit(rng);
+            material.transmissionTint = round % 3 == 0 ? Rgb(1.0f) : Rgb{unit(rng), unit(rng), unit(rng)};
+        }
+        return material;
+    });
+    EXPECT_GT(counts.reflected, 1000);
+    EXPECT_GT(counts.refracted, 1000);
+    EXPECT_GT(counts.totalInternal, 100);
+    EXPECT_GT(counts.belowMinWeight, 100);
+    EXPECT_GT(counts.tinted, 1000);  // metals' weights differ per channel
 }

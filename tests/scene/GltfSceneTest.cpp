@@ -300,6 +300,51 @@ TEST_F(GltfSceneTest, BaseColourFactorMultipliesTheTexture) {
         }
 }
 
+// Under glTF's BRDF a gold mirror reflects gold and glass transmits tinted by
+// its base colour factor (the rays' weights, render/SecondaryRayWeights.h):
+// no note says otherwise, but one says a glass texture does not tint; under
+// the Blinn-Phong mapping both are untinted, and notes say so.
+TEST_F(GltfSceneTest, ColouredMirrorsAndGlassAreTintedUnderTheBrdf) {
+    const fs::path png = writeCheckerPng(path("checker.png"));
+    GltfTestFile file;
+    const int texture = file.addTexture(fileBytes(png));
+    const int gold = file.addMaterial({{"name", "gold"},
+                                       {"pbrMetallicRoughness",
+                                        {{"baseColorFactor", {1.0, 0.77, 0.34, 1}}, {"roughnessFactor", 0.0}}}});
+    const int glass = file.addMaterial(
+        {{"name", "green glass"},
+         {"pbrMetallicRoughness",
+          {{"baseColorFactor", {0.2, 0.9, 0.3, 1}},
+           {"baseColorTexture", {{"index", texture}}},
+           {"metallicFactor", 0.0},
+           {"roughnessFactor", 0.0}}},
+         {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 0.8}}}}}});
+    file.useExtension("KHR_materials_transmission");
+    file.addNode({{"mesh", file.addMesh(makeBox(), gold)}});
+    file.addNode({{"mesh", file.addMesh(makePlane(), glass)}});
+    file.write(path("tinted.gltf"));
+
+    const Scene brdf = loadGltfScene(path("tinted.gltf"));
+    ASSERT_EQ(brdf.objects.size(), 2u);
+    const Material& mirror = brdf.objects[0].material;
+    EXPECT_EQ(mirror.model, ShadingModel::MetallicRoughness);
+    EXPECT_TRUE(mirror.reflects());
+    EXPECT_FALSE(mirror.refracts());
+    EXPECT_EQ(mirror.diffuse, (Rgb{1.0f, 0.77f, 0.34f}));  // the base colour F0 is taken from
+    const Material& pane = brdf.objects[1].material;
+    EXPECT_TRUE(pane.reflects());
+    EXPECT_FLOAT_EQ(pane.transmissivity, 0.8f);
+    EXPECT_EQ(pane.transmissionTint, (Rgb{0.2f, 0.9f, 0.3f}));
+    EXPECT_FALSE(hasNoteWith(brdf, "untinted")) << allNotes(brdf);
+    EXPECT_TRUE(hasNoteWith(brdf, "1 glass material's transmission is tinted by the base colour factor only"))
+        << allNotes(brdf);
+
+    const Scene mapped = loadGltfScene(path("tinted.gltf"), GltfSceneOverrides{.blinnPhongMaterials = true});
+    EXPECT_TRUE(hasNoteWith(mapped, "1 mirror material reflects untinted")) << allNotes(mapped);
+    EXPECT_TRUE(hasNoteWith(mapped, "1 glass material transmits untinted")) << allNotes(mapped);
+    EXPECT_FALSE(hasNoteWith(mapped, "tinted by the base colour factor only")) << allNotes(mapped);
+}
+
 // KHR_texture_transform gives what the transformed texture coordinates give.
 TEST_F(GltfSceneTest, TextureTransformIsBakedIntoTheTextureCoordinates) {
     const fs::path png = writeCheckerPng(path("checker.png"));

@@ -474,3 +474,63 @@ TEST(RenderWorker, AutoPipelineSyncRenderCacheFramesAreTheOfflineRenderCachesFra
         });
     }
 }
+
+// --spp N in the viewer: a still view shows the plain frame first, then one
+// more sample layer a frame, and after N layers exactly the image `raycache
+// render --spp N` makes of the same view. A new view starts again from the
+// plain frame.
+TEST(RenderWorker, AStillViewIsRefinedToTheOfflineSampledImage) {
+    const Scene scene = *makeBuiltinScene("glass");  // edges, a checker and refraction: jitter shows
+    const TraceScene tracer(scene);
+    constexpr int kSamples = 4;
+    RenderSettings settings = smallSettings();
+    settings.cache.techniqueOverride = CacheTechnique::None;
+    const Parallel parallel(2);
+    RenderSession plain(scene, settings, tracer, parallel);
+    Image plainFilm;
+    plain.render(scene.camera, plainFilm);
+    settings.samplesPerPixel = kSamples;
+    RenderSession sampled(scene, settings, tracer, parallel);
+    Image sampledFilm;
+    sampled.render(scene.camera, sampledFilm);
+    ASSERT_NE(srgb8(plainFilm), srgb8(sampledFilm));  // else the test could not tell them apart
+
+    FrameHandoff handoff;
+    RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, {}, smallSettings(), std::nullopt, {}};
+    setup.samplesPerPixel = kSamples;
+    RenderWorker worker(setup, handoff);
+    RenderRequest request;
+    request.camera = scene.camera;
+    request.width = settings.width;
+    request.height = settings.height;
+    request.config.technique = techniqueChoiceIndex(CacheTechnique::None);
+    request.config.pipeline = kAutoPipelineChoice;
+    worker.submit(request);
+    // The handoff keeps only the newest frame, so a frame may be skipped:
+    // the layers never go back, and the first and last are compared.
+    int previous = -1;
+    takeFrames(handoff, worker, [&](const DisplayFrame& f) {
+        EXPECT_EQ(f.refinementTarget, kSamples);
+        EXPECT_GT(f.refinedSamples, previous);
+        previous = f.refinedSamples;
+        if (f.refinedSamples == 0) {
+            EXPECT_EQ(f.rgba, srgb8(plainFilm));
+        }
+        if (f.refinedSamples == kSamples) {
+            EXPECT_EQ(f.rgba, srgb8(sampledFilm));
+        }
+        return f.refinedSamples >= kSamples || ::testing::Test::HasFailure();
+    });
+    EXPECT_EQ(previous, kSamples);
+
+    // A new view (the camera moved) starts again: its complete refinement
+    // is the offline sampled image of the new camera, not a mix of the two.
+    request.camera.position = request.camera.position + Vec3(0.05f, 0.0f, 0.0f);
+    sampled.render(request.camera, sampledFilm);
+    worker.submit(request);
+    takeFrames(handoff, worker, [&](const DisplayFrame& f) {
+        if (!(f.camera == request.camera) || f.refinedSamples < kSamples) return false;
+        EXPECT_EQ(f.rgba, srgb8(sampledFilm));
+        return true;
+    });
+}
