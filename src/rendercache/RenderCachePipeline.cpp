@@ -11,14 +11,9 @@
 #include "rendercache/ReconstructionBytes.h"
 #include "rendercache/RenderCacheFrameContext.h"
 #include "rendercache/TraceChunks.h"
+#include "rendercache/ViewDependence.h"
 
 namespace raycache {
-
-namespace {
-
-bool dependsOnView(const Material& m) { return m.reflects() || m.refracts() || !m.specular.isBlack(); }
-
-}  // namespace
 
 RenderCachePipeline::RenderCachePipeline(const Scene& scene, const TraceScene& tracer, const RenderSettings& settings,
                                          const Parallel& parallel, RayCache* cache)
