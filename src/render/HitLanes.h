@@ -129,7 +129,7 @@ void checkerAlbedoLanes16(const Checkerboard& pattern, const int* lanes, Surface
 
 // The secondary rays of sixteen hits of one material: the reflected and
 // refracted rays and their weights per channel (secondaryRayWeights,
-// render/SecondaryRayWeights.h: Whitted's constants, or Fresnel's for
+// tests/render/SecondaryRayWeights.h: Whitted's constants, or Fresnel's for
 // metallic-roughness materials).
 struct SecondaryRayLanes16 {
     alignas(64) float reflectedX[16], reflectedY[16], reflectedZ[16];  // unit directions

@@ -9,7 +9,7 @@
 // (the Render Cache keeps it while the eye moves). Surfaces smoother than
 // kSmoothRoughness (scene/Material.h) have no specular lobe toward a light: a point light's
 // reflection in them is a point, and their mirror ray, weighted by Schlick's
-// Fresnel at the hit (render/SecondaryRayWeights.h), carries the rest.
+// Fresnel at the hit (tests/render/SecondaryRayWeights.h), carries the rest.
 #include "core/Rgb.h"
 #include "core/Vec3.h"
 #include "scene/Material.h"

@@ -91,7 +91,7 @@ private:
     };
     // What one ray brings back: the light at its hit (or the background, or
     // the cache's answer) plus its reflected and refracted rays' colours times
-    // their weights (render/SecondaryRayWeights.h), gathered from its child
+    // their weights (tests/render/SecondaryRayWeights.h), gathered from its child
     // nodes once the tile is done; the same sums, in the same order, as the
     // recursive form. A node's own colour is unweighted: that is what a
     // cube stores for a leaving ray, its weight applying at the parent.

@@ -60,7 +60,7 @@ struct Material {
     // refracted ray. Metallic-roughness: a mirror ray is spawned where
     // reflectivity > 0, and transmissivity is the share of the light the
     // base layer transmits (transmission * (1 - metallic)); each ray's
-    // weight is Fresnel's at its hit (render/SecondaryRayWeights.h).
+    // weight is Fresnel's at its hit (tests/render/SecondaryRayWeights.h).
     float reflectivity = 0.0f;
     float transmissivity = 0.0f;
     float ior = 1.5f;                     // index of refraction of the inside

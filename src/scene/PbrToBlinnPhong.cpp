@@ -103,7 +103,7 @@ Material metallicRoughnessFromPbr(const PbrMaterial& pbr) {
     m.emission = pbr.emission;
     m.ior = pbr.ior;
     const float transmitted = pbr.transmission * (1.0f - pbr.metallic);
-    // The rays' weights are Fresnel's at each hit (render/SecondaryRayWeights.h):
+    // The rays' weights are Fresnel's at each hit (tests/render/SecondaryRayWeights.h):
     // here only whether the rays are spawned, and the transmitted share.
     if (transmitted > 0.0f) {
         m.reflectivity = 1.0f;

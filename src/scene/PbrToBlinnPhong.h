@@ -50,7 +50,7 @@ Material blinnPhongFromPbr(const PbrMaterial& pbr);
 // rays: smooth surfaces (roughness < kSmoothRoughness) and glass reflect a
 // mirror ray (reflectivity 1), glass also refracts (transmissivity
 // transmission * (1 - metallic), tinted by baseColorFactor); what each ray
-// weighs is Fresnel's at its hit (render/SecondaryRayWeights.h).
+// weighs is Fresnel's at its hit (tests/render/SecondaryRayWeights.h).
 Material metallicRoughnessFromPbr(const PbrMaterial& pbr);
 
 }  // namespace raycache

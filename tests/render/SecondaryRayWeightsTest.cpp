@@ -1,4 +1,4 @@
-// The secondary rays' weights (render/SecondaryRayWeights.h) against values
+// The secondary rays' weights (tests/render/SecondaryRayWeights.h) against values
 // worked out independently: the dielectric Fresnel equations in their angle
 // form (Fresnel's sines and tangents, in double) and their closed forms at
 // normal incidence, Brewster's angle and the critical angle; Schlick's

@@ -301,7 +301,7 @@ TEST_F(GltfSceneTest, BaseColourFactorMultipliesTheTexture) {
 }
 
 // Under glTF's BRDF a gold mirror reflects gold and glass transmits tinted by
-// its base colour factor (the rays' weights, render/SecondaryRayWeights.h):
+// its base colour factor (the rays' weights, tests/render/SecondaryRayWeights.h):
 // no note says otherwise, but one says a glass texture does not tint; under
 // the Blinn-Phong mapping both are untinted, and notes say so.
 TEST_F(GltfSceneTest, ColouredMirrorsAndGlassAreTintedUnderTheBrdf) {

@@ -67,6 +67,18 @@ void takeFrames(FrameHandoff& handoff, RenderWorker& worker, Done&& done) {
     FAIL() << "no frame in time";
 }
 
+// A request for `camera` at `settings`' size, without caching, through
+// pipeline choice `pipeline` (viewer/PipelineChoice.h).
+RenderRequest uncachedRequest(const Camera& camera, const RenderSettings& settings, int pipeline) {
+    RenderRequest request;
+    request.camera = camera;
+    request.width = settings.width;
+    request.height = settings.height;
+    request.config.technique = techniqueChoiceIndex(CacheTechnique::None);
+    request.config.pipeline = pipeline;
+    return request;
+}
+
 }  // namespace
 
 TEST(RenderWorker, ScriptedRunShowsEveryPathFrameAsTheOfflineRendererDoes) {
@@ -355,12 +367,7 @@ TEST(RenderWorker, AsyncRenderCacheWithAStillCameraConvergesToTheFullRender) {
     FrameHandoff handoff;
     RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, {}, smallSettings(), std::nullopt, {}};
     RenderWorker worker(setup, handoff);
-    RenderRequest request;
-    request.camera = scene.camera;
-    request.width = settings.width;
-    request.height = settings.height;
-    request.config.technique = techniqueChoiceIndex(CacheTechnique::None);
-    request.config.pipeline = kRenderCacheChoice;
+    RenderRequest request = uncachedRequest(scene.camera, settings, kRenderCacheChoice);
     request.renderCacheAsync = true;
     worker.submit(request);
     takeFrames(handoff, worker, [&](const DisplayFrame& f) {
@@ -499,12 +506,7 @@ TEST(RenderWorker, AStillViewIsRefinedToTheOfflineSampledImage) {
     RenderWorkerSetup setup{&scene, &tracer, scene.cameraPath, {}, smallSettings(), std::nullopt, {}};
     setup.samplesPerPixel = kSamples;
     RenderWorker worker(setup, handoff);
-    RenderRequest request;
-    request.camera = scene.camera;
-    request.width = settings.width;
-    request.height = settings.height;
-    request.config.technique = techniqueChoiceIndex(CacheTechnique::None);
-    request.config.pipeline = kAutoPipelineChoice;
+    RenderRequest request = uncachedRequest(scene.camera, settings, kAutoPipelineChoice);
     worker.submit(request);
     // The handoff keeps only the newest frame, so a frame may be skipped:
     // the layers never go back, and the first and last are compared.

@@ -1,8 +1,9 @@
 #pragma once
 // What a hit's mirror-reflected and refracted rays weigh in its colour, per
 // channel: the scalar rule that the tile kernel's lanes
-// (render/HitLaneKernels.inc, secondaryRayLanes) follow operation for
-// operation.
+// (src/render/HitLaneKernels.inc, secondaryRayLanes) follow operation for
+// operation. It lives with the tests, which hold the lanes to it; the
+// renderer computes the weights in lanes only.
 //
 // Blinn-Phong (Whitted): the material's constants kr and kt, kt added to kr
 // where the light is totally reflected.
