@@ -9,9 +9,9 @@ namespace raycache {
 
 namespace {
 
-// The levels of core/LaneClones.h's clones, as the loader's resolver tests
-// them. GCC tests a level by name; clang 14 (the fuzz build) knows no level
-// names, so there the level's distinguishing features stand for it.
+// The x86-64 levels of core/LaneLevels.h. GCC tests a level by name; clang
+// 14 (the fuzz build) knows no level names, so there the level's
+// distinguishing features stand for it.
 [[maybe_unused]] bool cpuHasLevel4() {
 #if defined(__clang__)
     return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
@@ -42,10 +42,10 @@ std::string laneInstructionSet() {
                                : cpuHasLevel3() ? "x86-64-v3 (AVX2)"
                                                 : "x86-64 (baseline)";
     if (std::getenv("RAYCACHE_LANES"))
-        return widest + "; hit lanes " + laneLevelName(laneLevel()) + " (RAYCACHE_LANES)";
+        return widest + "; lanes " + laneLevelName(laneLevel()) + " (RAYCACHE_LANES)";
     return widest;
 #else
-    return "the target's baseline (no clones off x86-64)";
+    return "the target's baseline (no lane levels off x86-64)";
 #endif
 }
 

@@ -1,22 +1,17 @@
 #pragma once
-// Lane code compiled once per x86-64 level, for files whose lanes combine
-// masks (core/FloatLanes.h). GCC's target_clones (core/LaneClones.h) lowers
-// a function's vector operations for the baseline target before it makes
-// the clones, and GCC 12 then turns a 16-lane mask's &, | and ~ into one
-// scalar compare per lane even in the AVX-512 clone (seen in perf: half of
-// the sphere callback's time). So such a file keeps its lane functions in a
-// .inc file that it includes three times, inside namespaces avx512, avx2 and
-// baseline, the first two under `#pragma GCC target` for their level, and
-// calls them through RAYCACHE_LANE_DISPATCH. Every copy is the same source,
-// so the same IEEE operations: the same bits on every level.
+// Every lane loop is compiled once per x86-64 level and chosen at run time
+// by laneLevel(); docs/architecture.md ("Lane levels") says how and why. A
+// file keeps its lane functions in a .inc file and calls them through
+// RAYCACHE_LANE_DISPATCH:
 //
 //   namespace raycache {
 //   #define RAYCACHE_LANE_KERNELS "render/FileKernels.inc"  // namespace RAYCACHE_LANE_LEVEL { ... }
-//   #include "core/LaneLevelsInclude.h"                       // the three copies
+//   #include "core/LaneLevelsInclude.h"                       // the copies
 //   void f(...) { RAYCACHE_LANE_DISPATCH(fLanes, ...); }
 //
-// A build with RAYCACHE_BASELINE_LANES (the sanitizer and fuzz presets; see
-// core/LaneClones.h) includes the baseline copy alone.
+// Kernels with no AVX-512 copy (RAYCACHE_LANE_LEVELS_UP_TO_AVX2 before the
+// include) are called with RAYCACHE_LANE_DISPATCH_UP_TO_AVX2, which runs the
+// avx2 copy at the avx512 level.
 #include <optional>
 
 namespace raycache {
@@ -38,6 +33,7 @@ const char* laneLevelName(LaneLevel level);
 
 #if defined(RAYCACHE_BASELINE_LANES)
 #define RAYCACHE_LANE_DISPATCH(function, ...) return baseline::function(__VA_ARGS__)
+#define RAYCACHE_LANE_DISPATCH_UP_TO_AVX2(function, ...) return baseline::function(__VA_ARGS__)
 #else
 #define RAYCACHE_LANE_DISPATCH(function, ...)                                      \
     switch (::raycache::laneLevel()) {                                            \
@@ -45,5 +41,8 @@ const char* laneLevelName(LaneLevel level);
     case ::raycache::LaneLevel::Avx2: return avx2::function(__VA_ARGS__);         \
     case ::raycache::LaneLevel::Baseline: break;                                  \
     }                                                                             \
+    return baseline::function(__VA_ARGS__)
+#define RAYCACHE_LANE_DISPATCH_UP_TO_AVX2(function, ...)                            \
+    if (::raycache::laneLevel() != ::raycache::LaneLevel::Baseline) return avx2::function(__VA_ARGS__); \
     return baseline::function(__VA_ARGS__)
 #endif

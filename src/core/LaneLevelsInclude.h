@@ -9,12 +9,15 @@
 // 16-lane mask's logic well only where 16 lanes fill one register.
 // core/LanePieces.inc, included first in each level, gives such kernels the
 // level's Piece, Floats and Mask and its mask helpers (the including file
-// includes core/FloatLanes.h).
+// includes core/FloatLanes.h). With RAYCACHE_LANE_LEVELS_UP_TO_AVX2 defined
+// too, the avx512 copy is left out (call them with
+// RAYCACHE_LANE_DISPATCH_UP_TO_AVX2).
 #if !defined(RAYCACHE_LANE_KERNELS)
 #error "define RAYCACHE_LANE_KERNELS before including core/LaneLevelsInclude.h"
 #endif
 
 #if !defined(RAYCACHE_BASELINE_LANES)
+#if !defined(RAYCACHE_LANE_LEVELS_UP_TO_AVX2)
 #define RAYCACHE_LANE_LEVEL avx512
 #define RAYCACHE_LANE_BYTES 64
 #pragma GCC push_options
@@ -24,6 +27,7 @@
 #pragma GCC pop_options
 #undef RAYCACHE_LANE_BYTES
 #undef RAYCACHE_LANE_LEVEL
+#endif
 
 #define RAYCACHE_LANE_LEVEL avx2
 #define RAYCACHE_LANE_BYTES 32
@@ -43,3 +47,4 @@
 #undef RAYCACHE_LANE_BYTES
 #undef RAYCACHE_LANE_LEVEL
 #undef RAYCACHE_LANE_KERNELS
+#undef RAYCACHE_LANE_LEVELS_UP_TO_AVX2

@@ -19,7 +19,7 @@ struct RayLanePointers {
 
 // t[k] = sphereRoot(sphere, ray k) for the lanes where active[k] is
 // non-zero; -1 elsewhere. Runs the AVX-512, AVX2 or baseline x86-64 code,
-// whichever the processor has (core/LaneClones.h); all give the same bits.
+// as laneLevel() decides (core/LaneLevels.h); all give the same bits.
 void sphereRoots16(const Sphere& sphere, const RayLanePointers& rays, const int* active, float* t);
 
 }  // namespace raycache

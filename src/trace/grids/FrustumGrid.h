@@ -19,7 +19,6 @@
 #include <span>
 #include <vector>
 
-#include "core/LaneClones.h"
 #include "core/Parallel.h"
 #include "core/Ray.h"
 #include "trace/TraceHit.h"
@@ -29,6 +28,17 @@
 #include "trace/grids/GridPrimitives.h"
 
 namespace raycache {
+
+// FrustumGrid's lane loops, one copy per lane level up to AVX2
+// (FrustumGridBuildKernels.inc, FrustumGridTraversalKernels.inc).
+namespace avx2 {
+struct FrustumGridBuildKernels;
+struct FrustumGridTraversalKernels;
+}  // namespace avx2
+namespace baseline {
+struct FrustumGridBuildKernels;
+struct FrustumGridTraversalKernels;
+}  // namespace baseline
 
 // A box in frame coordinates.
 struct FrameBox {
@@ -114,6 +124,11 @@ public:
     const FrustumGridSpec& spec() const { return spec_; }
 
 private:
+    friend struct avx2::FrustumGridBuildKernels;
+    friend struct avx2::FrustumGridTraversalKernels;
+    friend struct baseline::FrustumGridBuildKernels;
+    friend struct baseline::FrustumGridTraversalKernels;
+
     // A range of planar grid coordinates (s, t: x/z and y/z, or x and y);
     // empty until something is added.
     struct PlanarRange {
@@ -143,7 +158,6 @@ private:
     };
     // The cells and planar box of a primitive whose planar box is sLo..tHi
     // (overlapping the rectangle) and depth range zA..zB.
-    // Always inlined, so binPrimitives' clones compile it for their targets.
     [[gnu::always_inline]] CellRange cellRangeOf(double sLo, double sHi, double tLo, double tHi, double zA, double zB,
                                                  PlanarBox& box) const;
     // Whether `primitive`'s planar box misses `range`: then no ray whose
@@ -185,8 +199,8 @@ private:
     // The traversals of the first kDoubleLanes (4) of `rays` at once, into
     // out[0..]: each quantity of the lanes is one vector (core/DoubleLanes.h),
     // so four rays cost about what one did in scalar code. `hint` is updated
-    // to the last covered ray's column. Compiled for AVX2 and baseline x86-64.
-    RAYCACHE_LANE_CLONES
+    // to the last covered ray's column. Runs the lane level's copy
+    // (FrustumGridTraversalKernels.inc).
     void generalTraversals(std::span<const Ray> rays, Traversal* out, ColumnHint& hint) const;
     Traversal generalTraversal(const Ray& ray, ColumnHint hint) const {
         Traversal tr;
@@ -196,25 +210,21 @@ private:
     // A camera packet's key (column and shear axes in one integer), and the column back from it.
     static std::uint64_t cameraKey(const ApexColumn& column, const Vec3& direction);
     static ApexColumn unpackCameraKey(std::uint64_t key);
-    // The packets are compiled for AVX2 and for baseline x86-64, the CPU
-    // choosing at load time (FrustumGridTraversal.cpp). The attribute must be on the
-    // first declaration for clang. `lanesPlanar`: the union of the lanes'
-    // planar ranges in the grid part; null for rays from the apex
-    // (apexWalk), whose planar coordinates are their directions'.
-    RAYCACHE_LANE_CLONES
+    // The packets run the lane level's copy (FrustumGridTraversalKernels.inc).
+    // `lanesPlanar`: the union of the lanes' planar ranges in the grid part;
+    // null for rays from the apex (apexWalk), whose planar coordinates are
+    // their directions'.
     void intersectPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& tr,
                          const PlanarRange* lanesPlanar, std::span<TraceHit> hits) const;
     // `walk`: the union of the lanes' traversals (same columns, every slice
     // any of them visits, the union of their planar ranges).
-    RAYCACHE_LANE_CLONES
     void occludedPacket(std::span<const Ray> rays, std::span<const std::uint32_t> lanes, const Traversal& walk,
                         std::span<unsigned char> blocked) const;
     CellRange binPrimitive(std::uint32_t primitive, bool& inNearZone, PlanarBox& box) const;
     // ranges_, boxes_ and nearFlags_ of primitives first .. first + count - 1
     // (count <= kDoubleLanes), as binPrimitive gives them, the triangles'
-    // arithmetic four at a time (core/DoubleLanes.h). Compiled for AVX2 and
-    // baseline x86-64.
-    RAYCACHE_LANE_CLONES
+    // arithmetic four at a time (core/DoubleLanes.h). Runs the lane level's
+    // copy (FrustumGridBuildKernels.inc).
     void binPrimitives(std::uint32_t first, std::uint32_t count, PrimitiveFilter filter, std::uint64_t& pairs,
                        std::uint32_t& binned);
     // Index of cell (i, j) of depth slice k in cellLists_. A column's slices
@@ -240,24 +250,9 @@ private:
     bool hitEndsWalk(const Traversal& tr, double z, int k) const {
         return tr.ascending ? z + spec_.margin <= sliceLower(k + 1) : z - spec_.margin >= sliceLower(k);
     }
-    // The grid part of a traversal, slice by slice front to back: visit(p)
-    // once for every primitive p of the covered cells (in its first cell),
-    // then sliceDone(k) after slice k; stops as soon as either returns true.
-    template <typename Visit, typename SliceDone>
-    [[gnu::always_inline]] void walkCells(const Traversal& tr, Visit&& visit, SliceDone&& sliceDone) const {
-        const int steps = tr.k1 - tr.k0 + 1;
-        for (int step = 0; step < steps; ++step) {
-            const int k = tr.ascending ? tr.k0 + step : tr.k1 - step;
-            for (int j = tr.j0; j <= tr.j1; ++j)
-                for (int i = tr.i0; i <= tr.i1; ++i) {
-                    const std::size_t cell = flatCell(k, j, i);
-                    const std::uint32_t* primitives = cellLists_.primitives().data();
-                    for (std::uint32_t at = cellLists_.cellStart()[cell]; at < cellLists_.cellStart()[cell + 1]; ++at)
-                        if (firstVisit(primitives[at], tr, k, j, i) && visit(primitives[at])) return;
-                }
-            if (sliceDone(k)) return;
-        }
-    }
+    // The grid part of a traversal is walked slice by slice, front to back,
+    // by FrustumGridTraversalKernels::walkCells: it is compiled inside each
+    // lane level's copy, with the lane loops it inlines.
 
     FrustumGridSpec spec_;
     const GridPrimitives* primitives_ = nullptr;

@@ -8,6 +8,8 @@
 
 #include "core/DoubleLanes.h"
 #include "core/Errors.h"
+#include "core/FloatLanes.h"
+#include "core/LaneLevels.h"
 
 namespace raycache {
 
@@ -161,14 +163,6 @@ float roundedOutward(double value, double direction) {
     return static_cast<float>(value + direction * (std::fabs(value) * 0x1p-22 + 1e-30));
 }
 
-using FloatLanes = float __attribute__((vector_size(16)));
-
-// The same for kDoubleLanes values.
-[[gnu::always_inline]] inline void roundedOutward(const DoubleLanes& value, double direction, FloatLanes& rounded) {
-    const DoubleLanes magnitude = value < 0.0 ? -value : value;
-    rounded = __builtin_convertvector(value + direction * (magnitude * 0x1p-22 + 1e-30), FloatLanes);
-}
-
 }  // namespace
 
 inline FrustumGrid::CellRange FrustumGrid::cellRangeOf(double sLo, double sHi, double tLo, double tHi, double zA, double zB,
@@ -183,132 +177,13 @@ inline FrustumGrid::CellRange FrustumGrid::cellRangeOf(double sLo, double sHi, d
             tAxis_.cellOf(tHi), depthAxis_.cellOf(zA), depthAxis_.cellOf(zB)};
 }
 
-// Cloned for AVX2 and baseline x86-64, as generalTraversals: the triangles'
-// corners, bounds and projections are one vector per quantity for four
-// triangles, the same operations as binPrimitive's lane by lane. A lane that
-// is a sphere or must be clipped takes binPrimitive itself.
-RAYCACHE_LANE_CLONES
+#define RAYCACHE_LANE_KERNELS "trace/grids/FrustumGridBuildKernels.inc"
+#define RAYCACHE_LANE_LEVELS_UP_TO_AVX2
+#include "core/LaneLevelsInclude.h"
+
 void FrustumGrid::binPrimitives(std::uint32_t first, std::uint32_t count, PrimitiveFilter filter, std::uint64_t& pairs,
                                 std::uint32_t& binned) {
-    const GridFrame& frame = spec_.frame;
-    const double m = spec_.margin;
-    // The corners in frame coordinates; lanes past `count` repeat the first
-    // primitive, their results unused.
-    DoubleLanes x[3], y[3], z[3];
-    for (std::uint32_t l = 0; l < static_cast<std::uint32_t>(kDoubleLanes); ++l) {
-        const GridPrimitives::TriangleCoordinates& c = primitives_->triangleCoordinates(first + (l < count ? l : 0));
-        for (int k = 0; k < 3; ++k) {
-            x[k][l] = c[static_cast<std::size_t>(3 * k)];
-            y[k][l] = c[static_cast<std::size_t>(3 * k + 1)];
-            z[k][l] = c[static_cast<std::size_t>(3 * k + 2)];
-        }
-    }
-    DoubleLanes loX = kFrustumInfinity + DoubleLanes{}, loY = loX, loZ = loX, hiX = -loX, hiY = hiX, hiZ = hiX;
-    for (int k = 0; k < 3; ++k) {
-        frame.toFrame(x[k], y[k], z[k]);
-        keepMin(loX, x[k]);
-        keepMin(loY, y[k]);
-        keepMin(loZ, z[k]);
-        keepMax(hiX, x[k]);
-        keepMax(hiY, y[k]);
-        keepMax(hiZ, z[k]);
-    }
-    const FrameBox& zone = spec_.nearZone;
-    const LaneMask nearZone = frame.perspective()
-                                  ? (loZ - m < spec_.zNear) & (loX - m <= zone.hi.x) & (zone.lo.x <= hiX + m) &
-                                        (loY - m <= zone.hi.y) & (zone.lo.y <= hiY + m) & (loZ - m <= zone.hi.z) &
-                                        (zone.lo.z <= hiZ + m)
-                                  : LaneMask{};
-    DoubleLanes zA = loZ - m, zB = hiZ + m;
-    keepMax(zA, zLo_ + DoubleLanes{});
-    keepMin(zB, zHi_ + DoubleLanes{});
-    const LaneMask clipped = frame.perspective() ? loZ < zLo_ : LaneMask{};
-    DoubleLanes sLo, sHi, tLo, tHi;
-    if (frame.perspective()) {
-        sLo = tLo = kFrustumInfinity + DoubleLanes{};
-        sHi = tHi = -sLo;
-        for (int k = 0; k < 3; ++k) {
-            // One division: x (1/z) is within an ulp or two of x/z, far below the margin.
-            const DoubleLanes inverseZ = 1.0 / z[k];
-            const DoubleLanes u = x[k] * inverseZ, v = y[k] * inverseZ;
-            // Moving the point by m moves its projection by at most m (1 + |u|) / z.
-            const DoubleLanes mu = m * (1.0 + (u < 0.0 ? -u : u)) * inverseZ;
-            const DoubleLanes mv = m * (1.0 + (v < 0.0 ? -v : v)) * inverseZ;
-            keepMin(sLo, u - mu);
-            keepMax(sHi, u + mu);
-            keepMin(tLo, v - mv);
-            keepMax(tHi, v + mv);
-        }
-    } else {
-        sLo = loX - m;
-        sHi = hiX + m;
-        tLo = loY - m;
-        tHi = hiY + m;
-    }
-    const LaneMask outside = (zA > zB) | (sHi < sAxis_.lower()) | (sLo > sAxis_.upper()) | (tHi < tAxis_.lower()) |
-                             (tLo > tAxis_.upper());
-    // How each lane is binned: not at all (filtered out, or outside the
-    // grid), by binPrimitive (a sphere, or a triangle to clip), or from the
-    // vectors below. A light's face grid admits few primitives: when no lane
-    // takes its cells from the vectors, they are not computed.
-    enum class LaneBinning : unsigned char { FilteredOut, Scalar, Outside, FromVectors };
-    LaneBinning binning[kDoubleLanes] = {};
-    bool anyFromVectors = false;
-    for (std::uint32_t l = 0; l < count; ++l) {
-        const std::uint32_t p = first + l;
-        if (!filter.admits(p)) binning[l] = LaneBinning::FilteredOut;
-        else if (primitives_->sphere(p) || (clipped[l] != 0 && !(zA[l] > zB[l]))) binning[l] = LaneBinning::Scalar;
-        else if (outside[l] != 0) binning[l] = LaneBinning::Outside;
-        else binning[l] = LaneBinning::FromVectors;
-        anyFromVectors |= binning[l] == LaneBinning::FromVectors;
-    }
-    // cellRangeOf for the four lanes: its clamps, rounding and cells, lane by lane the same.
-    FloatLanes boxSLo{}, boxSHi{}, boxTLo{}, boxTHi{};
-    IntLanes i0{}, i1{}, j0{}, j1{}, k0{}, k1{};
-    if (anyFromVectors) {
-        keepMax(sLo, sAxis_.lower() + DoubleLanes{});
-        keepMin(sHi, sAxis_.upper() + DoubleLanes{});
-        keepMax(tLo, tAxis_.lower() + DoubleLanes{});
-        keepMin(tHi, tAxis_.upper() + DoubleLanes{});
-        roundedOutward(sLo, -1.0, boxSLo);
-        roundedOutward(sHi, 1.0, boxSHi);
-        roundedOutward(tLo, -1.0, boxTLo);
-        roundedOutward(tHi, 1.0, boxTHi);
-        sAxis_.cellsOf(sLo, i0);
-        sAxis_.cellsOf(sHi, i1);
-        tAxis_.cellsOf(tLo, j0);
-        tAxis_.cellsOf(tHi, j1);
-        depthAxis_.cellsOf(zA, k0);
-        depthAxis_.cellsOf(zB, k1);
-    }
-    for (std::uint32_t l = 0; l < count; ++l) {
-        const std::uint32_t p = first + l;
-        CellRange& range = ranges_[p];
-        bool inNearZone = false;
-        switch (binning[l]) {
-            case LaneBinning::FilteredOut:
-                range = kNoCells;
-                break;
-            case LaneBinning::Scalar:
-                range = binPrimitive(p, inNearZone, boxes_[p]);
-                break;
-            case LaneBinning::Outside:
-                inNearZone = nearZone[l] != 0;
-                range = kNoCells;
-                break;
-            case LaneBinning::FromVectors:
-                inNearZone = nearZone[l] != 0;
-                range = {i0[l], i1[l], j0[l], j1[l], k0[l], k1[l]};
-                boxes_[p] = {boxSLo[l], boxSHi[l], boxTLo[l], boxTHi[l]};
-                break;
-        }
-        nearFlags_[p] = inNearZone ? 1 : 0;
-        if (range.i1 >= range.i0) {
-            pairs += static_cast<std::uint64_t>(range.i1 - range.i0 + 1) * (range.j1 - range.j0 + 1) *
-                     (range.k1 - range.k0 + 1);
-            ++binned;
-        }
-    }
+    RAYCACHE_LANE_DISPATCH_UP_TO_AVX2(FrustumGridBuildKernels::binPrimitives, *this, first, count, filter, pairs, binned);
 }
 
 void FrustumGrid::build(const FrustumGridSpec& spec, const GridPrimitives& primitives, const Parallel& parallel,
