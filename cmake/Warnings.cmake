@@ -11,7 +11,7 @@ function(raycache_set_warnings target)
   endif()
   # No fused multiply-adds the source does not write: GCC contracts a * b + c
   # into one FMA in C++ by default wherever the target has FMA (-march=native,
-  # the grids' AVX2 clones), which rounds differently, so images and
+  # the AVX2 and AVX-512 copies of the lane loops), which rounds differently, so images and
   # answers would depend on the machine.
   target_compile_options(${target} PRIVATE -ffp-contract=off)
   # Unity batches (the sanitizer and fuzz presets) include .cpp files into one

@@ -22,7 +22,7 @@ using IntLanes = int __attribute__((vector_size(16)));
 
 // The helpers work in place, through references: a 32-byte vector passed
 // or returned by value changes the calling convention of a function compiled
-// without AVX (the baseline clones), which clang refuses even for a function
+// without AVX (the baseline copies), which clang refuses even for a function
 // that is always inlined.
 
 // a = std::max(a, b) lane by lane, with its rule: a unless a < b (so a NaN in a stays).

@@ -10,7 +10,7 @@
 //
 // The helpers work in place, through references, for the reason
 // core/DoubleLanes.h gives (a 64-byte vector passed by value changes the
-// calling convention of the baseline clones).
+// calling convention of the baseline copies).
 #include <type_traits>
 
 namespace raycache {

@@ -1,7 +1,7 @@
 // The tile kernel's sixteen-lane surface and shadow-ray code against the
 // scalar rules it implements (surfacePointAt, LocalShading::shadowQueries), bit
 // for bit, and the specular power against std::pow. The release build runs
-// the clone this machine picks (AVX-512 or AVX2); the asan build, with
+// the copy this machine's lane level picks (AVX-512 or AVX2); the asan build, with
 // RAYCACHE_BASELINE_LANES, the baseline x86-64 code.
 #include <gtest/gtest.h>
 

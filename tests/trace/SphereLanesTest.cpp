@@ -1,7 +1,7 @@
 // The sixteen-lane sphere root against the scalar one, bit for bit: the
 // packet callbacks use the first, single rays and the grids the second, so a
 // sphere hit's distance must not depend on which ran. The release build
-// runs the clone this machine picks (AVX-512 or AVX2); the asan build, with
+// runs the copy this machine's lane level picks (AVX-512 or AVX2); the asan build, with
 // RAYCACHE_BASELINE_LANES, the baseline x86-64 code.
 #include <gtest/gtest.h>
 
