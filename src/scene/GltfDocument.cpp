@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <system_error>
 
@@ -150,6 +151,33 @@ void refuseDeepNesting(const fs::path& path, const std::string& text) {
                        " levels deep (arrays and objects inside each other)");
 }
 
+// KHR_materials_emissive_strength's factor of each material: 1 where the
+// extension is absent, a finite number >= 0 where present (the
+// specification's range), or the file is refused naming the field.
+std::vector<float> emissiveStrengths(const fs::path& path, const json& materials) {
+    std::vector<float> strengths;
+    if (!materials.is_array()) return strengths;
+    for (std::size_t i = 0; i < materials.size(); ++i) {
+        float strength = 1.0f;
+        const json& material = materials[i];
+        if (material.is_object())
+            if (const auto extensions = material.find("extensions");
+                extensions != material.end() && extensions->is_object())
+                if (const auto extension = extensions->find("KHR_materials_emissive_strength");
+                    extension != extensions->end() && extension->is_object())
+                    if (const auto value = extension->find("emissiveStrength"); value != extension->end()) {
+                        const double v = value->is_number() ? value->get<double>() : -1.0;
+                        if (!(v >= 0.0 && v <= static_cast<double>(std::numeric_limits<float>::max())))
+                            fail(path, "materials[" + std::to_string(i) +
+                                           "].extensions.KHR_materials_emissive_strength.emissiveStrength must be a "
+                                           "finite number >= 0");
+                        strength = static_cast<float>(v);
+                    }
+        strengths.push_back(strength);
+    }
+    return strengths;
+}
+
 }  // namespace
 
 GltfDocument readGltfDocument(const fs::path& path) {
@@ -201,8 +229,10 @@ GltfDocument readGltfDocument(const fs::path& path) {
         for (const json& camera : *cameras)
             document.orthographicCameras.push_back(camera.is_object() &&
                                                    camera.value("type", json()) == "orthographic");
-    if (const auto materials = root.find("materials"); materials != root.end())
+    if (const auto materials = root.find("materials"); materials != root.end()) {
         document.textureTransformSetsTexCoord = transformSetsTexCoord(*materials);
+        document.emissiveStrengths = emissiveStrengths(path, *materials);
+    }
     return document;
 }
 

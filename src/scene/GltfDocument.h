@@ -24,6 +24,11 @@ struct GltfDocument {
     // Some texture's KHR_texture_transform names its own texture coordinate
     // set ("texCoord"), which Assimp 5.2 does not read.
     bool textureTransformSetsTexCoord = false;
+    // Per entry of "materials": KHR_materials_emissive_strength's
+    // emissiveStrength, the factor on emissiveFactor (1 without the
+    // extension). Assimp 5.2 does not read it; its materials keep the file's
+    // order, so entry i is Assimp's material i.
+    std::vector<float> emissiveStrengths;
 
     bool isVersion2() const { return version.rfind("2.", 0) == 0; }
 };

@@ -50,20 +50,20 @@ constexpr float kLumensPerWatt = 683.0f;
 constexpr std::size_t kMaxGltfObjects = 100000;
 
 // Extensions raycache reads (through Assimp): required or not, they are honoured.
-constexpr std::array<std::string_view, 4> kReadExtensions{"KHR_lights_punctual", "KHR_materials_transmission",
-                                                          "KHR_materials_ior", "KHR_texture_transform"};
+constexpr std::array<std::string_view, 5> kReadExtensions{"KHR_lights_punctual", "KHR_materials_transmission",
+                                                          "KHR_materials_ior", "KHR_texture_transform",
+                                                          "KHR_materials_emissive_strength"};
 // Extensions that change only how a surface looks, which the Blinn-Phong
 // mapping approximates anyway: a file that requires one still loads, with
 // its note. Every other required extension refuses the file: without it
 // the geometry or the textures cannot be read (Draco, meshopt and
 // quantized meshes, KTX2 and WebP images, GPU instancing).
-constexpr std::array<std::string_view, 11> kAppearanceExtensions{"KHR_materials_pbrSpecularGlossiness",
+constexpr std::array<std::string_view, 10> kAppearanceExtensions{"KHR_materials_pbrSpecularGlossiness",
                                                                  "KHR_materials_unlit",
                                                                  "KHR_materials_sheen",
                                                                  "KHR_materials_clearcoat",
                                                                  "KHR_materials_volume",
                                                                  "KHR_materials_specular",
-                                                                 "KHR_materials_emissive_strength",
                                                                  "KHR_materials_iridescence",
                                                                  "KHR_materials_anisotropy",
                                                                  "KHR_materials_dispersion",
@@ -272,7 +272,9 @@ private:
         if (!overrides_.blinnPhongMaterials) {
             aiColor4D emissive(0, 0, 0, 0);
             m.Get(AI_MATKEY_COLOR_EMISSIVE, emissive);
-            pbr.emission = Rgb{emissive.r, emissive.g, emissive.b};
+            const float strength =
+                index < document_.emissiveStrengths.size() ? document_.emissiveStrengths[index] : 1.0f;
+            pbr.emission = Rgb{emissive.r, emissive.g, emissive.b} * strength;
             if (!isFinite(pbr.emission) || pbr.emission.r < 0.0f || pbr.emission.g < 0.0f || pbr.emission.b < 0.0f)
                 fail(name + ": emissiveFactor must be finite and not negative");
         }
