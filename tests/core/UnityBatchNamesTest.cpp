@@ -108,6 +108,29 @@ TEST(UnityBatchNames, NoTwoFilesOfATestTargetShareAnAnonymousName) {
             ADD_FAILURE() << m << ": rename one (unity batches would meet them)";
 }
 
+// A file that includes core/LaneLevelsInclude.h defines each lane level's
+// pieces (core/LanePieces.inc): two such files in one batch do not compile,
+// so src/CMakeLists.txt keeps every one of them out of the batches.
+TEST(UnityBatchNames, EveryLaneLevelFileIsKeptOutOfUnityBatches) {
+    const std::filesystem::path src = sourceTreeDir() / "src";
+    const std::string cmake = readSourceText(src / "CMakeLists.txt");
+    const std::size_t skip = cmake.find("SKIP_UNITY_BUILD_INCLUSION");
+    ASSERT_NE(skip, std::string::npos);
+    const std::size_t listStart = cmake.rfind("set_source_files_properties(", skip);
+    ASSERT_NE(listStart, std::string::npos);
+    const std::string skipped = cmake.substr(listStart, skip - listStart);
+    int laneFiles = 0;
+    for (const auto& e : std::filesystem::recursive_directory_iterator(src)) {
+        if (e.path().extension() != ".cpp") continue;
+        if (readSourceText(e.path()).find("#include \"core/LaneLevelsInclude.h\"") == std::string::npos) continue;
+        ++laneFiles;
+        const std::string relative = std::filesystem::relative(e.path(), src).generic_string();
+        EXPECT_NE(skipped.find(relative), std::string::npos)
+            << relative << " includes core/LaneLevelsInclude.h: add it to the SKIP_UNITY_BUILD_INCLUSION list";
+    }
+    EXPECT_GE(laneFiles, 10);
+}
+
 TEST(UnityBatchNames, FindsARepeatedConstantAndIgnoresAliases) {
     const std::string a = "x\nnamespace {\nconstexpr float kLimit = 1.0f;\nusing Clock = int;\n}\n";
     const std::string b = "y\nnamespace {\nint helper(int v) {\n    return v;\n}\nusing Clock = int;\n}\n";
