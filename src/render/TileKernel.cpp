@@ -20,13 +20,13 @@ constexpr float kKernelInfinity = std::numeric_limits<float>::infinity();
 }  // namespace
 
 void TileScratch::beginTile(std::size_t roots) {
-    nodes.assign(roots, Node{});
-    stores.clear();
-    trackTrees = false;  // runWaves decides, once it knows the cache
-    countTreeRays = false;
-    recordLevels = false;  // the callers that record say so after this
-    fillRoots.clear();
-    fillPositions.clear();
+    wave.nodes.assign(roots, TileWave::Node{});
+    caching.stores.clear();
+    caching.trackTrees = false;  // runWaves decides, once it knows the cache
+    caching.countTreeRays = false;
+    levelRecord.on = false;  // the callers that record say so after this
+    visibleFill.roots.clear();
+    visibleFill.positions.clear();
 }
 
 TileKernel::TileKernel(const Scene& scene, const TraceScene& tracer, const RenderSettings& settings,
@@ -44,7 +44,7 @@ void TileKernel::renderCameraTile(const CameraRays& cameraRays, const TileRange&
     const int tileWidth = tile.x1 - tile.x0;
     const auto n = static_cast<std::size_t>(tileWidth) * static_cast<std::size_t>(tile.y1 - tile.y0);
     s.beginTile(n);
-    if (levels) beginLevelRecord(s, n);
+    if (levels) beginLevelRecord(s.levelRecord, n);
     // The film's lines this tile will write, fetched while it traces: the
     // otherwise the pixels' stores miss the cache at the tile's end.
     for (int y = tile.y0; y < tile.y1; ++y) {
@@ -60,8 +60,8 @@ void TileKernel::renderCameraTile(const CameraRays& cameraRays, const TileRange&
     resolveNodes(s, cache, tileKey);
     fillFromVisiblePoints(s, cache, cameraRays.ray(tile.x0, tile.y0).origin);
     StageTimer timer(settings_.stageTimes, s.stages.compose);
-    composeTile(s, tile, film);
-    if (levels) writeLevelRecord(s, tile, *levels);
+    composeTile(s.wave, tile, film);
+    if (levels) writeLevelRecord(s.levelRecord, tile, *levels);
 }
 
 void TileKernel::renderGBufferTile(const CameraRays& cameraRays, const GBufferView& gbuffer, const TileRange& tile,
@@ -71,7 +71,7 @@ void TileKernel::renderGBufferTile(const CameraRays& cameraRays, const GBufferVi
     const int tileWidth = tile.x1 - tile.x0;
     const auto n = static_cast<std::size_t>(tileWidth) * static_cast<std::size_t>(tile.y1 - tile.y0);
     s.beginTile(n);
-    if (levels) beginLevelRecord(s, n);
+    if (levels) beginLevelRecord(s.levelRecord, n);
     const auto firstBounceBefore = s.firstBounce;
     beginWaves(s, cache);
     readGBufferInLanes(cameraRays, gbuffer, tile, s, cache);
@@ -84,8 +84,8 @@ void TileKernel::renderGBufferTile(const CameraRays& cameraRays, const GBufferVi
     const auto t1 = Clock::now();
     {
         StageTimer timer(settings_.stageTimes, s.stages.compose);
-        composeTile(s, tile, film);
-        if (levels) writeLevelRecord(s, tile, *levels);
+        composeTile(s.wave, tile, film);
+        if (levels) writeLevelRecord(s.levelRecord, tile, *levels);
     }
     s.compose += Clock::now() - t1;
     // The first bounce was timed as it ran; the rest is the secondary phase.
@@ -99,7 +99,6 @@ void TileKernel::renderFromInside(int objectId, std::span<const Ray> rays, int d
     constexpr int kMaxOwnSurfaces = 64;
     const std::size_t n = rays.size();
     s.beginTile(n);
-    s.rootHitDistance.assign(n, kKernelInfinity);
     beginWaves(s, nullptr);
     {
         StageTimer timer(settings_.stageTimes, s.stages.firstHits);
@@ -108,12 +107,13 @@ void TileKernel::renderFromInside(int objectId, std::span<const Ray> rays, int d
             ++s.counts.prefill;
             Ray r = rays[i];
             out[i].viewDependent = 0;
+            out[i].hitDistance = kKernelInfinity;
             bool shaded = false;
             for (int k = 0; k < kMaxOwnSurfaces; ++k) {
                 const TraceHit hit = tracer_.intersect(r);
                 if (!hit.hit()) break;
                 if (hit.objectId != objectId) {
-                    s.rootHitDistance[i] = hit.t;
+                    out[i].hitDistance = hit.t;
                     const Material& seen = scene_.objects[static_cast<std::size_t>(hit.objectId)].material;
                     out[i].viewDependent = seen.reflects() || seen.refracts() ? 1 : 0;
                     addFirstHit(s, r, hit, static_cast<int>(i), depth, RayCone{});
@@ -122,17 +122,14 @@ void TileKernel::renderFromInside(int objectId, std::span<const Ray> rays, int d
                 }
                 r.tNear = hit.t + surfaceOffset(r.origin + r.direction * hit.t);
             }
-            if (!shaded) s.nodes[i].direct = shading_.background(rays[i]);
+            if (!shaded) s.wave.nodes[i].direct = shading_.background(rays[i]);
         }
         endFirstHits(s);
     }
     shadePackets(s, nullptr, false, WaveShadows::Traced);
     runWaves(s, nullptr);
     resolveNodes(s, nullptr, 0);
-    for (std::size_t i = 0; i < n; ++i) {
-        out[i].color = s.nodes[i].color();
-        out[i].hitDistance = s.rootHitDistance[i];
-    }
+    for (std::size_t i = 0; i < n; ++i) out[i].color = s.wave.nodes[i].color();
 }
 
 void TileKernel::renderCameraPixels(const CameraRays& cameraRays, std::span<const PixelCoord> pixels,
@@ -140,38 +137,38 @@ void TileKernel::renderCameraPixels(const CameraRays& cameraRays, std::span<cons
                                     std::span<PrimarySample> out) const {
     const std::size_t n = pixels.size();
     s.beginTile(n);
-    s.recordFirstHits = true;
-    s.rootViewIndependent.assign(n, Rgb{});
-    s.rootLighting.assign(n, Rgb{});
-    s.rootLitMask.assign(n, 0);
+    s.renderCache.recordFirstHits = true;
+    s.renderCache.rootViewIndependent.assign(n, Rgb{});
+    s.renderCache.rootLighting.assign(n, Rgb{});
+    s.renderCache.rootLitMask.assign(n, 0);
     beginWaves(s, cache);
     {
         StageTimer timer(settings_.stageTimes, s.stages.firstHits);
-        s.rays.resize(n);
-        s.hits.resize(n);
-        for (std::size_t i = 0; i < n; ++i) s.rays[i] = cameraRays.ray(pixels[i].x, pixels[i].y);
-        tracer_.intersectPrimary(std::span(s.rays.data(), n), std::span(s.hits.data(), n));
+        s.batch.rays.resize(n);
+        s.batch.hits.resize(n);
+        for (std::size_t i = 0; i < n; ++i) s.batch.rays[i] = cameraRays.ray(pixels[i].x, pixels[i].y);
+        tracer_.intersectPrimary(std::span(s.batch.rays.data(), n), std::span(s.batch.hits.data(), n));
         s.counts.primary += n;
         const RayCone pixel{0.0f, cameraRays.pixelSpread()};
         beginFirstHits(s, n);
         for (std::size_t i = 0; i < n; ++i) {
-            out[i].hit = s.hits[i];
-            if (s.hits[i].hit())
-                addFirstHit(s, s.rays[i], s.hits[i], static_cast<int>(i), 1, pixel);
+            out[i].hit = s.batch.hits[i];
+            if (s.batch.hits[i].hit())
+                addFirstHit(s, s.batch.rays[i], s.batch.hits[i], static_cast<int>(i), 1, pixel);
             else
-                s.nodes[i].direct = shading_.background(s.rays[i]);
+                s.wave.nodes[i].direct = shading_.background(s.batch.rays[i]);
         }
         endFirstHits(s);
     }
     shadePackets(s, cache && cache_ ? cache : nullptr, false, WaveShadows::OfCameraHits);
-    s.recordFirstHits = false;
+    s.renderCache.recordFirstHits = false;
     runWaves(s, cache);
     resolveNodes(s, cache, batchKey);
     for (std::size_t i = 0; i < n; ++i) {
-        out[i].color = s.nodes[i].color();
-        out[i].viewIndependent = s.rootViewIndependent[i];
-        out[i].lighting = s.rootLighting[i];
-        out[i].litMask = s.rootLitMask[i];
+        out[i].color = s.wave.nodes[i].color();
+        out[i].viewIndependent = s.renderCache.rootViewIndependent[i];
+        out[i].lighting = s.renderCache.rootLighting[i];
+        out[i].litMask = s.renderCache.rootLitMask[i];
     }
 }
 
@@ -179,45 +176,46 @@ void TileKernel::reshadeSurfaces(std::span<const ReshadeRequest> requests, std::
                                  CacheWorker* cache, std::span<Rgb> out) const {
     const std::size_t n = requests.size();
     s.beginTile(n);
-    s.reshade = requests;
+    s.renderCache.reshade = requests;
     beginWaves(s, cache);
     beginFirstHits(s, n);
     for (std::size_t i = 0; i < n; ++i) addFirstHit(s, requests[i].ray, requests[i].hit, static_cast<int>(i), 1, RayCone{});
     endFirstHits(s);
     shadePackets(s, cache && cache_ ? cache : nullptr, false, WaveShadows::Known);
-    s.reshade = {};
+    s.renderCache.reshade = {};
     runWaves(s, cache);
     resolveNodes(s, cache, batchKey);
-    for (std::size_t i = 0; i < n; ++i) out[i] = s.nodes[i].color();
+    for (std::size_t i = 0; i < n; ++i) out[i] = s.wave.nodes[i].color();
 }
 
 void TileKernel::renderRays(std::span<const RayTreeRecord> rays, std::span<Rgb> out, TileScratch& s) const {
     const std::size_t n = rays.size();
     s.beginTile(n);
-    s.pending.clear();
+    s.wave.pending.clear();
     for (std::size_t i = 0; i < n; ++i)
-        s.pending.push_back({Ray{rays[i].origin, rays[i].direction}, static_cast<int>(i), rays[i].pathWeight,
-                             rays[i].depth, TileScratch::Kind::Reflection});
+        s.wave.pending.push_back({Ray{rays[i].origin, rays[i].direction}, static_cast<int>(i), rays[i].pathWeight,
+                                  rays[i].depth, TileWave::Kind::Reflection});
     beginWaves(s, nullptr);
     runWaves(s, nullptr);
     resolveNodes(s, nullptr, 0);
-    for (std::size_t i = 0; i < n; ++i) out[i] = s.nodes[i].color();
+    for (std::size_t i = 0; i < n; ++i) out[i] = s.wave.nodes[i].color();
 }
 
 void TileKernel::beginWaves(TileScratch& s, CacheWorker* cache) const {
-    s.trackTrees = cache && cache_ && cache_->tracksDependencies();
-    s.countTreeRays = cache && cache_;
+    s.caching.trackTrees = cache && cache_ && cache_->tracksDependencies();
+    s.caching.countTreeRays = cache && cache_;
     // Bounds are kept for tracked nodes only, which emitSecondaryRay makes
     // and resets one by one: the camera rays' nodes (most of a tile's) are
     // never tracked, and clearing a bounds record for each of them showed
     // in profiles of animated scenes.
-    if (s.trackTrees && s.nodeBounds.size() < s.nodes.size()) s.nodeBounds.resize(s.nodes.size());
+    if (s.caching.trackTrees && s.caching.nodeBounds.size() < s.wave.nodes.size())
+        s.caching.nodeBounds.resize(s.wave.nodes.size());
 }
 
 void TileKernel::runWaves(TileScratch& s, CacheWorker* cache) const {
     CacheWorker* const useCache = cache && cache_ ? cache : nullptr;
     if (useCache) lookupReuse(s, *useCache);
-    while (!s.pending.empty()) {
+    while (!s.wave.pending.empty()) {
         traceSecondaryRaysInLanes(s);
         shadePackets(s, useCache, false, WaveShadows::Traced);
         if (useCache) lookupReuse(s, *useCache);
@@ -226,17 +224,19 @@ void TileKernel::runWaves(TileScratch& s, CacheWorker* cache) const {
 
 void TileKernel::emitSecondaryRay(TileScratch& s, CacheWorker* cache, int parent, float parentPathWeight,
                                   int parentDepth, int objectId, const Ray& ray, const RayCone& cone,
-                                  TileScratch::Kind kind, const Rgb& weight, bool leavesObject,
+                                  TileWave::Kind kind, const Rgb& weight, bool leavesObject,
                                   const SpawnedRayLookup& lookup) const {
     // Every secondary ray gets a node of its own, whether a cache answers it
     // or not, so caching never changes how the colours are summed.
-    const int node = static_cast<int>(s.nodes.size());
-    const bool parentTracked = s.nodes[static_cast<std::size_t>(parent)].tracked;
-    TileScratch::Node& added = s.nodes.emplace_back();
-    if (s.trackTrees) {
+    const int node = static_cast<int>(s.wave.nodes.size());
+    const bool parentTracked = s.wave.nodes[static_cast<std::size_t>(parent)].tracked;
+    TileWave::Node& added = s.wave.nodes.emplace_back();
+    if (s.caching.trackTrees) {
         // A fresh record for the node, whether it ends up tracked or not (beginWaves).
-        if (s.nodeBounds.size() < s.nodes.size()) s.nodeBounds.resize(s.nodes.size());
-        else s.nodeBounds[static_cast<std::size_t>(node)] = RayTreeBounds{};
+        if (s.caching.nodeBounds.size() < s.wave.nodes.size())
+            s.caching.nodeBounds.resize(s.wave.nodes.size());
+        else
+            s.caching.nodeBounds[static_cast<std::size_t>(node)] = RayTreeBounds{};
     }
     added.parent = parent;
     added.weightInParent = weight;
@@ -248,7 +248,7 @@ void TileKernel::emitSecondaryRay(TileScratch& s, CacheWorker* cache, int parent
     const bool cached = leavesObject && cache && cache_->cachesObject(objectId);
     if (cached && lookup.answered >= 0) {
         // Looked up already, in lanes: what the lookup batch would have done.
-        added.tracked = s.trackTrees;
+        added.tracked = s.caching.trackTrees;
         if (lookup.answered) {
             added.direct = lookup.color;
             return;
@@ -257,11 +257,11 @@ void TileKernel::emitSecondaryRay(TileScratch& s, CacheWorker* cache, int parent
         return;
     }
     if (cached && cache_->admits(objectId, ray.direction, lookup.texel)) {
-        s.leaving.push_back({node, pathWeight, parentDepth + 1, kind, cone});
+        s.caching.leaving.push_back({node, pathWeight, parentDepth + 1, kind, cone});
         // Field by field: a whole-struct assignment was built on the stack
         // with narrow stores and copied with wide loads, a store-forwarding
         // stall per query.
-        RayCache::Query& q = s.cacheQueries.emplace_back();
+        RayCache::Query& q = s.caching.cacheQueries.emplace_back();
         q.objectId = objectId;
         q.origin = ray.origin;
         q.direction = ray.direction;
@@ -271,106 +271,112 @@ void TileKernel::emitSecondaryRay(TileScratch& s, CacheWorker* cache, int parent
         // behind it: such a ray is traced.
         q.meetsOwnSurface = cache_->seesPastOwnSurface(objectId) && tracer_.meetsObject(objectId, ray);
         q.texel = lookup.texel;
-        added.tracked = s.trackTrees;
+        added.tracked = s.caching.trackTrees;
     } else {
         if (cached) {
             cache_->countBypassedRay(objectId, *cache);
             // Asked nothing, so traced: what the level record shows for it.
-            if (s.recordLevels) noteRootLevel(s, node, pathWeight, CacheLevelImage::kTraced);
+            if (s.levelRecord.on) noteRootLevel(s, node, pathWeight, CacheLevelImage::kTraced);
         }
-        s.pending.push_back({ray, node, pathWeight, parentDepth + 1, kind, cone});
+        s.wave.pending.push_back({ray, node, pathWeight, parentDepth + 1, kind, cone});
         added.tracked = parentTracked;
     }
 }
 
 void TileKernel::lookupReuse(TileScratch& s, CacheWorker& cache) const {
     StageTimer timer(settings_.stageTimes, s.stages.reuseLookups);
-    const std::size_t n = s.leaving.size();
+    TileCacheBookkeeping& caching = s.caching;
+    const std::size_t n = caching.leaving.size();
     if (n == 0) return;
-    s.cachedColors.resize(n);
-    s.cacheFound.resize(n);
-    s.storeTexels.resize(n);
-    s.answerTexels.resize(s.trackTrees ? n : 0);
+    caching.cachedColors.resize(n);
+    caching.cacheFound.resize(n);
+    caching.storeTexels.resize(n);
+    caching.answerTexels.resize(caching.trackTrees ? n : 0);
     // Without the cache-level record the batch is looked up exactly as before:
     // an empty span, and one branch here and one after.
     std::span<std::int8_t> answerLevels;
-    if (s.recordLevels) {
-        s.answerLevels.resize(n);
-        answerLevels = s.answerLevels;
+    if (s.levelRecord.on) {
+        s.levelRecord.answerLevels.resize(n);
+        answerLevels = s.levelRecord.answerLevels;
     }
-    cache_->lookupBatch(s.cacheQueries, s.cachedColors, s.cacheFound, s.storeTexels, cache, s.answerTexels,
-                        answerLevels);
-    if (s.recordLevels) recordLookupLevels(s);
+    cache_->lookupBatch(caching.cacheQueries, caching.cachedColors, caching.cacheFound, caching.storeTexels, cache,
+                        caching.answerTexels, answerLevels);
+    if (s.levelRecord.on) recordLookupLevels(s);
     for (std::size_t i = 0; i < n; ++i) {
-        const TileScratch::LeavingRay& l = s.leaving[i];
-        const RayCache::Query& q = s.cacheQueries[i];
-        TileScratch::Node& node = s.nodes[static_cast<std::size_t>(l.node)];
-        if (s.cacheFound[i]) {
-            node.direct = s.cachedColors[i];
+        const TileCacheBookkeeping::LeavingRay& l = caching.leaving[i];
+        const RayCache::Query& q = caching.cacheQueries[i];
+        TileWave::Node& node = s.wave.nodes[static_cast<std::size_t>(l.node)];
+        if (caching.cacheFound[i]) {
+            node.direct = caching.cachedColors[i];
             // The answer stands for another tree: whatever it depended on, this
             // one does. Only a tree that is stored asks (the answered node's
             // bounds go nowhere unless its parent's do).
-            if (s.trackTrees && s.nodes[static_cast<std::size_t>(node.parent)].tracked)
-                cache_->addAnswerDependencies(q.objectId, s.answerTexels[i], s.nodeBounds[static_cast<std::size_t>(l.node)]);
+            if (caching.trackTrees && s.wave.nodes[static_cast<std::size_t>(node.parent)].tracked)
+                cache_->addAnswerDependencies(q.objectId, caching.answerTexels[i],
+                                              caching.nodeBounds[static_cast<std::size_t>(l.node)]);
             continue;
         }
-        queueMissedLeavingRay(s, q.objectId, s.storeTexels[i],
+        queueMissedLeavingRay(s, q.objectId, caching.storeTexels[i],
                               {Ray{q.origin, q.direction}, l.node, l.pathWeight, l.depth, l.kind, l.cone});
     }
 }
 
-void TileKernel::queueMissedLeavingRay(TileScratch& s, int objectId, int texel, const TileScratch::PendingRay& ray) {
-    s.nodes[static_cast<std::size_t>(ray.node)].store = static_cast<int>(s.stores.size());
-    s.stores.push_back({objectId, texel, ray.ray.origin, ray.ray.direction, 0.0f, ray.depth, ray.pathWeight});
-    s.pending.push_back(ray);
+void TileKernel::queueMissedLeavingRay(TileScratch& s, int objectId, int texel, const TileWave::PendingRay& ray) {
+    s.wave.nodes[static_cast<std::size_t>(ray.node)].store = static_cast<int>(s.caching.stores.size());
+    s.caching.stores.push_back({objectId, texel, ray.ray.origin, ray.ray.direction, 0.0f, ray.depth, ray.pathWeight});
+    s.wave.pending.push_back(ray);
 }
 
-void TileKernel::beginLevelRecord(TileScratch& s, std::size_t roots) {
-    s.recordLevels = true;
-    s.rootLevels.assign(roots, CacheLevelImage::kNoCachingRay);
-    s.rootLevelWeights.assign(roots, 0.0f);
+void TileKernel::beginLevelRecord(TileCacheLevelRecord& record, std::size_t roots) {
+    record.on = true;
+    record.rootLevels.assign(roots, CacheLevelImage::kNoCachingRay);
+    record.rootLevelWeights.assign(roots, 0.0f);
 }
 
 void TileKernel::recordLookupLevels(TileScratch& s) {
-    for (std::size_t i = 0; i < s.leaving.size(); ++i)
-        noteRootLevel(s, s.leaving[i].node, s.leaving[i].pathWeight,
-                      s.answerLevels[i] >= 0 ? s.answerLevels[i] : CacheLevelImage::kTraced);
+    const std::vector<TileCacheBookkeeping::LeavingRay>& leaving = s.caching.leaving;
+    const std::vector<std::int8_t>& answerLevels = s.levelRecord.answerLevels;
+    for (std::size_t i = 0; i < leaving.size(); ++i)
+        noteRootLevel(s, leaving[i].node, leaving[i].pathWeight,
+                      answerLevels[i] >= 0 ? answerLevels[i] : CacheLevelImage::kTraced);
 }
 
 void TileKernel::noteRootLevel(TileScratch& s, int node, float pathWeight, std::int8_t level) {
     // The pixel is the root of the ray's tree: a few parents up (at most maxDepth).
+    const std::vector<TileWave::Node>& nodes = s.wave.nodes;
     int root = node;
-    while (s.nodes[static_cast<std::size_t>(root)].parent >= 0) root = s.nodes[static_cast<std::size_t>(root)].parent;
+    while (nodes[static_cast<std::size_t>(root)].parent >= 0) root = nodes[static_cast<std::size_t>(root)].parent;
     const auto r = static_cast<std::size_t>(root);
     // The weightiest lookup stays; on equal weight the one asked first
     // (an earlier wave, or earlier in this batch). See CacheLevelImage.
-    if (s.rootLevels[r] != CacheLevelImage::kNoCachingRay && !(pathWeight > s.rootLevelWeights[r])) return;
-    s.rootLevels[r] = level;
-    s.rootLevelWeights[r] = pathWeight;
+    TileCacheLevelRecord& record = s.levelRecord;
+    if (record.rootLevels[r] != CacheLevelImage::kNoCachingRay && !(pathWeight > record.rootLevelWeights[r])) return;
+    record.rootLevels[r] = level;
+    record.rootLevelWeights[r] = pathWeight;
 }
 
-void TileKernel::composeTile(const TileScratch& s, const TileRange& tile, Image& film) {
+void TileKernel::composeTile(const TileWave& wave, const TileRange& tile, Image& film) {
     // Row by row: no division per pixel to find its place.
     std::size_t root = 0;
     for (int y = tile.y0; y < tile.y1; ++y)
-        for (int x = tile.x0; x < tile.x1; ++x, ++root) film.at(x, y) = s.nodes[root].color();
+        for (int x = tile.x0; x < tile.x1; ++x, ++root) film.at(x, y) = wave.nodes[root].color();
 }
 
-void TileKernel::writeLevelRecord(const TileScratch& s, const TileRange& tile, CacheLevelImage& levels) {
+void TileKernel::writeLevelRecord(const TileCacheLevelRecord& record, const TileRange& tile, CacheLevelImage& levels) {
     const int tileWidth = tile.x1 - tile.x0;
-    for (std::size_t i = 0; i < s.rootLevels.size(); ++i)
+    for (std::size_t i = 0; i < record.rootLevels.size(); ++i)
         levels.at(tile.x0 + static_cast<int>(i) % tileWidth, tile.y0 + static_cast<int>(i) / tileWidth) =
-            s.rootLevels[i];
+            record.rootLevels[i];
 }
 
-void TileKernel::recordTracedRay(TileScratch& s, const TileScratch::PendingRay& ray, bool hit, float t) const {
-    if (ray.kind == TileScratch::Kind::Reflection) ++s.counts.reflection;
+void TileKernel::recordTracedRay(TileScratch& s, const TileWave::PendingRay& ray, bool hit, float t) const {
+    if (ray.kind == TileWave::Kind::Reflection) ++s.counts.reflection;
     else ++s.counts.refraction;
-    TileScratch::Node& node = s.nodes[static_cast<std::size_t>(ray.node)];
+    TileWave::Node& node = s.wave.nodes[static_cast<std::size_t>(ray.node)];
     ++node.tracedRays;
-    if (node.store >= 0) s.stores[static_cast<std::size_t>(node.store)].hitDistance = hit ? t : kKernelInfinity;
+    if (node.store >= 0) s.caching.stores[static_cast<std::size_t>(node.store)].hitDistance = hit ? t : kKernelInfinity;
     if (node.tracked) {
-        RayTreeBounds& bounds = s.nodeBounds[static_cast<std::size_t>(ray.node)];
+        RayTreeBounds& bounds = s.caching.nodeBounds[static_cast<std::size_t>(ray.node)];
         if (hit) bounds.addSegment(ray.ray.origin, ray.ray.origin + ray.ray.direction * t);
         else bounds.addEscape(ray.ray.origin, ray.ray.direction);
     }
@@ -382,37 +388,39 @@ void TileKernel::resolveNodes(TileScratch& s, CacheWorker* cache, std::uint64_t 
     if (cache) cache->beginBatch(tileKey);
     // Nodes are created after their parents, so walking backwards finishes
     // every node's colour before it is stored or passed up.
-    for (std::size_t i = s.nodes.size(); i-- > 0;) {
-        const TileScratch::Node& node = s.nodes[i];
+    for (std::size_t i = s.wave.nodes.size(); i-- > 0;) {
+        const TileWave::Node& node = s.wave.nodes[i];
         if (node.parent < 0) continue;
         const Rgb color = node.color();
         if (node.store >= 0 && cache) {
-            const TileScratch::NodeStore& st = s.stores[static_cast<std::size_t>(node.store)];
+            const TileCacheBookkeeping::NodeStore& st = s.caching.stores[static_cast<std::size_t>(node.store)];
             std::optional<RayTreeRecord> tree;
-            if (s.trackTrees) tree = RayTreeRecord{s.nodeBounds[i], st.origin, st.direction, st.depth, st.pathWeight};
+            if (s.caching.trackTrees)
+                tree = RayTreeRecord{s.caching.nodeBounds[i], st.origin, st.direction, st.depth, st.pathWeight};
             cache_->store(st.objectId, st.origin, st.direction, color, st.hitDistance, *cache, st.storeTexel,
                           tree ? &*tree : nullptr, node.tracedRays);
         }
-        s.nodes[static_cast<std::size_t>(node.parent)].tracedRays += node.tracedRays;
-        if (s.nodes[static_cast<std::size_t>(node.parent)].tracked)
-            s.nodeBounds[static_cast<std::size_t>(node.parent)].add(s.nodeBounds[i]);
-        s.nodes[static_cast<std::size_t>(node.parent)].secondary += color * node.weightInParent;
+        s.wave.nodes[static_cast<std::size_t>(node.parent)].tracedRays += node.tracedRays;
+        if (s.wave.nodes[static_cast<std::size_t>(node.parent)].tracked)
+            s.caching.nodeBounds[static_cast<std::size_t>(node.parent)].add(s.caching.nodeBounds[i]);
+        s.wave.nodes[static_cast<std::size_t>(node.parent)].secondary += color * node.weightInParent;
     }
 }
 
 void TileKernel::noteVisiblePoint(TileScratch& s, int root, int objectId, const Vec3& position) const {
     if (!fill_.fills(scene_.objects[static_cast<std::size_t>(objectId)].material)) return;
-    s.fillRoots.push_back(root);
-    s.fillPositions.push_back(position);
+    s.visibleFill.roots.push_back(root);
+    s.visibleFill.positions.push_back(position);
 }
 
 void TileKernel::fillFromVisiblePoints(TileScratch& s, CacheWorker* cache, const Vec3& eye) const {
-    if (!cache || s.fillRoots.empty()) return;
+    TileVisibleFill& fill = s.visibleFill;
+    if (!cache || fill.roots.empty()) return;
     StageTimer timer(settings_.stageTimes, s.stages.visibleFill);
-    s.visiblePoints.resize(s.fillRoots.size());
-    for (std::size_t k = 0; k < s.fillRoots.size(); ++k)
-        s.visiblePoints[k] = {s.fillPositions[k], s.nodes[static_cast<std::size_t>(s.fillRoots[k])].color()};
-    s.counts.fill += fill_.fillTile(s.visiblePoints, eye, s.fill, *cache);
+    fill.points.resize(fill.roots.size());
+    for (std::size_t k = 0; k < fill.roots.size(); ++k)
+        fill.points[k] = {fill.positions[k], s.wave.nodes[static_cast<std::size_t>(fill.roots[k])].color()};
+    s.counts.fill += fill_.fillTile(fill.points, eye, fill.scratch, *cache);
 }
 
 }  // namespace raycache

@@ -47,14 +47,20 @@
 #include "render/RenderCacheSamples.h"
 #include "render/RenderSettings.h"
 #include "render/SurfacePoint.h"
+#include "render/TileCacheBookkeeping.h"
+#include "render/TileCacheLevelRecord.h"
+#include "render/TileRenderCacheRoots.h"
+#include "render/TileTraceBatch.h"
+#include "render/TileVisibleFill.h"
+#include "render/TileWave.h"
 #include "render/VisibleSurfaceFill.h"
 #include "trace/TraceScene.h"
 
 namespace raycache {
 
 // Per-worker buffers of the kernel, reused from tile to tile so a frame
-// allocates only while its waves grow. Opaque to callers except for what
-// the worker did (counts, times).
+// allocates only while its waves grow, one part per feature that uses them.
+// Opaque to callers except for what the worker did (counts, times).
 class TileScratch {
 public:
     RayCounts counts;
@@ -70,143 +76,14 @@ public:
 
 private:
     friend class TileKernel;
-    enum class Kind : unsigned char { Reflection, Refraction };
-    struct PendingRay {  // a secondary ray waiting to be traced
-        Ray ray;
-        int node;
-        float pathWeight;
-        int depth;
-        Kind kind;
-        RayCone cone{};
-    };
-    // A secondary ray leaving a caching object: the cache is asked first.
-    // The ray itself and its object are its query (cacheQueries, same index),
-    // written where the ray is spawned, so the lookup reads them in place.
-    struct LeavingRay {
-        int node;
-        float pathWeight;
-        int depth;
-        Kind kind;
-        RayCone cone{};
-    };
-    // What one ray brings back: the light at its hit (or the background, or
-    // the cache's answer) plus its reflected and refracted rays' colours times
-    // their weights (tests/render/SecondaryRayWeights.h), gathered from its child
-    // nodes once the tile is done; the same sums, in the same order, as the
-    // recursive form. A node's own colour is unweighted: that is what a
-    // cube stores for a leaving ray, its weight applying at the parent.
-    struct Node {
-        Rgb direct;
-        Rgb secondary;
-        int parent = -1;            // -1: a pixel or texel of the caller's
-        Rgb weightInParent;         // per channel
-        // A ray leaving a caching object whose cache missed it: its store
-        // record (an index into TileScratch::stores), stored when done; -1
-        // for every other node. Apart, so that the node every ray gets stays
-        // small (GCC filled the 84-byte node with a `rep stos` per ray).
-        int store = -1;
-        // trackTrees: a ray leaving a caching object, or below one (its bounds
-        // matter); 0 or 1. Four bytes, not a bool: with a one-byte field last,
-        // GCC 12 filled each tile's nodes with overlapping unaligned stores,
-        // several times slower than aligned ones.
-        std::uint32_t tracked = 0;
-        // With a cache: rays traced for this node's tree (its own ray, the
-        // shadow rays at its hit, its children's trees), what a store of it
-        // tells the cache policy a hit spares (cache/CachePolicy.h).
-        std::uint32_t tracedRays = 0;
-        Rgb color() const { return direct + secondary; }
-    };
-    // What a traced leaving ray stores once its tree is resolved.
-    struct NodeStore {
-        int objectId;               // the caching object it left
-        int storeTexel;             // where, when the lookup already knows (RayCache::lookupBatch), else -1
-        Vec3 origin, direction;     // the ray
-        float hitDistance = 0.0f;   // distance to its first hit, infinity for a miss
-        int depth;                  // its depth and path weight, for the store's RayTreeRecord
-        float pathWeight;
-    };
-
-    // Sixteen rays of a wave and their hits in lanes, from the tracer's
-    // packet to their direct light and secondary rays (render/TileKernelWaves.cpp).
-    struct HitPacket {
-        RayHitLanes16 rays;
-        PacketLanes hits;  // -1 where the ray hit something
-        alignas(64) int objectId[16];
-        SurfaceLanes16 surface;
-        alignas(64) float directR[16], directG[16], directB[16];
-        alignas(64) int node[16];          // the node each ray's colour adds to
-        // Product of the weights since the camera, each its largest channel:
-        // for the minimum-weight rule.
-        alignas(64) float pathWeight[16];
-        alignas(64) int depth[16];         // rays on its path so far, the primary ray being 1
-        // The pixel's cone along the ray (zero where no pixel stands behind it).
-        alignas(64) float coneWidth[16], coneSpread[16];
-        int count = 0;  // lanes in use; the rest are not traced
-    };
-
     void beginTile(std::size_t roots);
-    // How a wave's hits learn which lights reach them: shadow rays in
-    // packets; the shadow rays of camera rays' hits, which the tracer may
-    // answer with its light grids (TraceScene::occludedPrimaryShadows); or
-    // not at all, the lights being known (ReshadeRequest::litMask).
-    enum class WaveShadows : unsigned char { Traced, OfCameraHits, Known };
 
-    std::vector<Node> nodes;
-    std::vector<NodeStore> stores;
-    // The wave: its packets, packet p's view of light l at p * lights + l,
-    // packet p's secondary rays at p (TileKernel::packetSpawnLanes), and one
-    // packet's triangles. `filledLanes` counts the lanes addFirstHit filled.
-    std::vector<HitPacket> packets;
-    std::vector<LightLanes16> packetLights;
-    std::vector<SecondaryRayLanes16> spawnLanes;
-    MeshHitLanes meshLanes;
-    std::size_t filledLanes = 0;
-    // Rays packed for the tracer's batch calls (camera rays, or the shadow
-    // rays of camera hits, each with its light for the light grids).
-    std::vector<Ray> rays;
-    std::vector<TraceHit> hits;
-    std::vector<unsigned char> occluded;
-    std::vector<int> shadowLights;
-    // The shadow rays of camera hits, packet p's toward light l at p * lights + l.
-    std::vector<RayLanes16> shadowLanes;
-    std::vector<PacketLanes> shadowTraced;
-    std::vector<LeavingRay> leaving;
-    std::vector<RayCache::Query> cacheQueries;  // one per leaving ray
-    std::vector<Rgb> cachedColors;
-    std::vector<unsigned char> cacheFound;
-    std::vector<int> storeTexels;
-    std::vector<int> answerTexels;
-    std::vector<PendingRay> pending;
-    // When the cache tracks dependencies (animated scenes): per node, where
-    // its ray tree reached (cache/RayTreeBounds.h), gathered up like colours.
-    bool trackTrees = false;
-    std::vector<RayTreeBounds> nodeBounds;
-    // Whether this tile counts each node's traced rays (Node::tracedRays):
-    // only when the frame has cube workers, whose stores tell the cache
-    // policy what a hit spares. In a frame where every cube stands aside
-    // the count would go nowhere and still cost instructions.
-    bool countTreeRays = false;
-    std::vector<float> rootHitDistance;
-    // The first hits' view-independent light, recorded for PrimarySample.
-    bool recordFirstHits = false;
-    std::vector<Rgb> rootViewIndependent;
-    std::vector<Rgb> rootLighting;  // rootViewIndependent with a white albedo
-    std::vector<std::uint64_t> rootLitMask;
-    std::span<const ReshadeRequest> reshade;  // the roots of a reshade call
-    // When the caller asked for the cache-level record (CacheLevelImage): per
-    // root, the level of its weightiest lookup so far and that lookup's
-    // weight, and per lookup of the batch the level that answered it.
-    bool recordLevels = false;
-    std::vector<std::int8_t> rootLevels;
-    std::vector<float> rootLevelWeights;
-    std::vector<std::int8_t> answerLevels;
-    // The visible-surface fill (render/VisibleSurfaceFill.h): per root whose
-    // first hit may fill, the root and the hit point; then the points with
-    // their pixels' colours.
-    std::vector<int> fillRoots;
-    std::vector<Vec3> fillPositions;
-    std::vector<VisiblePoint> visiblePoints;
-    VisibleFillScratch fill;
+    TileWave wave;                     // every call: the nodes, the wave's packets, the next wave's rays
+    TileTraceBatch batch;              // rays traced in one batch call (camera rays, camera hits' shadow rays)
+    TileCacheBookkeeping caching;      // with a ray cache: lookups, stores, tree rays and bounds
+    TileCacheLevelRecord levelRecord;  // with CacheLevelImage: the level of each pixel's weightiest lookup
+    TileRenderCacheRoots renderCache;  // the Render Cache's samples and reshading
+    TileVisibleFill visibleFill;       // with the visible-surface fill: the tile's first hits that may fill
 };
 
 // What the tile kernel's lanes learned of a spawned ray's cache texel
@@ -278,17 +155,21 @@ public:
     void prepareFrame() const { meshShading_.refresh(scene_); }
 
 private:
-    using WaveShadows = TileScratch::WaveShadows;
+    // How a wave's hits learn which lights reach them: shadow rays in
+    // packets; the shadow rays of camera rays' hits, which the tracer may
+    // answer with its light grids (TraceScene::occludedPrimaryShadows); or
+    // not at all, the lights being known (ReshadeRequest::litMask).
+    enum class WaveShadows : unsigned char { Traced, OfCameraHits, Known };
     // The cache flags of the tile (tracked trees, counted tree rays), and
     // room for the tracked nodes' bounds: before the first wave is shaded.
     void beginWaves(TileScratch& s, CacheWorker* cache) const;
     // The waves after the first: the lookups of the rays it spawned, the
     // rays left traced as packets and shaded, until no ray is left.
     void runWaves(TileScratch& s, CacheWorker* cache) const;
-    // s.packets for a tile's pixels: their camera rays and what each lane
+    // s.wave.packets for a tile's pixels: their camera rays and what each lane
     // carries (root, weight 1, depth 1, the pixel's cone).
     static void startTilePackets(const CameraRays& cameraRays, const TileRange& tile, TileScratch& s);
-    // A tile's first wave: its camera rays in s.packets, traced (Embree per
+    // A tile's first wave: its camera rays in s.wave.packets, traced (Embree per
     // packet; the grids over the whole tile, their hits put in the lanes).
     void traceCameraRaysInLanes(const CameraRays& cameraRays, const TileRange& tile, TileScratch& s,
                                 CacheWorker* cache) const;
@@ -303,12 +184,12 @@ private:
     static void addFirstHit(TileScratch& s, const Ray& ray, const TraceHit& hit, int node, int depth,
                             const RayCone& cone);
     static void endFirstHits(TileScratch& s);
-    // s.pending traced as packets in spawn order: the next wave.
+    // s.wave.pending traced as packets in spawn order: the next wave.
     void traceSecondaryRaysInLanes(TileScratch& s) const;
     // Surfaces (unless `surfacesKnown`: the G-buffer gave them), shadow
-    // rays, direct light, then the secondary rays into s.leaving and s.pending.
+    // rays, direct light, then the secondary rays into s.caching.leaving and s.wave.pending.
     void shadePackets(TileScratch& s, CacheWorker* cache, bool surfacesKnown, WaveShadows shadows) const;
-    void packetSurfaces(TileScratch::HitPacket& packet, MeshHitLanes& meshLanes) const;
+    void packetSurfaces(TileWave::HitPacket& packet, MeshHitLanes& meshLanes) const;
     void packetShadowRays(TileScratch& s, std::size_t p) const;
     // The shadow rays of a first wave of camera hits over the whole wave, in
     // one call to the tracer's primary shadow rays (the light grids).
@@ -329,36 +210,37 @@ private:
     // hit by hit. Where lookups are asked at emission, the first step runs
     // for every packet of the wave, then the texels behind valid bits are
     // prefetched, then the second step, so that the memory arrives meanwhile.
-    void packetSpawnLanes(const TileScratch::HitPacket& packet, SecondaryRayLanes16& spawned, CacheWorker* cache,
+    void packetSpawnLanes(const TileWave::HitPacket& packet, SecondaryRayLanes16& spawned, CacheWorker* cache,
                           bool lookUpInLanes) const;
-    void packetEmit(TileScratch& s, const TileScratch::HitPacket& packet, SecondaryRayLanes16& spawned,
+    void packetEmit(TileScratch& s, const TileWave::HitPacket& packet, SecondaryRayLanes16& spawned,
                     CacheWorker* cache) const;
     // One secondary ray of the hit of node `parent`, of weight `weight` there:
     // its node, then the cache's lookup batch (a ray leaving a caching object
     // whose cube asks) or the rays to trace. Its path weight is the
     // parent's times the weight's largest channel.
     void emitSecondaryRay(TileScratch& s, CacheWorker* cache, int parent, float parentPathWeight, int parentDepth,
-                          int objectId, const Ray& ray, const RayCone& cone, TileScratch::Kind kind, const Rgb& weight,
+                          int objectId, const Ray& ray, const RayCone& cone, TileWave::Kind kind, const Rgb& weight,
                           bool leavesObject, const SpawnedRayLookup& lookup = {}) const;
     void lookupReuse(TileScratch& s, CacheWorker& cache) const;
     // The cache-level record: every root starts with no caching ray; each
     // batch of lookups may replace a root's value (CacheLevelImage says which
     // lookup a pixel keeps); the tile's pixels are written at the end.
-    static void beginLevelRecord(TileScratch& s, std::size_t roots);
+    static void beginLevelRecord(TileCacheLevelRecord& record, std::size_t roots);
     // The tile's root colours into the film (roots in row order).
-    static void composeTile(const TileScratch& s, const TileRange& tile, Image& film);
+    static void composeTile(const TileWave& wave, const TileRange& tile, Image& film);
     static void recordLookupLevels(TileScratch& s);
     // Records `level` for the pixel at the root of `node`'s tree, unless a
     // weightier (or as weighty and earlier) ray of that pixel was recorded.
     static void noteRootLevel(TileScratch& s, int node, float pathWeight, std::int8_t level);
-    static void writeLevelRecord(const TileScratch& s, const TileRange& tile, CacheLevelImage& levels);
+    static void writeLevelRecord(const TileCacheLevelRecord& record, const TileRange& tile,
+                                 CacheLevelImage& levels);
     // What the kernel records of a traced secondary ray: its count, its
     // node's traced rays, a store's hit distance, a tracked tree's segment,
     // and the background where it hit nothing (`hit` false; `t` its distance otherwise).
-    void recordTracedRay(TileScratch& s, const TileScratch::PendingRay& ray, bool hit, float t) const;
+    void recordTracedRay(TileScratch& s, const TileWave::PendingRay& ray, bool hit, float t) const;
     // A leaving ray its cube did not answer: traced, and what its tree
     // brings back stored at `texel` (-1: the store addresses it) once the tile is done.
-    static void queueMissedLeavingRay(TileScratch& s, int objectId, int texel, const TileScratch::PendingRay& ray);
+    static void queueMissedLeavingRay(TileScratch& s, int objectId, int texel, const TileWave::PendingRay& ray);
     // Adds every node's colour to its parent's, children first, queueing the
     // cache stores of the nodes that stand for traced leaving rays.
     void resolveNodes(TileScratch& s, CacheWorker* cache, std::uint64_t tileKey) const;

@@ -71,13 +71,13 @@ void TileKernel::startTilePackets(const CameraRays& cameraRays, const TileRange&
     // One packet per sixteen pixels of a row, row after row: lane k of a
     // packet is the pixel of root firstRoot + k, its camera ray as ray() has it.
     const int packetsPerRow = (tile.x1 - tile.x0 + kFloatLanes - 1) / kFloatLanes;
-    s.packets.resize(static_cast<std::size_t>(packetsPerRow) * static_cast<std::size_t>(tile.y1 - tile.y0));
+    s.wave.packets.resize(static_cast<std::size_t>(packetsPerRow) * static_cast<std::size_t>(tile.y1 - tile.y0));
     const float pixelSpread = cameraRays.pixelSpread();
     std::size_t p = 0;
     int root = 0;
     for (int y = tile.y0; y < tile.y1; ++y)
         for (int x = tile.x0; x < tile.x1; x += kFloatLanes, ++p) {
-            TileScratch::HitPacket& packet = s.packets[p];
+            TileWave::HitPacket& packet = s.wave.packets[p];
             packet.count = std::min(kFloatLanes, tile.x1 - x);
             cameraRays.rowOfRays(x, y, packet.rays.ray);
             for (int k = 0; k < kFloatLanes; ++k) {
@@ -98,22 +98,22 @@ void TileKernel::traceCameraRaysInLanes(const CameraRays& cameraRays, const Tile
     const bool grids = tracer_.accelerator() != Accelerator::Embree;
     if (grids) {
         // The grids answer a tile's rays together: their hits go back into the lanes.
-        s.rays.resize(s.nodes.size());
-        s.hits.resize(s.nodes.size());
+        s.batch.rays.resize(s.wave.nodes.size());
+        s.batch.hits.resize(s.wave.nodes.size());
         std::size_t i = 0;
-        for (const TileScratch::HitPacket& packet : s.packets)
-            for (int k = 0; k < packet.count; ++k) s.rays[i++] = laneRay(packet.rays.ray, k);
-        tracer_.intersectPrimary(std::span(s.rays.data(), i), std::span(s.hits.data(), i));
+        for (const TileWave::HitPacket& packet : s.wave.packets)
+            for (int k = 0; k < packet.count; ++k) s.batch.rays[i++] = laneRay(packet.rays.ray, k);
+        tracer_.intersectPrimary(std::span(s.batch.rays.data(), i), std::span(s.batch.hits.data(), i));
         i = 0;
-        for (TileScratch::HitPacket& packet : s.packets)
+        for (TileWave::HitPacket& packet : s.wave.packets)
             for (int k = 0; k < kFloatLanes; ++k) {
-                const TraceHit hit = k < packet.count ? s.hits[i++] : TraceHit{};
+                const TraceHit hit = k < packet.count ? s.batch.hits[i++] : TraceHit{};
                 packet.objectId[k] = hit.objectId;
                 if (hit.hit()) setLaneHit(packet.rays, k, hit);
             }
     }
     std::uint64_t hits = 0;
-    for (TileScratch::HitPacket& packet : s.packets) {
+    for (TileWave::HitPacket& packet : s.wave.packets) {
         if (!grids) {
             PacketLanes traced;
             for (int k = 0; k < kFloatLanes; ++k) traced.valid[k] = k < packet.count ? -1 : 0;
@@ -126,7 +126,7 @@ void TileKernel::traceCameraRaysInLanes(const CameraRays& cameraRays, const Tile
             if (k >= packet.count) continue;
             const auto node = static_cast<std::size_t>(packet.node[k]);
             if (!hit) {
-                s.nodes[node].direct = shading_.background(laneRay(packet.rays.ray, k));
+                s.wave.nodes[node].direct = shading_.background(laneRay(packet.rays.ray, k));
                 continue;
             }
             ++hits;
@@ -141,15 +141,15 @@ void TileKernel::traceCameraRaysInLanes(const CameraRays& cameraRays, const Tile
 }
 
 void TileKernel::beginFirstHits(TileScratch& s, std::size_t count) {
-    s.packets.resize((count + kFloatLanes - 1) / kFloatLanes);
-    s.filledLanes = 0;
+    s.wave.packets.resize((count + kFloatLanes - 1) / kFloatLanes);
+    s.wave.filledLanes = 0;
 }
 
 void TileKernel::addFirstHit(TileScratch& s, const Ray& ray, const TraceHit& hit, int node, int depth,
                              const RayCone& cone) {
-    TileScratch::HitPacket& packet = s.packets[s.filledLanes / kFloatLanes];
-    const int k = static_cast<int>(s.filledLanes % kFloatLanes);
-    ++s.filledLanes;
+    TileWave::HitPacket& packet = s.wave.packets[s.wave.filledLanes / kFloatLanes];
+    const int k = static_cast<int>(s.wave.filledLanes % kFloatLanes);
+    ++s.wave.filledLanes;
     setLaneRay(packet.rays.ray, k, ray);
     setLaneHit(packet.rays, k, hit);
     packet.objectId[k] = hit.objectId;
@@ -163,11 +163,11 @@ void TileKernel::addFirstHit(TileScratch& s, const Ray& ray, const TraceHit& hit
 }
 
 void TileKernel::endFirstHits(TileScratch& s) {
-    const std::size_t packets = (s.filledLanes + kFloatLanes - 1) / kFloatLanes;
-    s.packets.resize(packets);
+    const std::size_t packets = (s.wave.filledLanes + kFloatLanes - 1) / kFloatLanes;
+    s.wave.packets.resize(packets);
     if (packets == 0) return;
     // Lanes past the last hit repeat it, not shaded.
-    TileScratch::HitPacket& last = s.packets.back();
+    TileWave::HitPacket& last = s.wave.packets.back();
     const int from = last.count - 1;
     for (int k = last.count; k < kFloatLanes; ++k) {
         setLaneRay(last.rays.ray, k, laneRay(last.rays.ray, from));
@@ -180,7 +180,7 @@ void TileKernel::endFirstHits(TileScratch& s) {
         last.coneWidth[k] = last.coneWidth[from];
         last.coneSpread[k] = last.coneSpread[from];
     }
-    s.stages.hitsShaded += s.filledLanes;
+    s.stages.hitsShaded += s.wave.filledLanes;
 }
 
 void TileKernel::readGBufferInLanes(const CameraRays& cameraRays, const GBufferView& gbuffer, const TileRange& tile,
@@ -189,7 +189,7 @@ void TileKernel::readGBufferInLanes(const CameraRays& cameraRays, const GBufferV
     startTilePackets(cameraRays, tile, s);
     const int tileWidth = tile.x1 - tile.x0;
     std::uint64_t hits = 0;
-    for (TileScratch::HitPacket& packet : s.packets) {
+    for (TileWave::HitPacket& packet : s.wave.packets) {
         for (int k = 0; k < kFloatLanes; ++k) {
             packet.hits.valid[k] = 0;
             packet.objectId[k] = -1;
@@ -198,7 +198,7 @@ void TileKernel::readGBufferInLanes(const CameraRays& cameraRays, const GBufferV
             const std::size_t i = gbuffer.index(tile.x0 + root % tileWidth, tile.y0 + root / tileWidth);
             const Ray ray = laneRay(packet.rays.ray, k);
             if (!gbuffer.hasSurface(i)) {
-                s.nodes[static_cast<std::size_t>(root)].direct = shading_.background(ray);
+                s.wave.nodes[static_cast<std::size_t>(root)].direct = shading_.background(ray);
                 continue;
             }
             packet.hits.valid[k] = -1;
@@ -219,17 +219,18 @@ void TileKernel::readGBufferInLanes(const CameraRays& cameraRays, const GBufferV
 
 void TileKernel::traceSecondaryRaysInLanes(TileScratch& s) const {
     StageTimer timer(settings_.stageTimes, s.stages.traceSecondary);
-    const std::size_t n = s.pending.size();
-    s.packets.resize((n + kFloatLanes - 1) / kFloatLanes);
+    const std::size_t n = s.wave.pending.size();
+    s.wave.packets.resize((n + kFloatLanes - 1) / kFloatLanes);
     std::uint64_t hits = 0;
-    for (std::size_t p = 0; p < s.packets.size(); ++p) {
-        TileScratch::HitPacket& packet = s.packets[p];
+    for (std::size_t p = 0; p < s.wave.packets.size(); ++p) {
+        TileWave::HitPacket& packet = s.wave.packets[p];
         const std::size_t base = p * kFloatLanes;
         packet.count = static_cast<int>(std::min<std::size_t>(kFloatLanes, n - base));
         PacketLanes traced;
         for (int k = 0; k < kFloatLanes; ++k) {
             // Lanes past the last ray repeat it, not traced.
-            const TileScratch::PendingRay& ray = s.pending[base + static_cast<std::size_t>(std::min(k, packet.count - 1))];
+            const TileWave::PendingRay& ray =
+                s.wave.pending[base + static_cast<std::size_t>(std::min(k, packet.count - 1))];
             traced.valid[k] = k < packet.count ? -1 : 0;
             setLaneRay(packet.rays.ray, k, ray.ray);
             packet.node[k] = ray.node;
@@ -243,7 +244,7 @@ void TileKernel::traceSecondaryRaysInLanes(TileScratch& s) const {
             const bool hit = k < packet.count && packet.objectId[k] >= 0;
             packet.hits.valid[k] = hit ? -1 : 0;
             if (k >= packet.count) continue;
-            recordTracedRay(s, s.pending[base + static_cast<std::size_t>(k)], hit, packet.rays.ray.tFar[k]);
+            recordTracedRay(s, s.wave.pending[base + static_cast<std::size_t>(k)], hit, packet.rays.ray.tFar[k]);
             if (hit) ++hits;
         }
     }
@@ -253,44 +254,44 @@ void TileKernel::traceSecondaryRaysInLanes(TileScratch& s) const {
 void TileKernel::shadePackets(TileScratch& s, CacheWorker* cache, bool surfacesKnown, WaveShadows shadows) const {
     if (!surfacesKnown) {
         StageTimer timer(settings_.stageTimes, s.stages.surfaces);
-        for (TileScratch::HitPacket& packet : s.packets) packetSurfaces(packet, s.meshLanes);
+        for (TileWave::HitPacket& packet : s.wave.packets) packetSurfaces(packet, s.wave.meshLanes);
     }
     if (shadows == WaveShadows::Known) {
         StageTimer timer(settings_.stageTimes, s.stages.directShading);
-        for (std::size_t p = 0; p < s.packets.size(); ++p) reshadePacket(s, p);
+        for (std::size_t p = 0; p < s.wave.packets.size(); ++p) reshadePacket(s, p);
     } else {
         {
             StageTimer timer(settings_.stageTimes, s.stages.shadowRays);
-            s.packetLights.resize(s.packets.size() * scene_.lights.size());
+            s.wave.packetLights.resize(s.wave.packets.size() * scene_.lights.size());
             // Camera hits' shadow rays start close together and head for the
             // same lights: the grids, when they are on, answer them per light.
             if (shadows == WaveShadows::OfCameraHits && tracer_.accelerator() != Accelerator::Embree) {
                 cameraHitShadowRays(s);
             } else {
-                for (std::size_t p = 0; p < s.packets.size(); ++p) packetShadowRays(s, p);
+                for (std::size_t p = 0; p < s.wave.packets.size(); ++p) packetShadowRays(s, p);
             }
-            if (s.countTreeRays || s.trackTrees)
-                for (std::size_t p = 0; p < s.packets.size(); ++p) recordShadowRays(s, p);
+            if (s.caching.countTreeRays || s.caching.trackTrees)
+                for (std::size_t p = 0; p < s.wave.packets.size(); ++p) recordShadowRays(s, p);
         }
         StageTimer timer(settings_.stageTimes, s.stages.directShading);
-        for (std::size_t p = 0; p < s.packets.size(); ++p) packetDirect(s, p);
-        if (s.recordFirstHits)
-            for (std::size_t p = 0; p < s.packets.size(); ++p) recordFirstHitLight(s, p);
+        for (std::size_t p = 0; p < s.wave.packets.size(); ++p) packetDirect(s, p);
+        if (s.renderCache.recordFirstHits)
+            for (std::size_t p = 0; p < s.wave.packets.size(); ++p) recordFirstHitLight(s, p);
     }
     StageTimer timer(settings_.stageTimes, s.stages.secondaryRays);
-    s.leaving.clear();
-    s.cacheQueries.clear();
-    s.pending.clear();
+    s.caching.leaving.clear();
+    s.caching.cacheQueries.clear();
+    s.wave.pending.clear();
     // Trees tracked for animated scenes and the cache-level record take the
     // lookup batch.
-    const bool lookUpInLanes = cache && !s.trackTrees && !s.recordLevels;
-    const std::size_t packets = s.packets.size();
+    const bool lookUpInLanes = cache && !s.caching.trackTrees && !s.levelRecord.on;
+    const std::size_t packets = s.wave.packets.size();
     if (!lookUpInLanes) {
         // Packet by packet, its rays still in the cache when their nodes are made.
-        if (s.spawnLanes.empty()) s.spawnLanes.resize(1);
-        for (const TileScratch::HitPacket& packet : s.packets) {
-            packetSpawnLanes(packet, s.spawnLanes[0], cache, false);
-            packetEmit(s, packet, s.spawnLanes[0], cache);
+        if (s.wave.spawnLanes.empty()) s.wave.spawnLanes.resize(1);
+        for (const TileWave::HitPacket& packet : s.wave.packets) {
+            packetSpawnLanes(packet, s.wave.spawnLanes[0], cache, false);
+            packetEmit(s, packet, s.wave.spawnLanes[0], cache);
         }
     } else {
         // Every packet's rays first, then their nodes and lookups: the memory
@@ -301,23 +302,24 @@ void TileKernel::shadePackets(TileScratch& s, CacheWorker* cache, bool surfacesK
         // Between the two, the texels of valid bits are fetched: a filled
         // cube's hits read them, and CCT with filled cubes waited on them
         // (docs/log/2026-11-27-lookups-at-spawn.md).
-        if (s.spawnLanes.size() < packets) s.spawnLanes.resize(packets);
-        for (std::size_t p = 0; p < packets; ++p) packetSpawnLanes(s.packets[p], s.spawnLanes[p], cache, true);
+        if (s.wave.spawnLanes.size() < packets) s.wave.spawnLanes.resize(packets);
+        for (std::size_t p = 0; p < packets; ++p)
+            packetSpawnLanes(s.wave.packets[p], s.wave.spawnLanes[p], cache, true);
         for (std::size_t p = 0; p < packets; ++p) {
-            const SecondaryRayLanes16& spawned = s.spawnLanes[p];
+            const SecondaryRayLanes16& spawned = s.wave.spawnLanes[p];
             if (!spawned.any) continue;
             for (int k = 0; k < kFloatLanes; ++k) {
                 if (spawned.reflectedAnswered[k] == SecondaryRayLanes16::kAskedAtEmit)
-                    cache_->prefetchTexelIfValid(s.packets[p].objectId[k], spawned.reflectedTexel[k]);
+                    cache_->prefetchTexelIfValid(s.wave.packets[p].objectId[k], spawned.reflectedTexel[k]);
                 if (spawned.refractedAnswered[k] == SecondaryRayLanes16::kAskedAtEmit)
-                    cache_->prefetchTexelIfValid(s.packets[p].objectId[k], spawned.refractedTexel[k]);
+                    cache_->prefetchTexelIfValid(s.wave.packets[p].objectId[k], spawned.refractedTexel[k]);
             }
         }
-        for (std::size_t p = 0; p < packets; ++p) packetEmit(s, s.packets[p], s.spawnLanes[p], cache);
+        for (std::size_t p = 0; p < packets; ++p) packetEmit(s, s.wave.packets[p], s.wave.spawnLanes[p], cache);
     }
 }
 
-void TileKernel::packetSurfaces(TileScratch::HitPacket& packet, MeshHitLanes& meshLanes) const {
+void TileKernel::packetSurfaces(TileWave::HitPacket& packet, MeshHitLanes& meshLanes) const {
     alignas(64) int remaining[kFloatLanes], selected[kFloatLanes];
     std::memcpy(remaining, packet.hits.valid, sizeof remaining);
     SurfaceLanes16& surface = packet.surface;
@@ -367,12 +369,12 @@ void TileKernel::packetSurfaces(TileScratch::HitPacket& packet, MeshHitLanes& me
 }
 
 void TileKernel::packetShadowRays(TileScratch& s, std::size_t p) const {
-    TileScratch::HitPacket& packet = s.packets[p];
+    TileWave::HitPacket& packet = s.wave.packets[p];
     const std::size_t lights = scene_.lights.size();
     bool anyHit = false;
     for (int k = 0; k < kFloatLanes; ++k) anyHit |= packet.hits.valid[k] != 0;
     for (std::size_t l = 0; l < lights; ++l) {
-        LightLanes16& seen = s.packetLights[p * lights + l];
+        LightLanes16& seen = s.wave.packetLights[p * lights + l];
         std::fill_n(seen.lit, kFloatLanes, 0);
         std::fill_n(seen.traced, kFloatLanes, 0);
         if (!anyHit) continue;
@@ -394,94 +396,98 @@ void TileKernel::packetShadowRays(TileScratch& s, std::size_t p) const {
 }
 
 void TileKernel::cameraHitShadowRays(TileScratch& s) const {
+    TileWave& wave = s.wave;
+    TileTraceBatch& batch = s.batch;
     const std::size_t lights = scene_.lights.size();
-    const std::size_t packets = s.packets.size();
-    s.shadowLanes.resize(packets * lights);
-    s.shadowTraced.resize(packets * lights);
+    const std::size_t packets = wave.packets.size();
+    batch.shadowLanes.resize(packets * lights);
+    batch.shadowTraced.resize(packets * lights);
     for (std::size_t p = 0; p < packets; ++p)
         for (std::size_t l = 0; l < lights; ++l) {
-            LightLanes16& seen = s.packetLights[p * lights + l];
+            LightLanes16& seen = wave.packetLights[p * lights + l];
             std::fill_n(seen.lit, kFloatLanes, 0);
             std::fill_n(seen.traced, kFloatLanes, 0);
-            shadowRayLanes16(scene_.lights[l], shading_.spotCones()[l], s.packets[p].surface, s.packets[p].hits.valid,
-                             s.shadowLanes[p * lights + l], s.shadowTraced[p * lights + l], seen);
+            shadowRayLanes16(scene_.lights[l], shading_.spotCones()[l], wave.packets[p].surface,
+                             wave.packets[p].hits.valid, batch.shadowLanes[p * lights + l],
+                             batch.shadowTraced[p * lights + l], seen);
         }
     // Hit after hit, each hit's lights in order, as LocalShading::shadowQueries lists them.
-    s.rays.clear();
-    s.shadowLights.clear();
+    batch.rays.clear();
+    batch.shadowLights.clear();
     for (std::size_t p = 0; p < packets; ++p)
-        for (int k = 0; k < s.packets[p].count; ++k)
+        for (int k = 0; k < wave.packets[p].count; ++k)
             for (std::size_t l = 0; l < lights; ++l) {
-                if (!s.packets[p].hits.valid[k] || !s.shadowTraced[p * lights + l].valid[k]) continue;
-                const RayLanes16& rays = s.shadowLanes[p * lights + l];
+                if (!wave.packets[p].hits.valid[k] || !batch.shadowTraced[p * lights + l].valid[k]) continue;
+                const RayLanes16& rays = batch.shadowLanes[p * lights + l];
                 Ray ray = laneRay(rays, k);
                 ray.tNear = rays.tNear[k];
                 ray.tFar = rays.tFar[k];
-                s.rays.push_back(ray);
-                s.shadowLights.push_back(static_cast<int>(l));
+                batch.rays.push_back(ray);
+                batch.shadowLights.push_back(static_cast<int>(l));
             }
-    const std::size_t count = s.rays.size();
-    s.occluded.resize(count);
-    tracer_.occludedPrimaryShadows(std::span(s.rays.data(), count), std::span(s.shadowLights.data(), count),
-                                   std::span(s.occluded.data(), count));
+    const std::size_t count = batch.rays.size();
+    batch.occluded.resize(count);
+    tracer_.occludedPrimaryShadows(std::span(batch.rays.data(), count), std::span(batch.shadowLights.data(), count),
+                                   std::span(batch.occluded.data(), count));
     std::size_t q = 0;
     for (std::size_t p = 0; p < packets; ++p)
-        for (int k = 0; k < s.packets[p].count; ++k)
+        for (int k = 0; k < wave.packets[p].count; ++k)
             for (std::size_t l = 0; l < lights; ++l) {
-                if (!s.packets[p].hits.valid[k] || !s.shadowTraced[p * lights + l].valid[k]) continue;
-                LightLanes16& seen = s.packetLights[p * lights + l];
+                if (!wave.packets[p].hits.valid[k] || !batch.shadowTraced[p * lights + l].valid[k]) continue;
+                LightLanes16& seen = wave.packetLights[p * lights + l];
                 seen.traced[k] = 1;
-                seen.lit[k] = s.occluded[q++] ? 0 : 1;
+                seen.lit[k] = batch.occluded[q++] ? 0 : 1;
             }
     s.counts.shadow += count;
 }
 
 void TileKernel::recordShadowRays(TileScratch& s, std::size_t p) const {
-    const TileScratch::HitPacket& packet = s.packets[p];
+    const TileWave::HitPacket& packet = s.wave.packets[p];
     const std::size_t lights = scene_.lights.size();
     // What a store tells the cache policy a hit spares counts these rays.
-    if (s.countTreeRays)
+    if (s.caching.countTreeRays)
         for (int k = 0; k < packet.count; ++k) {
             std::uint32_t traced = 0;
-            for (std::size_t l = 0; l < lights; ++l) traced += static_cast<std::uint32_t>(s.packetLights[p * lights + l].traced[k]);
-            s.nodes[static_cast<std::size_t>(packet.node[k])].tracedRays += traced;
+            for (std::size_t l = 0; l < lights; ++l)
+                traced += static_cast<std::uint32_t>(s.wave.packetLights[p * lights + l].traced[k]);
+            s.wave.nodes[static_cast<std::size_t>(packet.node[k])].tracedRays += traced;
         }
-    if (!s.trackTrees) return;
+    if (!s.caching.trackTrees) return;
     for (int k = 0; k < packet.count; ++k) {
         const auto node = static_cast<std::size_t>(packet.node[k]);
-        if (!packet.hits.valid[k] || !s.nodes[node].tracked) continue;
+        if (!packet.hits.valid[k] || !s.wave.nodes[node].tracked) continue;
         // The hit's light depends on every light (even one below its
         // horizon, which may rise) and on what its shadow rays cross,
         // kept apart by their answers (cache/RayTreeBounds.h).
-        RayTreeBounds& bounds = s.nodeBounds[node];
+        RayTreeBounds& bounds = s.caching.nodeBounds[node];
         bounds.shaded = true;
         const Vec3 position{packet.surface.positionX[k], packet.surface.positionY[k], packet.surface.positionZ[k]};
         const Vec3 geometric{packet.surface.geometricX[k], packet.surface.geometricY[k], packet.surface.geometricZ[k]};
         const Vec3 origin = position + geometric * surfaceOffset(position);
         for (std::size_t l = 0; l < lights; ++l) {
-            const LightLanes16& seen = s.packetLights[p * lights + l];
+            const LightLanes16& seen = s.wave.packetLights[p * lights + l];
             if (seen.traced[k]) bounds.addShadowRay(origin, static_cast<int>(l), seen.lit[k] != 0);
         }
     }
 }
 
 void TileKernel::packetDirect(TileScratch& s, std::size_t p) const {
-    TileScratch::HitPacket& packet = s.packets[p];
+    TileWave::HitPacket& packet = s.wave.packets[p];
     const std::size_t lights = scene_.lights.size();
     alignas(64) int remaining[kFloatLanes], selected[kFloatLanes];
     std::memcpy(remaining, packet.hits.valid, sizeof remaining);
     for (int id; (id = takeObjectLanes(packet.objectId, remaining, selected)) >= 0;)
         directLightLanes16(scene_.objects[static_cast<std::size_t>(id)].material, scene_.lights,
-                           s.packetLights.data() + p * lights, packet.surface, packet.rays.ray, selected,
+                           s.wave.packetLights.data() + p * lights, packet.surface, packet.rays.ray, selected,
                            packet.directR, packet.directG, packet.directB);
     for (int k = 0; k < packet.count; ++k)
         if (packet.hits.valid[k])
-            s.nodes[static_cast<std::size_t>(packet.node[k])].direct =
+            s.wave.nodes[static_cast<std::size_t>(packet.node[k])].direct =
                 Rgb{packet.directR[k], packet.directG[k], packet.directB[k]};
 }
 
 void TileKernel::recordFirstHitLight(TileScratch& s, std::size_t p) const {
-    const TileScratch::HitPacket& packet = s.packets[p];
+    const TileWave::HitPacket& packet = s.wave.packets[p];
     const std::size_t lights = scene_.lights.size();
     std::array<ShadowQuery, kMaxLights> queries;
     std::array<unsigned char, kMaxLights> occluded;
@@ -493,40 +499,43 @@ void TileKernel::recordFirstHitLight(TileScratch& s, std::size_t p) const {
         // The lanes' shadow rays were these queries' rays (render/HitLanes.h).
         const auto count = static_cast<std::size_t>(shading_.shadowQueries(sp, queries.data()));
         for (std::size_t q = 0; q < count; ++q)
-            occluded[q] = s.packetLights[p * lights + static_cast<std::size_t>(queries[q].lightIndex)].lit[k] ? 0 : 1;
+            occluded[q] =
+                s.wave.packetLights[p * lights + static_cast<std::size_t>(queries[q].lightIndex)].lit[k] ? 0 : 1;
         const auto node = static_cast<std::size_t>(packet.node[k]);
         const std::span<const ShadowQuery> seen(queries.data(), count);
         const std::span<const unsigned char> blocked(occluded.data(), count);
-        s.rootViewIndependent[node] = shading_.viewIndependentLight(material, albedo, sp, seen, blocked, s.rootLitMask[node]);
+        s.renderCache.rootViewIndependent[node] =
+            shading_.viewIndependentLight(material, albedo, sp, seen, blocked, s.renderCache.rootLitMask[node]);
         if (material.diffuseTexture) {
             // Only a texture varies the albedo within a primitive; the
             // lighting of untextured hits is never asked for.
             std::uint64_t sameMask;
-            s.rootLighting[node] = shading_.viewIndependentLight(material, Rgb{1.0f}, sp, seen, blocked, sameMask);
+            s.renderCache.rootLighting[node] =
+                shading_.viewIndependentLight(material, Rgb{1.0f}, sp, seen, blocked, sameMask);
         }
     }
 }
 
 void TileKernel::reshadePacket(TileScratch& s, std::size_t p) const {
-    const TileScratch::HitPacket& packet = s.packets[p];
+    const TileWave::HitPacket& packet = s.wave.packets[p];
     std::array<ShadowQuery, kMaxLights> queries;
     for (int k = 0; k < packet.count; ++k) {
         if (!packet.hits.valid[k]) continue;
         const SurfacePoint sp = laneSurface(packet.surface, k);
         const auto node = static_cast<std::size_t>(packet.node[k]);
-        const ReshadeRequest& request = s.reshade[node];
+        const ReshadeRequest& request = s.renderCache.reshade[node];
         const Material& material = scene_.objects[static_cast<std::size_t>(packet.objectId[k])].material;
         const auto count = static_cast<std::size_t>(shading_.shadowQueries(sp, queries.data()));
         const Vec3 toViewer = -laneRay(packet.rays.ray, k).direction;
         const Rgb albedo{packet.surface.albedoR[k], packet.surface.albedoG[k], packet.surface.albedoB[k]};
-        s.nodes[node].direct = request.viewIndependent + shading_.highlights(material, albedo, sp, toViewer,
-                                                                             std::span(queries.data(), count),
-                                                                             request.litMask);
+        s.wave.nodes[node].direct =
+            request.viewIndependent +
+            shading_.highlights(material, albedo, sp, toViewer, std::span(queries.data(), count), request.litMask);
     }
 }
 
-void TileKernel::packetSpawnLanes(const TileScratch::HitPacket& packet, SecondaryRayLanes16& spawned,
-                                  CacheWorker* cache, bool lookUpInLanes) const {
+void TileKernel::packetSpawnLanes(const TileWave::HitPacket& packet, SecondaryRayLanes16& spawned, CacheWorker* cache,
+                                  bool lookUpInLanes) const {
     // Hits whose path may go on (the rest are done: their light is all they bring).
     alignas(64) int remaining[kFloatLanes], selected[kFloatLanes];
     bool any = false;
@@ -574,7 +583,7 @@ void TileKernel::packetSpawnLanes(const TileScratch::HitPacket& packet, Secondar
     }
 }
 
-void TileKernel::packetEmit(TileScratch& s, const TileScratch::HitPacket& packet, SecondaryRayLanes16& spawned,
+void TileKernel::packetEmit(TileScratch& s, const TileWave::HitPacket& packet, SecondaryRayLanes16& spawned,
                             CacheWorker* cache) const {
     if (!spawned.any) return;
     // Hit by hit, the reflected ray before the refracted one: nodes are
@@ -591,7 +600,7 @@ void TileKernel::packetEmit(TileScratch& s, const TileScratch::HitPacket& packet
             emitSecondaryRay(s, cache, packet.node[k], packet.pathWeight[k], packet.depth[k], objectId,
                              Ray{{spawned.aboveX[k], spawned.aboveY[k], spawned.aboveZ[k]},
                                  {spawned.reflectedX[k], spawned.reflectedY[k], spawned.reflectedZ[k]}},
-                             cone, TileScratch::Kind::Reflection,
+                             cone, TileWave::Kind::Reflection,
                              Rgb{spawned.reflectR[k], spawned.reflectG[k], spawned.reflectB[k]}, frontFace, lookup);
         }
         if (spawned.refracts[k]) {
@@ -600,7 +609,7 @@ void TileKernel::packetEmit(TileScratch& s, const TileScratch::HitPacket& packet
             emitSecondaryRay(s, cache, packet.node[k], packet.pathWeight[k], packet.depth[k], objectId,
                              Ray{{spawned.belowX[k], spawned.belowY[k], spawned.belowZ[k]},
                                  {spawned.refractedX[k], spawned.refractedY[k], spawned.refractedZ[k]}},
-                             cone, TileScratch::Kind::Refraction,
+                             cone, TileWave::Kind::Refraction,
                              Rgb{spawned.refractR[k], spawned.refractG[k], spawned.refractB[k]}, !frontFace, lookup);
         }
     }
