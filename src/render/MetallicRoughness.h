@@ -4,7 +4,8 @@
 // follow operation for operation: Lambert diffuse (1 - metallic) *
 // baseColor / pi, and GGX specular D * Vis * F with alpha = roughness^2,
 // height-correlated Smith visibility and Schlick's Fresnel with F0 =
-// mix(0.04, baseColor, metallic). The diffuse term leaves out the
+// mix(0.04, baseColor, metallic) (KHR_materials_specular changes the 0.04
+// and the grazing 1: Material::specularF0, specularF90). The diffuse term leaves out the
 // specification's (1 - F) factor, so that it does not depend on the view
 // (the Render Cache keeps it while the eye moves). Surfaces smoother than
 // kSmoothRoughness (scene/Material.h) have no specular lobe toward a light: a point light's
@@ -27,10 +28,14 @@ inline bool hasSpecularLobe(const Material& m) { return m.roughness >= kSmoothRo
 // The diffuse factor (1 - metallic) / pi that multiplies the base colour.
 inline float diffuseFactor(const Material& m) { return (1.0f - m.metallic) * kInversePi; }
 
-// F0 = mix(0.04, baseColor, metallic), per channel.
-inline float reflectanceAtNormal(float baseColor, float metallic) {
-    return 0.04f * (1.0f - metallic) + baseColor * metallic;
+// F0 = mix(dielectricF0, baseColor, metallic), per channel; dielectricF0 is
+// the material's specularF0 (0.04 by default).
+inline float reflectanceAtNormal(float dielectricF0, float baseColor, float metallic) {
+    return dielectricF0 * (1.0f - metallic) + baseColor * metallic;
 }
+
+// Schlick's Fresnel F0 + (F90 - F0) * w, w = schlickWeight(cosine).
+inline float schlickFresnel(float f0, float f90, float w) { return f0 + (f90 - f0) * w; }
 
 // (1 - cosine)^5, Schlick's weight.
 inline float schlickWeight(float cosine) {
@@ -66,9 +71,11 @@ inline Rgb ggxSpecular(const Material& m, const Rgb& baseColor, const Vec3& n, c
     const float alpha = m.roughness * m.roughness;
     const float lobe = ggxLobe(alpha * alpha, nDotH, nDotL, nDotV);
     const float w = schlickWeight(vDotH);
-    const float f0r = reflectanceAtNormal(baseColor.r, m.metallic), f0g = reflectanceAtNormal(baseColor.g, m.metallic),
-                f0b = reflectanceAtNormal(baseColor.b, m.metallic);
-    return {(f0r + (1.0f - f0r) * w) * lobe, (f0g + (1.0f - f0g) * w) * lobe, (f0b + (1.0f - f0b) * w) * lobe};
+    const float f0r = reflectanceAtNormal(m.specularF0.r, baseColor.r, m.metallic),
+                f0g = reflectanceAtNormal(m.specularF0.g, baseColor.g, m.metallic),
+                f0b = reflectanceAtNormal(m.specularF0.b, baseColor.b, m.metallic);
+    return {schlickFresnel(f0r, m.specularF90, w) * lobe, schlickFresnel(f0g, m.specularF90, w) * lobe,
+            schlickFresnel(f0b, m.specularF90, w) * lobe};
 }
 
 }  // namespace raycache

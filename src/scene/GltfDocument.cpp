@@ -10,6 +10,7 @@
 #include <system_error>
 
 #include "core/Errors.h"
+#include "core/TextFormat.h"
 #include "scene/GltfLimits.h"
 #include "scene/MeshLimits.h"
 
@@ -151,31 +152,55 @@ void refuseDeepNesting(const fs::path& path, const std::string& text) {
                        " levels deep (arrays and objects inside each other)");
 }
 
-// KHR_materials_emissive_strength's factor of each material: 1 where the
-// extension is absent, a finite number >= 0 where present (the
-// specification's range), or the file is refused naming the field.
-std::vector<float> emissiveStrengths(const fs::path& path, const json& materials) {
-    std::vector<float> strengths;
-    if (!materials.is_array()) return strengths;
+// A number of a material's extension within [lo, hi], or the file is
+// refused naming the field.
+float extensionNumber(const fs::path& path, const json& value, const std::string& field, double lo, double hi) {
+    const double v = value.is_number() ? value.get<double>() : std::numeric_limits<double>::quiet_NaN();
+    if (!(v >= lo && v <= hi))
+        fail(path, field + (hi < std::numeric_limits<float>::max()
+                                ? " must be a number in [" + formatGeneral(lo) + ", " + formatGeneral(hi) + "]"
+                                : " must be a finite number >= " + formatGeneral(lo)));
+    return static_cast<float>(v);
+}
+
+// extensions.<name> of a material, or null.
+const json* materialExtension(const json& material, const char* name) {
+    if (!material.is_object()) return nullptr;
+    const auto extensions = material.find("extensions");
+    if (extensions == material.end() || !extensions->is_object()) return nullptr;
+    const auto extension = extensions->find(name);
+    return extension != extensions->end() && extension->is_object() ? &*extension : nullptr;
+}
+
+// What each material's KHR_materials_emissive_strength and
+// KHR_materials_specular say, in the specification's ranges.
+std::vector<GltfMaterialExtensions> materialExtensionsOf(const fs::path& path, const json& materials) {
+    std::vector<GltfMaterialExtensions> out;
+    if (!materials.is_array()) return out;
+    constexpr double kFloatMax = std::numeric_limits<float>::max();
     for (std::size_t i = 0; i < materials.size(); ++i) {
-        float strength = 1.0f;
-        const json& material = materials[i];
-        if (material.is_object())
-            if (const auto extensions = material.find("extensions");
-                extensions != material.end() && extensions->is_object())
-                if (const auto extension = extensions->find("KHR_materials_emissive_strength");
-                    extension != extensions->end() && extension->is_object())
-                    if (const auto value = extension->find("emissiveStrength"); value != extension->end()) {
-                        const double v = value->is_number() ? value->get<double>() : -1.0;
-                        if (!(v >= 0.0 && v <= static_cast<double>(std::numeric_limits<float>::max())))
-                            fail(path, "materials[" + std::to_string(i) +
-                                           "].extensions.KHR_materials_emissive_strength.emissiveStrength must be a "
-                                           "finite number >= 0");
-                        strength = static_cast<float>(v);
-                    }
-        strengths.push_back(strength);
+        GltfMaterialExtensions e;
+        const std::string at = "materials[" + std::to_string(i) + "].extensions.";
+        if (const json* strength = materialExtension(materials[i], "KHR_materials_emissive_strength"))
+            if (const auto v = strength->find("emissiveStrength"); v != strength->end())
+                e.emissiveStrength =
+                    extensionNumber(path, *v, at + "KHR_materials_emissive_strength.emissiveStrength", 0.0, kFloatMax);
+        if (const json* specular = materialExtension(materials[i], "KHR_materials_specular")) {
+            const std::string field = at + "KHR_materials_specular.";
+            if (const auto v = specular->find("specularFactor"); v != specular->end())
+                e.specularFactor = extensionNumber(path, *v, field + "specularFactor", 0.0, 1.0);
+            if (const auto v = specular->find("specularColorFactor"); v != specular->end()) {
+                if (!v->is_array() || v->size() != 3)
+                    fail(path, field + "specularColorFactor must be an array of 3 numbers");
+                e.specularColor = {extensionNumber(path, (*v)[0], field + "specularColorFactor[0]", 0.0, kFloatMax),
+                                   extensionNumber(path, (*v)[1], field + "specularColorFactor[1]", 0.0, kFloatMax),
+                                   extensionNumber(path, (*v)[2], field + "specularColorFactor[2]", 0.0, kFloatMax)};
+            }
+            e.specularTextures = specular->contains("specularTexture") || specular->contains("specularColorTexture");
+        }
+        out.push_back(e);
     }
-    return strengths;
+    return out;
 }
 
 }  // namespace
@@ -231,7 +256,7 @@ GltfDocument readGltfDocument(const fs::path& path) {
                                                    camera.value("type", json()) == "orthographic");
     if (const auto materials = root.find("materials"); materials != root.end()) {
         document.textureTransformSetsTexCoord = transformSetsTexCoord(*materials);
-        document.emissiveStrengths = emissiveStrengths(path, *materials);
+        document.materialExtensions = materialExtensionsOf(path, *materials);
     }
     return document;
 }

@@ -9,7 +9,18 @@
 #include <string>
 #include <vector>
 
+#include "core/Rgb.h"
+
 namespace raycache {
+
+// A material's KHR_materials_emissive_strength and KHR_materials_specular,
+// glTF's defaults where the extension is absent.
+struct GltfMaterialExtensions {
+    float emissiveStrength = 1.0f;  // multiplies emissiveFactor
+    float specularFactor = 1.0f;    // in [0, 1]
+    Rgb specularColor{1.0f};        // specularColorFactor, each >= 0
+    bool specularTextures = false;  // specularTexture or specularColorTexture, not read
+};
 
 struct GltfDocument {
     std::string version;                      // asset.version as written ("2.0"); "1.0" also for a binary glTF 1.0 file
@@ -24,11 +35,10 @@ struct GltfDocument {
     // Some texture's KHR_texture_transform names its own texture coordinate
     // set ("texCoord"), which Assimp 5.2 does not read.
     bool textureTransformSetsTexCoord = false;
-    // Per entry of "materials": KHR_materials_emissive_strength's
-    // emissiveStrength, the factor on emissiveFactor (1 without the
-    // extension). Assimp 5.2 does not read it; its materials keep the file's
-    // order, so entry i is Assimp's material i.
-    std::vector<float> emissiveStrengths;
+    // Per entry of "materials", what its extensions say that Assimp 5.2
+    // does not read. Assimp keeps the file's order of materials, so entry i
+    // is Assimp's material i.
+    std::vector<GltfMaterialExtensions> materialExtensions;
 
     bool isVersion2() const { return version.rfind("2.", 0) == 0; }
 };

@@ -50,20 +50,19 @@ constexpr float kLumensPerWatt = 683.0f;
 constexpr std::size_t kMaxGltfObjects = 100000;
 
 // Extensions raycache reads (through Assimp): required or not, they are honoured.
-constexpr std::array<std::string_view, 5> kReadExtensions{"KHR_lights_punctual", "KHR_materials_transmission",
+constexpr std::array<std::string_view, 6> kReadExtensions{"KHR_lights_punctual", "KHR_materials_transmission",
                                                           "KHR_materials_ior", "KHR_texture_transform",
-                                                          "KHR_materials_emissive_strength"};
+                                                          "KHR_materials_emissive_strength", "KHR_materials_specular"};
 // Extensions that change only how a surface looks, which the Blinn-Phong
 // mapping approximates anyway: a file that requires one still loads, with
 // its note. Every other required extension refuses the file: without it
 // the geometry or the textures cannot be read (Draco, meshopt and
 // quantized meshes, KTX2 and WebP images, GPU instancing).
-constexpr std::array<std::string_view, 10> kAppearanceExtensions{"KHR_materials_pbrSpecularGlossiness",
+constexpr std::array<std::string_view, 9> kAppearanceExtensions{"KHR_materials_pbrSpecularGlossiness",
                                                                  "KHR_materials_unlit",
                                                                  "KHR_materials_sheen",
                                                                  "KHR_materials_clearcoat",
                                                                  "KHR_materials_volume",
-                                                                 "KHR_materials_specular",
                                                                  "KHR_materials_iridescence",
                                                                  "KHR_materials_anisotropy",
                                                                  "KHR_materials_dispersion",
@@ -270,11 +269,14 @@ private:
             noteSampler(m, textureType);
         }
         if (!overrides_.blinnPhongMaterials) {
+            const GltfMaterialExtensions extensions =
+                index < document_.materialExtensions.size() ? document_.materialExtensions[index] : GltfMaterialExtensions{};
             aiColor4D emissive(0, 0, 0, 0);
             m.Get(AI_MATKEY_COLOR_EMISSIVE, emissive);
-            const float strength =
-                index < document_.emissiveStrengths.size() ? document_.emissiveStrengths[index] : 1.0f;
-            pbr.emission = Rgb{emissive.r, emissive.g, emissive.b} * strength;
+            pbr.emission = Rgb{emissive.r, emissive.g, emissive.b} * extensions.emissiveStrength;
+            pbr.specularFactor = extensions.specularFactor;
+            pbr.specularColor = extensions.specularColor;
+            if (extensions.specularTextures) ++specularTextures_;
             if (!isFinite(pbr.emission) || pbr.emission.r < 0.0f || pbr.emission.g < 0.0f || pbr.emission.b < 0.0f)
                 fail(name + ": emissiveFactor must be finite and not negative");
         }
@@ -694,6 +696,9 @@ private:
         if (emissiveTextures_ > 0)
             note("ignored the emissive textures of " + gltfCounted(emissiveTextures_, "material", "materials") +
                  " (their factors are used)");
+        if (specularTextures_ > 0)
+            note("ignored the specular textures of " + gltfCounted(specularTextures_, "material", "materials") +
+                 " (their factors are used)");
         if (normalTextures_ > 0)
             note("ignored the normal textures of " + gltfCounted(normalTextures_, "material", "materials"));
         if (occlusionTextures_ > 0)
@@ -756,8 +761,8 @@ private:
     std::string firstUnusableUvs_;
     std::size_t otherPrimitives_ = 0, skinnedMeshes_ = 0, morphedMeshes_ = 0, coloredMeshes_ = 0,
                 collapsedInstances_ = 0, texturedWithoutUvs_ = 0;
-    std::size_t specularGlossiness_ = 0, emissive_ = 0, emissiveTextures_ = 0, normalTextures_ = 0, occlusionTextures_ = 0,
-                metallicRoughnessTextures_ = 0, transmissionTextures_ = 0, alphaMaterials_ = 0,
+    std::size_t specularGlossiness_ = 0, emissive_ = 0, emissiveTextures_ = 0, specularTextures_ = 0,
+                normalTextures_ = 0, occlusionTextures_ = 0, metallicRoughnessTextures_ = 0, transmissionTextures_ = 0, alphaMaterials_ = 0,
                 clampedOrMirroredTextures_ = 0, nearestTextures_ = 0, tintedMirrors_ = 0, tintedGlass_ = 0;
     std::size_t texturedGlass_ = 0;  // metallic-roughness glass whose base colour is textured
 };

@@ -51,6 +51,12 @@ struct Material {
     float metallic = 0.0f;   // metallic-roughness only
     float roughness = 1.0f;  // metallic-roughness only: perceptual roughness, alpha = roughness^2
     Rgb emission{0.0f};      // metallic-roughness only: radiance added to the surface
+    // Metallic-roughness only: Schlick's Fresnel of the dielectric base runs
+    // from specularF0 (per channel, at normal incidence) to specularF90 at
+    // grazing; glTF's defaults are 0.04 and 1, KHR_materials_specular's
+    // factors change them (scene/PbrToBlinnPhong.h, metallicRoughnessFromPbr).
+    Rgb specularF0{0.04f};
+    float specularF90 = 1.0f;  // mix(specularFactor, 1, metallic): the metal's grazing F is 1
     Rgb ambient{0.1f};                    // ambient reflectance, multiplies the albedo
     Rgb diffuse{0.8f};                    // albedo when there is no texture
     std::optional<Texture> diffuseTexture;  // overrides `diffuse` when present

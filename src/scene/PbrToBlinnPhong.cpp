@@ -101,6 +101,16 @@ Material metallicRoughnessFromPbr(const PbrMaterial& pbr) {
     m.metallic = pbr.metallic;
     m.roughness = pbr.roughness;
     m.emission = pbr.emission;
+    // KHR_materials_specular: F0 = min(0.04 * specularColorFactor, 1) *
+    // specularFactor and F90 = specularFactor for the dielectric base. The
+    // specification's F0 also follows the ior; Cycles' Principled BSDF (the
+    // oracle, docs/scene-format.md) keeps an opaque surface's F0 apart from
+    // its IOR, and so does raycache: 0.04 unless this extension says.
+    const auto dielectricF0 = [&](float color) { return std::min(0.04f * color, 1.0f) * pbr.specularFactor; };
+    m.specularF0 = {dielectricF0(pbr.specularColor.r), dielectricF0(pbr.specularColor.g),
+                    dielectricF0(pbr.specularColor.b)};
+    // mix(specularFactor, 1, metallic), written so that a factor of 1 gives 1 exactly.
+    m.specularF90 = pbr.specularFactor + (1.0f - pbr.specularFactor) * pbr.metallic;
     m.ior = pbr.ior;
     const float transmitted = pbr.transmission * (1.0f - pbr.metallic);
     // The rays' weights are Fresnel's at each hit (tests/render/SecondaryRayWeights.h):

@@ -22,6 +22,9 @@ struct PbrMaterial {
     float transmission = 0.0f;  // KHR_materials_transmission's transmissionFactor
     float ior = 1.5f;           // KHR_materials_ior
     Rgb emission{0.0f};         // emissiveFactor (the metallic-roughness model shows it)
+    // KHR_materials_specular (the metallic-roughness model reads them).
+    float specularFactor = 1.0f;
+    Rgb specularColor{1.0f};  // specularColorFactor
 };
 
 enum class PbrMaterialKind { Diffuse, Mirror, Glass };

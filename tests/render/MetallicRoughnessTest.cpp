@@ -62,8 +62,8 @@ TEST(MetallicRoughness, SchlickWeightAtKnownAngles) {
     EXPECT_FLOAT_EQ(schlickWeight(0.5f), 0.03125f);               // 60 degrees: 0.5^5
     EXPECT_FLOAT_EQ(schlickWeight(0.0f), 1.0f);                   // grazing: F = 1
     EXPECT_NEAR(schlickWeight(std::cos(1.2f)), std::pow(1.0 - std::cos(1.2), 5.0), 1e-6);
-    EXPECT_FLOAT_EQ(reflectanceAtNormal(0.7f, 0.0f), 0.04f);      // dielectrics: 0.04
-    EXPECT_FLOAT_EQ(reflectanceAtNormal(0.7f, 1.0f), 0.7f);       // metals: the base colour
+    EXPECT_FLOAT_EQ(reflectanceAtNormal(0.04f, 0.7f, 0.0f), 0.04f);  // dielectrics: their F0
+    EXPECT_FLOAT_EQ(reflectanceAtNormal(0.04f, 0.7f, 1.0f), 0.7f);   // metals: the base colour
 }
 
 // A white metal (F0 = 1) reflects at most what arrives: the lobe's

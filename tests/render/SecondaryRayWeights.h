@@ -69,10 +69,11 @@ inline SecondaryRayWeights secondaryRayWeights(const Material& material, const R
     const float cosine = absolute < 1.0f ? absolute : 1.0f;
     if (!material.refracts()) {
         const float w = schlickWeight(cosine);
-        const float f0r = reflectanceAtNormal(albedo.r, material.metallic),
-                    f0g = reflectanceAtNormal(albedo.g, material.metallic),
-                    f0b = reflectanceAtNormal(albedo.b, material.metallic);
-        out.reflected = {f0r + (1.0f - f0r) * w, f0g + (1.0f - f0g) * w, f0b + (1.0f - f0b) * w};
+        const float f0r = reflectanceAtNormal(material.specularF0.r, albedo.r, material.metallic),
+                    f0g = reflectanceAtNormal(material.specularF0.g, albedo.g, material.metallic),
+                    f0b = reflectanceAtNormal(material.specularF0.b, albedo.b, material.metallic);
+        const float f90 = material.specularF90;
+        out.reflected = {schlickFresnel(f0r, f90, w), schlickFresnel(f0g, f90, w), schlickFresnel(f0b, f90, w)};
         return out;
     }
     out.totalInternal = cos2T < 0.0f;

@@ -210,6 +210,11 @@ TEST(ShadingLanes, MetallicRoughnessEqualsLocalShading) {
         material.metallic = round % 4 == 0 ? 1.0f : (round % 4 == 1 ? 0.0f : unit(rng));
         material.roughness = round % 5 == 0 ? 0.05f * unit(rng) : (round % 5 == 1 ? 1.0f : unit(rng));
         material.emission = round % 3 == 0 ? Rgb{0.2f, 0.0f, 0.7f} : Rgb(0.0f);
+        // KHR_materials_specular's F0 and F90 in one round of seven.
+        if (round % 7 == 0) {
+            material.specularF0 = {0.08f * unit(rng), 0.08f * unit(rng), 0.0f};
+            material.specularF90 = unit(rng);
+        }
         return material;
     });
 }
@@ -304,6 +309,10 @@ TEST(ShadingLanes, MetallicRoughnessSecondaryRaysEqualFresnelWeights) {
         material.metallic = round % 4 == 0 ? 1.0f : (round % 4 == 1 ? 0.0f : unit(rng));
         material.roughness = 0.05f * unit(rng);
         material.reflectivity = 1.0f;
+        if (round % 7 == 3) {
+            material.specularF0 = {0.08f * unit(rng), 0.0f, 0.08f * unit(rng)};
+            material.specularF90 = unit(rng);
+        }
         if (round % 2 == 0) {
             material.metallic = round % 8 == 0 ? 0.0f : material.metallic;
             material.transmissivity = round % 6 == 0 ? 1.0f : unit(rng);
