@@ -5,8 +5,8 @@
 // baseColor / pi, and GGX specular D * Vis * F with alpha = roughness^2,
 // height-correlated Smith visibility and Schlick's Fresnel with F0 =
 // mix(0.04, baseColor, metallic) (KHR_materials_specular changes the 0.04
-// and the grazing 1: Material::specularF0, specularF90). The diffuse term leaves out the
-// specification's (1 - F) factor, so that it does not depend on the view
+// and the grazing 1: Material::specularF0, specularF90). The diffuse term
+// leaves out the specification's (1 - F) factor, so that it does not depend on the view
 // (the Render Cache keeps it while the eye moves). Surfaces smoother than
 // kSmoothRoughness (scene/Material.h) have no specular lobe toward a light: a point light's
 // reflection in them is a point, and their mirror ray, weighted by Schlick's

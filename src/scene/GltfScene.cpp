@@ -49,7 +49,8 @@ constexpr float kLumensPerWatt = 683.0f;
 // As many objects as a JSON scene may have (docs/scene-format.md, "Limits").
 constexpr std::size_t kMaxGltfObjects = 100000;
 
-// Extensions raycache reads (through Assimp): required or not, they are honoured.
+// Extensions raycache reads (through Assimp, or from the file's JSON where
+// Assimp does not: scene/GltfDocument.h): required or not, they are honoured.
 constexpr std::array<std::string_view, 6> kReadExtensions{"KHR_lights_punctual", "KHR_materials_transmission",
                                                           "KHR_materials_ior", "KHR_texture_transform",
                                                           "KHR_materials_emissive_strength", "KHR_materials_specular"};
@@ -269,8 +270,9 @@ private:
             noteSampler(m, textureType);
         }
         if (!overrides_.blinnPhongMaterials) {
-            const GltfMaterialExtensions extensions =
-                index < document_.materialExtensions.size() ? document_.materialExtensions[index] : GltfMaterialExtensions{};
+            const GltfMaterialExtensions extensions = index < document_.materialExtensions.size()
+                                                          ? document_.materialExtensions[index]
+                                                          : GltfMaterialExtensions{};
             aiColor4D emissive(0, 0, 0, 0);
             m.Get(AI_MATKEY_COLOR_EMISSIVE, emissive);
             pbr.emission = Rgb{emissive.r, emissive.g, emissive.b} * extensions.emissiveStrength;
@@ -762,8 +764,8 @@ private:
     std::size_t otherPrimitives_ = 0, skinnedMeshes_ = 0, morphedMeshes_ = 0, coloredMeshes_ = 0,
                 collapsedInstances_ = 0, texturedWithoutUvs_ = 0;
     std::size_t specularGlossiness_ = 0, emissive_ = 0, emissiveTextures_ = 0, specularTextures_ = 0,
-                normalTextures_ = 0, occlusionTextures_ = 0, metallicRoughnessTextures_ = 0, transmissionTextures_ = 0, alphaMaterials_ = 0,
-                clampedOrMirroredTextures_ = 0, nearestTextures_ = 0, tintedMirrors_ = 0, tintedGlass_ = 0;
+                normalTextures_ = 0, occlusionTextures_ = 0, metallicRoughnessTextures_ = 0,
+                transmissionTextures_ = 0, alphaMaterials_ = 0, clampedOrMirroredTextures_ = 0, nearestTextures_ = 0, tintedMirrors_ = 0, tintedGlass_ = 0;
     std::size_t texturedGlass_ = 0;  // metallic-roughness glass whose base colour is textured
 };
 
