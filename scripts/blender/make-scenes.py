@@ -29,6 +29,9 @@ DEFAULT_SAMPLES = 1024
 # glossy floor (floor -> rough metal -> light, a path few samples find), so
 # that scene gets twice the samples (README.md gives the noise left).
 SCENE_SAMPLES = {"metals": 2048}
+# The normal-mapped scene carries the MikkTSpace tangents Cycles shades with
+# (TANGENT), so a reader need not compute its own to match.
+SCENE_EXPORT_OPTIONS = {"textured": dict(export_tangents=True)}
 # Glass needs a path in and out of each surface it crosses (a sphere, a slab
 # seen through a sphere, a Suzanne's ears); 8 of each leaves no visible cut.
 SPECULAR_BOUNCES = 8
@@ -76,6 +79,97 @@ def checker_material(image):
     tex.image = image
     mat.node_tree.links.new(tex.outputs["Color"],
                             nodes["Principled BSDF"].inputs["Base Color"])
+    return mat
+
+
+def data_image(outdir, name, size, texel):
+    """A Non-Color PNG (raw values, no sRGB curve) whose texel (x, y) ->
+    (r, g, b) is given; row 0 is the image's bottom, v = 0. Written to
+    OUTDIR/NAME.png and embedded by the exporter into the .glb."""
+    image = bpy.data.images.new(name, size, size, alpha=False)
+    image.colorspace_settings.name = "Non-Color"
+    pixels = []
+    for y in range(size):
+        for x in range(size):
+            pixels.extend((*texel(x, y), 1.0))
+    image.pixels = pixels
+    image.filepath_raw = os.path.join(outdir, name + ".png")
+    image.file_format = "PNG"
+    image.save()
+    return image
+
+
+# Roughness by tile column and metallic by tile row of the floor's
+# metallic-roughness texture (glTF's channels: G roughness, B metallic).
+TILE_ROUGHNESS = (0.25, 0.5, 0.8)
+TILE_METALLIC = (0.0, 1.0)
+
+
+def metal_rough_image(outdir, tiles=8, size=256):
+    """tiles x tiles tiles: roughness cycles through TILE_ROUGHNESS along
+    u, metallic alternates along v; R (glTF's occlusion, unused) is 1."""
+    side = size // tiles
+
+    def texel(x, y):
+        return (1.0, TILE_ROUGHNESS[(x // side) % len(TILE_ROUGHNESS)],
+                TILE_METALLIC[(y // side) % len(TILE_METALLIC)])
+    return data_image(outdir, "metal-rough", size, texel)
+
+
+def bump_normal_image(outdir, bumps=16, size=256, max_slope_deg=40.0):
+    """A tangent-space normal map of bumps x bumps spherical caps, one
+    centred in each cell, filling 80 % of the cell's width, whose slope
+    grows to max_slope_deg at the cap's rim; flat (0, 0, 1) between them.
+    +x is the tangent (u), +y the bitangent (v), encoded n * 0.5 + 0.5."""
+    side = size / bumps
+    rim = 0.4 * side  # the cap's radius in texels
+    # The radius of the sphere the cap is cut from: its normal at the rim
+    # leans max_slope_deg from the surface's.
+    radius = rim / math.sin(math.radians(max_slope_deg))
+
+    def texel(x, y):
+        dx = (x + 0.5) % side - side / 2
+        dy = (y + 0.5) % side - side / 2
+        if dx * dx + dy * dy >= rim * rim:
+            n = (0.0, 0.0, 1.0)
+        else:
+            dz = math.sqrt(radius * radius - dx * dx - dy * dy)
+            n = (dx / radius, dy / radius, dz / radius)
+        return tuple(c * 0.5 + 0.5 for c in n)
+    return data_image(outdir, "bump-normal", size, texel)
+
+
+def metal_rough_material(name, base, image):
+    """Image -> Separate Color -> G to Roughness, B to Metallic: the wiring
+    the exporter writes as pbrMetallicRoughness.metallicRoughnessTexture."""
+    mat = principled(name, base)
+    nodes = mat.node_tree.nodes
+    tex = nodes.new("ShaderNodeTexImage")
+    tex.image = image
+    separate = nodes.new("ShaderNodeSeparateColor")
+    separate.mode = "RGB"
+    bsdf = nodes["Principled BSDF"]
+    links = mat.node_tree.links
+    links.new(tex.outputs["Color"], separate.inputs["Color"])
+    links.new(separate.outputs["Green"], bsdf.inputs["Roughness"])
+    links.new(separate.outputs["Blue"], bsdf.inputs["Metallic"])
+    return mat
+
+
+def normal_mapped_material(name, base, image, roughness=0.5):
+    """Image -> Normal Map (tangent space, the UV map, strength 1) ->
+    Normal: the wiring the exporter writes as normalTexture."""
+    mat = principled(name, base, roughness=roughness)
+    nodes = mat.node_tree.nodes
+    tex = nodes.new("ShaderNodeTexImage")
+    tex.image = image
+    normal_map = nodes.new("ShaderNodeNormalMap")
+    normal_map.space = "TANGENT"
+    normal_map.uv_map = "UVMap"
+    normal_map.inputs["Strength"].default_value = 1.0
+    links = mat.node_tree.links
+    links.new(tex.outputs["Color"], normal_map.inputs["Color"])
+    links.new(normal_map.outputs["Normal"], nodes["Principled BSDF"].inputs["Normal"])
     return mat
 
 
@@ -253,6 +347,20 @@ def scene_glass(outdir):
     camera((0.0, -7.5, 3.5), (0.0, 0.5, 0.6), lens=40.0)
 
 
+def scene_textured(outdir):
+    plane(8.0, metal_rough_material("metal-rough-floor", (0.7, 0.7, 0.7),
+                                    metal_rough_image(outdir)))
+    bumps = bump_normal_image(outdir)
+    cube(1.4, (1.3, 0.4, 0.7), normal_mapped_material("bumpy-cube", (0.8, 0.35, 0.1), bumps),
+         "bumpy-cube", rotation=(0.0, 0.0, math.radians(30)))
+    sphere(0.8, (-1.4, 0.6, 0.8),
+           normal_mapped_material("bumpy-sphere", (0.15, 0.4, 0.8), bumps),
+           "bumpy-sphere")
+    light("POINT", "point-300W", 300.0, location=(0.0, 3.5, 3.0))
+    light("SUN", "sun-1.5", 1.5, sun_direction=(-0.4, 0.5, -1.0))
+    camera((0.0, -7.0, 4.5), (0.0, 0.3, 0.4), lens=40.0)
+
+
 SCENES = {
     "lambert-point": scene_lambert_point,
     "lambert-sun": scene_lambert_sun,
@@ -260,6 +368,7 @@ SCENES = {
     "studio": scene_studio,
     "metals": scene_metals,
     "glass": scene_glass,
+    "textured": scene_textured,
 }
 
 
@@ -331,12 +440,16 @@ def render(stem, exr, point_sampled):
         scene.cycles.filter_width = 1.5
 
 
-def export(path):
+def export(path, options):
     bpy.ops.export_scene.gltf(filepath=path, export_format="GLB",
-                              export_lights=True, export_cameras=True)
+                              export_lights=True, export_cameras=True, **options)
 
 
 # ---------------------------------------------------------------- main
+
+# The images the scenes write into OUTDIR for the exporter to embed.
+TEXTURE_FILES = ("checker.png", "metal-rough.png", "bump-normal.png")
+
 
 def parse(argv):
     args = argv[argv.index("--") + 1:] if "--" in argv else []
@@ -386,14 +499,15 @@ def main():
         SCENES[name](outdir)
         cycles_settings(o["samples"] or SCENE_SAMPLES.get(name, DEFAULT_SAMPLES), o["seed"])
         stem = os.path.join(outdir, name)
-        export(stem + ".glb")
+        export(stem + ".glb", SCENE_EXPORT_OPTIONS.get(name, {}))
         if o["render"]:
             render(stem + o["suffix"], o["exr"], o["point_sampled"])
         print(f"make-scenes: {name} done", flush=True)
-    checker = os.path.join(outdir, "checker.png")
-    if os.path.exists(checker):
-        # Embedded in the .glb files; not needed beside them.
-        os.remove(checker)
+    for texture in TEXTURE_FILES:
+        path = os.path.join(outdir, texture)
+        if os.path.exists(path):
+            # Embedded in the .glb files; not needed beside them.
+            os.remove(path)
 
 
 if __name__ == "__main__":
