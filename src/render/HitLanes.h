@@ -70,13 +70,16 @@ inline void setMeshHitLane(MeshHitLanes& lanes, std::size_t k, const TriangleMes
 // Every function writes only the lanes its `lanes` mask selects (-1
 // selected, 0 not).
 
-// Sixteen surface points and their albedos.
+// Sixteen surface points and what their materials are there: albedos and,
+// for metallic-roughness materials, metallic and roughness (the factors,
+// or a texture's values: render/SurfaceTextures.h).
 struct SurfaceLanes16 {
     alignas(64) float positionX[16], positionY[16], positionZ[16];
     alignas(64) float normalX[16], normalY[16], normalZ[16];
     alignas(64) float geometricX[16], geometricY[16], geometricZ[16];
     alignas(64) float u[16], v[16];
     alignas(64) float albedoR[16], albedoG[16], albedoB[16];
+    alignas(64) float metallic[16], roughness[16];  // metallic-roughness materials only
     alignas(64) int frontFace[16];  // 1: the ray arrived from outside
 };
 

@@ -10,10 +10,12 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <optional>
 
 #include "cache/CubeAddressingLanes.h"
 #include "core/FloatLanes.h"
 #include "render/StageTimer.h"
+#include "render/SurfaceTextures.h"
 #include "render/TileKernel.h"
 
 namespace raycache {
@@ -63,6 +65,19 @@ void setLaneSurface(SurfaceLanes16& s, int k, const SurfacePoint& sp) {
     s.u[k] = sp.u;
     s.v[k] = sp.v;
     s.frontFace[k] = sp.frontFace ? 1 : 0;
+}
+
+// A G-buffer hit as the tracer's would be where the material has data
+// textures: the texture coordinates (the G-buffer carries only the albedo)
+// and the normal texture's normal.
+SurfacePoint texturedGBufferSurface(const SceneObject& object, int primitiveId, SurfacePoint sp) {
+    const Material& material = object.material;
+    const auto* shape = std::get_if<MeshShape>(&object.shape);
+    if (!shape || shape->mesh->uvs.empty() || (!material.metallicRoughnessTexture && !material.normalTexture))
+        return sp;
+    triangleUvAt(*shape->mesh, primitiveId, sp.position, sp.u, sp.v);
+    if (material.normalTexture) sp.normal = normalFromTexture(material, *shape->mesh, primitiveId, sp);
+    return sp;
 }
 
 }  // namespace
@@ -204,12 +219,16 @@ void TileKernel::readGBufferInLanes(const CameraRays& cameraRays, const GBufferV
             packet.hits.valid[k] = -1;
             packet.objectId[k] = gbuffer.objectId(i);
             packet.rays.hit.primitiveId[k] = static_cast<std::uint32_t>(gbuffer.primitiveId(i));
-            const SurfacePoint sp = surfacePointFromGBuffer(scene_, gbuffer, i, ray.direction);
+            const SceneObject& object = scene_.objects[static_cast<std::size_t>(packet.objectId[k])];
+            const SurfacePoint sp = texturedGBufferSurface(object, gbuffer.primitiveId(i),
+                                                           surfacePointFromGBuffer(scene_, gbuffer, i, ray.direction));
             setLaneSurface(packet.surface, k, sp);
             packet.rays.ray.tFar[k] = length(sp.position - ray.origin);
             const Rgb albedo = gbuffer.albedoAt(i);
             packet.surface.albedoR[k] = albedo.r, packet.surface.albedoG[k] = albedo.g;
             packet.surface.albedoB[k] = albedo.b;
+            if (object.material.model == ShadingModel::MetallicRoughness)
+                materialFactorLane(object.material, k, packet.surface);
             ++hits;
             if (cache && fill_.active()) noteVisiblePoint(s, root, packet.objectId[k], sp.position);
         }
@@ -347,6 +366,8 @@ void TileKernel::packetSurfaces(TileWave::HitPacket& packet, MeshHitLanes& meshL
                                    static_cast<int>(packet.rays.hit.primitiveId[k]), packet.rays.hit.u[k],
                                    packet.rays.hit.v[k]);
             meshSurfaceLanes16(packet.rays.ray, meshLanes, selected, surface);
+            if (material.normalTexture && !mesh->uvs.empty())
+                normalTextureLanes(material, *mesh, packet.rays.hit.primitiveId, selected, surface);
         }
         // The albedo once the lanes' texture coordinates are known.
         if (const Checkerboard* checker = material.diffuseTexture ? material.diffuseTexture->checkerboardPattern() : nullptr) {
@@ -365,6 +386,7 @@ void TileKernel::packetSurfaces(TileWave::HitPacket& packet, MeshHitLanes& meshL
                 surface.albedoB[k] = selected[k] ? albedo.b : surface.albedoB[k];
             }
         }
+        if (material.model == ShadingModel::MetallicRoughness) materialFactorLanes(material, selected, surface);
     }
 }
 
@@ -495,7 +517,8 @@ void TileKernel::recordFirstHitLight(TileScratch& s, std::size_t p) const {
         if (!packet.hits.valid[k] || packet.depth[k] != 1) continue;
         const SurfacePoint sp = laneSurface(packet.surface, k);
         const Rgb albedo{packet.surface.albedoR[k], packet.surface.albedoG[k], packet.surface.albedoB[k]};
-        const Material& material = scene_.objects[static_cast<std::size_t>(packet.objectId[k])].material;
+        std::optional<Material> textured;
+        const Material& material = materialOfLane(packet, k, textured);
         // The lanes' shadow rays were these queries' rays (render/HitLanes.h).
         const auto count = static_cast<std::size_t>(shading_.shadowQueries(sp, queries.data()));
         for (std::size_t q = 0; q < count; ++q)
@@ -516,6 +539,13 @@ void TileKernel::recordFirstHitLight(TileScratch& s, std::size_t p) const {
     }
 }
 
+const Material& TileKernel::materialOfLane(const TileWave::HitPacket& packet, int k,
+                                           std::optional<Material>& textured) const {
+    const Material& material = scene_.objects[static_cast<std::size_t>(packet.objectId[k])].material;
+    if (!material.metallicRoughnessTexture) return material;
+    return textured.emplace(materialAtLane(material, packet.surface, k));
+}
+
 void TileKernel::reshadePacket(TileScratch& s, std::size_t p) const {
     const TileWave::HitPacket& packet = s.wave.packets[p];
     std::array<ShadowQuery, kMaxLights> queries;
@@ -524,7 +554,8 @@ void TileKernel::reshadePacket(TileScratch& s, std::size_t p) const {
         const SurfacePoint sp = laneSurface(packet.surface, k);
         const auto node = static_cast<std::size_t>(packet.node[k]);
         const ReshadeRequest& request = s.renderCache.reshade[node];
-        const Material& material = scene_.objects[static_cast<std::size_t>(packet.objectId[k])].material;
+        std::optional<Material> textured;
+        const Material& material = materialOfLane(packet, k, textured);
         const auto count = static_cast<std::size_t>(shading_.shadowQueries(sp, queries.data()));
         const Vec3 toViewer = -laneRay(packet.rays.ray, k).direction;
         const Rgb albedo{packet.surface.albedoR[k], packet.surface.albedoG[k], packet.surface.albedoB[k]};

@@ -30,6 +30,7 @@
 #include "scene/AssimpFileReader.h"
 #include "scene/GltfDocument.h"
 #include "scene/GltfSceneDefaults.h"
+#include "scene/GltfTextureImages.h"
 #include "scene/GltfTextureTransform.h"
 #include "scene/GltfUri.h"
 #include "scene/ImageLoader.h"
@@ -255,19 +256,20 @@ private:
         pbr.ior = ior;
 
         MappedMaterial mapped;
-        aiString texture;
-        if (m.GetTexture(textureType, 0, &texture) == AI_SUCCESS && texture.length > 0) {
-            pbr.baseColorTexture = textureImage(texture, name);
-            mapped.hasTexture = true;
-            int channel = 0;
-            if (m.Get(AI_MATKEY_UVWSRC(textureType, 0), channel) == AI_SUCCESS && channel >= 0)
-                mapped.uvChannel = static_cast<unsigned>(channel);
-            aiUVTransform transform;
-            if (m.Get(AI_MATKEY_UVTRANSFORM(textureType, 0), transform) == AI_SUCCESS) {
-                const GltfTextureTransform t = GltfTextureTransform::fromAssimp(transform);
-                if (!t.isIdentity()) mapped.uvTransform = t;
+        pbr.baseColorTexture =
+            materialTexture(m, textureType, ImageEncoding::Srgb, name, "base colour texture", mapped);
+        if (!overrides_.blinnPhongMaterials) {
+            // glTF's metallicRoughnessTexture (Assimp's key for it).
+            pbr.metallicRoughnessTexture = materialTexture(m, aiTextureType_UNKNOWN, ImageEncoding::Linear, name,
+                                                           "metallic-roughness texture", mapped);
+            pbr.normalTexture = materialTexture(m, aiTextureType_NORMALS, ImageEncoding::Linear, name,
+                                                "normal texture", mapped);
+            if (pbr.normalTexture) {
+                pbr.normalScale = 1.0f;
+                m.Get(AI_MATKEY_GLTF_TEXTURE_SCALE(aiTextureType_NORMALS, 0), pbr.normalScale);
+                if (!std::isfinite(pbr.normalScale))
+                    fail(name + ": normalTexture.scale " + formatGeneral(pbr.normalScale) + " must be finite");
             }
-            noteSampler(m, textureType);
         }
         if (!overrides_.blinnPhongMaterials) {
             const GltfMaterialExtensions extensions = index < document_.materialExtensions.size()
@@ -286,6 +288,8 @@ private:
         mapped.textured = mapping(pbr);
         const bool textured = pbr.baseColorTexture != nullptr;
         pbr.baseColorTexture = nullptr;
+        pbr.metallicRoughnessTexture = nullptr;
+        pbr.normalTexture = nullptr;
         mapped.plain = mapping(pbr);
         const PbrMaterialKind kind = pbrMaterialKind(pbr);
         if (overrides_.blinnPhongMaterials) {
@@ -296,6 +300,35 @@ private:
         }
         noteIgnoredMaterialParts(m);
         return materials_.emplace(index, std::move(mapped)).first->second;
+    }
+
+    // The image of material `m`'s texture of `type`, decoded as `encoding`,
+    // or null when it has none. A mesh carries one set of texture
+    // coordinates: the material's first texture chooses it (its texCoord
+    // and KHR_texture_transform, into `mapped`), and a later texture that
+    // asks for another set is left out (and counted for a note).
+    std::shared_ptr<const Image> materialTexture(const aiMaterial& m, aiTextureType type, ImageEncoding encoding,
+                                                 const std::string& materialName, const std::string& role,
+                                                 MappedMaterial& mapped) {
+        aiString texture;
+        if (m.GetTexture(type, 0, &texture) != AI_SUCCESS || texture.length == 0) return nullptr;
+        unsigned channel = 0;
+        if (int read = 0; m.Get(AI_MATKEY_UVWSRC(type, 0), read) == AI_SUCCESS && read >= 0)
+            channel = static_cast<unsigned>(read);
+        std::optional<GltfTextureTransform> transform;
+        if (aiUVTransform read; m.Get(AI_MATKEY_UVTRANSFORM(type, 0), read) == AI_SUCCESS) {
+            const GltfTextureTransform t = GltfTextureTransform::fromAssimp(read);
+            if (!t.isIdentity()) transform = t;
+        }
+        if (mapped.hasTexture && (channel != mapped.uvChannel || transform != mapped.uvTransform)) {
+            ++texturesOnOtherCoordinates_;
+            return nullptr;
+        }
+        mapped.hasTexture = true;
+        mapped.uvChannel = channel;
+        mapped.uvTransform = transform;
+        noteSampler(m, type);
+        return textures_.image(texture.C_Str(), encoding, materialName, role);
     }
 
     void noteSampler(const aiMaterial& m, aiTextureType type) {
@@ -315,9 +348,11 @@ private:
         if (overrides_.blinnPhongMaterials && (emissive.r > 0.0f || emissive.g > 0.0f || emissive.b > 0.0f))
             ++emissive_;
         if (m.GetTextureCount(aiTextureType_EMISSIVE) > 0) ++emissiveTextures_;
-        if (m.GetTextureCount(aiTextureType_NORMALS) > 0) ++normalTextures_;
+        // The metallic-roughness model reads these two (materialTexture).
+        if (overrides_.blinnPhongMaterials && m.GetTextureCount(aiTextureType_NORMALS) > 0) ++normalTextures_;
         if (m.GetTextureCount(aiTextureType_LIGHTMAP) > 0) ++occlusionTextures_;
-        if (m.GetTextureCount(aiTextureType_METALNESS) > 0 || m.GetTextureCount(aiTextureType_DIFFUSE_ROUGHNESS) > 0)
+        if (overrides_.blinnPhongMaterials &&
+            (m.GetTextureCount(aiTextureType_METALNESS) > 0 || m.GetTextureCount(aiTextureType_DIFFUSE_ROUGHNESS) > 0))
             ++metallicRoughnessTextures_;
         aiString texture;
         if (m.GetTexture(aiTextureType_TRANSMISSION, 0, &texture) == AI_SUCCESS) ++transmissionTextures_;
@@ -326,65 +361,6 @@ private:
             const std::string mode = alphaMode.C_Str();
             if (mode == "BLEND" || mode == "MASK") ++alphaMaterials_;
         }
-    }
-
-    // The base colour texture's pixels, loaded once however many materials use it.
-    std::shared_ptr<const Image> textureImage(const aiString& reference, const std::string& materialName) {
-        const std::string ref = reference.C_Str();
-        std::shared_ptr<const Image>& cached = images_[ref];
-        if (cached) return cached;
-        if (ref[0] == '*') {
-            // Embedded: in a .glb's buffer or a data: URI, decoded by Assimp into bytes.
-            const auto [texture, index] = ai_.GetEmbeddedTextureAndIndex(ref.c_str());
-            if (!texture) fail(materialName + ": base colour texture " + ref + " is not among the file's images");
-            const std::string label =
-                path_.string() + ": " + materialName + ": embedded image " + std::to_string(index);
-            if (texture->mHeight == 0) {
-                const auto* bytes = reinterpret_cast<const unsigned char*>(texture->pcData);
-                cached = std::make_shared<const Image>(decodeImageBytes({bytes, texture->mWidth}, label));
-            } else {
-                cached = std::make_shared<const Image>(uncompressedImage(*texture));
-            }
-            return cached;
-        }
-        const fs::path file = path_.parent_path() / fs::path(percentDecodedUri(ref));
-        std::error_code ec;
-        if (!fs::is_regular_file(file, ec))
-            fail(materialName + ": base colour texture file not found: \"" + ref + "\" (looked for " + file.string() +
-                 ")");
-        const std::uintmax_t size = fs::file_size(file, ec);
-        if (ec || size > kMaxMeshFileBytes)
-            fail(materialName + ": cannot load base colour texture \"" + ref +
-                 "\": " + (ec ? ec.message() : "larger than " + std::to_string(kMaxMeshFileBytes) + " bytes"));
-        // glTF names PNG and JPEG images by URI, not always with their extension:
-        // the content decides.
-        std::vector<unsigned char> bytes(static_cast<std::size_t>(size));
-        std::ifstream in(file, std::ios::binary);
-        in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-        if (!in || in.gcount() != static_cast<std::streamsize>(bytes.size()))
-            fail(materialName + ": cannot read base colour texture \"" + ref + "\"");
-        try {
-            cached = std::make_shared<const Image>(decodeImageBytes(bytes, file.string()));
-        } catch (const InputError& e) {
-            fail(materialName + ": cannot load base colour texture \"" + ref + "\": " + e.what());
-        }
-        return cached;
-    }
-
-    // An embedded texture Assimp holds as BGRA texels (no glTF importer does,
-    // but the structure allows it), taken as 8-bit sRGB.
-    static Image uncompressedImage(const aiTexture& texture) {
-        Image image(static_cast<int>(texture.mWidth), static_cast<int>(texture.mHeight));
-        const auto toLinear = [](unsigned char c) {
-            const float v = static_cast<float>(c) / 255.0f;
-            return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
-        };
-        for (unsigned y = 0; y < texture.mHeight; ++y)
-            for (unsigned x = 0; x < texture.mWidth; ++x) {
-                const aiTexel& t = texture.pcData[y * texture.mWidth + x];
-                image.at(static_cast<int>(x), static_cast<int>(y)) = Rgb(toLinear(t.r), toLinear(t.g), toLinear(t.b));
-            }
-        return image;
     }
 
     // ---- meshes -----------------------------------------------------------
@@ -702,12 +678,18 @@ private:
             note("ignored the specular textures of " + gltfCounted(specularTextures_, "material", "materials") +
                  " (their factors are used)");
         if (normalTextures_ > 0)
-            note("ignored the normal textures of " + gltfCounted(normalTextures_, "material", "materials"));
+            note("ignored the normal textures of " + gltfCounted(normalTextures_, "material", "materials") +
+                 " (the Blinn-Phong mapping reads none)");
         if (occlusionTextures_ > 0)
             note("ignored the occlusion textures of " + gltfCounted(occlusionTextures_, "material", "materials"));
         if (metallicRoughnessTextures_ > 0)
             note("ignored the metallic-roughness textures of " +
-                 gltfCounted(metallicRoughnessTextures_, "material", "materials") + " (their factors are used)");
+                 gltfCounted(metallicRoughnessTextures_, "material", "materials") +
+                 " (the Blinn-Phong mapping uses their factors)");
+        if (texturesOnOtherCoordinates_ > 0)
+            note("ignored " + gltfCounted(texturesOnOtherCoordinates_, "texture", "textures") +
+                 " whose texture coordinates (texCoord or KHR_texture_transform) differ from their material's first "
+                 "texture's: a mesh carries one set");
         if (transmissionTextures_ > 0)
             note("ignored the transmission textures of " + gltfCounted(transmissionTextures_, "material", "materials") +
                  " (their factors are used)");
@@ -722,7 +704,7 @@ private:
                  " for nearest filtering: raycache's textures filter bilinearly");
         if (texturedWithoutUvs_ > 0)
             note(gltfCounted(texturedWithoutUvs_, "mesh has", "meshes have") +
-                 " a base colour texture but not its texture coordinates: drawn with the base colour factor");
+                 " a textured material but not its texture coordinates: drawn with the material's factors");
         if (tintedMirrors_ > 0)
             note(gltfCounted(tintedMirrors_, "mirror material reflects", "mirror materials reflect") +
                  " untinted (kr is one number): the base colour tints only the highlight and the diffuse rest");
@@ -757,12 +739,12 @@ private:
     std::unordered_map<std::string, std::size_t> nodeByName_;
     std::map<unsigned, MappedMaterial> materials_;
     std::map<unsigned, LocalMesh> meshes_;
-    std::unordered_map<std::string, std::shared_ptr<const Image>> images_;
+    GltfTextureImages textures_{path_, ai_};
     MeshRepairs repairs_;  // summed over the meshes
     std::size_t allDegenerateTriangles_ = 0, meshesWithUnusableUvs_ = 0;
     std::string firstUnusableUvs_;
     std::size_t otherPrimitives_ = 0, skinnedMeshes_ = 0, morphedMeshes_ = 0, coloredMeshes_ = 0,
-                collapsedInstances_ = 0, texturedWithoutUvs_ = 0;
+                collapsedInstances_ = 0, texturedWithoutUvs_ = 0, texturesOnOtherCoordinates_ = 0;
     std::size_t specularGlossiness_ = 0, emissive_ = 0, emissiveTextures_ = 0, specularTextures_ = 0,
                 normalTextures_ = 0, occlusionTextures_ = 0, metallicRoughnessTextures_ = 0,
                 transmissionTextures_ = 0, alphaMaterials_ = 0, clampedOrMirroredTextures_ = 0, nearestTextures_ = 0, tintedMirrors_ = 0, tintedGlass_ = 0;

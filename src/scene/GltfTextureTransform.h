@@ -27,6 +27,7 @@ struct GltfTextureTransform {
     bool isIdentity() const {
         return offset == std::array<float, 2>{0, 0} && rotation == 0.0f && scale == std::array<float, 2>{1, 1};
     }
+    bool operator==(const GltfTextureTransform&) const = default;
 };
 
 }  // namespace raycache

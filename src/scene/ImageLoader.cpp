@@ -63,11 +63,14 @@ void checkStbHeader(const std::filesystem::path& path) {
                        std::to_string(bytes) + " bytes: corrupt");
 }
 
-// 8-bit sRGB, 3 channels as stb_image returns them, to linear.
-Image linearFromSrgb8(const unsigned char* src, int width, int height) {
+// 8-bit sRGB, 3 channels as stb_image returns them, to linear; or, for
+// data, each byte / 255.
+Image linearFromSrgb8(const unsigned char* src, int width, int height, ImageEncoding encoding = ImageEncoding::Srgb) {
     std::array<float, 256> toLinear{};
-    for (std::size_t i = 0; i < toLinear.size(); ++i)
-        toLinear[i] = srgbToLinear(static_cast<float>(i) / 255.0f);
+    for (std::size_t i = 0; i < toLinear.size(); ++i) {
+        const float value = static_cast<float>(i) / 255.0f;
+        toLinear[i] = encoding == ImageEncoding::Srgb ? srgbToLinear(value) : value;
+    }
 
     Image image(width, height);
     for (Rgb& px : image.pixels()) {
@@ -109,7 +112,7 @@ Image loadRadianceHdr(const std::filesystem::path& path) {
 
 }  // namespace
 
-Image decodeImageBytes(std::span<const unsigned char> bytes, const std::string& label) {
+Image decodeImageBytes(std::span<const unsigned char> bytes, const std::string& label, ImageEncoding encoding) {
     // stb takes an int length; images of 2 GiB are far beyond the size limit anyway.
     if (bytes.empty() || bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
         failFile(label, "cannot read image: " + std::to_string(bytes.size()) + " bytes");
@@ -126,7 +129,7 @@ Image decodeImageBytes(std::span<const unsigned char> bytes, const std::string& 
     std::unique_ptr<unsigned char, StbFree> data(stbi_load_from_memory(bytes.data(), length, &width, &height, &channels, 3));
     if (!data) failFile(label, "cannot decode image: " + stbReason());
     checkImageSize(label, width, height);
-    return linearFromSrgb8(data.get(), width, height);
+    return linearFromSrgb8(data.get(), width, height, encoding);
 }
 
 Image loadImageFile(const std::filesystem::path& path) {

@@ -57,6 +57,14 @@ struct Material {
     // factors change them (scene/PbrToBlinnPhong.h, metallicRoughnessFromPbr).
     Rgb specularF0{0.04f};
     float specularF90 = 1.0f;  // mix(specularFactor, 1, metallic): the metal's grazing F is 1
+    // Metallic-roughness only, glTF's textures (linear data, not colours):
+    // the metallic-roughness texture's green channel multiplies `roughness`
+    // and its blue channel `metallic` at each hit; the normal texture holds
+    // tangent-space normals (x, y scaled by normalScale) that replace the
+    // shading normal (render/SurfaceTextures.h).
+    std::optional<Texture> metallicRoughnessTexture;
+    std::optional<Texture> normalTexture;
+    float normalScale = 1.0f;
     Rgb ambient{0.1f};                    // ambient reflectance, multiplies the albedo
     Rgb diffuse{0.8f};                    // albedo when there is no texture
     std::optional<Texture> diffuseTexture;  // overrides `diffuse` when present

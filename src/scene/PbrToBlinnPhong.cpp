@@ -27,6 +27,16 @@ Rgb highlight(const Rgb& f0, float roughness, float shininess) {
     return {std::min(s.r, 1.0f), std::min(s.g, 1.0f), std::min(s.b, 1.0f)};
 }
 
+// The smallest roughness anywhere on the surface: the factor, times the
+// texture's smallest green value when it has one (bilinear filtering never
+// goes below the smallest texel).
+float smoothestRoughness(const PbrMaterial& pbr) {
+    if (!pbr.metallicRoughnessTexture || pbr.metallicRoughnessTexture->pixels().empty()) return pbr.roughness;
+    float smallest = 1.0f;
+    for (const Rgb& texel : pbr.metallicRoughnessTexture->pixels()) smallest = std::min(smallest, texel.g);
+    return pbr.roughness * smallest;
+}
+
 }  // namespace
 
 PbrMaterialKind pbrMaterialKind(const PbrMaterial& pbr) {
@@ -120,9 +130,14 @@ Material metallicRoughnessFromPbr(const PbrMaterial& pbr) {
         m.transmissivity = transmitted;
         m.transmissionTint = pbr.baseColor;
         m.cache = kPbrCached;
-    } else if (pbr.roughness < kSmoothRoughness) {
+    } else if (smoothestRoughness(pbr) < kSmoothRoughness) {
         m.reflectivity = 1.0f;
         m.cache = kPbrCached;
+    }
+    if (pbr.metallicRoughnessTexture) m.metallicRoughnessTexture = Texture::image(pbr.metallicRoughnessTexture);
+    if (pbr.normalTexture) {
+        m.normalTexture = Texture::image(pbr.normalTexture);
+        m.normalScale = pbr.normalScale;
     }
     const Rgb albedo = pbr.baseColor * (1.0f - transmitted);
     m.diffuse = albedo;

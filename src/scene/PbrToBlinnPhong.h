@@ -25,6 +25,11 @@ struct PbrMaterial {
     // KHR_materials_specular (the metallic-roughness model reads them).
     float specularFactor = 1.0f;
     Rgb specularColor{1.0f};  // specularColorFactor
+    // The metallic-roughness model's textures, linear data (null for none):
+    // green multiplies roughness, blue metallic; tangent-space normals.
+    std::shared_ptr<const Image> metallicRoughnessTexture;
+    std::shared_ptr<const Image> normalTexture;
+    float normalScale = 1.0f;  // normalTexture's scale
 };
 
 enum class PbrMaterialKind { Diffuse, Mirror, Glass };
@@ -49,11 +54,13 @@ Material blinnPhongFromPbr(const PbrMaterial& pbr);
 
 // The material under glTF's own BRDF (ShadingModel::MetallicRoughness): the
 // base colour (times 1 - transmission) as its albedo, its texture unscaled
-// when the factor is white, emission as given, no ambient. Its secondary
-// rays: smooth surfaces (roughness < kSmoothRoughness) and glass reflect a
-// mirror ray (reflectivity 1), glass also refracts (transmissivity
-// transmission * (1 - metallic), tinted by baseColorFactor); what each ray
-// weighs is Fresnel's at its hit (tests/render/SecondaryRayWeights.h).
+// when the factor is white, emission as given, no ambient, the
+// metallic-roughness and normal textures as given. Its secondary rays:
+// smooth surfaces (roughness < kSmoothRoughness, somewhere on the
+// metallic-roughness texture if there is one) and glass reflect a mirror ray
+// (reflectivity 1), glass also refracts (transmissivity transmission * (1 -
+// metallic), with the metallic factor, tinted by baseColorFactor); what each
+// ray weighs is Fresnel's at its hit (tests/render/SecondaryRayWeights.h).
 Material metallicRoughnessFromPbr(const PbrMaterial& pbr);
 
 }  // namespace raycache

@@ -19,6 +19,7 @@
 #include "render/MetallicRoughness.h"
 #include "render/RayCone.h"
 #include "render/SecondaryRayWeights.h"
+#include "render/SurfaceTextures.h"
 
 using namespace raycache;
 
@@ -68,6 +69,21 @@ LaneHits randomLaneHits(std::mt19937& rng) {
     return h;
 }
 
+// The surfaces' metallic and roughness lanes: the material's factors, or in
+// one round of three each lane's own (as a metallic-roughness texture gives
+// them: the factors times a value in [0, 1] per lane, or for smooth
+// materials a roughness on either side of kSmoothRoughness).
+void setMaterialLanes(LaneHits& h, const Material& material, int round, std::mt19937& rng) {
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    const bool textured = round % 3 == 2;
+    for (int k = 0; k < 16; ++k) {
+        h.lanes.metallic[k] = textured ? material.metallic * unit(rng) : material.metallic;
+        h.lanes.roughness[k] = !textured                                  ? material.roughness
+                               : material.roughness < kSmoothRoughness ? 2.0f * kSmoothRoughness * unit(rng)
+                                                                       : material.roughness * unit(rng);
+    }
+}
+
 // The rays one hit spawns (the specification secondaryRayLanes16 implements),
 // with their weights as secondaryRayWeights gives them.
 struct SpawnRuleRays {
@@ -91,7 +107,10 @@ SpawnRuleRays spawnRule(const Material& material, float curvature, float minWeig
             out.refracted = Ray{sp.position - sp.geometricNormal * offset, normalize(*direction)};
     }
     const float reflectWeight = out.weights.reflected.maxComponent();
-    if (reflectWeight > 0.0f && pathWeight * reflectWeight >= minWeight)
+    // An opaque metallic-roughness surface reflects a mirror ray where it is smooth.
+    const bool rough = material.model == ShadingModel::MetallicRoughness && !material.refracts() &&
+                       !(material.roughness < kSmoothRoughness);
+    if (!rough && reflectWeight > 0.0f && pathWeight * reflectWeight >= minWeight)
         out.reflected = Ray{sp.position + sp.geometricNormal * offset, normalize(reflect(ray.direction, sp.normal))};
     return out;
 }
@@ -148,7 +167,8 @@ void expectDirectLightEqualsLocalShading(MaterialOf materialOf) {
     int lit = 0;
     for (int round = 0; round < 1500; ++round) {
         const Material material = materialOf(round, rng);
-        const LaneHits h = randomLaneHits(rng);
+        LaneHits h = randomLaneHits(rng);
+        setMaterialLanes(h, material, round, rng);
         alignas(64) int selected[16];
         for (int k = 0; k < 16; ++k) selected[k] = k % 5 == 4 ? 0 : -1;
         std::vector<LightLanes16> seen(scene.lights.size());
@@ -177,7 +197,8 @@ void expectDirectLightEqualsLocalShading(MaterialOf materialOf) {
                 lit += occluded[q] ? 0 : 1;
             }
             const Rgb albedo{h.lanes.albedoR[k], h.lanes.albedoG[k], h.lanes.albedoB[k]};
-            const Rgb expected = shading.directLight(material, albedo, h.points[k], -h.scalarRays[k].direction,
+            const Rgb expected = shading.directLight(materialAtLane(material, h.lanes, k), albedo, h.points[k],
+                                                     -h.scalarRays[k].direction,
                                                      std::span(queries, static_cast<std::size_t>(n)),
                                                      std::span(occluded, static_cast<std::size_t>(n)));
             EXPECT_EQ(floatBits(r[k]), floatBits(expected.r)) << "lane " << k;
@@ -223,6 +244,7 @@ TEST(ShadingLanes, MetallicRoughnessEqualsLocalShading) {
 // `materialOf(round, rng)` gives; counts how often each branch was taken.
 struct SpawnCounts {
     int reflected = 0, refracted = 0, totalInternal = 0, belowMinWeight = 0, tinted = 0;
+    int roughLanes = 0;  // opaque metallic-roughness lanes too rough for a mirror ray
 };
 
 template <typename MaterialOf>
@@ -234,7 +256,8 @@ SpawnCounts expectSecondaryRaysEqualSpawnRule(MaterialOf materialOf) {
         const Material material = materialOf(round, rng);
         const float curvature = round % 3 == 0 ? 0.0f : 1.0f / (0.1f + 5.0f * unit(rng));
         const float minWeight = round % 4 == 0 ? 0.3f : 0.001f;
-        const LaneHits h = randomLaneHits(rng);
+        LaneHits h = randomLaneHits(rng);
+        setMaterialLanes(h, material, round, rng);
         alignas(64) float pathWeight[16], coneWidth[16], coneSpread[16];
         alignas(64) int selected[16];
         for (int k = 0; k < 16; ++k) {
@@ -254,8 +277,11 @@ SpawnCounts expectSecondaryRaysEqualSpawnRule(MaterialOf materialOf) {
             }
             const Rgb albedo{h.lanes.albedoR[k], h.lanes.albedoG[k], h.lanes.albedoB[k]};
             const SpawnRuleRays expected =
-                spawnRule(material, curvature, minWeight, h.points[k], albedo, h.scalarRays[k], h.rays.tFar[k],
-                          pathWeight[k], {coneWidth[k], coneSpread[k]});
+                spawnRule(materialAtLane(material, h.lanes, k), curvature, minWeight, h.points[k], albedo,
+                          h.scalarRays[k], h.rays.tFar[k], pathWeight[k], {coneWidth[k], coneSpread[k]});
+            if (material.model == ShadingModel::MetallicRoughness && !material.refracts() &&
+                !(h.lanes.roughness[k] < kSmoothRoughness))
+                ++counts.roughLanes;
             EXPECT_EQ(floatBits(out.coneWidth[k]), floatBits(expected.cone.width)) << "lane " << k;
             EXPECT_EQ(floatBits(out.coneSpread[k]), floatBits(expected.cone.spread)) << "lane " << k;
             EXPECT_EQ(out.reflects[k] != 0, expected.reflected.has_value()) << "round " << round << " lane " << k;
@@ -326,4 +352,5 @@ TEST(ShadingLanes, MetallicRoughnessSecondaryRaysEqualFresnelWeights) {
     EXPECT_GT(counts.totalInternal, 100);
     EXPECT_GT(counts.belowMinWeight, 100);
     EXPECT_GT(counts.tinted, 1000);  // metals' weights differ per channel
+    EXPECT_GT(counts.roughLanes, 1000);  // a texture's rough lanes spawn no mirror ray
 }

@@ -34,6 +34,7 @@ struct Expected {
 constexpr Expected kExpected[] = {
     {"lambert-point", 51.0, 0.99}, {"lambert-sun", 33.5, 0.97}, {"lambert-spot", 27.0, 0.91},
     {"studio", 25.0, 0.90},        {"metals", 25.0, 0.91},      {"glass", 31.3, 0.945},
+    {"textured", 26.0, 0.89},
 };
 
 }  // namespace
