@@ -25,9 +25,12 @@ long long floorToInt(float x) {
     return static_cast<float>(i) > x ? i - 1 : i;
 }
 
-int wrap(int i, int n) {
-    const int m = i % n;
-    return m < 0 ? m + n : m;
+// std::floor(x), inlined: below 2^23 in magnitude through an int, above it
+// x itself (every such float is whole). NaN and infinities stay as they are.
+float floorInline(float x) {
+    if (!(std::fabs(x) < 8388608.0f)) return x;
+    const auto truncated = static_cast<float>(static_cast<int>(x));
+    return truncated > x ? truncated - 1.0f : truncated;
 }
 }  // namespace
 
@@ -38,13 +41,19 @@ Rgb Texture::sample(float u, float v) const {
         return ((cu + cv) & 1) == 0 ? checker_.even : checker_.odd;
     }
     const Image& img = *image_;
-    // Bilinear filtering with texel centres at half-integers.
-    const float x = (u - std::floor(u)) * static_cast<float>(img.width()) - 0.5f;
-    const float y = (1.0f - (v - std::floor(v))) * static_cast<float>(img.height()) - 0.5f;
-    const float fx = std::floor(x), fy = std::floor(y);
+    const int width = img.width(), height = img.height();
+    // Bilinear filtering with texel centres at half-integers. The repeat
+    // leaves x and y in [-0.5, size - 0.5], so the texel to the left of
+    // (above) the point is -1 ... size - 1, and wraps without a division.
+    // (Per hit, every fetch of every textured surface comes here.)
+    const float x = (u - floorInline(u)) * static_cast<float>(width) - 0.5f;
+    const float y = (1.0f - (v - floorInline(v))) * static_cast<float>(height) - 0.5f;
+    const float fx = floorInline(x), fy = floorInline(y);
     const float ax = x - fx, ay = y - fy;
-    const int x0 = wrap(static_cast<int>(fx), img.width()), x1 = wrap(x0 + 1, img.width());
-    const int y0 = wrap(static_cast<int>(fy), img.height()), y1 = wrap(y0 + 1, img.height());
+    // A NaN coordinate (NaN colour) still reads texels in the image.
+    const int left = fx >= 0.0f ? static_cast<int>(fx) : -1, up = fy >= 0.0f ? static_cast<int>(fy) : -1;
+    const int x0 = left < 0 ? left + width : left, x1 = x0 + 1 < width ? x0 + 1 : 0;
+    const int y0 = up < 0 ? up + height : up, y1 = y0 + 1 < height ? y0 + 1 : 0;
     const Rgb top = img.at(x0, y0) * (1.0f - ax) + img.at(x1, y0) * ax;
     const Rgb bottom = img.at(x0, y1) * (1.0f - ax) + img.at(x1, y1) * ax;
     return top * (1.0f - ay) + bottom * ay;
