@@ -38,19 +38,13 @@
 #include "cache/CubeBudget.h"
 #include "cache/RayTreeRecord.h"
 #include "cache/ViewSizedResolution.h"
+#include "cache/VisibleFill.h"
 #include "core/Box3.h"
 #include "scene/ObjectBounds.h"
 #include "scene/Scene.h"
 #include "scene/ScenePose.h"
 
 namespace raycache {
-
-// Filling CCT cubes from the surfaces the camera sees (render/VisibleSurfaceFill.h).
-enum class VisibleFill : unsigned char {
-    Off,
-    Exact,        // from surfaces whose colour does not depend on the view (no highlight, mirror or glass)
-    Approximate,  // also from surfaces with highlights (the camera's highlight is stored)
-};
 
 struct RayCacheSettings {
     // Replaces every reflective/refractive object's material setting.

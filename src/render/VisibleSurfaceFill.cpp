@@ -19,15 +19,6 @@ float squaredDistance(const Box3& box, const Vec3& p) {
 
 }  // namespace
 
-const char* visibleFillName(VisibleFill fill) {
-    switch (fill) {
-        case VisibleFill::Off: return "off";
-        case VisibleFill::Exact: return "exact";
-        case VisibleFill::Approximate: return "approximate";
-    }
-    return "off";
-}
-
 VisibleSurfaceFill::VisibleSurfaceFill(const Scene& scene, const TraceScene& tracer, const RayCache* cache)
     : tracer_(tracer), cache_(cache) {
     if (!cache_ || cache_->visibleFill() == VisibleFill::Off) return;

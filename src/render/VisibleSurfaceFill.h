@@ -19,23 +19,18 @@
 // The fill of a tile is queued in the tile's own store batch, after the stores
 // of its traced rays (which win a texel both fill), so cubes stay identical for
 // any thread count and process count.
-#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include "cache/RayCache.h"
+#include "cache/VisibleFill.h"
 #include "core/Rgb.h"
 #include "core/Vec3.h"
 #include "scene/Scene.h"
 #include "trace/TraceScene.h"
 
 namespace raycache {
-
-// Every fill mode (RayCacheSettings::visibleFill), in the order messages list them.
-inline constexpr std::array kVisibleFills{VisibleFill::Off, VisibleFill::Exact, VisibleFill::Approximate};
-// "off", "exact", "approximate" (`--cache-fill`).
-const char* visibleFillName(VisibleFill fill);
 
 // A pixel's first hit on a surface that may fill, with the pixel's colour.
 struct VisiblePoint {
