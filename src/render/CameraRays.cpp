@@ -6,6 +6,8 @@
 
 #include "core/FloatLanes.h"
 #include "core/LaneLevels.h"
+#include "core/Rgb.h"
+#include "core/Vec3.h"
 
 namespace raycache {
 
