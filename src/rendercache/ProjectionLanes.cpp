@@ -1,6 +1,8 @@
 #include "rendercache/ProjectionLanes.h"
 
 #include "core/LaneLevels.h"
+#include "core/Rgb.h"
+#include "core/Vec3.h"
 
 namespace raycache {
 
