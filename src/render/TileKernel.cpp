@@ -179,7 +179,8 @@ void TileKernel::reshadeSurfaces(std::span<const ReshadeRequest> requests, std::
     s.renderCache.reshade = requests;
     beginWaves(s, cache);
     beginFirstHits(s, n);
-    for (std::size_t i = 0; i < n; ++i) addFirstHit(s, requests[i].ray, requests[i].hit, static_cast<int>(i), 1, RayCone{});
+    for (std::size_t i = 0; i < n; ++i)
+        addFirstHit(s, requests[i].ray, requests[i].hit, static_cast<int>(i), 1, RayCone{});
     endFirstHits(s);
     shadePackets(s, cache && cache_ ? cache : nullptr, false, WaveShadows::Known);
     s.renderCache.reshade = {};

@@ -370,7 +370,8 @@ void TileKernel::packetSurfaces(TileWave::HitPacket& packet, MeshHitLanes& meshL
                 normalTextureLanes(material, *mesh, packet.rays.hit.primitiveId, selected, surface);
         }
         // The albedo once the lanes' texture coordinates are known.
-        if (const Checkerboard* checker = material.diffuseTexture ? material.diffuseTexture->checkerboardPattern() : nullptr) {
+        const Checkerboard* checker = material.diffuseTexture ? material.diffuseTexture->checkerboardPattern() : nullptr;
+        if (checker) {
             checkerAlbedoLanes16(*checker, selected, surface);
         } else if (material.diffuseTexture) {
             for (int k = 0; k < kFloatLanes; ++k)
@@ -625,9 +626,15 @@ void TileKernel::packetEmit(TileScratch& s, const TileWave::HitPacket& packet, S
         const int objectId = packet.objectId[k];
         const RayCone cone{spawned.coneWidth[k], spawned.coneSpread[k]};
         const bool frontFace = packet.surface.frontFace[k] != 0;
+        // The lookup packetSpawnLanes asked for (its texel prefetched), answered now.
+        const auto lookupOf = [&](int texel, int answered) {
+            SpawnedRayLookup lookup{texel, answered, {}};
+            if (lookup.answered == SecondaryRayLanes16::kAskedAtEmit)
+                lookup.answered = cache_->lookupAddressed(objectId, lookup.texel, lookup.color, *cache);
+            return lookup;
+        };
         if (spawned.reflects[k]) {
-            SpawnedRayLookup lookup{spawned.reflectedTexel[k], spawned.reflectedAnswered[k], {}};
-            if (lookup.answered == SecondaryRayLanes16::kAskedAtEmit) lookup.answered = cache_->lookupAddressed(objectId, lookup.texel, lookup.color, *cache);
+            const SpawnedRayLookup lookup = lookupOf(spawned.reflectedTexel[k], spawned.reflectedAnswered[k]);
             emitSecondaryRay(s, cache, packet.node[k], packet.pathWeight[k], packet.depth[k], objectId,
                              Ray{{spawned.aboveX[k], spawned.aboveY[k], spawned.aboveZ[k]},
                                  {spawned.reflectedX[k], spawned.reflectedY[k], spawned.reflectedZ[k]}},
@@ -635,8 +642,7 @@ void TileKernel::packetEmit(TileScratch& s, const TileWave::HitPacket& packet, S
                              Rgb{spawned.reflectR[k], spawned.reflectG[k], spawned.reflectB[k]}, frontFace, lookup);
         }
         if (spawned.refracts[k]) {
-            SpawnedRayLookup lookup{spawned.refractedTexel[k], spawned.refractedAnswered[k], {}};
-            if (lookup.answered == SecondaryRayLanes16::kAskedAtEmit) lookup.answered = cache_->lookupAddressed(objectId, lookup.texel, lookup.color, *cache);
+            const SpawnedRayLookup lookup = lookupOf(spawned.refractedTexel[k], spawned.refractedAnswered[k]);
             emitSecondaryRay(s, cache, packet.node[k], packet.pathWeight[k], packet.depth[k], objectId,
                              Ray{{spawned.belowX[k], spawned.belowY[k], spawned.belowZ[k]},
                                  {spawned.refractedX[k], spawned.refractedY[k], spawned.refractedZ[k]}},
