@@ -10,7 +10,6 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <memory>
 #include <numbers>
@@ -32,7 +31,6 @@
 #include "scene/GltfSceneDefaults.h"
 #include "scene/GltfTextureImages.h"
 #include "scene/GltfTextureTransform.h"
-#include "scene/GltfUri.h"
 #include "scene/ImageLoader.h"
 #include "scene/MeshLimits.h"
 #include "scene/MeshRepair.h"

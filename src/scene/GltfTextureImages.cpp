@@ -1,12 +1,12 @@
 #include "scene/GltfTextureImages.h"
 
 #include <algorithm>
-#include <cmath>
 #include <fstream>
 #include <span>
 #include <system_error>
 #include <vector>
 
+#include "core/ColorSpace.h"
 #include "core/Errors.h"
 #include "scene/GltfUri.h"
 #include "scene/MeshLimits.h"
@@ -22,8 +22,7 @@ Image uncompressedImage(const aiTexture& texture, ImageEncoding encoding) {
     Image image(static_cast<int>(texture.mWidth), static_cast<int>(texture.mHeight));
     const auto decode = [encoding](unsigned char c) {
         const float v = static_cast<float>(c) / 255.0f;
-        if (encoding == ImageEncoding::Linear) return v;
-        return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+        return encoding == ImageEncoding::Linear ? v : srgbToLinear(v);
     };
     for (unsigned y = 0; y < texture.mHeight; ++y)
         for (unsigned x = 0; x < texture.mWidth; ++x) {
