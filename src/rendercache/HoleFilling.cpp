@@ -4,6 +4,7 @@
 #include <array>
 #include <bit>
 
+#include "rendercache/HoleFill3x3Lanes.h"
 #include "rendercache/PixelStateBits.h"
 #include "rendercache/SurfaceClusters.h"
 
@@ -33,10 +34,28 @@ struct SampleRow {
     int firstPixel = 0;                   // y * width of the row
 };
 
-// Per worker, the column sums of the dense 7x7 rows.
+struct HoleFill;
+
+// Per worker, what the 3x3 filter reuses from row to row: a row's holes as
+// bits, the last three image rows it read as
+// the lanes read them (a band of rows reads each image row once, not three
+// times), and the lanes' results.
+struct Fill3x3Scratch {
+    std::vector<std::uint64_t> holeBits;
+    std::vector<std::uint64_t> filledBits;  // the holes of the row it filled
+    std::array<FillRow, 3> ring;  // image row y in ring[y mod 3]
+    Fill3x3Results results;
+
+    // Image row y (possibly outside the image), built unless held.
+    const FillRow& rowOf(const HoleFill& fill, int y);
+};
+
+// Per worker, the column sums of the dense 7x7 rows, and the holes of the
+// row the 7x7 filled.
 struct ColumnSums {
     std::vector<Rgb> sum;
     std::vector<int> count;
+    std::vector<std::uint64_t> filledBits;
 };
 
 // What the passes of one fillHoles() share. Both filters read `state` and
@@ -50,6 +69,7 @@ struct HoleFill {
     const SampleColors* samples;
     const SampleSurfaces* surfaces;
     std::vector<std::int32_t>* fillSource;
+    const FilledHolesVisitor* onFilled;
     std::vector<unsigned char>& outcome;
     const int width, height;
     const std::size_t words;  // of a row's PixelStateBits
@@ -64,9 +84,9 @@ struct HoleFill {
 
     HoleFill(std::vector<PixelState>& pixelStates, Image& image, const SampleColors* sampleColors,
              const SampleSurfaces* sampleSurfaces, std::vector<std::int32_t>* sources,
-             std::vector<unsigned char>& outcomes)
+             const FilledHolesVisitor* filledHolesVisitor, std::vector<unsigned char>& outcomes)
         : state(pixelStates), film(image), samples(sampleColors), surfaces(sampleSurfaces), fillSource(sources),
-          outcome(outcomes), width(image.width()), height(image.height()), words(pixelStateWords(image.width())),
+          onFilled(filledHolesVisitor), outcome(outcomes), width(image.width()), height(image.height()), words(pixelStateWords(image.width())),
           perRow(static_cast<std::size_t>(height)), wants7x7(static_cast<std::size_t>(height), 0),
           wants7x7Bits(static_cast<std::size_t>(height) * words, 0), hasHoles(static_cast<std::size_t>(height), 0) {}
 
@@ -104,17 +124,19 @@ struct HoleFill {
     }
 
     // Row y: the samples' colours into the film, and each hole the 3x3
-    // filter of its neighbours' samples; the holes it cannot fill are
-    // marked for the 7x7. `bits`: the worker's scratch for the rows' states
-    // as bits (the samples of the three rows a box reads, and the holes).
-    void fill3x3Row(int y, std::vector<std::uint64_t>& bits);
+    // filter of its neighbours' samples (in lanes, rendercache/HoleFill3x3Lanes.h);
+    // the holes it cannot fill are marked for the 7x7.
+    void fill3x3Row(int y, Fill3x3Scratch& scratch);
+    // The samples around hole (x, y) grouped by surface, in the filter's
+    // order: for a hole whose samples lie on several surfaces.
+    SurfaceClusters groupsAround(const std::array<const FillRow*, 3>& boxRows, int x, int y) const;
     // Row y's holes the 3x3 left: the 7x7 box's mean.
     void fill7x7Row(int y, ColumnSums& columns);
     // Row y's holes take their new states.
     void applyOutcomesRow(int y);
 };
 
-void HoleFill::fill3x3Row(int y, std::vector<std::uint64_t>& bits) {
+void HoleFill::fill3x3Row(int y, Fill3x3Scratch& scratch) {
     FillCounts row;
     int wanting = 0;
     bool holes = false;
@@ -124,79 +146,90 @@ void HoleFill::fill3x3Row(int y, std::vector<std::uint64_t>& bits) {
     Rgb* const filmData = film.pixels().data();
     unsigned char* const outcomeData = outcome.data();
     std::int32_t* const sourceData = fillSource && surfaces ? fillSource->data() : nullptr;
-    const SampleLook* const looks = samples ? samples->looks + samples->origin : nullptr;
-    const std::size_t lookStride = samples ? samples->stride : 0;
     const std::size_t rowStart = at(0, y);
     const int columns = width;
-    bits.resize(4 * words);
-    const std::array<std::uint64_t*, 3> sampleBits = {bits.data(), bits.data() + words, bits.data() + 2 * words};
-    std::uint64_t* const holeBits = bits.data() + 3 * words;
+    std::vector<std::uint64_t>& holeBits = scratch.holeBits;
+    holeBits.resize(words);
     std::uint64_t* const wantsRow = wants7x7Bits.data() + static_cast<std::size_t>(y) * words;
-    pixelStateBits(stateData + rowStart, columns, PixelState::Reprojected, PixelState::Fresh, sampleBits[1]);
-    pixelStateBits(stateData + rowStart, columns, PixelState::Culled, PixelState::Hole, holeBits);
-    // The samples' colours into the film, a run of samples at a time.
-    if (looks) {
-        const SampleLook* const rowLooks = looks + static_cast<std::size_t>(y) * lookStride;
-        for (std::size_t w = 0; w + 1 < words; ++w)
-            for (std::uint64_t b = sampleBits[1][w]; b;) {
-                const int start = std::countr_zero(b), end = start + std::countr_one(b >> start);
-                const std::size_t first = w * 64 + static_cast<std::size_t>(start);
-                const SampleLook* from = rowLooks + first;
-                Rgb* to = filmData + rowStart + first;
-                for (Rgb* const runEnd = to + (end - start); to != runEnd; ++to, ++from) *to = from->color;
-                b = end < 64 ? b & (~std::uint64_t{0} << end) : 0;
-            }
-    }
-    const bool anyHole = std::any_of(holeBits, holeBits + words, [](std::uint64_t b) { return b != 0; });
-    if (anyHole) {
-        for (int r = 0; r < 3; r += 2) {
-            const int ny = y - 1 + r;
-            if (ny < 0 || ny >= height)
-                std::fill(sampleBits[static_cast<std::size_t>(r)], sampleBits[static_cast<std::size_t>(r)] + words, 0);
-            else
-                pixelStateBits(stateData + at(0, ny), columns, PixelState::Reprojected, PixelState::Fresh,
-                               sampleBits[static_cast<std::size_t>(r)]);
+    pixelStateBits(stateData + rowStart, columns, PixelState::Culled, PixelState::Hole, holeBits.data());
+    const bool anyHole = std::any_of(holeBits.begin(), holeBits.end(), [](std::uint64_t b) { return b != 0; });
+    if (!anyHole) {
+        // Every pixel shows its sample (a still camera's frame).
+        if (samples) {
+            const SampleLook* const looks =
+                samples->looks + samples->origin + static_cast<std::size_t>(y) * samples->stride;
+            for (int x = 0; x < columns; ++x) filmData[rowStart + static_cast<std::size_t>(x)] = looks[x].color;
         }
+        perRow[static_cast<std::size_t>(y)] = row;
+        wants7x7[static_cast<std::size_t>(y)] = 0;
+        hasHoles[static_cast<std::size_t>(y)] = 0;
+        return;
     }
-    // The three rows a hole's 3x3 box reads.
-    const std::array<SampleRow, 3> neighbourRows = {sampleRow(y - 1), sampleRow(y), sampleRow(y + 1)};
+    // The three rows a hole's 3x3 box reads, the filter in lanes, and the
+    // row's samples and single-surface holes into the film.
+    const std::array<const FillRow*, 3> boxRows = {&scratch.rowOf(*this, y - 1), &scratch.rowOf(*this, y),
+                                                   &scratch.rowOf(*this, y + 1)};
+    Fill3x3Results& lanes = scratch.results;
+    raycache::fill3x3Row(*boxRows[0], *boxRows[1], *boxRows[2], holeBits.data(), columns, lanes);
+    composeFilmRow(*boxRows[1], lanes, samples != nullptr, columns, filmData + rowStart);
+    std::vector<std::uint64_t>& filledBits = scratch.filledBits;
+    filledBits.assign(words, 0);
     std::int64_t samplesRead = 0;  // by the holes' boxes (ReconstructionBytes.h)
-    if (anyHole)
-        forEachPixelSet(holeBits, columns, [&](int x) {
-            holes = true;
-            SurfaceClusters groups;
-            // The box's samples row by row, each row's as bits dx + 1 (the
-            // box clipped to the image by the bits: none past its edges);
-            // edge neighbours weigh 2, corners 1.
-            const auto addRow = [&](const SampleRow& r, unsigned three, float cornerWeight) {
-                // The box row's samples: 2-bit counts of 0..7 in one constant
-                // (std::popcount is a library call on the baseline target,
-                // whose spills cost this pass more than the count).
-                samplesRead += (0xE994u >> (three * 2)) & 3u;
-                for (; three; three &= three - 1) {
-                    const int dx = std::countr_zero(three) - 1;
-                    addSample(groups, r, x + dx, dx == 0 ? 2.0f : cornerWeight);
-                }
-            };
-            addRow(neighbourRows[0], threeBitsAround(sampleBits[0], x), 1.0f);
-            addRow(neighbourRows[1], threeBitsAround(sampleBits[1], x), 2.0f);
-            addRow(neighbourRows[2], threeBitsAround(sampleBits[2], x), 1.0f);
-            const std::size_t i = rowStart + static_cast<std::size_t>(x);
-            if (!groups.empty()) {
-                filmData[i] = groups.mean();
-                if (sourceData) sourceData[i] = groups.chosenSource();
-                outcomeData[i] = k3x3;
-                ++row.filled3x3;
-            } else {
-                outcomeData[i] = kWants7x7;
-                wantsRow[static_cast<std::size_t>(x / 64)] |= std::uint64_t{1} << (x % 64);
-                ++wanting;
+    forEachPixelSet(holeBits.data(), columns, [&](int x) {
+        holes = true;
+        const auto column = static_cast<std::size_t>(x);
+        const std::int32_t info = lanes.info[column];
+        samplesRead += Fill3x3Results::samples(info);
+        const std::size_t i = rowStart + column;
+        switch (Fill3x3Results::outcome(info)) {
+        case Fill3x3Outcome::OneSurface:  // its colour is in the film
+            if (sourceData) {
+                const Fill3x3Neighbour& n = kFill3x3Neighbours[Fill3x3Results::firstNeighbour(info)];
+                sourceData[i] = (y - 1 + n.row) * width + x + n.dx;
             }
-        });
+            break;
+        case Fill3x3Outcome::SeveralSurfaces: {
+            const SurfaceClusters groups = groupsAround(boxRows, x, y);
+            filmData[i] = groups.mean();
+            if (sourceData) sourceData[i] = groups.chosenSource();
+            break;
+        }
+        case Fill3x3Outcome::NoSample:
+            outcomeData[i] = kWants7x7;
+            wantsRow[static_cast<std::size_t>(x / 64)] |= std::uint64_t{1} << (x % 64);
+            ++wanting;
+            return;
+        }
+        outcomeData[i] = k3x3;
+        filledBits[static_cast<std::size_t>(x / 64)] |= std::uint64_t{1} << (x % 64);
+        ++row.filled3x3;
+    });
+    if (onFilled && row.filled3x3 > 0) (*onFilled)(y, filledBits.data());
     row.samplesRead += samplesRead;
     perRow[static_cast<std::size_t>(y)] = row;
     wants7x7[static_cast<std::size_t>(y)] = wanting;
     hasHoles[static_cast<std::size_t>(y)] = holes ? 1 : 0;
+}
+
+SurfaceClusters HoleFill::groupsAround(const std::array<const FillRow*, 3>& boxRows, int x, int y) const {
+    SurfaceClusters groups;
+    for (const Fill3x3Neighbour& n : kFill3x3Neighbours) {
+        const FillRow& r = *boxRows[static_cast<std::size_t>(n.row)];
+        const auto column = static_cast<std::size_t>(x + 1 + n.dx);
+        if (!r.sample[column]) continue;
+        groups.add(Rgb(r.red[column], r.green[column], r.blue[column]), n.weight, r.depth[column], r.object[column],
+                   (y - 1 + n.row) * width + x + n.dx);
+    }
+    return groups;
+}
+
+const FillRow& Fill3x3Scratch::rowOf(const HoleFill& fill, int y) {
+    FillRow& row = ring[static_cast<std::size_t>((y % 3 + 3) % 3)];
+    if (row.row == y) return row;
+    const SampleRow source = fill.sampleRow(y);
+    buildFillRow(FillRowSource{source.states, source.looks, source.film, source.keys, source.points}, fill.width, row);
+    row.row = y;
+    return row;
 }
 
 void HoleFill::fill7x7Row(int y, ColumnSums& columns) {
@@ -224,8 +257,10 @@ void HoleFill::fill7x7Row(int y, ColumnSums& columns) {
                 columns.sum[static_cast<std::size_t>(nx - x0)] += film.at(nx, ny);
                 ++columns.count[static_cast<std::size_t>(nx - x0)];
             }
-    for (int c : columns.count) row.samplesRead += c;
+    for (int c : columns.count) row.prefilterSamplesRead += c;
     std::int64_t sparseReads = 0;  // a local: the row's counts are written once
+    const std::int64_t filledBefore = row.filled7x7;
+    columns.filledBits.assign(words, 0);
     forEachPixelSet(wantsRow, width, [&](int x) {
         Rgb sum;
         int count = 0;
@@ -251,14 +286,17 @@ void HoleFill::fill7x7Row(int y, ColumnSums& columns) {
             film.at(x, y) = groups.mean();
             recordSource(x, y, groups);
             outcome[at(x, y)] = k7x7;
+            columns.filledBits[static_cast<std::size_t>(x / 64)] |= std::uint64_t{1} << (x % 64);
             ++row.filled7x7;
         } else {
             outcome[at(x, y)] = kUnfilled;
             ++row.unfilled;
         }
     });
-    row.samplesRead += sparseReads;
+    row.prefilterSamplesRead += sparseReads;
+    row.samplesRead += row.prefilterSamplesRead;
     perRow[static_cast<std::size_t>(y)] = row;
+    if (onFilled && row.filled7x7 > filledBefore) (*onFilled)(y, columns.filledBits.data());
 }
 
 void HoleFill::applyOutcomesRow(int y) {
@@ -273,17 +311,21 @@ void HoleFill::applyOutcomesRow(int y) {
 
 FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel& parallel,
                      std::vector<unsigned char>* scratch, const SampleColors* samples, const SampleSurfaces* surfaces,
-                     std::vector<std::int32_t>* fillSource) {
+                     std::vector<std::int32_t>* fillSource, const FilledHolesVisitor* onFilled) {
     std::vector<unsigned char> ownScratch;
     std::vector<unsigned char>& outcome = scratch ? *scratch : ownScratch;
     outcome.assign(state.size(), kNone);
     if (fillSource) fillSource->resize(state.size());
-    HoleFill fill(state, film, samples, surfaces, fillSource, outcome);
+    HoleFill fill(state, film, samples, surfaces, fillSource, onFilled, outcome);
     const int height = film.height();
     // Counts per row go to a local, written once (no false sharing).
-    std::vector<std::vector<std::uint64_t>> bitsPerWorker(static_cast<std::size_t>(parallel.threadCount()));
-    parallel.forEachIndex(height, [&](int y, int worker) {
-        fill.fill3x3Row(y, bitsPerWorker[static_cast<std::size_t>(worker)]);
+    // Bands of rows, so that a worker reads each image row once for the
+    // three rows of holes that need it.
+    std::vector<Fill3x3Scratch> fill3x3PerWorker(static_cast<std::size_t>(parallel.threadCount()));
+    constexpr int kBandRows = 16;
+    parallel.forEachIndex((height + kBandRows - 1) / kBandRows, [&](int band, int worker) {
+        Fill3x3Scratch& rows = fill3x3PerWorker[static_cast<std::size_t>(worker)];
+        for (int y = band * kBandRows; y < std::min(height, (band + 1) * kBandRows); ++y) fill.fill3x3Row(y, rows);
     });
     // The 7x7 box only on rows with holes it must fill. Where they are
     // dense, per row the sums of each column's 7 pixels (samples only) over
@@ -302,6 +344,7 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
         total.filled7x7 += c.filled7x7;
         total.unfilled += c.unfilled;
         total.samplesRead += c.samplesRead;
+        total.prefilterSamplesRead += c.prefilterSamplesRead;
     }
     for (unsigned char h : fill.hasHoles) total.rowsWithHoles += h;
     return total;

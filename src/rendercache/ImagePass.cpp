@@ -29,43 +29,38 @@ void RenderCachePipeline::makeImage(FrameContext& f) {
     // Edge-aware: a hole takes the samples of one surface around it.
     const SampleSurfaces surfaces{&image_, pool_.point.data(), image_.pixelIndex(0, 0),
                                   static_cast<std::size_t>(image_.stride())};
-    f.filled = fillHoles(state, film, parallel_, &bytes_, &colors, &surfaces, &fillSource_);
-    const FillCounts& filled = f.filled;
     // A hole filled from a textured surface shows that surface's texture at
     // its own centre: the lighting and rest of the group's first sample,
     // the albedo where the hole's centre ray meets that sample's primitive
     // (on a checkerboard floor the filters' mean of neighbouring squares is
     // a grey that neither square has). Where it misses, the filter's mean.
-    // The filled holes are found a word of pixels at a time (PixelStateBits):
-    // testing every pixel's state cost twice what re-fetching the holes did.
-    std::vector<std::vector<std::uint64_t>> filledPerWorker(static_cast<std::size_t>(parallel_.threadCount()));
+    // Done in the fill's own trip, a row as soon as a filter has filled its
+    // holes, while the samples around them are still in the caches (a trip
+    // of its own waited on memory for each hole's sample).
     std::vector<std::int64_t> retexturedHolesPerRow(static_cast<std::size_t>(height), 0);
+    const FilledHolesVisitor retexture = [&](int y, const std::uint64_t* filledBits) {
+        RowRetexturing retexturing(scene_.objects, rays, y);
+        std::int64_t retexturedHoles = 0;
+        forEachPixelSet(filledBits, width, [&](int x) {
+            const auto i = static_cast<std::size_t>(y * width + x);
+            const int source = fillSource_[i];
+            const std::size_t slot = image_.pixelIndex(source % width, source / width);
+            if (!pool_.look[slot].textured) return;
+            ++retexturedHoles;
+            const int object = pool_.point[slot].objectId;
+            const auto distance = [&] {
+                return length(scene_.objects[static_cast<std::size_t>(object)].origin + pool_.point[slot].position -
+                              camera.position);
+            };
+            retexturing.color(x, object, pool_.texturing[slot], distance, film.at(x, y));
+        });
+        retexturedHolesPerRow[static_cast<std::size_t>(y)] += retexturedHoles;
+    };
+    f.filled = fillHoles(state, film, parallel_, &bytes_, &colors, &surfaces, &fillSource_,
+                         f.rc.textureRefetch ? &retexture : nullptr);
+    const FillCounts& filled = f.filled;
     ReconstructionCounts& touched = f.touched;
     touched.filledRefetch = f.rc.textureRefetch && filled.filled3x3 + filled.filled7x7 > 0;
-    if (touched.filledRefetch)
-        parallel_.forEachIndex(height, [&](int y, int worker) {
-            std::vector<std::uint64_t>& filledBits = filledPerWorker[static_cast<std::size_t>(worker)];
-            filledBits.resize(pixelStateWords(width));
-            pixelStateBits(state.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width), width,
-                           PixelState::Filled3x3, PixelState::Filled7x7, filledBits.data());
-            if (std::all_of(filledBits.begin(), filledBits.end(), [](std::uint64_t b) { return b == 0; })) return;
-            RowRetexturing retexturing(scene_.objects, rays, y);
-            std::int64_t retexturedHoles = 0;
-            forEachPixelSet(filledBits.data(), width, [&](int x) {
-                const auto i = static_cast<std::size_t>(y * width + x);
-                const int source = fillSource_[i];
-                const std::size_t slot = image_.pixelIndex(source % width, source / width);
-                if (!pool_.look[slot].textured) return;
-                ++retexturedHoles;
-                const int object = pool_.point[slot].objectId;
-                const auto distance = [&] {
-                    return length(scene_.objects[static_cast<std::size_t>(object)].origin + pool_.point[slot].position -
-                                  camera.position);
-                };
-                retexturing.color(x, object, pool_.texturing[slot], distance, film.at(x, y));
-            });
-            retexturedHolesPerRow[static_cast<std::size_t>(y)] = retexturedHoles;
-        });
     f.stats.filled3x3 = filled.filled3x3;
     f.stats.filled7x7 = filled.filled7x7;
     f.stats.unfilled = filled.unfilled;
@@ -85,7 +80,7 @@ void RenderCachePipeline::makeImage(FrameContext& f) {
     touched.filled3x3 = filled.filled3x3;
     touched.filled7x7 = filled.filled7x7;
     touched.unfilled = filled.unfilled;
-    touched.samplesRead = filled.samplesRead;
+    touched.prefilterSamplesRead = filled.prefilterSamplesRead;
     touched.rowsWithHoles = filled.rowsWithHoles;
     for (std::int64_t r : retexturedHolesPerRow) touched.retexturedHoles += r;
 }

@@ -5,15 +5,14 @@
 // colour one pixel at a time, a third of its instructions).
 #include <bit>
 #include <cstdint>
-#include <cstring>
 #include <vector>
 
 #include "rendercache/PixelState.h"
 
 namespace raycache {
 
-// Words a row of `width` pixels takes, plus one of slack so that
-// threeBitsAround() may read eight bytes from any pixel of the row.
+// Words a row of `width` pixels takes, plus one of slack (a reader may
+// take a register of bits from any pixel of the row).
 inline std::size_t pixelStateWords(int width) {
     return static_cast<std::size_t>(width + 63) / 64 + 1;
 }
@@ -34,17 +33,6 @@ template <class Visit>
 void forEachPixelSet(const std::uint64_t* bits, int width, const Visit& visit) {
     for (std::size_t w = 0; w + 1 < pixelStateWords(width); ++w)
         for (std::uint64_t b = bits[w]; b; b &= b - 1) visit(static_cast<int>(w * 64) + std::countr_zero(b));
-}
-
-// The bits of pixels x - 1, x and x + 1 as bits 0, 1 and 2 (0 where x - 1
-// is -1; `bits` from pixelStateBits(), so 0 past the row's end).
-inline unsigned threeBitsAround(const std::uint64_t* bits, int x) {
-    const auto bytes = reinterpret_cast<const unsigned char*>(bits);
-    const int from = x > 0 ? x - 1 : 0;
-    std::uint64_t word;
-    std::memcpy(&word, bytes + from / 8, sizeof word);  // little-endian: bit i of the row is bit i % 8 of byte i / 8
-    const auto three = static_cast<unsigned>(word >> (from % 8)) & 7u;
-    return x > 0 ? three : (three << 1) & 7u;
 }
 
 }  // namespace raycache

@@ -117,20 +117,23 @@ ReconstructionBytes reconstructionBytes(const ReconstructionCounts& c) {
     // filled holes and the background of unfilled ones). Every pixel shows a
     // sample (copied from the pool to the film) or is a hole that ends
     // filled 3x3, filled 7x7 or unfilled.
-    const std::int64_t holesAtFill = c.filled3x3 + c.filled7x7 + c.unfilled;
     const std::int64_t wants7x7 = c.filled7x7 + c.unfilled;
     std::int64_t& fills = b.fills;
-    fills += pixels * kFlag;                                       // the outcomes cleared
-    fills += pixels * kState;                                      // the states read as bits (rows beside: once)
-    fills += (pixels - holesAtFill) * (kLook + kFilm);             // a sample's colour, pool to film
-    fills += c.samplesRead * (kLook + kKey + kPoint);              // a hole's neighbours: colour, depth, object
-    fills += c.filled3x3 * (kFilm + kFillSource + kFlag);          // the 3x3 mean, its source, the outcome
-    fills += wants7x7 * (kFlag + kPrefilterBox * kState + kFlag);  // marked, its box's states (fewer at an
-                                                                   // edge), the 7x7 outcome
-    fills += c.filled7x7 * (kFilm + kFillSource);                  // the 7x7 mean and its source
-    fills += c.rowsWithHoles * c.width * (2 * kState + kFlag);     // a row of holes: states rewritten from outcomes
+    fills += pixels * kFlag;   // the outcomes cleared
+    fills += pixels * kState;  // the holes found as bits
+    // Every pixel's colour from the pool, and the film written whole
+    // (samples' colours, one-surface means); for the rows with holes the
+    // 3x3 filter's rows (HoleFill3x3Lanes.h) also read state, depth and
+    // object (the rows beside: once).
+    fills += pixels * (kLook + kFilm);
+    fills += c.rowsWithHoles * c.width * (kState + kKey + kPoint);
+    fills += c.filled3x3 * (kFillSource + kFlag);                        // the 3x3 hole's source, its outcome
+    fills += wants7x7 * (kFlag + kPrefilterBox * kState + kFlag);        // marked, its box's states (fewer at an
+                                                                         // edge), the 7x7 outcome
+    fills += c.prefilterSamplesRead * (kLook + kKey + kPoint);           // the 7x7 box's samples
+    fills += c.filled7x7 * (kFilm + kFillSource);                        // the 7x7 mean and its source
+    fills += c.rowsWithHoles * c.width * (2 * kState + kFlag);           // a row of holes: states rewritten
     if (c.filledRefetch) {
-        fills += pixels * kState;                                      // the filled holes found as bits
         fills += (c.filled3x3 + c.filled7x7) * (kFillSource + kLook);  // each one's source and its texture flag
         fills += c.retexturedHoles * (kPoint + kTexturing + kFilm);    // re-fetched (film written where met)
     }

@@ -352,11 +352,20 @@ TEST(HoleFilling, AnEdgeHoleTakesTheHeavierSurfaceAndOnATieTheFarther) {
 // states, colours, depths and objects and a wide hole across a word's end:
 // the same colours bit for bit, the same sources and states, and the
 // samples' colours copied from the pool.
-TEST(HoleFilling, TheFillsAreTheirRulesOneNeighbourAtATimeBitForBit) {
-    constexpr int kW = 150, kH = 9, kMargin = 1, kStride = kW + 2 * kMargin;
+namespace {
+
+// The fills against their rules applied one neighbour at a time, on random
+// states, colours, objects and depths: `objects` objects at depths in
+// [1, maxDepth]. With one object and depths within a tenth of each other
+// every hole's samples lie on one surface (the 3x3 filter's lanes decide
+// alone); with three objects and a wider range most holes see two or more.
+// The image is taller than a band of rows (HoleFilling.cpp) and its width
+// no multiple of a register's lanes.
+void expectFillsFollowTheirRules(int objects, float maxDepth) {
+    constexpr int kW = 150, kH = 41, kMargin = 1, kStride = kW + 2 * kMargin;
     std::mt19937 random(38);
-    std::uniform_int_distribution<int> anyState(0, static_cast<int>(PixelState::Hole)), anyObject(0, 2);
-    std::uniform_real_distribution<float> anyColour(0.0f, 1.0f), anyDepth(1.0f, 1.3f);
+    std::uniform_int_distribution<int> anyState(0, static_cast<int>(PixelState::Hole)), anyObject(0, objects - 1);
+    std::uniform_real_distribution<float> anyColour(0.0f, 1.0f), anyDepth(1.0f, maxDepth);
     std::vector<PixelState> states(static_cast<std::size_t>(kW * kH));
     for (PixelState& s : states) s = static_cast<PixelState>(anyState(random));
     for (int y = 2; y < 7; ++y)
@@ -419,4 +428,14 @@ TEST(HoleFilling, TheFillsAreTheirRulesOneNeighbourAtATimeBitForBit) {
         EXPECT_GT(filled, kW);
         EXPECT_GT(filled7x7, 20);
     }
+}
+
+}  // namespace
+
+TEST(HoleFilling, TheFillsAreTheirRulesOneNeighbourAtATimeBitForBit) {
+    expectFillsFollowTheirRules(3, 1.3f);
+}
+
+TEST(HoleFilling, HolesWithinOneSurfaceAreTheirRuleBitForBit) {
+    expectFillsFollowTheirRules(1, 1.05f);
 }

@@ -1,4 +1,4 @@
-// pixelStateBits(), forEachPixelSet() and threeBitsAround() against the
+// pixelStateBits() and forEachPixelSet() against the
 // states they stand for, pixel by pixel: rows of every width from 1 to 200
 // (whole words of sixteen-state tests, a tail one state at a time, both
 // and neither).
@@ -45,13 +45,5 @@ TEST(PixelStateBits, EachBitSaysWhetherItsPixelsStateIsOneOfTheTwoAndNothingPast
             if (s == PixelState::Filled3x3 || s == PixelState::Filled7x7) wanted.push_back(x);
         }
         ASSERT_EQ(visited, wanted) << "width " << width;  // each once, from left to right
-        for (int x = 0; x < width; ++x) {
-            unsigned want = 0;
-            for (int dx = -1; dx <= 1; ++dx) {
-                const int nx = x + dx;
-                if (nx >= 0 && nx < width && showsSample(states[static_cast<std::size_t>(nx)])) want |= 1u << (dx + 1);
-            }
-            ASSERT_EQ(threeBitsAround(samples.data(), x), want) << "width " << width << ", pixel " << x;
-        }
     }
 }
