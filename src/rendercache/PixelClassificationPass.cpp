@@ -7,6 +7,7 @@
 #include "core/Elapsed.h"
 #include "render/CameraRays.h"
 #include "rendercache/DepthCulling.h"
+#include "rendercache/PixelStateBits.h"
 #include "rendercache/RenderCacheFrameContext.h"
 #include "rendercache/RowRetexturing.h"
 #include "rendercache/SampleRetexturing.h"
@@ -40,6 +41,12 @@ void RenderCachePipeline::classifyPixels(FrameContext& f) {
     std::vector<unsigned char>& hiddenPerPixel = bytes_;
     if (cull) hiddenPerPixel.resize(static_cast<std::size_t>(f.pixels));
     reshadeRowStart_.assign(static_cast<std::size_t>(height) + 1, 0);
+    // The samples reshading will take, and the mark of those it leaves
+    // shaded from an older eye (rendercache/ReshadeSelection.h), decided here,
+    // where each look is read anyway.
+    const bool reshades = f.reshading.any() && rc.reflections == ReprojectedReflections::Reshade;
+    const std::size_t words = pixelStateWords(width);
+    if (reshades) reshadeBits_.resize(words * static_cast<std::size_t>(height));
     parallel_.forEachIndex(height, [&](int y, int) {
         std::int64_t rowHoles = 0, rowCulled = 0, rowReprojected = 0, rowTextured = 0;
         std::size_t rowViewDependent = 0;
@@ -62,6 +69,10 @@ void RenderCachePipeline::classifyPixels(FrameContext& f) {
         const float ageShare = agePriority;
         const int columns = width;
         const ReshadeSelection reshading = f.reshading;
+        const bool selecting = reshades, marksOlderEye = reshades && reshading.moved;
+        std::uint64_t* const chosenBits =
+            selecting ? reshadeBits_.data() + static_cast<std::size_t>(y) * words : nullptr;
+        if (selecting) std::fill(chosenBits, chosenBits + words, 0);
         RowRetexturing retexturing(scene_.objects, centreRays, y);
         for (int x = 0; x < columns; ++x) {
             const auto i = static_cast<std::size_t>(x);
@@ -81,7 +92,12 @@ void RenderCachePipeline::classifyPixels(FrameContext& f) {
                 // branch (a counter inside the re-fetch's branch cost this
                 // pass measurably more instructions).
                 rowTextured += look.textured ? 1 : 0;
-                rowViewDependent += reshading.chooses(look, x, y) ? 1 : 0;
+                const bool chosen = reshading.chooses(look, x, y);
+                rowViewDependent += chosen ? 1 : 0;
+                if (selecting) chosenBits[x / 64] |= static_cast<std::uint64_t>(chosen) << (x % 64);
+                // Out of its turn, a view-dependent sample keeps the colour
+                // of an older eye, marked so that a still frame reshades it.
+                if (marksOlderEye && !chosen && look.viewDependent != 0) look.viewDependent |= kShadedFromAnOlderEye;
                 if (refetching && look.textured) {
                     const int object = points[i].objectId;
                     const auto distance = [&] {

@@ -164,6 +164,10 @@ private:
     // counted by classifyPixels (less those traceNewSamples replaces), so
     // that reshading places each row's requests without a walk of its own.
     std::vector<std::size_t> reshadeRowStart_;
+    // Per row, pixelStateWords(width) words: the reprojected samples
+    // classifyPixels chose to reshade, as bits (rendercache/PixelStateBits.h's
+    // layout), so that reshading visits them alone, not every pixel.
+    std::vector<std::uint64_t> reshadeBits_;
     std::vector<Rgb> reshadeColors_;
     std::optional<Camera> previousCamera_;
     std::uint32_t movingFrames_ = 0;  // frames whose camera moved: the reshading pattern's shift

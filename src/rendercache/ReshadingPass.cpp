@@ -10,6 +10,7 @@
 #include "render/CameraRays.h"
 #include "render/HitOnPrimitive.h"
 #include "render/SurfacePoint.h"
+#include "rendercache/PixelStateBits.h"
 #include "rendercache/RenderCacheFrameContext.h"
 #include "rendercache/TraceChunks.h"
 
@@ -35,16 +36,9 @@ void RenderCachePipeline::reshadeSamples(FrameContext& f) {
         // classifyPixels took on its trip over the image: one thread walking
         // the image was a large share of the frame, and a walk of its own to
         // count them a visible one (docs/log/2026-11-28-render-cache-earns-its-place.md).
-        const ReshadeSelection reshading = f.reshading;
-        // Reprojected view-dependent samples out of their turn keep the
-        // colour of an older eye, marked so that a still frame reshades them.
-        const auto reshaded = [&](int x, int y) {
-            if (state[static_cast<std::size_t>(y * width + x)] != PixelState::Reprojected) return false;
-            SampleLook& look = pool_.look[image_.pixelIndex(x, y)];
-            if (reshading.chooses(look, x, y)) return true;
-            if (look.viewDependent != 0 && reshading.moved) look.viewDependent |= kShadedFromAnOlderEye;
-            return false;
-        };
+        // The samples are those classifyPixels chose, less those a new
+        // sample replaced since (no longer Reprojected).
+        const std::size_t words = pixelStateWords(width);
         std::vector<std::size_t>& rowStart = reshadeRowStart_;
         for (std::size_t y = 0; y < static_cast<std::size_t>(height); ++y) rowStart[y + 1] += rowStart[y];
         reshade.resize(rowStart.back());
@@ -53,8 +47,8 @@ void RenderCachePipeline::reshadeSamples(FrameContext& f) {
         std::atomic<bool> miscounted{false};
         parallel_.forEachIndex(height, [&](int y, int) {
             std::size_t i = rowStart[static_cast<std::size_t>(y)];
-            for (int x = 0; x < width; ++x) {
-                if (!reshaded(x, y)) continue;
+            forEachPixelSet(reshadeBits_.data() + static_cast<std::size_t>(y) * words, width, [&](int x) {
+                if (state[static_cast<std::size_t>(y * width + x)] != PixelState::Reprojected) return;
                 const auto slot = static_cast<std::uint32_t>(image_.pixelIndex(x, y));
                 const int object = pool_.point[slot].objectId;
                 const SceneObject& sceneObject = scene_.objects[static_cast<std::size_t>(object)];
@@ -82,7 +76,7 @@ void RenderCachePipeline::reshadeSamples(FrameContext& f) {
                 }
                 r.litMask = inputs.litMask;
                 slots[i++] = slot;
-            }
+            });
             if (i != rowStart[static_cast<std::size_t>(y) + 1]) miscounted.store(true, std::memory_order_relaxed);
         });
         if (miscounted.load()) throw RuntimeError("Render Cache: reshading's row counts do not match the image");
