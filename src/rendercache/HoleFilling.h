@@ -25,12 +25,8 @@ struct FillCounts {
     std::int64_t filled3x3 = 0;
     std::int64_t filled7x7 = 0;
     std::int64_t unfilled = 0;  // left for the caller: state Unfilled, pixel untouched
-    // What the filters read (rendercache/ReconstructionBytes.h): the samples
-    // around the holes, once per hole that reads them (both filters, and the
-    // 7x7's alone: the 3x3 reads its rows once), and the rows with holes.
-    std::int64_t samplesRead = 0;
-    std::int64_t prefilterSamplesRead = 0;
-    std::int64_t rowsWithHoles = 0;
+    std::int64_t samplesRead = 0;    // the samples the filters took into their means, once per hole
+    std::int64_t rowsWithHoles = 0;  // rows whose states the fill rewrites (rendercache/ReconstructionBytes.h)
 };
 
 // Where the samples' colours are when they are not in the film yet: pixel
@@ -69,12 +65,11 @@ struct SampleSurfaces {
 // (the caller may shade the hole from that sample's surface); other
 // entries are not written.
 // `scratch`, when given, is reused from frame to frame (no allocation).
-// `onFilled`, when given, is called for each row and filter that filled
-// holes in it (the 3x3's, then the 7x7's), with those holes as bits
-// (rendercache/PixelStateBits.h's layout), on the worker that filled them,
-// right after: the row's samples are then still in its caches. It may
-// change the colours of those holes only (other rows are being filled
-// meanwhile).
+// `onFilled`, when given, is called once for each row in which the filters
+// filled holes, with those holes as bits (rendercache/PixelStateBits.h's
+// layout), on the worker that filled them, right after: the samples around
+// them are then still in its caches. It may change the colours of those
+// holes only (other rows are being filled meanwhile).
 using FilledHolesVisitor = std::function<void(int y, const std::uint64_t* filled)>;
 FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel& parallel,
                      std::vector<unsigned char>* scratch = nullptr, const SampleColors* samples = nullptr,

@@ -80,7 +80,6 @@ void RenderCachePipeline::makeImage(FrameContext& f) {
     touched.filled3x3 = filled.filled3x3;
     touched.filled7x7 = filled.filled7x7;
     touched.unfilled = filled.unfilled;
-    touched.prefilterSamplesRead = filled.prefilterSamplesRead;
     touched.rowsWithHoles = filled.rowsWithHoles;
     for (std::int64_t r : retexturedHolesPerRow) touched.retexturedHoles += r;
 }

@@ -2,7 +2,6 @@
 
 #include "core/Rgb.h"
 #include "render/CameraRays.h"
-#include "rendercache/HoleFilling.h"
 #include "rendercache/PixelState.h"
 #include "rendercache/PointImage.h"
 #include "rendercache/Reprojection.h"
@@ -31,7 +30,6 @@ constexpr std::int64_t kTileRequests = sizeof(decltype(RequestMap::tileRequests)
 constexpr std::int64_t kRequest = sizeof(PixelCoord);
 constexpr std::int64_t kFilm = sizeof(Rgb);
 constexpr std::int64_t kFillSource = sizeof(std::int32_t);  // fillHoles()'s fillSource
-constexpr std::int64_t kPrefilterBox = (2 * kPrefilterRadius + 1) * (2 * kPrefilterRadius + 1);
 
 // One buildRequestMap() call over `pixels` priorities and `tiles` tiles that
 // asked for `requested` pixels from tiles holding `pixelsInRequestedTiles`.
@@ -123,16 +121,14 @@ ReconstructionBytes reconstructionBytes(const ReconstructionCounts& c) {
     fills += pixels * kState;  // the holes found as bits
     // Every pixel's colour from the pool, and the film written whole
     // (samples' colours, one-surface means); for the rows with holes the
-    // 3x3 filter's rows (HoleFill3x3Lanes.h) also read state, depth and
-    // object (the rows beside: once).
+    // filters' rows (HoleFill3x3Lanes.h's FillRow) also read state, depth
+    // and object (the rows beside, which both filters' boxes read: once).
     fills += pixels * (kLook + kFilm);
     fills += c.rowsWithHoles * c.width * (kState + kKey + kPoint);
-    fills += c.filled3x3 * (kFillSource + kFlag);                        // the 3x3 hole's source, its outcome
-    fills += wants7x7 * (kFlag + kPrefilterBox * kState + kFlag);        // marked, its box's states (fewer at an
-                                                                         // edge), the 7x7 outcome
-    fills += c.prefilterSamplesRead * (kLook + kKey + kPoint);           // the 7x7 box's samples
-    fills += c.filled7x7 * (kFilm + kFillSource);                        // the 7x7 mean and its source
-    fills += c.rowsWithHoles * c.width * (2 * kState + kFlag);           // a row of holes: states rewritten
+    fills += c.filled3x3 * (kFillSource + kFlag);               // the 3x3 hole's source, its outcome
+    fills += wants7x7 * kFlag;                                  // the 7x7 outcome
+    fills += c.filled7x7 * (kFilm + kFillSource);               // the 7x7 mean and its source
+    fills += c.rowsWithHoles * c.width * (2 * kState + kFlag);  // a row of holes: states rewritten
     if (c.filledRefetch) {
         fills += (c.filled3x3 + c.filled7x7) * (kFillSource + kLook);  // each one's source and its texture flag
         fills += c.retexturedHoles * (kPoint + kTexturing + kFilm);    // re-fetched (film written where met)

@@ -57,10 +57,9 @@ struct ReconstructionCounts {
 
     // Fills and the image.
     std::int64_t filled3x3 = 0, filled7x7 = 0, unfilled = 0;
-    std::int64_t prefilterSamplesRead = 0;  // samples the 7x7 boxes read (beside several holes: for each)
-    std::int64_t rowsWithHoles = 0;         // rows whose states the fills rewrite
-    bool filledRefetch = false;             // filled holes were re-fetched from their surface's texture
-    std::int64_t retexturedHoles = 0;       // filled holes re-fetched: their group's first sample is textured
+    std::int64_t rowsWithHoles = 0;    // rows whose states the fills rewrite
+    bool filledRefetch = false;        // filled holes were re-fetched from their surface's texture
+    std::int64_t retexturedHoles = 0;  // filled holes re-fetched: their group's first sample is textured
 };
 
 // Bytes each pass moves (read + written), counted by reconstructionBytes().

@@ -64,7 +64,6 @@ ReconstructionCounts tinyFrame() {
     c.predictedKept = 1;
     c.pixelsInPredictedTiles = 4;
     c.filled3x3 = 1;
-    c.prefilterSamplesRead = 3;
     c.rowsWithHoles = 1;
     c.filledRefetch = true;
     c.retexturedHoles = 1;
@@ -101,13 +100,12 @@ TEST(ReconstructionBytes, ATinyFrameCountsEveryPassFromItsRecords) {
               oneMap + 4 * kByte + 16 * kNext + 4 * (kByte + kFloat) + oneMap + 1 * (kRequest + kByte) + 1 * kRequest);
     // Fills: 4 outcomes cleared, 4 states read as bits; every pixel's look
     // read and its film written; the row with holes' 2 states, keys and
-    // points read for the 3x3; the 3x3 hole's source and outcome; 3 samples
-    // the 7x7 boxes read (look, key, point); a row of 2 states rewritten;
-    // the re-fetch's hole's source and its look, the textured surface's
-    // point and parts and the film.
+    // points read for the filters; the 3x3 hole's source and outcome; a row
+    // of 2 states rewritten; the re-fetch's hole's source and its look, the
+    // textured surface's point and parts and the film.
     EXPECT_EQ(b.fills, 4 * kByte + 4 * kState + 4 * (kLook + kFilm) + 1 * 2 * (kState + kKey + kPoint) +
-                           1 * (kSource + kByte) + 3 * (kLook + kKey + kPoint) + 1 * 2 * (2 * kState + kByte) +
-                           1 * (kSource + kLook) + 1 * (kPoint + kTexturing + kFilm));
+                           1 * (kSource + kByte) + 1 * 2 * (2 * kState + kByte) + 1 * (kSource + kLook) +
+                           1 * (kPoint + kTexturing + kFilm));
     EXPECT_EQ(b.total(), b.firstRound + b.copy + b.holes + b.requestMaps + b.fills);
 }
 
@@ -165,7 +163,6 @@ TEST(ReconstructionBytes, DoublingEveryCountDoublesEveryPass) {
                             &twice.filled3x3,
                             &twice.filled7x7,
                             &twice.unfilled,
-                            &twice.prefilterSamplesRead,
                             &twice.retexturedHoles})
         *n *= 2;
     const ReconstructionBytes a = reconstructionBytes(c), b = reconstructionBytes(twice);
