@@ -32,6 +32,19 @@ void directLightLanes16(const Material& material, std::span<const Light> lights,
     RAYCACHE_LANE_DISPATCH(directLightLanes, material, lights, seen, surfaces, viewRays, lanes, outR, outG, outB);
 }
 
+void viewIndependentLightLanes16(const Material& material, std::span<const Light> lights, const LightLanes16* seen,
+                                 const SurfaceLanes16& surfaces, bool whiteAlbedo, const int* lanes, float* outR,
+                                 float* outG, float* outB) {
+    RAYCACHE_LANE_DISPATCH(viewIndependentLightLanes, material, lights, seen, surfaces, whiteAlbedo, lanes, outR, outG,
+                           outB);
+}
+
+void highlightLanes16(const Material& material, std::span<const Light> lights, const LightLanes16* seen,
+                      const SurfaceLanes16& surfaces, const RayLanes16& viewRays, const int* lanes, float* outR,
+                      float* outG, float* outB) {
+    RAYCACHE_LANE_DISPATCH(highlightLanes, material, lights, seen, surfaces, viewRays, lanes, outR, outG, outB);
+}
+
 void checkerAlbedoLanes16(const Checkerboard& pattern, const int* lanes, SurfaceLanes16& surfaces) {
     RAYCACHE_LANE_DISPATCH(checkerAlbedoLanes, pattern, lanes, surfaces);
 }

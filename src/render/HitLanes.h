@@ -126,6 +126,22 @@ void directLightLanes16(const Material& material, std::span<const Light> lights,
                         const SurfaceLanes16& surfaces, const RayLanes16& viewRays, const int* lanes, float* outR,
                         float* outG, float* outB);
 
+// LocalShading::viewIndependentLight for the selected lanes, all of one
+// material (each lane's metallic from `surfaces`), with the surfaces' albedo
+// or, `whiteAlbedo`, an albedo of 1: out{R,G,B}[k] for each selected k. The
+// lights counted are those whose `lit` lane is set (the lit mask is the
+// caller's to take from them).
+void viewIndependentLightLanes16(const Material& material, std::span<const Light> lights, const LightLanes16* seen,
+                                 const SurfaceLanes16& surfaces, bool whiteAlbedo, const int* lanes, float* outR,
+                                 float* outG, float* outB);
+
+// LocalShading::highlights for the selected lanes, all of one material (each
+// lane's metallic and roughness from `surfaces`), seen along `viewRays`'
+// directions, from the lights whose `lit` lane is set: out{R,G,B}[k].
+void highlightLanes16(const Material& material, std::span<const Light> lights, const LightLanes16* seen,
+                      const SurfaceLanes16& surfaces, const RayLanes16& viewRays, const int* lanes, float* outR,
+                      float* outG, float* outB);
+
 // The albedo of `pattern` (Texture::sample's checkerboard) at the texture
 // coordinates of the surfaces k selected by `lanes`, into their albedo lanes.
 void checkerAlbedoLanes16(const Checkerboard& pattern, const int* lanes, SurfaceLanes16& surfaces);

@@ -28,13 +28,6 @@ void materialFactorLanes(const Material& material, const int* lanes, SurfaceLane
         if (lanes[k]) materialFactorLane(material, k, surfaces);
 }
 
-Material materialAtLane(const Material& material, const SurfaceLanes16& surfaces, int k) {
-    Material atLane = material;
-    atLane.metallic = surfaces.metallic[k];
-    atLane.roughness = surfaces.roughness[k];
-    return atLane;
-}
-
 Vec3 normalFromTexture(const Material& material, const TriangleMesh& mesh, int primitiveId, const SurfacePoint& sp) {
     const auto& tri = mesh.triangles[static_cast<std::size_t>(primitiveId)];
     const auto& uv0 = mesh.uvs[tri[0]];

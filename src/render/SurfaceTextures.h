@@ -3,8 +3,7 @@
 // (scene/Material.h): the metallic-roughness texture gives each hit its own
 // metallic and roughness, the normal texture its shading normal. The wave's
 // surface lanes carry the results (render/HitLanes.h), so direct light and
-// secondary rays read them like any other lane; the scalar shading rules
-// (LocalShading) read them through materialAtLane.
+// secondary rays read them like any other lane.
 #include <cstdint>
 
 #include "render/HitLanes.h"
@@ -20,11 +19,6 @@ namespace raycache {
 void materialFactorLane(const Material& material, int k, SurfaceLanes16& surfaces);
 // materialFactorLane for the selected lanes.
 void materialFactorLanes(const Material& material, const int* lanes, SurfaceLanes16& surfaces);
-
-// `material` with lane k's metallic and roughness as its factors: what the
-// scalar shading rules take for that hit. A copy: callers make one only
-// for materials with a metallic-roughness texture.
-Material materialAtLane(const Material& material, const SurfaceLanes16& surfaces, int k);
 
 // The shading normal of a hit at `sp` (oriented as surfacePointAt orients
 // it, texture coordinates set) on triangle `primitiveId` of `mesh`, with

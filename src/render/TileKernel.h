@@ -29,7 +29,6 @@
 // only in their first stage.
 #include <chrono>
 #include <cstdint>
-#include <optional>
 #include <span>
 #include <vector>
 
@@ -205,10 +204,6 @@ private:
     // Reshading (ReshadeRequest): packet p's kept view-independent light plus
     // its lit lights' highlights from the new eye.
     void reshadePacket(TileScratch& s, std::size_t p) const;
-    // Lane k's material as the scalar shading rules take it: the object's,
-    // or (with a metallic-roughness texture) a copy in `textured` with the
-    // lane's own metallic and roughness.
-    const Material& materialOfLane(const TileWave::HitPacket& packet, int k, std::optional<Material>& textured) const;
     // A packet's secondary rays in two steps. packetSpawnLanes: the rays in
     // lanes, the texels of those leaving CCT objects, and a prefetch of
     // their validity bits. packetEmit: the lookups, then each ray's node,

@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
-#include <optional>
 
 #include "cache/CubeAddressingLanes.h"
 #include "core/FloatLanes.h"
@@ -512,57 +511,65 @@ void TileKernel::packetDirect(TileScratch& s, std::size_t p) const {
 void TileKernel::recordFirstHitLight(TileScratch& s, std::size_t p) const {
     const TileWave::HitPacket& packet = s.wave.packets[p];
     const std::size_t lights = scene_.lights.size();
-    std::array<ShadowQuery, kMaxLights> queries;
-    std::array<unsigned char, kMaxLights> occluded;
+    // The lanes' shadow rays were LocalShading::shadowQueries' rays (render/HitLanes.h).
+    const LightLanes16* const seen = s.wave.packetLights.data() + p * lights;
+    alignas(64) int remaining[kFloatLanes], selected[kFloatLanes];
+    for (int k = 0; k < kFloatLanes; ++k) remaining[k] = packet.hits.valid[k] && packet.depth[k] == 1 ? -1 : 0;
+    alignas(64) float lightR[kFloatLanes], lightG[kFloatLanes], lightB[kFloatLanes];
+    alignas(64) float whiteR[kFloatLanes], whiteG[kFloatLanes], whiteB[kFloatLanes];
+    for (int id; (id = takeObjectLanes(packet.objectId, remaining, selected)) >= 0;) {
+        const Material& material = scene_.objects[static_cast<std::size_t>(id)].material;
+        viewIndependentLightLanes16(material, scene_.lights, seen, packet.surface, false, selected, lightR, lightG,
+                                    lightB);
+        // Only a texture varies the albedo within a primitive; the lighting
+        // of untextured hits is never asked for.
+        if (material.diffuseTexture)
+            viewIndependentLightLanes16(material, scene_.lights, seen, packet.surface, true, selected, whiteR, whiteG,
+                                        whiteB);
+    }
     for (int k = 0; k < packet.count; ++k) {
         if (!packet.hits.valid[k] || packet.depth[k] != 1) continue;
-        const SurfacePoint sp = laneSurface(packet.surface, k);
-        const Rgb albedo{packet.surface.albedoR[k], packet.surface.albedoG[k], packet.surface.albedoB[k]};
-        std::optional<Material> textured;
-        const Material& material = materialOfLane(packet, k, textured);
-        // The lanes' shadow rays were these queries' rays (render/HitLanes.h).
-        const auto count = static_cast<std::size_t>(shading_.shadowQueries(sp, queries.data()));
-        for (std::size_t q = 0; q < count; ++q)
-            occluded[q] =
-                s.wave.packetLights[p * lights + static_cast<std::size_t>(queries[q].lightIndex)].lit[k] ? 0 : 1;
         const auto node = static_cast<std::size_t>(packet.node[k]);
-        const std::span<const ShadowQuery> seen(queries.data(), count);
-        const std::span<const unsigned char> blocked(occluded.data(), count);
-        s.renderCache.rootViewIndependent[node] =
-            shading_.viewIndependentLight(material, albedo, sp, seen, blocked, s.renderCache.rootLitMask[node]);
-        if (material.diffuseTexture) {
-            // Only a texture varies the albedo within a primitive; the
-            // lighting of untextured hits is never asked for.
-            std::uint64_t sameMask;
-            s.renderCache.rootLighting[node] =
-                shading_.viewIndependentLight(material, Rgb{1.0f}, sp, seen, blocked, sameMask);
-        }
+        std::uint64_t litMask = 0;
+        for (std::size_t l = 0; l < lights; ++l)
+            if (seen[l].lit[k]) litMask |= std::uint64_t{1} << l;
+        s.renderCache.rootLitMask[node] = litMask;
+        s.renderCache.rootViewIndependent[node] = Rgb{lightR[k], lightG[k], lightB[k]};
+        if (scene_.objects[static_cast<std::size_t>(packet.objectId[k])].material.diffuseTexture)
+            s.renderCache.rootLighting[node] = Rgb{whiteR[k], whiteG[k], whiteB[k]};
     }
-}
-
-const Material& TileKernel::materialOfLane(const TileWave::HitPacket& packet, int k,
-                                           std::optional<Material>& textured) const {
-    const Material& material = scene_.objects[static_cast<std::size_t>(packet.objectId[k])].material;
-    if (!material.metallicRoughnessTexture) return material;
-    return textured.emplace(materialAtLane(material, packet.surface, k));
 }
 
 void TileKernel::reshadePacket(TileScratch& s, std::size_t p) const {
     const TileWave::HitPacket& packet = s.wave.packets[p];
-    std::array<ShadowQuery, kMaxLights> queries;
+    const std::size_t lights = scene_.lights.size();
+    // Each light's direction and strength at the new hits (the shadow rays
+    // are not traced): lit where it reaches the surface and the sample's
+    // kept lit mask says it was lit.
+    std::vector<LightLanes16>& seen = s.renderCache.reshadeLights;
+    seen.resize(lights);
+    RayLanes16 unused;
+    PacketLanes reaches;
+    for (std::size_t l = 0; l < lights; ++l) {
+        shadowRayLanes16(scene_.lights[l], shading_.spotCones()[l], packet.surface, packet.hits.valid, unused, reaches,
+                         seen[l]);
+        for (int k = 0; k < kFloatLanes; ++k) {
+            const bool litBefore =
+                k < packet.count && packet.hits.valid[k] &&
+                (s.renderCache.reshade[static_cast<std::size_t>(packet.node[k])].litMask >> l & 1u) != 0;
+            seen[l].lit[k] = reaches.valid[k] && litBefore ? 1 : 0;
+        }
+    }
+    alignas(64) int remaining[kFloatLanes], selected[kFloatLanes];
+    for (int k = 0; k < kFloatLanes; ++k) remaining[k] = packet.hits.valid[k] ? -1 : 0;
+    alignas(64) float highR[kFloatLanes], highG[kFloatLanes], highB[kFloatLanes];
+    for (int id; (id = takeObjectLanes(packet.objectId, remaining, selected)) >= 0;)
+        highlightLanes16(scene_.objects[static_cast<std::size_t>(id)].material, scene_.lights, seen.data(),
+                         packet.surface, packet.rays.ray, selected, highR, highG, highB);
     for (int k = 0; k < packet.count; ++k) {
         if (!packet.hits.valid[k]) continue;
-        const SurfacePoint sp = laneSurface(packet.surface, k);
         const auto node = static_cast<std::size_t>(packet.node[k]);
-        const ReshadeRequest& request = s.renderCache.reshade[node];
-        std::optional<Material> textured;
-        const Material& material = materialOfLane(packet, k, textured);
-        const auto count = static_cast<std::size_t>(shading_.shadowQueries(sp, queries.data()));
-        const Vec3 toViewer = -laneRay(packet.rays.ray, k).direction;
-        const Rgb albedo{packet.surface.albedoR[k], packet.surface.albedoG[k], packet.surface.albedoB[k]};
-        s.wave.nodes[node].direct =
-            request.viewIndependent +
-            shading_.highlights(material, albedo, sp, toViewer, std::span(queries.data(), count), request.litMask);
+        s.wave.nodes[node].direct = s.renderCache.reshade[node].viewIndependent + Rgb{highR[k], highG[k], highB[k]};
     }
 }
 

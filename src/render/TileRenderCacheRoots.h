@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/Rgb.h"
+#include "render/HitLanes.h"
 #include "render/RenderCacheSamples.h"
 
 namespace raycache {
@@ -20,6 +21,7 @@ struct TileRenderCacheRoots {
     std::vector<Rgb> rootLighting;  // rootViewIndependent with a white albedo
     std::vector<std::uint64_t> rootLitMask;
     std::span<const ReshadeRequest> reshade;  // the roots of a reshade call, while its first hits are shaded
+    std::vector<LightLanes16> reshadeLights;  // per light: a reshaded packet's lights as its lanes see them
 };
 
 }  // namespace raycache

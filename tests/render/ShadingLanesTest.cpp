@@ -25,6 +25,16 @@ using namespace raycache;
 
 namespace {
 
+// `material` with lane k's metallic and roughness as its factors: what the
+// scalar shading rules (the specification of the lanes) take for that hit.
+Material materialAtLane(const Material& material, const SurfaceLanes16& surfaces, int k) {
+    Material atLane = material;
+    atLane.metallic = surfaces.metallic[k];
+    atLane.roughness = surfaces.roughness[k];
+    return atLane;
+}
+
+
 std::uint32_t floatBits(float f) { return std::bit_cast<std::uint32_t>(f); }
 
 Vec3 randomDirection(std::mt19937& rng) {
@@ -184,6 +194,15 @@ void expectDirectLightEqualsLocalShading(MaterialOf materialOf) {
         alignas(64) float r[16], g[16], b[16];
         for (int k = 0; k < 16; ++k) r[k] = g[k] = b[k] = -1.0f;
         directLightLanes16(material, scene.lights, seen.data(), h.lanes, h.rays, selected, r, g, b);
+        // The Render Cache's parts of it: the light that does not depend on
+        // the eye (with the albedo and with a white one) and the highlights.
+        alignas(64) float viewR[16], viewG[16], viewB[16], whiteR[16], whiteG[16], whiteB[16];
+        alignas(64) float highR[16], highG[16], highB[16];
+        viewIndependentLightLanes16(material, scene.lights, seen.data(), h.lanes, false, selected, viewR, viewG,
+                                    viewB);
+        viewIndependentLightLanes16(material, scene.lights, seen.data(), h.lanes, true, selected, whiteR, whiteG,
+                                    whiteB);
+        highlightLanes16(material, scene.lights, seen.data(), h.lanes, h.rays, selected, highR, highG, highB);
         for (int k = 0; k < 16; ++k) {
             if (!selected[k]) {
                 EXPECT_EQ(r[k], -1.0f) << "a lane left out is written, lane " << k;
@@ -204,6 +223,23 @@ void expectDirectLightEqualsLocalShading(MaterialOf materialOf) {
             EXPECT_EQ(floatBits(r[k]), floatBits(expected.r)) << "lane " << k;
             EXPECT_EQ(floatBits(g[k]), floatBits(expected.g)) << "lane " << k;
             EXPECT_EQ(floatBits(b[k]), floatBits(expected.b)) << "lane " << k;
+            const Material atLane = materialAtLane(material, h.lanes, k);
+            const std::span<const ShadowQuery> seenQueries(queries, static_cast<std::size_t>(n));
+            const std::span<const unsigned char> blocked(occluded, static_cast<std::size_t>(n));
+            std::uint64_t litMask = 0, whiteLitMask = 0;
+            const Rgb viewIndependent = shading.viewIndependentLight(atLane, albedo, h.points[k], seenQueries,
+                                                                     blocked, litMask);
+            const Rgb white = shading.viewIndependentLight(atLane, Rgb{1.0f}, h.points[k], seenQueries, blocked,
+                                                           whiteLitMask);
+            expectSameWeight(viewR, viewG, viewB, k, viewIndependent, "view-independent light");
+            expectSameWeight(whiteR, whiteG, whiteB, k, white, "view-independent light, white albedo");
+            std::uint64_t laneLitMask = 0;
+            for (std::size_t l = 0; l < scene.lights.size(); ++l)
+                if (seen[l].lit[k]) laneLitMask |= std::uint64_t{1} << l;
+            EXPECT_EQ(laneLitMask, litMask) << "lane " << k;
+            const Rgb highlights =
+                shading.highlights(atLane, albedo, h.points[k], -h.scalarRays[k].direction, seenQueries, litMask);
+            expectSameWeight(highR, highG, highB, k, highlights, "highlights");
         }
         if (::testing::Test::HasFailure()) return;
     }
