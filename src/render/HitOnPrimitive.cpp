@@ -21,8 +21,8 @@ std::optional<TraceHit> hitOnSphere(const Sphere& sphere, int objectId, const Ra
     return TraceHit{t, objectId, 0, 0.0f, 0.0f};
 }
 
-std::optional<TraceHit> hitOnTriangle(const TriangleMesh& mesh, int objectId, int primitiveId, const Ray& ray) {
-    const TriangleOnItsPlane triangle(mesh, primitiveId);
+std::optional<TraceHit> hitOnTriangle(const TriangleOnItsPlane& triangle, int objectId, int primitiveId,
+                                      const Ray& ray) {
     float t, u, v;
     if (!triangle.valid || !triangle.meet(ray, t, u, v)) return std::nullopt;
     return TraceHit{t, objectId, primitiveId, u, v};
@@ -60,7 +60,19 @@ bool TriangleOnItsPlane::meet(const Ray& ray, float& t, float& u, float& v) cons
 std::optional<TraceHit> hitOnPrimitive(const SceneObject& object, int objectId, int primitiveId, const Ray& ray,
                                        float expectedT) {
     if (const auto* sphere = std::get_if<Sphere>(&object.shape)) return hitOnSphere(*sphere, objectId, ray, expectedT);
-    return hitOnTriangle(*std::get<MeshShape>(object.shape).mesh, objectId, primitiveId, ray);
+    return hitOnTriangle(TriangleOnItsPlane(*std::get<MeshShape>(object.shape).mesh, primitiveId), objectId,
+                         primitiveId, ray);
+}
+
+std::optional<TraceHit> PrimitiveHits::hit(const SceneObject& object, int objectId, int primitiveId, const Ray& ray,
+                                           float expectedT) {
+    if (const auto* sphere = std::get_if<Sphere>(&object.shape)) return hitOnSphere(*sphere, objectId, ray, expectedT);
+    if (objectId != object_ || primitiveId != primitive_) {
+        triangle_ = TriangleOnItsPlane(*std::get<MeshShape>(object.shape).mesh, primitiveId);
+        object_ = objectId;
+        primitive_ = primitiveId;
+    }
+    return hitOnTriangle(triangle_, objectId, primitiveId, ray);
 }
 
 }  // namespace raycache

@@ -40,4 +40,17 @@ struct TriangleOnItsPlane {
     bool meet(const Ray& ray, float& t, float& u, float& v) const;
 };
 
+// hitOnPrimitive for many rays in turn, keeping the last triangle's
+// TriangleOnItsPlane: neighbouring pixels' samples mostly lie on one
+// triangle. The same hits.
+class PrimitiveHits {
+public:
+    std::optional<TraceHit> hit(const SceneObject& object, int objectId, int primitiveId, const Ray& ray,
+                                float expectedT);
+
+private:
+    int object_ = -1, primitive_ = -1;
+    TriangleOnItsPlane triangle_;
+};
+
 }  // namespace raycache

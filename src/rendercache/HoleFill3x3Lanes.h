@@ -46,9 +46,9 @@ void buildFillRow(const FillRowSource& source, int width, FillRow& row);
 
 // What the filter decided for each pixel of a row (only meaningful at holes).
 enum class Fill3x3Outcome : std::int32_t {
-    OneSurface = 1,     // all neighbouring samples on one surface: colour and source below
-    NoSample = 2,       // no neighbouring sample: the 7x7 prefilter's turn
-    SeveralSurfaces = 3 // the scalar rule must choose among the groups
+    OneSurface = 1,      // all neighbouring samples on one surface: colour and source below
+    NoSample = 2,        // no neighbouring sample: the 7x7 prefilter's turn
+    SeveralSurfaces = 3  // the scalar rule must choose among the groups
 };
 // The neighbours in the order the scalar rule adds them (row above, own
 // row, row below; left to right), with their filter weights.
@@ -56,8 +56,8 @@ struct Fill3x3Neighbour {
     int row, dx;
     float weight;
 };
-inline constexpr Fill3x3Neighbour kFill3x3Neighbours[8] = {{0, -1, 1.0f}, {0, 0, 2.0f}, {0, 1, 1.0f}, {1, -1, 2.0f},
-                                                          {1, 1, 2.0f},  {2, -1, 1.0f}, {2, 0, 2.0f}, {2, 1, 1.0f}};
+inline constexpr Fill3x3Neighbour kFill3x3Neighbours[8] = {{0, -1, 1.0f}, {0, 0, 2.0f},  {0, 1, 1.0f}, {1, -1, 2.0f},
+                                                           {1, 1, 2.0f},  {2, -1, 1.0f}, {2, 0, 2.0f}, {2, 1, 1.0f}};
 
 struct Fill3x3Results {
     std::vector<float> red, green, blue;  // the weighted mean (OneSurface)

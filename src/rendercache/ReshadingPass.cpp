@@ -47,6 +47,7 @@ void RenderCachePipeline::reshadeSamples(FrameContext& f) {
         std::atomic<bool> miscounted{false};
         parallel_.forEachIndex(height, [&](int y, int) {
             std::size_t i = rowStart[static_cast<std::size_t>(y)];
+            PrimitiveHits centreHits;
             forEachPixelSet(reshadeBits_.data() + static_cast<std::size_t>(y) * words, width, [&](int x) {
                 if (state[static_cast<std::size_t>(y * width + x)] != PixelState::Reprojected) return;
                 const auto slot = static_cast<std::uint32_t>(image_.pixelIndex(x, y));
@@ -64,12 +65,14 @@ void RenderCachePipeline::reshadeSamples(FrameContext& f) {
                 // Where that ray misses the surface, the sample's point.
                 const Ray centreRay = pixelRays.ray(x, y);
                 r.viewIndependent = inputs.viewIndependent;
-                if (const auto atCentre = hitOnPrimitive(sceneObject, object, inputs.primitiveId, centreRay, distance)) {
+                if (const auto atCentre =
+                        centreHits.hit(sceneObject, object, inputs.primitiveId, centreRay, distance)) {
                     r.ray = centreRay;
                     r.hit = *atCentre;
                     // A textured sample's diffuse part with the albedo seen there.
                     if (pool_.look[slot].textured)
-                        r.viewIndependent = albedoAtHit(sceneObject, centreRay, *atCentre) * pool_.texturing[slot].lighting;
+                        r.viewIndependent =
+                            albedoAtHit(sceneObject, centreRay, *atCentre) * pool_.texturing[slot].lighting;
                 } else {
                     r.ray = Ray{camera.position, toPoint * (1.0f / distance)};
                     r.hit = TraceHit{distance, object, inputs.primitiveId, inputs.baryU, inputs.baryV};
@@ -84,8 +87,9 @@ void RenderCachePipeline::reshadeSamples(FrameContext& f) {
         colors.resize(reshade.size());
         forEachTraceChunk(parallel_, reshade.size(), [&](std::size_t begin, std::size_t end, int chunk, int worker) {
             kernel_.reshadeSurfaces(std::span(reshade.data() + begin, end - begin),
-                                    f.key + static_cast<std::uint64_t>(chunk), scratch_[static_cast<std::size_t>(worker)],
-                                    f.cacheFrame->worker(worker), std::span(colors.data() + begin, end - begin));
+                                    f.key + static_cast<std::uint64_t>(chunk),
+                                    scratch_[static_cast<std::size_t>(worker)], f.cacheFrame->worker(worker),
+                                    std::span(colors.data() + begin, end - begin));
         });
         forEachTraceChunk(parallel_, slots.size(), [&](std::size_t begin, std::size_t end, int, int) {
             for (std::size_t i = begin; i < end; ++i) {
