@@ -17,25 +17,17 @@ std::size_t paddedLength(int width) {
     return (static_cast<std::size_t>(width) + 2 + kFloatLanes + 15) / 16 * 16;
 }
 
+// Each vector `length` long.
+template <class... Vectors>
+void resizeEach(std::size_t length, Vectors&... vectors) {
+    (vectors.resize(length), ...);
+}
+
 }  // namespace
 
-void FillRow::resize(int width) {
-    const std::size_t length = paddedLength(width);
-    sample.resize(length);
-    red.resize(length);
-    green.resize(length);
-    blue.resize(length);
-    depth.resize(length);
-    object.resize(length);
-}
+void FillRow::resize(int width) { resizeEach(paddedLength(width), sample, red, green, blue, depth, object); }
 
-void Fill3x3Results::resize(int width) {
-    const std::size_t length = paddedLength(width);
-    red.resize(length);
-    green.resize(length);
-    blue.resize(length);
-    info.resize(length);
-}
+void Fill3x3Results::resize(int width) { resizeEach(paddedLength(width), red, green, blue, info); }
 
 void buildFillRow(const FillRowSource& source, int width, FillRow& row) {
     row.resize(width);
