@@ -15,6 +15,7 @@
 #include "cluster/ClusterRuntime.h"
 #include "core/Errors.h"
 #include "core/ProcessAgreement.h"
+#include "core/FreedMemory.h"
 #include "core/ProgressBar.h"
 #include "core/TextFormat.h"
 #include "core/ViewTransform.h"
@@ -219,6 +220,7 @@ int run(int argc, char** argv, const raycache::ClusterRuntime& cluster);
 }  // namespace
 
 int main(int argc, char** argv) {
+    raycache::keepFreedMemoryInProcess();
     std::optional<raycache::ClusterRuntime> cluster;
     try {
         cluster.emplace(argc, argv);
