@@ -4,8 +4,8 @@
 // trimmed heap), so a program that allocates a large buffer every frame
 // takes fresh pages every frame; on the virtual machines this project runs
 // on, each page fault is costly and the passes that run next find their
-// caches and TLB cold (`bench render-cache` timed its first scene's
-// reprojection 3-5x slower than `raycache render` does:
+// caches and TLB cold (`bench render-cache`'s per-frame image metrics slowed
+// the Render Cache passes it timed:
 // docs/log/2026-11-29-render-cache-folds-and-lanes.md).
 namespace raycache {
 

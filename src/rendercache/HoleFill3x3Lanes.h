@@ -4,8 +4,8 @@
 // all lie on one surface. The filter reads a row's samples through three
 // rows of structure-of-arrays (FillRow): each hole's eight neighbours are
 // then eight unaligned loads per field, where the per-hole code gathered
-// them one by one (the most expensive step of reconstruction). A hole whose
-// samples lie on two or more surfaces is left to the scalar rule
+// them one by one, a branch per neighbour. A hole whose samples lie on two
+// or more surfaces is left to the scalar rule
 // (SurfaceClusters), which chooses among the groups.
 #include <cstdint>
 #include <vector>

@@ -1,7 +1,6 @@
 // RenderCachePipeline's image: the samples where there are, the edge-aware
 // 3x3 and 7x7 fills in the holes (rendercache/HoleFilling.h), a filled
 // hole's texture at its own centre, the environment where no sample reaches.
-#include <algorithm>
 #include <cstring>
 
 #include "core/Elapsed.h"

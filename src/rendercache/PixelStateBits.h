@@ -1,8 +1,8 @@
 #pragma once
-// A row of pixel states as bits, 64 pixels a word, for the hole fills: one
-// test of sixteen states at a time instead of a load and a branch per pixel
-// (the 3x3 fill tested each hole's nine neighbours and copied each sample's
-// colour one pixel at a time, a third of its instructions).
+// A row of pixel states as bits, 64 pixels a word, for the passes that visit
+// a few kinds of pixel (holes, filled holes, samples to reshade): one test
+// of sixteen states at a time, then only the pixels whose bit is set,
+// instead of a load and a branch per pixel.
 #include <bit>
 #include <cstdint>
 #include <vector>
