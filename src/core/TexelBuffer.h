@@ -1,7 +1,7 @@
 #pragma once
 // A fixed-size array of 32-bit words for large, randomly accessed tables
 // (caching cubes: tens to hundreds of MiB read at scattered texels). It asks
-// the kernel for transparent huge pages, which cuts TLB misses on such access.
+// the kernel for transparent huge pages (core/LargePages.h).
 #include <cstddef>
 #include <cstdint>
 #include <memory>

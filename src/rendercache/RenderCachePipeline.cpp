@@ -170,8 +170,8 @@ void RenderCachePipeline::sizePool(std::size_t imageSlots, int pixels) {
     // the predicted samples, which have no pixel yet (at most the budget,
     // at most every pixel).
     if (pool_.pixelSlots == imageSlots && pool_.capacity() == imageSlots + static_cast<std::size_t>(pixels)) return;
-    pool_.reset(imageSlots, static_cast<std::size_t>(pixels));
-    spare_.reset(imageSlots, static_cast<std::size_t>(pixels));
+    pool_.reset(imageSlots, static_cast<std::size_t>(pixels), &parallel_);
+    spare_.reset(imageSlots, static_cast<std::size_t>(pixels), &parallel_);
     previousCamera_.reset();
 }
 

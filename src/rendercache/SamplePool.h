@@ -15,27 +15,30 @@
 #include <vector>
 
 #include "core/Rgb.h"
+#include "core/UninitializedAllocator.h"
 #include "core/Vec3.h"
 
 namespace raycache {
 
+class Parallel;
+
 // Where a sample is.
 struct SamplePoint {
-    Vec3 position;     // hit point minus the object's origin, or the direction of a miss
-    int objectId = -1; // SamplePool::kEmpty, kBackground or an index into Scene::objects
+    Vec3 position;      // hit point minus the object's origin, or the direction of a miss
+    int objectId = -1;  // SamplePool::kEmpty, kBackground or an index into Scene::objects
     bool operator==(const SamplePoint&) const = default;
 };
 static_assert(sizeof(SamplePoint) == 16);
 
 // What a sample shows, and for how long it has.
 struct SampleLook {
-    Rgb color;                       // what the pixel showed when last traced or reshaded
-    std::uint16_t age = 0;           // reprojections since it was traced
+    Rgb color;              // what the pixel showed when last traced or reshaded
+    std::uint16_t age = 0;  // reprojections since it was traced
     // Non-zero: a mirror, glass or highlight, whose colour depends on the
     // eye: kViewDependent, plus kShadedFromAnOlderEye while a moving frame
     // has left it unreshaded (rendercache/ReshadeSelection.h).
     unsigned char viewDependent = 0;
-    unsigned char textured = 0;      // its albedo comes from a texture: SampleTexturing holds its colour's parts
+    unsigned char textured = 0;  // its albedo comes from a texture: SampleTexturing holds its colour's parts
     bool operator==(const SampleLook&) const = default;
 };
 static_assert(sizeof(SampleLook) == 16);
@@ -71,22 +74,27 @@ struct SamplePool {
     static constexpr int kBackground = -2;  // the ray hit nothing: `position` holds its direction
 
     // `pixelSlots` empty pixel slots and room for `overflowCapacity`
-    // samples after them, none used.
-    void reset(std::size_t pixelSlots, std::size_t overflowCapacity);
+    // samples after them, none used. Only the pixel slots are written (over
+    // `parallel`'s workers when given); an overflow slot is written fresh
+    // when it is taken. No reader looks past used(), so the memory of
+    // overflow slots never taken is never touched.
+    void reset(std::size_t pixelSlots, std::size_t overflowCapacity, const Parallel* parallel = nullptr);
     std::size_t capacity() const { return point.size(); }
     // The slots that may hold a sample: the pixel slots and the used overflow slots.
     std::size_t used() const { return pixelSlots + overflowUsed; }
     bool empty(std::size_t slot) const { return point[slot].objectId == kEmpty; }
-    // The next free overflow slot, to be filled by the caller; throws
-    // RuntimeError when none is left.
+    // The next free overflow slot, empty (as a pixel slot after reset), to
+    // be filled by the caller; throws RuntimeError when none is left.
     std::size_t takeOverflowSlot();
     std::size_t pixelSlots = 0;    // slots addressed by pixel
     std::size_t overflowUsed = 0;  // overflow slots [pixelSlots, pixelSlots + overflowUsed) in use
 
-    std::vector<SamplePoint> point;
-    std::vector<SampleLook> look;
-    std::vector<ReshadeInputs> reshade;
-    std::vector<SampleTexturing> texturing;
+    template <typename T>
+    using Records = std::vector<T, UninitializedAllocator<T>>;
+    Records<SamplePoint> point;
+    Records<SampleLook> look;
+    Records<ReshadeInputs> reshade;
+    Records<SampleTexturing> texturing;
 };
 
 }  // namespace raycache
