@@ -7,6 +7,7 @@
 #include <sstream>
 #include <string>
 
+#include "ScopedEnvironment.h"
 #include "TempDir.h"
 #include "ThreadProcessGroup.h"
 #include "app/BenchCommand.h"
@@ -29,10 +30,11 @@ TEST(DistributedBench, EveryExperimentsResultsReachProcessZero) {
     TempDir dir;
     // Scratch directories go under TMPDIR: a private one, so that tests
     // running beside this one (ctest -j) cannot add or remove directories
-    // while it counts them. Each test case is a process of its own.
+    // while it counts them; given back when the test ends, as the directory
+    // goes with `dir`.
     const std::filesystem::path privateTemp = dir.path() / "tmp";
     std::filesystem::create_directories(privateTemp);
-    ASSERT_EQ(setenv("TMPDIR", privateTemp.c_str(), /*overwrite=*/1), 0);
+    const test::ScopedEnvironment temp("TMPDIR", privateTemp.string());
     ASSERT_EQ(std::filesystem::temp_directory_path(), privateTemp);
     const std::set<std::filesystem::path> scratchBefore = scratchDirectories();
     BenchCommandOptions options;

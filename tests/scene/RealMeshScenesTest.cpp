@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "CiRequirement.h"
+#include "ScopedEnvironment.h"
 #include "SourceTreePaths.h"
 #include "TempDir.h"
 
@@ -80,14 +81,14 @@ TEST(RealMeshScenes, TheBuiltSearchPathHoldsTheCommittedMeshes) {
 }
 
 TEST(RealMeshScenes, TheEnvironmentReplacesTheSearchPath) {
-    ASSERT_EQ(setenv("RAYCACHE_MESH_PATH", "/first::/second/", 1), 0);
+    const test::ScopedEnvironment meshPath("RAYCACHE_MESH_PATH", "/first::/second/");
     const MeshSearchPath fromEnvironment = meshSearchPathFromEnvironment();
     ASSERT_EQ(fromEnvironment.directories.size(), 2u);
     EXPECT_EQ(fromEnvironment.directories[0], fs::path("/first"));
     EXPECT_EQ(fromEnvironment.directories[1], fs::path("/second/"));
-    ASSERT_EQ(setenv("RAYCACHE_MESH_PATH", "", 1), 0);
+    meshPath.set("");
     EXPECT_EQ(meshSearchPathFromEnvironment().directories, builtMeshSearchPath().directories);
-    ASSERT_EQ(unsetenv("RAYCACHE_MESH_PATH"), 0);
+    meshPath.unset();
     EXPECT_EQ(meshSearchPathFromEnvironment().directories, builtMeshSearchPath().directories);
 }
 
