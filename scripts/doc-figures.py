@@ -24,21 +24,35 @@ Sources and targets:
   oracle's table); README.md's rows for CDCT, animated scenes, grids and the
   experiments harness (figure and, where it judges the figure, status).
   docs/full-run/where-caching-pays/ is copied along but not read: the
-  where-caching-pays figures come from the run of their own above.
+  where-caching-pays figures come from the run of their own above;
+- docs/bench-runs/core_speed/*.json and docs/bench-runs/cct_speed/*.json
+  (the standalone benchmarks' `--json` documents, several runs each, written
+  by scripts/record-bench-runs.sh): in docs/performance.md the blocks
+  `bench-core` ("Core frame and floor"), `bench-core-avx2` (the runs at
+  RAYCACHE_LANES=avx2) and `bench-cct` ("CCT against uncached"), and the
+  core and CCT goals rows whose figures come from them; README.md's rows for
+  uncached Whitted ray tracing and CCT filled and moving (status and
+  figure). Times are medians of the runs' medians with min–max over the
+  runs; a ratio is taken within each run, of its medians, and quoted over
+  the runs the same way or as their min–max.
 Each block has one provenance line (machine, threads, lane level, size,
-date, commit, from the run's `environment`); a goals row is replaced whole,
+date, commit, from the run's `environment`; for the benchmarks' runs also
+their number); a goals row is replaced whole,
 keyed by its start; a README row must contain its generated phrase (the
-check looks for it in the row) or, for the full run's rows, hold exactly the
-generated cells. Judgements ("met?", "slower than …", "not met") are
+check looks for it in the row) or, for the full run's and the benchmarks'
+rows, hold exactly the generated cells. Judgements ("met?", "slower than …", "not met") are
 generated from the figure and its goal. Sentences and rows whose figures come
-from other benchmarks (`cct_speed`, `grids_speed`, `scene_update_speed`, …)
-stay written by hand. A ctest test (`doc_figures`) runs the check mode; it
-fails with one line when docs/full-run/ is missing.
+from other benchmarks (`grids_speed`, `scene_update_speed`, …) or from
+`cct_speed` runs on other scenes stay written by hand. A ctest test
+(`doc_figures`) runs the check mode; it fails with one line when
+docs/full-run/ or a folder of docs/bench-runs/ is missing or empty.
 """
 import argparse
+import glob
 import json
 import os
 import re
+import shlex
 import statistics
 import sys
 
@@ -65,6 +79,17 @@ DYNAMIC_CCT = 1.3  # CCT speed-up over uncached along the animations
 GRIDS_1M_MS = 115.0  # the document's Buddha, 1.09M triangles on a GTX 280
 FILL_TRACED = 5.0  # % of lookups traced after frame 2 (Fig 5.9 protocol)
 CDCT_REFLECTIVE = 1.0  # improved CDCT on reflective-32, over uncached
+BENCH_RUNS = os.path.join(ROOT, "docs", "bench-runs")
+CORE_BEGIN = "<!-- figures:bench-core -->"
+CORE_AVX2_BEGIN = "<!-- figures:bench-core-avx2 -->"
+CCT_BEGIN = "<!-- figures:bench-cct -->"
+# The goals the standalone benchmarks' judgements compare with (performance.md's "Goals at a glance").
+GOAL_SCENE = "grid-32"  # the scene the core and CCT goals name
+CORE_PLAIN = 0.5  # uncached frame over the plain Embree Whitted loop's
+CORE_FLOOR = 1.3  # ideal frame over the floor
+CCT_FILLED = 2.0  # CCT with filled caches over uncached
+CCT_MISS = 1.1  # a miss over the plain trace it replaces
+LANE_LEVEL_NAMES = {"avx512": "AVX-512", "avx2": "AVX2", "baseline": "baseline x86-64"}
 DYNAMIC_ANCHOR = ("results-sample-full.md#dynamic-scenes-cct-with-per-block-invalidation-against-uncached-along-the-"
                   "built-in-animations")
 
@@ -636,6 +661,278 @@ def grids_figures(run):
     return block, rows, readme
 
 
+def load_bench_runs(program):
+    """Every committed run of one standalone benchmark, docs/bench-runs/<program>/*.json
+    (scripts/record-bench-runs.sh), in file order."""
+    folder = os.path.join(BENCH_RUNS, program)
+    files = sorted(glob.glob(os.path.join(folder, "*.json")))
+    if not files:
+        sys.exit(f"doc-figures: docs/bench-runs/{program}/ is missing or holds no runs: record them with "
+                 "scripts/record-bench-runs.sh")
+    runs = []
+    for path in files:
+        with open(path, encoding="utf-8") as f:
+            run = json.load(f)
+        if run.get("benchmark") != program:
+            sys.exit(f"doc-figures: {os.path.relpath(path, ROOT)} is not a {program} run")
+        run["file"] = os.path.relpath(path, ROOT)
+        runs.append(run)
+    return runs
+
+
+def bench_command(run):
+    """The run's command line as the docs quote it: the program under
+    build/release/benchmarks/, RAYCACHE_LANES when it was set, no --json."""
+    args, kept = shlex.split(run["command"])[1:], []
+    while args:
+        a = args.pop(0)
+        if a == "--json":
+            args = args[1:]
+        elif not a.startswith("--json="):
+            kept.append(a)
+    lanes = f"RAYCACHE_LANES={run['lanes_requested']} " if run["lanes_requested"] else ""
+    return f"{lanes}build/release/benchmarks/{run['benchmark']} {shlex.join(kept)}"
+
+
+def same_runs(runs, what):
+    """`runs` (of one lane level) after checking that they ran the same
+    command on the same machine, the figures of one measurement run."""
+    first = runs[0]
+    for r in runs[1:]:
+        for key, value in (("command", bench_command), ("machine", lambda r: r["environment"]["cpu_model"]),
+                           ("threads", lambda r: r["environment"]["worker_threads"])):
+            if value(r) != value(first):
+                sys.exit(f"doc-figures: {r['file']} differs from {first['file']} in its {key}; {what} must come from "
+                         "one recording (scripts/record-bench-runs.sh)")
+    return runs
+
+
+def by_lanes(runs, program):
+    """The runs at the processor's default lane level and those at
+    RAYCACHE_LANES=avx2; any other level is not quoted."""
+    default = [r for r in runs if not r["lanes_requested"]]
+    avx2 = [r for r in runs if r["lanes_requested"] == "avx2"]
+    if not default:
+        sys.exit(f"doc-figures: docs/bench-runs/{program}/ has no run at the default lane level")
+    return same_runs(default, program), same_runs(avx2, program) if avx2 else []
+
+
+def runs_provenance(runs):
+    """Machine, threads, lane level, size, dates, commits and number of runs."""
+    env = runs[0]["environment"]
+    dates = sorted({r["environment"]["started_at"][:10] for r in runs})
+    commits = sorted({r["git_commit"][:7] + (" with uncommitted changes" if r["dirty"] else "") for r in runs})
+    size = runs[0]["settings"]["size"]
+    return (f"{env['cpu_model']}, {plural(env['worker_threads'], 'thread')}, {env['version']['lanes']}, {size}², "
+            f"{dates[0] if len(dates) == 1 else dates[0] + ' to ' + dates[-1]}, commit {', '.join(commits)}, "
+            f"{plural(len(runs), 'run')}")
+
+
+def and_list(items):
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
+
+
+def scene_label(scene):
+    """A built-in scene's name, or a scene file's name without its folder and .json."""
+    return os.path.splitext(os.path.basename(scene))[0]
+
+
+def per_scene(runs, scene, value):
+    """`value` of `scene` in every run (the first run's scenes are the ones quoted)."""
+    out = []
+    for r in runs:
+        s = next((s for s in r["scenes"] if s["scene"] == scene), None)
+        if s is None:
+            sys.exit(f"doc-figures: {r['file']} has no scene {scene} (the other runs have it)")
+        out.append(value(s))
+    return out
+
+
+def goal_scene(runs, program):
+    scenes = runs[0]["settings"]["scenes"]
+    if GOAL_SCENE not in scenes:
+        sys.exit(f"doc-figures: {runs[0]['file']} has no {GOAL_SCENE}, the scene of {program}'s goals")
+    return GOAL_SCENE
+
+
+def ms_cell(values):
+    """Median of the runs' medians (min–max over the runs)."""
+    return f"{statistics.median(values):.1f} ({min(values):.1f}–{max(values):.1f})"
+
+
+def ratio_cell(values):
+    return f"{statistics.median(values):.2f}× ({min(values):.2f}–{max(values):.2f})"
+
+
+def ms_span(values):
+    lo, hi = min(values), max(values)
+    return f"{lo:.1f}" if f"{lo:.1f}" == f"{hi:.1f}" else f"{lo:.1f}–{hi:.1f}"
+
+
+def level_name(run):
+    return LANE_LEVEL_NAMES.get(run["lane_level"], run["lane_level"])
+
+
+def at_most_over_runs(values, goal):
+    """"yes" when every run's value is at most the goal, "at the median" when
+    the median is, else "no"."""
+    return ("yes" if all(v <= goal for v in values) else "at the median" if statistics.median(values) <= goal
+            else "no")
+
+
+def core_figures(runs):
+    """performance.md's "Core frame and floor" table with its provenance,
+    the AVX2 paragraph, the core goals rows and README.md's uncached row."""
+    default, avx2 = by_lanes(runs, "core_speed")
+    first = default[0]
+    scenes = first["settings"]["scenes"]
+
+    def median_ms(variant):
+        return lambda s: s["variants"][variant]["median_ms"]
+
+    lines = [
+        CORE_BEGIN,
+        wrap(f"`{bench_command(first)}` (depth {first['settings']['max_depth']}; {runs_provenance(default)}; "
+             "generated by `scripts/doc-figures.py` from `docs/bench-runs/core_speed/`): ms per frame as the median "
+             "of the runs' medians (min–max over the runs), the ratios of each run's medians likewise:"),
+        "",
+        "| scene | plain Embree loop | raycache, uncached | ideal frame | floor | uncached / plain loop | "
+        "ideal / floor |",
+        "| --- | --- | --- | --- | --- | --- | --- |",
+    ]
+    for scene in scenes:
+        cells = [ms_cell(per_scene(default, scene, median_ms(v))) for v in ("plain_loop", "raycache", "ideal", "floor")]
+        cells += [ratio_cell(per_scene(default, scene, lambda s: s[k]))
+                  for k in ("uncached_over_plain_loop", "ideal_over_floor")]
+        lines.append(f"| {scene_label(scene)} | " + " | ".join(cells) + " |")
+    lines += ["", END]
+    table = "\n".join(lines)
+
+    def floor_ratios(group, scene):
+        return per_scene(group, scene, lambda s: s["ideal_over_floor"])
+
+    level = level_name(first)
+    if avx2:
+        avx2_scenes = avx2[0]["settings"]["scenes"]
+        text = (f"`{bench_command(avx2[0])}` ({runs_provenance(avx2)}; generated by `scripts/doc-figures.py` from "
+                f"`docs/bench-runs/core_speed/`), taking turns with the runs above: ideal/floor is "
+                + ", ".join(f"{span(floor_ratios(avx2, s))} on {scene_label(s)}" for s in avx2_scenes)
+                + f" at `RAYCACHE_LANES=avx2` and "
+                + ", ".join(span(floor_ratios(default, s)) for s in avx2_scenes) + f" at {level} in those runs.")
+    else:
+        text = "No run at `RAYCACHE_LANES=avx2` is committed in `docs/bench-runs/core_speed/`."
+    avx2_block = "\n".join([CORE_AVX2_BEGIN, wrap(text), END])
+
+    scene = goal_scene(default, "core_speed")
+    plain = per_scene(default, scene, median_ms("plain_loop"))
+    uncached = per_scene(default, scene, median_ms("raycache"))
+    over_plain = per_scene(default, scene, lambda s: s["uncached_over_plain_loop"])
+    medians = {s: statistics.median(floor_ratios(default, s)) for s in scenes}
+    highest = max(max(floor_ratios(default, s)) for s in scenes)
+
+    def floor_judgement(group, name):
+        over = [scene_label(s) for s in group[0]["settings"]["scenes"]
+                if statistics.median(floor_ratios(group, s)) > CORE_FLOOR]
+        if over:
+            return f"not at {name} on {and_list(over)}"
+        every = all(v <= CORE_FLOOR for s in group[0]["settings"]["scenes"] for v in floor_ratios(group, s))
+        return f"at {name}" if every else f"at {name}, at the median"
+
+    judgement = floor_judgement(default, level)
+    avx2_text = ""
+    if avx2:
+        judgement += "; " + floor_judgement(avx2, "AVX2")
+        avx2_text = "; at AVX2 " + ", ".join(
+            f"{scene_label(s)} {x(statistics.median(floor_ratios(avx2, s)))}" for s in avx2[0]["settings"]["scenes"])
+    if judgement == f"at {level}" + ("; at AVX2" if avx2 else ""):
+        judgement = "yes"
+    rows = {
+        f"| core | uncached {GOAL_SCENE} ≤": (
+            f"| core | uncached {scene} ≤ {CORE_PLAIN:g}× the time of a plain Embree Whitted loop | "
+            f"{statistics.median(over_plain):.2f}× ({statistics.median(uncached):.1f} ms a frame) | "
+            f"{at_most_over_runs(over_plain, CORE_PLAIN)} |"),
+        "| core | ideal frame ≤": (
+            f"| core | ideal frame ≤ {CORE_FLOOR:g}× the floor | "
+            + ", ".join(f"{scene_label(s)} {x(m)}" for s, m in medians.items())
+            + f" (medians; single runs up to {x(highest)}){avx2_text} ([below](#core-frame-and-floor)) | "
+            f"{judgement} |"),
+    }
+    speedup = statistics.median(plain) / statistics.median(uncached)
+    readme = {1: "works" if speedup >= 1.0 else "works, slower than a plain Embree Whitted loop",
+              2: f"{scene}: {speedup:.1f}× a plain Embree Whitted loop ({statistics.median(uncached):.1f} against "
+                 f"{statistics.median(plain):.1f} ms)"}
+    return table, avx2_block, rows, readme
+
+
+def cct_figures(runs):
+    """performance.md's paragraph of "CCT against uncached" (cct_speed), its
+    goals rows and README.md's two CCT rows."""
+    default, _ = by_lanes(runs, "cct_speed")
+    first = default[0]
+    settings = first["settings"]
+    scenes = settings["scenes"]
+
+    def still(scene, key):
+        return per_scene(default, scene, lambda s: s["still"][key])
+
+    def path(scene, key):
+        return per_scene(default, scene, lambda s: s["path"][key])
+
+    def still_ms(scene, variant):
+        return per_scene(default, scene, lambda s: s["still"][variant]["median_ms"])
+
+    def bold(scene, text):
+        return f"**{text}**" if scene == GOAL_SCENE else text
+
+    def miss(scene):
+        costs = [c for c in path(scene, "miss_over_plain_trace") if c is not None]
+        return span(costs) if costs else "–"
+
+    still_text = ", ".join(
+        f"{scene_label(s)} {bold(s, span(still(s, 'speedup')))} (uncached {ms_span(still_ms(s, 'uncached'))} ms, "
+        f"CCT {ms_span(still_ms(s, 'cct'))}; the ideal cache bounds it at {span(still(s, 'ideal_speedup'))})"
+        for s in scenes)
+    path_text = ", ".join(f"{scene_label(s)} {span(path(s, 'speedup'))}" for s in scenes)
+    miss_text = ", ".join(f"{miss(s)}{' the traced tree it replaces' if i == 0 else ''} on {scene_label(s)}"
+                          for i, s in enumerate(scenes))
+    text = (f"`{bench_command(first)}` (depth {settings['max_depth']}; {runs_provenance(default)}; generated by "
+            "`scripts/doc-figures.py` from `docs/bench-runs/cct_speed/`), speed-ups over uncached from each run's "
+            f"medians, min–max over the runs. Still camera, caches filled: {still_text}. Along the orbit (1° a "
+            f"frame, {plural(settings['path_frames'], 'frame')} from empty caches, `always`): {path_text}; a miss "
+            f"costs {miss_text}, and the default `--cache-policy auto` stands such cubes aside.")
+    block = "\n".join([CCT_BEGIN, wrap(text), END])
+
+    scene = goal_scene(default, "cct_speed")
+    speedups, bounds = still(scene, "speedup"), still(scene, "ideal_speedup")
+    reached = sum(1 for v in speedups if v >= CCT_FILLED)
+    filled_met = ("yes" if reached == len(speedups) else f"in {reached} of {len(speedups)} runs" if reached
+                  else "no; within the bound" if statistics.median(bounds) >= CCT_FILLED
+                  else "no; above what an ideal cache reaches")
+    miss_costs = {s: [c for c in path(s, "miss_over_plain_trace") if c is not None] for s in scenes}
+    cheap = [scene_label(s) for s, c in miss_costs.items() if c and statistics.median(c) <= CCT_MISS]
+    miss_met = ("yes" if len(cheap) == len(scenes) and all(v <= CCT_MISS for c in miss_costs.values() for v in c)
+                else "no" if not cheap else f"on {', '.join(cheap)}")
+    rows = {
+        f"| CCT | filled {GOAL_SCENE} ≥ {CCT_FILLED:.1f}×": (
+            f"| CCT | filled {scene} ≥ {CCT_FILLED:.1f}× uncached | {span(speedups)} (`cct_speed`); an ideal cache "
+            f"bounds it at {span(bounds)} | {filled_met} |"),
+        "| CCT | a miss ≤": (
+            f"| CCT | a miss ≤ {CCT_MISS:g}× the trace it replaces | "
+            + ", ".join(f"{miss(s)} on {scene_label(s)}" for s in scenes) + f" | {miss_met} |"),
+    }
+    documents = per_scene(default, scene, lambda s: s["still"]["documents_speedup"])[0]
+    orbit = path(scene, "speedup")
+
+    def status(values):
+        return ("works, slower than uncached" if all(v < 1.0 for v in values) else "works"
+                if all(v >= 1.0 for v in values) else "works, slower than uncached in some runs")
+
+    readme_filled = {1: status(speedups), 2: f"{scene}: {span(speedups)} uncached"
+                     + (f" (the documents: {x(documents)})" if documents else "")}
+    readme_moving = {1: status(orbit), 2: f"{scene}'s orbit: {span(orbit)} uncached"}
+    return block, rows, readme_filled, readme_moving
+
+
 def replace_rows(text, rows, path):
     """`text` with the one line starting with each key of `rows` replaced by
     that key's row."""
@@ -707,6 +1004,8 @@ def main():
     harness_block, fill_rows, harness_readme = harness_figures(full)
     dynamic_block, dynamic_rows, dynamic_readme = dynamic_figures(full)
     grids_block, grids_rows, grids_readme = grids_figures(full)
+    core_table, core_avx2, core_rows, core_readme = core_figures(load_bench_runs("core_speed"))
+    cct_block, cct_rows, cct_readme_filled, cct_readme_moving = cct_figures(load_bench_runs("cct_speed"))
 
     def blocks(*pairs):
         return [(f"the block {begin}", lambda t, b=b, begin=begin: replace_block(t, b, PERFORMANCE, begin))
@@ -719,13 +1018,17 @@ def main():
     failures = []
     regenerate(PERFORMANCE, blocks((BEGIN, block), (RENDER_CACHE_BEGIN, rc_block), (TABLES_BEGIN, tables_block),
                                    (DYNAMIC_BEGIN, dynamic_block), (GRIDS_BEGIN, grids_block),
-                                   (HARNESS_BEGIN, harness_block))
+                                   (HARNESS_BEGIN, harness_block), (CORE_BEGIN, core_table),
+                                   (CORE_AVX2_BEGIN, core_avx2), (CCT_BEGIN, cct_block))
                + rows(render_cache_goal_rows(render_cache_run)) + rows(tables_rows) + rows(fill_rows)
-               + rows(dynamic_rows) + rows(grids_rows), args.check, failures)
+               + rows(dynamic_rows) + rows(grids_rows) + rows(core_rows) + rows(cct_rows), args.check, failures)
     regenerate(DYNAMIC_SCENES, [(f"the block {ORACLE_BEGIN}",
                                  lambda t: replace_block(t, oracle_block(full), DYNAMIC_SCENES, ORACLE_BEGIN))],
                args.check, failures)
     readme_rows = [
+        ("| Whitted ray tracing", lambda t: row_cells(t, "| Whitted ray tracing", core_readme, README)),
+        ("| CCT, caches filled", lambda t: row_cells(t, "| CCT, caches filled", cct_readme_filled, README)),
+        ("| CCT, camera moving", lambda t: row_cells(t, "| CCT, camera moving", cct_readme_moving, README)),
         ("| `--cache-policy auto`", lambda t: row_phrase(t, "| `--cache-policy auto`", readme_phrase, 2, README)),
         ("| Render Cache", lambda t: row_phrase(t, "| Render Cache", rc_phrase, 2, README)),
         ("| CDCT, parallax-correct", lambda t: row_cells(t, "| CDCT, parallax-correct", cdct_readme, README)),
