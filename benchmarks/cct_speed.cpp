@@ -2,12 +2,21 @@
 //  (a) still camera, caches filled by the warm-up frames (the documents' protocol),
 //      with the "ideal" frame (caching objects trace no secondary rays at all);
 //  (b) the scene's moving camera path from empty caches, as they fill.
-// Usage: cct_speed [--size 1024] [--rounds 7] [--path-frames 10] [--path-rounds 3] [--scenes a,b]
+// With --json FILE it also writes every figure of both tables, with the
+// ideal cache's bound (uncached / ideal) and the run's settings, machine and
+// build, as one JSON document (bench/BenchmarkRecord.h; the docs quote the
+// committed runs in docs/bench-runs/cct_speed/).
+// Usage: cct_speed [--size 1024] [--rounds 7] [--path-frames 10] [--path-rounds 3] [--scenes a,b] [--json FILE]
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
+#include <optional>
 
+#include "bench/BenchmarkRecord.h"
 #include "bench/InterleavedRuns.h"
+#include "bench/ResultsJson.h"
+#include "core/Errors.h"
 #include "core/Parallel.h"
 #include "render/FrameRenderer.h"
 #include "scene/BuiltinScenes.h"
@@ -40,6 +49,14 @@ double documentsGridSpeedup(int n) {
     }
 }
 
+// A path run's times and rays per frame of the path: the table's unit.
+VariantTimes perFrame(VariantTimes t, int frames) {
+    for (double& ms : t.milliseconds) ms /= frames;
+    for (double& ms : t.warmupMilliseconds) ms /= frames;
+    t.work /= static_cast<std::uint64_t>(frames);
+    return t;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -57,8 +74,18 @@ int main(int argc, char** argv) {
     app.add_option("--threads", threads, "Worker threads, 0 = all")->capture_default_str();
     app.add_option("--max-depth", maxDepth, "Longest ray path")->capture_default_str();
     app.add_option("--scenes", scenes, "Built-in scenes")->delimiter(',');
+    std::filesystem::path jsonPath;
+    app.add_option("--json", jsonPath, "Also write every figure, the settings, machine and build to this JSON file");
     CLI11_PARSE(app, argc, argv);
     const Parallel parallel(threads);
+    std::optional<BenchmarkRecord> record;
+    try {
+        record.emplace("cct_speed", argc, argv, jsonPath, parallel.threadCount());
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 2;
+    }
+    nlohmann::json sceneRecords = nlohmann::json::array();
 
     std::printf("## (a) still camera, caches filled\n\n");
     std::printf("| scene | uncached ms | CCT ms | ideal ms | speed-up | documents | CCT / ideal | cache MiB |\n");
@@ -100,6 +127,16 @@ int main(int argc, char** argv) {
                     still[0].median() / still[1].median(), documentsText, still[1].median() / still[2].median(),
                     static_cast<double>(cctCache.bytes()) / (1024.0 * 1024.0));
         std::fflush(stdout);
+        sceneRecords.push_back({{"scene", name},
+                                {"still",
+                                 {{"uncached", benchmarkVariantJson(still[0])},
+                                  {"cct", benchmarkVariantJson(still[1])},
+                                  {"ideal", benchmarkVariantJson(still[2])},
+                                  {"speedup", still[0].median() / still[1].median()},
+                                  {"documents_speedup", documents > 0 ? nlohmann::json(documents) : nlohmann::json()},
+                                  {"cct_over_ideal", still[1].median() / still[2].median()},
+                                  {"ideal_speedup", still[0].median() / still[2].median()},
+                                  {"cache_mib", static_cast<double>(cctCache.bytes()) / (1024.0 * 1024.0)}}}});
 
         // (b) the moving path from empty caches; each run renders the whole path.
         double hitPercent = 0.0, lookups = 0.0, hits = 0.0;
@@ -134,7 +171,8 @@ int main(int argc, char** argv) {
     // c = 1 + (cct - uncached + hits * T) / (misses * T).
     std::printf("| scene | uncached | CCT | ideal | speed-up | CCT hit rate, last frame | miss / plain trace |\n");
     std::printf("| --- | --- | --- | --- | --- | --- | --- |\n");
-    for (const PathRow& r : pathRows) {
+    for (std::size_t i = 0; i < pathRows.size(); ++i) {
+        const PathRow& r = pathRows[i];
         const double f = static_cast<double>(pathFrames);
         const double tree = (r.uncached.median() - r.ideal.median()) / r.lookupsPerPath;
         const double misses = r.lookupsPerPath - r.hitsPerPath;
@@ -144,6 +182,30 @@ int main(int argc, char** argv) {
                     r.scene.c_str(), r.uncached.median() / f, r.uncached.min() / f, r.uncached.max() / f,
                     r.cct.median() / f, r.cct.min() / f, r.cct.max() / f, r.ideal.median() / f, r.ideal.min() / f,
                     r.ideal.max() / f, r.uncached.median() / r.cct.median(), r.hitPercentLastFrame, missCost);
+        sceneRecords[i]["path"] = {{"uncached", benchmarkVariantJson(perFrame(r.uncached, pathFrames))},
+                                   {"cct", benchmarkVariantJson(perFrame(r.cct, pathFrames))},
+                                   {"ideal", benchmarkVariantJson(perFrame(r.ideal, pathFrames))},
+                                   {"speedup", r.uncached.median() / r.cct.median()},
+                                   {"ideal_speedup", r.uncached.median() / r.ideal.median()},
+                                   {"cct_hit_percent_last_frame", r.hitPercentLastFrame},
+                                   {"cct_lookups", r.lookupsPerPath},
+                                   {"cct_hits", r.hitsPerPath},
+                                   {"miss_over_plain_trace", finiteOrNull(missCost)}};
+    }
+    try {
+        record->write({{"size", size},
+                       {"rounds", rounds},
+                       {"warmup", warmup},
+                       {"path_frames", pathFrames},
+                       {"path_rounds", pathRounds},
+                       {"threads", threads},
+                       {"worker_threads", parallel.threadCount()},
+                       {"max_depth", maxDepth},
+                       {"scenes", scenes}},
+                      sceneRecords);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 1;
     }
     return 0;
 }

@@ -14,17 +14,26 @@
 // Scenes are built-in names or scene files, e.g. the built-in real-mesh
 // scenes bunny-glass, teapot-mirrors and dragon-hall (docs/builtin-scenes.md)
 // or benchmarks/scenes/bunny-mirror.json (the Stanford bunny and a chrome ball).
-// Usage: core_speed [--size 1024] [--rounds 15] [--scenes grid-32,behind-32,reflective-32,benchmarks/scenes/bunny-mirror.json]
+// With --json FILE it also writes every figure of its table, with the run's
+// settings, machine and build, as one JSON document (bench/BenchmarkRecord.h;
+// the docs quote the committed runs in docs/bench-runs/core_speed/).
+// Usage: core_speed [--size 1024] [--rounds 15] [--scenes grid-32,behind-32,reflective-32,benchmarks/scenes/bunny-mirror.json] [--json FILE]
 #include <CLI/CLI.hpp>
+#include <array>
 #include <cstdio>
+#include <filesystem>
+#include <optional>
 #include <vector>
 
+#include "bench/BenchmarkRecord.h"
 #include "bench/InterleavedRuns.h"
+#include "core/Errors.h"
 #include "core/Parallel.h"
 #include "render/CameraRays.h"
 #include "scene/BuiltinScenes.h"
 #include "scene/SceneLoader.h"
 #include "session/RenderSession.h"
+#include "session/StatsJson.h"
 #include "trace/BaselineWhitted.h"
 
 using namespace raycache;
@@ -81,21 +90,41 @@ std::uint64_t renderFloor(const Scene& scene, const TraceScene& tracer, const Pa
     return total;
 }
 
-// The ideal frame's stages, CPU ns per shaded hit, beside the floor's ns per camera hit.
-void printStages(const std::string& name, RenderSession& idealTimed, const Scene& scene, Image& film,
-                 double floorMs, std::uint64_t floorHits, int threads) {
+// The variants' names in the JSON, in the order they run.
+constexpr std::array<const char*, 5> kVariantKeys = {"plain_loop", "plain_loop_raycache_bvh", "raycache", "ideal",
+                                                     "floor"};
+
+// The ideal frame's stages, CPU ns per shaded hit, beside the floor's ns per
+// camera hit: printed as a table row, returned as JSON (null without stage times).
+nlohmann::json printStages(const std::string& name, RenderSession& idealTimed, const Scene& scene, Image& film,
+                           double floorMs, std::uint64_t floorHits, int threads) {
     idealTimed.render(scene.camera, film);  // the first frame also touches the cubes' memory
     const FrameStats stats = idealTimed.render(scene.camera, film);
-    if (!stats.stages) return;
+    if (!stats.stages) return nullptr;
     const StageTimes& s = *stats.stages;
+    const double all = s.nsPerHit(s.total() - s.cacheFrameEnd);
+    const double floorNs = floorHits == 0 ? 0.0 : floorMs * 1e6 * threads / static_cast<double>(floorHits);
     std::printf("| %s | ideal frame's stages, ns per hit (%llu hits) | first hits %.1f, surfaces %.1f, shadow rays "
                 "%.1f, direct %.1f, secondary rays %.1f, lookups %.1f, resolve %.1f, compose %.1f; all %.1f |"
                 " floor %.1f ns per camera hit |\n",
                 name.c_str(), static_cast<unsigned long long>(s.hitsShaded), s.nsPerHit(s.firstHits),
                 s.nsPerHit(s.surfaces), s.nsPerHit(s.shadowRays), s.nsPerHit(s.directShading),
                 s.nsPerHit(s.secondaryRays), s.nsPerHit(s.reuseLookups), s.nsPerHit(s.resolve),
-                s.nsPerHit(s.compose), s.nsPerHit(s.total() - s.cacheFrameEnd),
-                floorHits == 0 ? 0.0 : floorMs * 1e6 * threads / static_cast<double>(floorHits));
+                s.nsPerHit(s.compose), all, floorNs);
+    const nlohmann::json nsPerHit = {{"first_hits", s.nsPerHit(s.firstHits)},
+                                     {"surfaces", s.nsPerHit(s.surfaces)},
+                                     {"shadow_rays", s.nsPerHit(s.shadowRays)},
+                                     {"direct", s.nsPerHit(s.directShading)},
+                                     {"secondary_rays", s.nsPerHit(s.secondaryRays)},
+                                     {"lookups", s.nsPerHit(s.reuseLookups)},
+                                     {"resolve", s.nsPerHit(s.resolve)},
+                                     {"compose", s.nsPerHit(s.compose)},
+                                     {"all", all}};
+    return {{"hits_shaded", s.hitsShaded},
+            {"ns_per_hit", nsPerHit},
+            {"floor_ns_per_camera_hit", floorNs},
+            {"floor_camera_hits", floorHits},
+            {"cpu_ms", stagesJson(s)}};
 }
 
 }  // namespace
@@ -110,9 +139,19 @@ int main(int argc, char** argv) {
     app.add_option("--max-depth", maxDepth, "Longest ray path")->capture_default_str();
     app.add_option("--threads", threads, "Worker threads, 0 = all")->capture_default_str();
     app.add_option("--scenes", scenes, "Built-in scenes (real meshes too: bunny-glass, teapot-mirrors, dragon-hall) or scene files (.json)")->delimiter(',');
+    std::filesystem::path jsonPath;
+    app.add_option("--json", jsonPath, "Also write every figure, the settings, machine and build to this JSON file");
     CLI11_PARSE(app, argc, argv);
 
     const Parallel parallel(threads);
+    std::optional<BenchmarkRecord> record;
+    try {
+        record.emplace("core_speed", argc, argv, jsonPath, parallel.threadCount());
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 2;
+    }
+    nlohmann::json sceneRecords = nlohmann::json::array();
     std::printf("| scene | variant | ms/frame median | min-max | Mrays/s | rays/frame | vs plain loop |\n");
     std::printf("| --- | --- | --- | --- | --- | --- | --- |\n");
     for (const std::string& name : scenes) {
@@ -144,10 +183,15 @@ int main(int argc, char** argv) {
              {"raycache ideal frame", [&] { return ideal.render(scene->camera, film).rays.total(); }},
              {"floor: primary + shadow packets", [&] { return renderFloor(*scene, tracer, parallel, size); }}},
             warmup, rounds);
-        for (const VariantTimes& t : results)
+        nlohmann::json variants = nlohmann::json::object();
+        for (std::size_t i = 0; i < results.size(); ++i) {
+            const VariantTimes& t = results[i];
             std::printf("| %s | %s | %.1f | %.1f-%.1f | %.1f | %llu | %.2fx |\n", name.c_str(), t.name.c_str(),
                         t.median(), t.min(), t.max(), static_cast<double>(t.work) / (t.median() * 1e3),
                         static_cast<unsigned long long>(t.work), results[0].median() / t.median());
+            variants[kVariantKeys[i]] = benchmarkVariantJson(t);
+            variants[kVariantKeys[i]]["vs_plain_loop"] = results[0].median() / t.median();
+        }
         std::printf("| %s | ideal frame / floor | %.2fx | | | | |\n", name.c_str(),
                     results[3].median() / results[4].median());
         RenderSettings stagedSettings = idealSettings;
@@ -155,8 +199,29 @@ int main(int argc, char** argv) {
         RenderSession idealStaged(*scene, stagedSettings, tracer, parallel);
         std::uint64_t floorHits = 0;
         renderFloor(*scene, tracer, parallel, size, &floorHits);
-        printStages(name, idealStaged, *scene, film, results[4].median(), floorHits, parallel.threadCount());
+        nlohmann::json stages =
+            printStages(name, idealStaged, *scene, film, results[4].median(), floorHits, parallel.threadCount());
         std::fflush(stdout);
+        sceneRecords.push_back({{"scene", name},
+                                {"scene_name", scene->name},
+                                {"variants", std::move(variants)},
+                                {"ideal_over_floor", results[3].median() / results[4].median()},
+                                {"uncached_over_plain_loop", results[2].median() / results[0].median()},
+                                {"ideal_frame_stages", std::move(stages)}});
+    }
+    try {
+        record->write({{"size", size},
+                       {"rounds", rounds},
+                       {"warmup", warmup},
+                       {"max_depth", maxDepth},
+                       {"threads", threads},
+                       {"worker_threads", parallel.threadCount()},
+                       {"scenes", scenes},
+                       {"variants", kVariantKeys}},
+                      sceneRecords);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 1;
     }
     return 0;
 }

@@ -12,15 +12,47 @@ Sources and targets:
 - docs/render-cache-run/results.json (`raycache bench render-cache`): the
   block between `<!-- figures:render-cache -->` and `<!-- /figures -->`, the
   Render Cache rows of its "Goals at a glance", and README.md's Render Cache
-  row.
-Each block is a table with one provenance line; a README row must contain its
-generated phrase (the check looks for it in the row). A ctest test
-(`doc_figures`) runs the check mode.
+  row;
+- docs/full-run/ (`raycache bench all --full`, copied in with
+  `scripts/copy-sample-report.py RESULTS_DIR full`: one results.json per
+  experiment and run.json, the command and its wall time): in
+  docs/performance.md the blocks `full-run-tables` (Tables 5.1-5.3),
+  `full-run-dynamic`, `full-run-grids` and `full-run-harness`, the "Goals at a
+  glance" rows of CCT against the documents' tables, the Fig 5.9 protocol,
+  CDCT on reflective-32, dynamic and grids whose figures come from that run;
+  in docs/dynamic-scenes.md the block `full-run-oracle` (the invalidation
+  oracle's table); README.md's rows for CDCT, animated scenes, grids and the
+  experiments harness (figure and, where it judges the figure, status).
+  docs/full-run/where-caching-pays/ is copied along but not read: the
+  where-caching-pays figures come from the run of their own above;
+- docs/bench-runs/core_speed/*.json and docs/bench-runs/cct_speed/*.json
+  (the standalone benchmarks' `--json` documents, several runs each, written
+  by scripts/record-bench-runs.sh): in docs/performance.md the blocks
+  `bench-core` ("Core frame and floor"), `bench-core-avx2` (the runs at
+  RAYCACHE_LANES=avx2) and `bench-cct` ("CCT against uncached"), and the
+  core and CCT goals rows whose figures come from them; README.md's rows for
+  uncached Whitted ray tracing and CCT filled and moving (status and
+  figure). Times are medians of the runs' medians with min–max over the
+  runs; a ratio is taken within each run, of its medians, and quoted over
+  the runs the same way or as their min–max.
+Each block has one provenance line (machine, threads, lane level, size,
+date, commit, from the run's `environment`; for the benchmarks' runs also
+their number); a goals row is replaced whole,
+keyed by its start; a README row must contain its generated phrase (the
+check looks for it in the row) or, for the full run's and the benchmarks'
+rows, hold exactly the generated cells. Judgements ("met?", "slower than …", "not met") are
+generated from the figure and its goal. Sentences and rows whose figures come
+from other benchmarks (`grids_speed`, `scene_update_speed`, …) or from
+`cct_speed` runs on other scenes stay written by hand. A ctest test
+(`doc_figures`) runs the check mode; it fails with one line when
+docs/full-run/ or a folder of docs/bench-runs/ is missing or empty.
 """
 import argparse
+import glob
 import json
 import os
 import re
+import shlex
 import statistics
 import sys
 
@@ -31,6 +63,35 @@ PERFORMANCE = os.path.join(ROOT, "docs", "performance.md")
 README = os.path.join(ROOT, "README.md")
 BEGIN, END = "<!-- figures:where-caching-pays -->", "<!-- /figures -->"
 RENDER_CACHE_BEGIN = "<!-- figures:render-cache -->"
+FULL_RUN = os.path.join(ROOT, "docs", "full-run")
+DYNAMIC_SCENES = os.path.join(ROOT, "docs", "dynamic-scenes.md")
+TABLES_BEGIN = "<!-- figures:full-run-tables -->"
+DYNAMIC_BEGIN = "<!-- figures:full-run-dynamic -->"
+GRIDS_BEGIN = "<!-- figures:full-run-grids -->"
+HARNESS_BEGIN = "<!-- figures:full-run-harness -->"
+ORACLE_BEGIN = "<!-- figures:full-run-oracle -->"
+# The goals the full run's judgements compare with (performance.md's "Goals
+# at a glance"); the documents' speed-ups come from the run's JSON.
+DYNAMIC_PSNR_DB = 40.0  # every CCT frame against the uncached one
+DYNAMIC_UPDATE_SHARE = 10.0  # % of the CCT frame
+DYNAMIC_NEEDLESS = 2.0  # needless drops over the texels that really changed
+DYNAMIC_CCT = 1.3  # CCT speed-up over uncached along the animations
+GRIDS_1M_MS = 115.0  # the document's Buddha, 1.09M triangles on a GTX 280
+FILL_TRACED = 5.0  # % of lookups traced after frame 2 (Fig 5.9 protocol)
+CDCT_REFLECTIVE = 1.0  # improved CDCT on reflective-32, over uncached
+BENCH_RUNS = os.path.join(ROOT, "docs", "bench-runs")
+CORE_BEGIN = "<!-- figures:bench-core -->"
+CORE_AVX2_BEGIN = "<!-- figures:bench-core-avx2 -->"
+CCT_BEGIN = "<!-- figures:bench-cct -->"
+# The goals the standalone benchmarks' judgements compare with (performance.md's "Goals at a glance").
+GOAL_SCENE = "grid-32"  # the scene the core and CCT goals name
+CORE_PLAIN = 0.5  # uncached frame over the plain Embree Whitted loop's
+CORE_FLOOR = 1.3  # ideal frame over the floor
+CCT_FILLED = 2.0  # CCT with filled caches over uncached
+CCT_MISS = 1.1  # a miss over the plain trace it replaces
+LANE_LEVEL_NAMES = {"avx512": "AVX-512", "avx2": "AVX2", "baseline": "baseline x86-64"}
+DYNAMIC_ANCHOR = ("results-sample-full.md#dynamic-scenes-cct-with-per-block-invalidation-against-uncached-along-the-"
+                  "built-in-animations")
 
 
 def x(v):
@@ -209,6 +270,669 @@ def render_cache_goal_rows(run):
     }
 
 
+def load_full_run():
+    """docs/full-run/'s experiments this script reads, and run.json."""
+    if not os.path.isdir(FULL_RUN):
+        sys.exit("doc-figures: docs/full-run/ is missing: copy a `raycache bench all --full` run in with "
+                 "scripts/copy-sample-report.py RESULTS_DIR full")
+    run = {}
+    for name in ("table-5.1", "table-5.2", "table-5.3", "fill-rate", "dynamic", "grids", "run"):
+        path = os.path.join(FULL_RUN, "run.json" if name == "run" else os.path.join(name, "results.json"))
+        if not os.path.isfile(path):
+            sys.exit(f"doc-figures: {os.path.relpath(path, ROOT)} is missing: copy the whole run in with "
+                     "scripts/copy-sample-report.py RESULTS_DIR full")
+        with open(path, encoding="utf-8") as f:
+            run[name] = json.load(f)
+    return run
+
+
+def provenance(experiment, size=None):
+    """Machine, threads, lane level, image size, date and commit of one experiment."""
+    env, version = experiment["environment"], experiment["environment"]["version"]
+    return (f"{env['cpu_model']}, {env['worker_threads']} threads, {version['lanes']}, "
+            + (f"{size}, " if size else "") + f"{env['started_at'][:10]}, commit {version['git_commit'][:7]}")
+
+
+def plural(n, word):
+    return f"{n} {word}" if n == 1 else f"{n} {word}s"
+
+
+def side(width, height):
+    return f"{width}²" if width == height else f"{width}×{height}"
+
+
+def wrap(text, width=118):
+    """`text` as lines of at most `width` characters, never starting a line
+    with what Markdown would read as a list item, quote or heading."""
+    lines, line = [], ""
+    for word in text.split(" "):
+        starts_block = re.fullmatch(r"[-+*>#=]|\d+[.)]", word) is not None
+        if line and len(line) + 1 + len(word) > width and not starts_block:
+            lines.append(line)
+            line = word
+        else:
+            line = f"{line} {word}" if line else word
+    return "\n".join(lines + [line])
+
+
+def speedup_cell(m):
+    """A speed-up with its 95 % interval when the run has one."""
+    s = x(m["speedup"])
+    if m.get("ci95_low") is None:
+        return s
+    tail = ", no measurable difference" if m["no_measurable_difference"] else ""
+    return f"{s} (95 % CI {m['ci95_low']:.2f}–{m['ci95_high']:.2f}{tail})"
+
+
+def still(row, key):
+    """The still-camera speed-up of variant `key` of a table row; None when
+    the build could not run it."""
+    v = row["variants"].get(key)
+    return v["still"]["speedup_vs_standard"] if v and v.get("available") and v.get("still") else None
+
+
+def documents_speedups(table):
+    return {r["label"]: r["speedup"] for r in table["documents"]["rows"]}
+
+
+def table_row(table, scene):
+    return next((r for r in table["rows"] if r["scene"] == scene), None)
+
+
+def tables_figures(run):
+    """The block after "CCT against uncached" (Tables 5.1-5.3), the goals rows
+    of CCT against the documents' figures and of CDCT on reflective-32, and
+    README.md's CDCT row (status, figure)."""
+    t51, t52, t53 = run["table-5.1"], run["table-5.2"], run["table-5.3"]
+
+    def ranges(table):
+        rows = [r for r in table["rows"] if still(r, "cct")]
+        if not rows:
+            sys.exit(f"doc-figures: docs/full-run/{table['experiment']} has no CCT speed-up (not run in that build?)")
+        docs = documents_speedups(table)
+        measured = span([still(r, "cct")["speedup"] for r in rows])
+        documents = span([docs[r["label"]] for r in rows if r["label"] in docs])
+        return f"{rows[0]['scene']}…{rows[-1]['label']}", measured, documents
+
+    hybrid, hybrid_x, hybrid_docs = ranges(t51)
+    plain, plain_x, plain_docs = ranges(t52)
+    diffuse = next(r for r in t53["rows"] if r["label"] == "Diffuse")
+    reflective = next(r for r in t53["rows"] if r["label"] == "Reflective")
+
+    def documents_53(row, key):
+        fps = row["variants"][key]["documents_fps"]
+        return fps / row["variants"]["standard"]["documents_fps"] if fps else None
+
+    parity = [k for k in reflective["variants"] if k.startswith("cdct-") and k != "cdct-improved"]
+    parity_x = span([still(reflective, k)["speedup"] for k in parity if still(reflective, k)])
+    parity_docs = span([documents_53(reflective, k) for k in parity if documents_53(reflective, k)])
+    improved = still(reflective, "cdct-improved")
+    s51, s53 = t51["settings"], t53["settings"]
+    text = (f"The documents' tables at their sizes (`{run['run']['command']}`, "
+            f"[findings](results-sample-full.md#findings-at-a-glance); "
+            f"{provenance(t51, side(s51['width'], s51['height']))}; generated by `scripts/doc-figures.py` from "
+            f"`docs/full-run/`), CCT filled against uncached: {hybrid_x} over {hybrid} in the hybrid pipeline "
+            f"(Table 5.1, documents {hybrid_docs}), {plain_x} over {plain} (Table 5.2, documents {plain_docs}), "
+            f"{x(still(reflective, 'cct')['speedup'])} on Reflective at {side(s53['width'], s53['height'])} "
+            f"(Table 5.3, documents {x(documents_53(reflective, 'cct'))}); there improved CDCT "
+            f"{x(still(diffuse, 'cdct-improved')['speedup'])} on Diffuse and {x(improved['speedup'])} on Reflective, "
+            f"CDCT parity {parity_x} on Reflective (documents {parity_docs}).")
+    block = "\n".join([TABLES_BEGIN, wrap(text), END])
+
+    def goal(table, scene, start, where):
+        docs = documents_speedups(table)[scene.split("-")[-1]]
+        row = table_row(table, scene)
+        m = still(row, "cct") if row else None
+        figure = f"{speedup_cell(m)} in `bench {table['experiment']}`{where}" if m else "not in this run"
+        met = "–" if m is None else ("yes" if m["speedup"] >= docs else "no")
+        return f"{start} {x(docs)} | {figure} | {met} |"
+
+    rows = {
+        "| CCT | filled grid-32 ≥ the documents'": goal(
+            t52, "grid-32", "| CCT | filled grid-32 ≥ the documents'", "; `cct_speed`: the row above"),
+        "| CCT | behind-32 in the hybrid pipeline ≥ the documents'": goal(
+            t51, "behind-32", "| CCT | behind-32 in the hybrid pipeline ≥ the documents'", ""),
+        "| CDCT | improved CDCT ≥": (
+            f"| CDCT | improved CDCT ≥ {CDCT_REFLECTIVE:.1f}× uncached on {reflective['scene']} | "
+            f"{speedup_cell(improved)} | "
+            f"{'yes' if improved['speedup'] >= CDCT_REFLECTIVE else 'no; not reachable here'} |"),
+    }
+    slower = [r["scene"] for r in (diffuse, reflective) if still(r, "cdct-improved")["speedup"] < 1.0]
+    status = ("works" if not slower else "works, slower than uncached" if len(slower) == 2
+              else f"works, slower than uncached on {slower[0]}")
+    readme = {1: status,
+              2: f"{reflective['scene']} at {side(s53['width'], s53['height'])}: {x(improved['speedup'])} uncached"}
+    return block, rows, readme
+
+
+def fill_rate_figures(run):
+    """The Fig 5.9 figures: the harness block's sentence, the goals row of
+    the protocol and README.md's harness figure."""
+    fill = run["fill-rate"]
+    series = sorted(fill["series"], key=lambda s: s["resolution"])
+    docs = {r["label"]: r["invalid-after-frame-1"] for r in fill["documents"]["rows"]}
+    invalid = [s["invalid_percent_before_frame"][1] for s in series]  # before frame 2 = after frame 1
+    resolutions = ", ".join(f"{s['resolution']}²" for s in series)
+    documents = ", ".join(f"{docs[str(s['resolution'])]:.0f}" for s in series)
+    sentence = (f"Fill rate (Fig 5.9), invalid after frame 1 at {resolutions}: "
+                f"{', '.join(f'{v:.1f}' for v in invalid)} % (documents {documents} %).")
+    faces = fill["visible_fill"]["faces"]
+    one_level = next(s for s in series if s["resolution"] == faces)
+    traced = 100.0 - one_level["hit_percent"][2]
+    filled = fill["visible_fill"]["traced_percent"][2]
+    met = ("yes" if traced <= FILL_TRACED else "with the visible-surface fill" if filled <= FILL_TRACED else "no")
+    row = (f"| CCT, moving | Fig 5.9 protocol: ≤ {FILL_TRACED:g} % traced after frame 2 | frame 3: {traced:.1f} % "
+           f"({filled:.1f} % with the visible-surface fill) | {met} |")
+    last = series[-1]
+    readme = (f"fill rate at {last['resolution']}²: {invalid[-1]:.1f} % invalid after frame 1 "
+              f"(the documents: {docs[str(last['resolution'])]:.0f} %)")
+    return sentence, {"| CCT, moving | Fig 5.9 protocol": row}, {2: readme}
+
+
+def harness_figures(run):
+    """The block of "Experiments harness": the run's wall time and Fig 5.9."""
+    info = run["run"]
+    seconds = info["elapsed_seconds"]
+    if seconds >= 3600:
+        took = f"{seconds // 3600} h {seconds % 3600 // 60:02d} min"
+    elif seconds >= 60:
+        took = f"{seconds // 60} min {seconds % 60} s"
+    else:
+        took = f"{seconds} s"
+    others = f", other processes taking {info['others_cpu_share']} of the CPU time" if info["others_cpu_share"] else ""
+    fill = run["fill-rate"]
+    sentence, rows, readme = fill_rate_figures(run)
+    text = (f"`{info['command']}` took {took}{others} ([full report](results-sample-full.md); "
+            f"{provenance(fill)}; generated by `scripts/doc-figures.py` from "
+            f"`docs/full-run/`). {sentence}")
+    return "\n".join([HARNESS_BEGIN, wrap(text), END]), rows, readme
+
+
+def per_scene_dynamic(run):
+    """Per scene: the CCT speed-up (ratio of the medians), the update's share
+    of the CCT frame (median), the lowest PSNR, over frames 1 on, as the
+    bench's table has them; and the oracle's counts."""
+    def tail(v):
+        return v[1:] if len(v) > 1 else v
+
+    out = []
+    for s in run["dynamic"]["series"]:
+        share = [100.0 * u / c for u, c in zip(s["update_ms"], s["cct_ms"])]
+        out.append({
+            "scene": s["scene"],
+            "speedup": statistics.median(tail(s["uncached_ms"])) / statistics.median(tail(s["cct_ms"])),
+            "share": statistics.median(tail(share)),
+            "psnr": min(tail(s["psnr_db"])),
+            "oracle": s["oracle"],
+        })
+    return out
+
+
+def needless(o):
+    """Needless drops over the texels that really changed; None when nothing changed."""
+    return o["needless"] / o["changed"] if o["changed"] else None
+
+
+def needless_range(scenes, protocol):
+    ratios = [needless(s["oracle"][protocol]) for s in scenes if s["oracle"][protocol]["changed"]]
+    return f"{min(ratios):.1f}–{max(ratios):.1f}×" if ratios else "no change"
+
+
+def needless_met(s, protocol):
+    return s["oracle"][protocol]["needless"] <= DYNAMIC_NEEDLESS * s["oracle"][protocol]["changed"]
+
+
+def dynamic_figures(run):
+    """The block of performance.md's "Dynamic scenes", its goals rows and
+    README.md's animated scenes row."""
+    dyn = run["dynamic"]
+    settings, scenes = dyn["settings"], per_scene_dynamic(run)
+    lowest = min(scenes, key=lambda s: s["psnr"])
+    others = [s["psnr"] for s in scenes if s is not lowest]
+    stale = {s["scene"]: s["oracle"]["as_timed"]["stale"] + s["oracle"]["coarse"]["stale"] for s in scenes}
+    timed_range = needless_range(scenes, "as_timed")
+    worst = max(((needless(s["oracle"]["coarse"]), s["scene"]) for s in scenes if s["oracle"]["coarse"]["changed"]),
+                default=(0.0, "none"))
+    stale_text = ("0 stale texels on every scene" if not any(stale.values()) else
+                  "stale texels: " + ", ".join(f"{n} on {scene}" for scene, n in stale.items() if n))
+    sides = side(settings["width"], settings["height"])
+    frames = plural(settings["frames"], "frame")
+    shares = f"{min(s['share'] for s in scenes):.1f}–{max(s['share'] for s in scenes):.1f} %"
+    speedups = ", ".join(f"{x(s['speedup'])}{' uncached' if i == 0 else ''} on {s['scene']}"
+                         for i, s in enumerate(scenes))
+    coarse = f"{settings['oracle_coarse_resolution']}² faces: up to {worst[0]:.1f}× on {worst[1]}"
+    text = (f"`raycache bench dynamic --{dyn['size']} --threads {dyn['environment']['worker_threads']}` "
+            f"(in the committed `bench all` run, [its tables]({DYNAMIC_ANCHOR}); {provenance(dyn, sides)}; generated "
+            f"by `scripts/doc-figures.py` from `docs/full-run/`): {frames} from t = 0, still camera, uncached and CCT "
+            f"rendering each frame in turn; medians over frames 1–{settings['frames'] - 1}: CCT {speedups}; the "
+            f"update {shares} of the CCT frame; PSNR against uncached at least {lowest['psnr']:.1f} dB "
+            f"({lowest['scene']}), {min(others):.1f}–{max(others):.1f} dB elsewhere. The invalidation oracle (same "
+            f"run; deterministic counts) finds {stale_text}, and needless drops at {timed_range} the texels really "
+            f"changed as timed (coarse, {coarse}; "
+            "[dynamic-scenes.md](dynamic-scenes.md#invalidation-measured-raycache-bench-dynamic)).")
+    block = "\n".join([DYNAMIC_BEGIN, wrap(text), END])
+
+    def count(met, n, unit):
+        return "yes" if met == n else "no" if met == 0 else f"on {met} of {n} {unit}"
+
+    timed_met = sum(1 for s in scenes if needless_met(s, "as_timed"))
+    coarse_met = sum(1 for s in scenes if needless_met(s, "coarse"))
+    over = [f"{s['scene']} {needless(s['oracle']['coarse']):.1f}×" for s in scenes if not needless_met(s, "coarse")]
+    coarse_cell = ", ".join(over) if over else f"up to {worst[0]:.1f}×"
+    needless_judgement = ("yes" if timed_met == coarse_met == len(scenes)
+                          else "yes, as timed" if timed_met == len(scenes)
+                          else f"no; {timed_met} of {len(scenes)} as timed")
+    cct_met = count(sum(1 for s in scenes if s["speedup"] >= DYNAMIC_CCT), len(scenes), "scenes")
+    rows = {
+        "| dynamic | every frame": (
+            f"| dynamic | every frame ≥ {DYNAMIC_PSNR_DB:g} dB against uncached | lowest {lowest['psnr']:.1f} dB "
+            f"({lowest['scene']}) | {'yes' if lowest['psnr'] >= DYNAMIC_PSNR_DB else 'no'} |"),
+        "| dynamic | scene update": (
+            f"| dynamic | scene update ≤ {DYNAMIC_UPDATE_SHARE:g} % of the frame | "
+            f"{shares} (medians) | "
+            f"{count(sum(1 for s in scenes if s['share'] <= DYNAMIC_UPDATE_SHARE), len(scenes), 'scenes')} |"),
+        "| dynamic | needless drops": (
+            f"| dynamic | needless drops ≤ {DYNAMIC_NEEDLESS:g}× the texels that really changed | {timed_range} as "
+            f"timed (coarse: {coarse_cell}) | {needless_judgement} |"),
+        "| dynamic | CCT ≥": (
+            f"| dynamic | CCT ≥ {DYNAMIC_CCT:g}× uncached along the animation | "
+            f"{span([s['speedup'] for s in scenes])} | "
+            f"{'no; out of reach on these scenes ([below](#dynamic-scenes))' if cct_met == 'no' else cct_met} |"),
+    }
+    all_slower = all(s["speedup"] < 1.0 for s in scenes)
+    none_slower = all(s["speedup"] >= 1.0 for s in scenes)
+    readme = {1: ("works, slower than uncached with CCT" if all_slower else "works" if none_slower
+                  else "works, CCT slower than uncached on some scenes"),
+              2: f"CCT {span([s['speedup'] for s in scenes])} uncached, {sum(stale.values())} stale texels"}
+    return block, rows, readme
+
+
+def oracle_block(run):
+    """docs/dynamic-scenes.md's table of the invalidation oracle, with its
+    provenance and the judgement of the needless-drops goal."""
+    dyn = run["dynamic"]
+    settings, scenes = dyn["settings"], per_scene_dynamic(run)
+    lines = [
+        ORACLE_BEGIN,
+        "",
+        f"`raycache bench dynamic --{dyn['size']} --threads {dyn['environment']['worker_threads']}` in the committed "
+        f"`bench all` run ([its other tables]({DYNAMIC_ANCHOR}), its results.json in `docs/full-run/dynamic/`): "
+        f"{provenance(dyn, side(settings['width'], settings['height']))}; "
+        f"{plural(settings['oracle_changes'], 'change')}, "
+        f"as timed at {settings['oracle_as_timed_side']}², coarse at {settings['oracle_coarse_side']}² with "
+        f"{settings['oracle_coarse_resolution']}² faces; the counts are deterministic. "
+        "Generated by `scripts/doc-figures.py`.",
+        "",
+        "| scene | protocol | texels checked | kept | stale | dropped | needless | changed | needless / changed | "
+        "texels of moving caching objects | of them kept | of them within 1/255 if all kept |",
+        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |",
+    ]
+    for protocol, name in (("as_timed", "as timed"), ("coarse", "coarse")):
+        for s in scenes:
+            o = s["oracle"][protocol]
+            ratio = needless(o)
+            ratio = "–" if ratio is None else f"**{ratio:.1f}**" if protocol == "as_timed" else f"{ratio:.1f}"
+            within = f"{100.0 * o['moved_cube_within_tolerance'] / o['moved_cube']:.1f} %" if o["moved_cube"] else "–"
+            lines.append(f"| {s['scene']} | {name} | {o['checked']} | {o['kept']} | {o['stale']} | {o['dropped']} | "
+                         f"{o['needless']} | {o['changed']} | {ratio} | {o['moved_cube']} | {o['moved_cube_kept']} | "
+                         f"{within} |")
+
+    def over(protocol):
+        return [s for s in scenes if not needless_met(s, protocol)]
+
+    timed_range = needless_range(scenes, "as_timed")
+    missed = over("as_timed")
+    goal = (f"met as timed on every scene ({timed_range})" if not missed else
+            f"not met as timed on {', '.join(s['scene'] for s in missed)} ({timed_range})")
+    coarse = over("coarse")
+    goal += ("; on the coarse protocol too" if not coarse else "; on the coarse protocol " + ", ".join(
+        f"{s['scene']} is at {needless(s['oracle']['coarse']):.1f}×" for s in coarse))
+    stale = sum(s["oracle"][p]["stale"] for s in scenes for p in ("as_timed", "coarse"))
+    lines += [
+        "",
+        f"- **Goal \"needless ≤ {DYNAMIC_NEEDLESS:g}×\"**: {goal}.",
+        f"- {stale} stale texels in both protocols." if stale == 0 else
+        f"- **{stale} stale texels**: " + ", ".join(
+            f"{s['scene']} {s['oracle']['as_timed']['stale']} as timed, {s['oracle']['coarse']['stale']} coarse"
+            for s in scenes) + ".",
+        "",
+        END,
+    ]
+    return "\n".join(lines)
+
+
+def grids_figures(run):
+    """The block of performance.md's "Grids", its goals rows of the full run
+    and README.md's grids row."""
+    grids = run["grids"]
+    settings, models = grids["settings"], grids["series"]
+
+    def best(m):
+        return min(m["embree_low"]["total_ms"], m["embree_medium"]["total_ms"])
+
+    def ratio(m):  # the grids' time over Embree's best rebuild
+        return m["grids"]["total_ms"] / best(m)
+
+    def size(m):
+        k = int(re.fullmatch(r"torus (\d+)k", m["model"]).group(1))
+        return f"{k // 1000}M" if k >= 1000 and k % 1000 == 0 else f"{k}k"
+
+    tori = sorted((m for m in models if not m["animated"]), key=lambda m: m["triangles"])
+    animated = [m for m in models if m["animated"]]
+    largest = tori[-1]
+    torus_text = ", ".join([f"{ratio(tori[0]):.2f}× Embree's time on torus {size(tori[0])}"]
+                           + [f"{ratio(m):.2f}× on {size(m)}" for m in tori[1:]])
+    torus_text += f" ({largest['grids']['total_ms']:.1f} against {best(largest):.1f} ms)"
+    animated_text = ", ".join(f"{ratio(m):.2f}× on `{m['model']}`" for m in animated)
+    agreements = [m["agreement"] for m in models]
+    ties = sum(g["ties"] for g in agreements)
+    grazes = sum(g["primary_edge_grazes"] + g["shadow_edge_grazes"] for g in agreements)
+    mismatches = sum(g["primary_mismatches"] + g["shadow_mismatches"] for g in agreements)
+    agreement = ("0 ties, 0 edge grazes and 0 mismatches on every model" if ties == grazes == mismatches == 0 else
+                 f"{ties} ties, {grazes} edge grazes and {mismatches} mismatches over the {len(models)} models")
+    faster = [m for m in models if ratio(m) < 1.0]
+    faster_text = (f"none of the {len(models)} models (no crossover up to {size(largest)} triangles)" if not faster
+                   else f"all {len(models)} models" if len(faster) == len(models)
+                   else f"{len(faster)} of the {len(models)} models ({', '.join(m['model'] for m in faster)})")
+    one_m = next((m for m in tori if m["triangles"] >= 1_000_000), None)
+    one_m_text = ("1M triangles are not in this run" if one_m is None else
+                  f"1M triangles in {one_m['grids']['total_ms']:.1f} ms against a goal of ≤ {GRIDS_1M_MS:g} ms, "
+                  + ("met" if one_m["grids"]["total_ms"] <= GRIDS_1M_MS else "not met"))
+    text = (f"`{run['run']['command']}` (the [sample report](results-sample-full.md); "
+            f"{provenance(grids, side(settings['side'], settings['side']))}; generated by `scripts/doc-figures.py` "
+            f"from `docs/full-run/`), means of {plural(settings['frames'], 'frame')}, grids against the better of "
+            f"Embree's LOW and MEDIUM rebuilds every frame: grids take {torus_text}; {animated_text}; "
+            f"{agreement}. Goals of this run: faster than Embree rebuilt every frame on {faster_text}; {one_m_text}.")
+    block = "\n".join([GRIDS_BEGIN, wrap(text), END])
+    ratios = [ratio(m) for m in models]
+    met = "yes" if len(faster) == len(models) else "no" if not faster else f"on {len(faster)} of {len(models)} models"
+    rows = {
+        "| grids | faster than Embree rebuilt every frame": (
+            f"| grids | faster than Embree rebuilt every frame | {span(ratios)} Embree's time | {met} |"),
+        f"| grids | 1M triangles ≤ {GRIDS_1M_MS:g} ms": (
+            f"| grids | 1M triangles ≤ {GRIDS_1M_MS:g} ms | not in this run | – |" if one_m is None else
+            f"| grids | 1M triangles ≤ {GRIDS_1M_MS:g} ms | {one_m['grids']['total_ms']:.1f} ms (Embree rebuilt: "
+            f"{best(one_m):.1f}) | {'yes' if one_m['grids']['total_ms'] <= GRIDS_1M_MS else 'no'} |"),
+    }
+    speeds = [1.0 / r for r in ratios]  # README's ×: Embree's time over the grids'
+    status = ("works, slower than Embree" if not faster else "works" if len(faster) == len(models)
+              else "works, slower than Embree on some models")
+    readme = {1: status, 2: f"{span(speeds)} Embree rebuilt every frame, {mismatches} mismatches"}
+    return block, rows, readme
+
+
+def load_bench_runs(program):
+    """Every committed run of one standalone benchmark, docs/bench-runs/<program>/*.json
+    (scripts/record-bench-runs.sh), in file order."""
+    folder = os.path.join(BENCH_RUNS, program)
+    files = sorted(glob.glob(os.path.join(folder, "*.json")))
+    if not files:
+        sys.exit(f"doc-figures: docs/bench-runs/{program}/ is missing or holds no runs: record them with "
+                 "scripts/record-bench-runs.sh")
+    runs = []
+    for path in files:
+        with open(path, encoding="utf-8") as f:
+            run = json.load(f)
+        if run.get("benchmark") != program:
+            sys.exit(f"doc-figures: {os.path.relpath(path, ROOT)} is not a {program} run")
+        run["file"] = os.path.relpath(path, ROOT)
+        runs.append(run)
+    return runs
+
+
+def bench_command(run):
+    """The run's command line as the docs quote it: the program under
+    build/release/benchmarks/, RAYCACHE_LANES when it was set, no --json."""
+    args, kept = shlex.split(run["command"])[1:], []
+    while args:
+        a = args.pop(0)
+        if a == "--json":
+            args = args[1:]
+        elif not a.startswith("--json="):
+            kept.append(a)
+    lanes = f"RAYCACHE_LANES={run['lanes_requested']} " if run["lanes_requested"] else ""
+    return f"{lanes}build/release/benchmarks/{run['benchmark']} {shlex.join(kept)}"
+
+
+def same_runs(runs, what):
+    """`runs` (of one lane level) after checking that they ran the same
+    command on the same machine, the figures of one measurement run."""
+    first = runs[0]
+    for r in runs[1:]:
+        for key, value in (("command", bench_command), ("machine", lambda r: r["environment"]["cpu_model"]),
+                           ("threads", lambda r: r["environment"]["worker_threads"])):
+            if value(r) != value(first):
+                sys.exit(f"doc-figures: {r['file']} differs from {first['file']} in its {key}; {what} must come from "
+                         "one recording (scripts/record-bench-runs.sh)")
+    return runs
+
+
+def by_lanes(runs, program):
+    """The runs at the processor's default lane level and those at
+    RAYCACHE_LANES=avx2; any other level is not quoted."""
+    default = [r for r in runs if not r["lanes_requested"]]
+    avx2 = [r for r in runs if r["lanes_requested"] == "avx2"]
+    if not default:
+        sys.exit(f"doc-figures: docs/bench-runs/{program}/ has no run at the default lane level")
+    return same_runs(default, program), same_runs(avx2, program) if avx2 else []
+
+
+def runs_provenance(runs):
+    """Machine, threads, lane level, size, dates, commits and number of runs."""
+    env = runs[0]["environment"]
+    dates = sorted({r["environment"]["started_at"][:10] for r in runs})
+    commits = sorted({r["git_commit"][:7] + (" with uncommitted changes" if r["dirty"] else "") for r in runs})
+    size = runs[0]["settings"]["size"]
+    return (f"{env['cpu_model']}, {plural(env['worker_threads'], 'thread')}, {env['version']['lanes']}, {size}², "
+            f"{dates[0] if len(dates) == 1 else dates[0] + ' to ' + dates[-1]}, commit {', '.join(commits)}, "
+            f"{plural(len(runs), 'run')}")
+
+
+def and_list(items):
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
+
+
+def scene_label(scene):
+    """A built-in scene's name, or a scene file's name without its folder and .json."""
+    return os.path.splitext(os.path.basename(scene))[0]
+
+
+def per_scene(runs, scene, value):
+    """`value` of `scene` in every run (the first run's scenes are the ones quoted)."""
+    out = []
+    for r in runs:
+        s = next((s for s in r["scenes"] if s["scene"] == scene), None)
+        if s is None:
+            sys.exit(f"doc-figures: {r['file']} has no scene {scene} (the other runs have it)")
+        out.append(value(s))
+    return out
+
+
+def goal_scene(runs, program):
+    scenes = runs[0]["settings"]["scenes"]
+    if GOAL_SCENE not in scenes:
+        sys.exit(f"doc-figures: {runs[0]['file']} has no {GOAL_SCENE}, the scene of {program}'s goals")
+    return GOAL_SCENE
+
+
+def ms_cell(values):
+    """Median of the runs' medians (min–max over the runs)."""
+    return f"{statistics.median(values):.1f} ({min(values):.1f}–{max(values):.1f})"
+
+
+def ratio_cell(values):
+    return f"{statistics.median(values):.2f}× ({min(values):.2f}–{max(values):.2f})"
+
+
+def ms_span(values):
+    lo, hi = min(values), max(values)
+    return f"{lo:.1f}" if f"{lo:.1f}" == f"{hi:.1f}" else f"{lo:.1f}–{hi:.1f}"
+
+
+def level_name(run):
+    return LANE_LEVEL_NAMES.get(run["lane_level"], run["lane_level"])
+
+
+def at_most_over_runs(values, goal):
+    """"yes" when every run's value is at most the goal, "at the median" when
+    the median is, else "no"."""
+    return ("yes" if all(v <= goal for v in values) else "at the median" if statistics.median(values) <= goal
+            else "no")
+
+
+def core_figures(runs):
+    """performance.md's "Core frame and floor" table with its provenance,
+    the AVX2 paragraph, the core goals rows and README.md's uncached row."""
+    default, avx2 = by_lanes(runs, "core_speed")
+    first = default[0]
+    scenes = first["settings"]["scenes"]
+
+    def median_ms(variant):
+        return lambda s: s["variants"][variant]["median_ms"]
+
+    lines = [
+        CORE_BEGIN,
+        wrap(f"`{bench_command(first)}` (depth {first['settings']['max_depth']}; {runs_provenance(default)}; "
+             "generated by `scripts/doc-figures.py` from `docs/bench-runs/core_speed/`): ms per frame as the median "
+             "of the runs' medians (min–max over the runs), the ratios of each run's medians likewise:"),
+        "",
+        "| scene | plain Embree loop | raycache, uncached | ideal frame | floor | uncached / plain loop | "
+        "ideal / floor |",
+        "| --- | --- | --- | --- | --- | --- | --- |",
+    ]
+    for scene in scenes:
+        cells = [ms_cell(per_scene(default, scene, median_ms(v))) for v in ("plain_loop", "raycache", "ideal", "floor")]
+        cells += [ratio_cell(per_scene(default, scene, lambda s: s[k]))
+                  for k in ("uncached_over_plain_loop", "ideal_over_floor")]
+        lines.append(f"| {scene_label(scene)} | " + " | ".join(cells) + " |")
+    lines += ["", END]
+    table = "\n".join(lines)
+
+    def floor_ratios(group, scene):
+        return per_scene(group, scene, lambda s: s["ideal_over_floor"])
+
+    level = level_name(first)
+    if avx2:
+        avx2_scenes = avx2[0]["settings"]["scenes"]
+        text = (f"`{bench_command(avx2[0])}` ({runs_provenance(avx2)}; generated by `scripts/doc-figures.py` from "
+                f"`docs/bench-runs/core_speed/`), taking turns with the runs above: ideal/floor is "
+                + ", ".join(f"{span(floor_ratios(avx2, s))} on {scene_label(s)}" for s in avx2_scenes)
+                + f" at `RAYCACHE_LANES=avx2` and "
+                + ", ".join(span(floor_ratios(default, s)) for s in avx2_scenes) + f" at {level} in those runs.")
+    else:
+        text = "No run at `RAYCACHE_LANES=avx2` is committed in `docs/bench-runs/core_speed/`."
+    avx2_block = "\n".join([CORE_AVX2_BEGIN, wrap(text), END])
+
+    scene = goal_scene(default, "core_speed")
+    plain = per_scene(default, scene, median_ms("plain_loop"))
+    uncached = per_scene(default, scene, median_ms("raycache"))
+    over_plain = per_scene(default, scene, lambda s: s["uncached_over_plain_loop"])
+    medians = {s: statistics.median(floor_ratios(default, s)) for s in scenes}
+    highest = max(max(floor_ratios(default, s)) for s in scenes)
+
+    def floor_judgement(group, name):
+        over = [scene_label(s) for s in group[0]["settings"]["scenes"]
+                if statistics.median(floor_ratios(group, s)) > CORE_FLOOR]
+        if over:
+            return f"not at {name} on {and_list(over)}"
+        every = all(v <= CORE_FLOOR for s in group[0]["settings"]["scenes"] for v in floor_ratios(group, s))
+        return f"at {name}" if every else f"at {name}, at the median"
+
+    judgement = floor_judgement(default, level)
+    avx2_text = ""
+    if avx2:
+        judgement += "; " + floor_judgement(avx2, "AVX2")
+        avx2_text = "; at AVX2 " + ", ".join(
+            f"{scene_label(s)} {x(statistics.median(floor_ratios(avx2, s)))}" for s in avx2[0]["settings"]["scenes"])
+    if judgement == f"at {level}" + ("; at AVX2" if avx2 else ""):
+        judgement = "yes"
+    rows = {
+        f"| core | uncached {GOAL_SCENE} ≤": (
+            f"| core | uncached {scene} ≤ {CORE_PLAIN:g}× the time of a plain Embree Whitted loop | "
+            f"{statistics.median(over_plain):.2f}× ({statistics.median(uncached):.1f} ms a frame) | "
+            f"{at_most_over_runs(over_plain, CORE_PLAIN)} |"),
+        "| core | ideal frame ≤": (
+            f"| core | ideal frame ≤ {CORE_FLOOR:g}× the floor | "
+            + ", ".join(f"{scene_label(s)} {x(m)}" for s, m in medians.items())
+            + f" (medians; single runs up to {x(highest)}){avx2_text} ([below](#core-frame-and-floor)) | "
+            f"{judgement} |"),
+    }
+    speedup = statistics.median(plain) / statistics.median(uncached)
+    readme = {1: "works" if speedup >= 1.0 else "works, slower than a plain Embree Whitted loop",
+              2: f"{scene}: {speedup:.1f}× a plain Embree Whitted loop ({statistics.median(uncached):.1f} against "
+                 f"{statistics.median(plain):.1f} ms)"}
+    return table, avx2_block, rows, readme
+
+
+def cct_figures(runs):
+    """performance.md's paragraph of "CCT against uncached" (cct_speed), its
+    goals rows and README.md's two CCT rows."""
+    default, _ = by_lanes(runs, "cct_speed")
+    first = default[0]
+    settings = first["settings"]
+    scenes = settings["scenes"]
+
+    def still(scene, key):
+        return per_scene(default, scene, lambda s: s["still"][key])
+
+    def path(scene, key):
+        return per_scene(default, scene, lambda s: s["path"][key])
+
+    def still_ms(scene, variant):
+        return per_scene(default, scene, lambda s: s["still"][variant]["median_ms"])
+
+    def bold(scene, text):
+        return f"**{text}**" if scene == GOAL_SCENE else text
+
+    def miss(scene):
+        costs = [c for c in path(scene, "miss_over_plain_trace") if c is not None]
+        return span(costs) if costs else "–"
+
+    still_text = ", ".join(
+        f"{scene_label(s)} {bold(s, span(still(s, 'speedup')))} (uncached {ms_span(still_ms(s, 'uncached'))} ms, "
+        f"CCT {ms_span(still_ms(s, 'cct'))}; the ideal cache bounds it at {span(still(s, 'ideal_speedup'))})"
+        for s in scenes)
+    path_text = ", ".join(f"{scene_label(s)} {span(path(s, 'speedup'))}" for s in scenes)
+    miss_text = ", ".join(f"{miss(s)}{' the traced tree it replaces' if i == 0 else ''} on {scene_label(s)}"
+                          for i, s in enumerate(scenes))
+    text = (f"`{bench_command(first)}` (depth {settings['max_depth']}; {runs_provenance(default)}; generated by "
+            "`scripts/doc-figures.py` from `docs/bench-runs/cct_speed/`), speed-ups over uncached from each run's "
+            f"medians, min–max over the runs. Still camera, caches filled: {still_text}. Along the orbit (1° a "
+            f"frame, {plural(settings['path_frames'], 'frame')} from empty caches, `always`): {path_text}; a miss "
+            f"costs {miss_text}, and the default `--cache-policy auto` stands such cubes aside.")
+    block = "\n".join([CCT_BEGIN, wrap(text), END])
+
+    scene = goal_scene(default, "cct_speed")
+    speedups, bounds = still(scene, "speedup"), still(scene, "ideal_speedup")
+    reached = sum(1 for v in speedups if v >= CCT_FILLED)
+    filled_met = ("yes" if reached == len(speedups) else f"in {reached} of {len(speedups)} runs" if reached
+                  else "no; within the bound" if statistics.median(bounds) >= CCT_FILLED
+                  else "no; above what an ideal cache reaches")
+    miss_costs = {s: [c for c in path(s, "miss_over_plain_trace") if c is not None] for s in scenes}
+    cheap = [scene_label(s) for s, c in miss_costs.items() if c and statistics.median(c) <= CCT_MISS]
+    miss_met = ("yes" if len(cheap) == len(scenes) and all(v <= CCT_MISS for c in miss_costs.values() for v in c)
+                else "no" if not cheap else f"on {', '.join(cheap)}")
+    rows = {
+        f"| CCT | filled {GOAL_SCENE} ≥ {CCT_FILLED:.1f}×": (
+            f"| CCT | filled {scene} ≥ {CCT_FILLED:.1f}× uncached | {span(speedups)} (`cct_speed`); an ideal cache "
+            f"bounds it at {span(bounds)} | {filled_met} |"),
+        "| CCT | a miss ≤": (
+            f"| CCT | a miss ≤ {CCT_MISS:g}× the trace it replaces | "
+            + ", ".join(f"{miss(s)} on {scene_label(s)}" for s in scenes) + f" | {miss_met} |"),
+    }
+    documents = per_scene(default, scene, lambda s: s["still"]["documents_speedup"])[0]
+    orbit = path(scene, "speedup")
+
+    def status(values):
+        return ("works, slower than uncached" if all(v < 1.0 for v in values) else "works"
+                if all(v >= 1.0 for v in values) else "works, slower than uncached in some runs")
+
+    readme_filled = {1: status(speedups), 2: f"{scene}: {span(speedups)} uncached"
+                     + (f" (the documents: {x(documents)})" if documents else "")}
+    readme_moving = {1: status(orbit), 2: f"{scene}'s orbit: {span(orbit)} uncached"}
+    return block, rows, readme_filled, readme_moving
+
+
 def replace_rows(text, rows, path):
     """`text` with the one line starting with each key of `rows` replaced by
     that key's row."""
@@ -229,50 +953,90 @@ def replace_block(text, block, path, begin=BEGIN):
     return text[:i] + block + text[j + len(END):]
 
 
-def readme_row_phrase(readme, row_start, phrase, cell, check, failures):
-    """README.md with `phrase` in the row starting with `row_start` (cell
-    `cell` rewritten when writing); a failure noted when checking."""
-    row = next((l for l in readme.splitlines() if l.startswith(row_start)), None)
+def row_cells(text, row_start, cells, path):
+    """`text` with the table row starting with `row_start` holding `cells`
+    ({index: text}; index 0 is the row's first cell)."""
+    rows = [l for l in text.split("\n") if l.startswith(row_start)]
+    if len(rows) != 1:
+        sys.exit(f"doc-figures: {path} needs exactly one row starting with {row_start} (has {len(rows)})")
+    parts = rows[0].split(" | ")
+    for i, cell in cells.items():
+        parts[i] = cell
+    return text.replace(rows[0], " | ".join(parts))
+
+
+def row_phrase(text, row_start, phrase, cell, path):
+    """`text` unchanged when the row starting with `row_start` contains
+    `phrase`, else with its cell `cell` rewritten to it."""
+    row = next((l for l in text.split("\n") if l.startswith(row_start)), None)
     if row is None:
-        sys.exit(f"doc-figures: README.md has no row starting with {row_start}")
-    if phrase in row:
-        return readme
-    if check:
-        failures.append(f"{README}: the row {row_start}… should quote \"{phrase}\"")
-        return readme
-    cells = row.split(" | ")
-    cells[cell] = phrase
-    return readme.replace(row, " | ".join(cells))
+        sys.exit(f"doc-figures: {path} has no row starting with {row_start}")
+    return text if phrase in row else row_cells(text, row_start, {cell: phrase}, path)
+
+
+def regenerate(path, edits, check, failures):
+    """Apply `edits` ((what, function of the text) pairs) to the doc at
+    `path` and write it; when checking, note instead each part that would
+    change."""
+    with open(path, encoding="utf-8") as f:
+        text = f.read()
+    new = text
+    for what, edit in edits:
+        before, new = new, edit(new)
+        if check and new != before:
+            failures.append(f"{os.path.relpath(path, ROOT)}: {what} differs from its source")
+    if new != text and not check:
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(new)
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--check", action="store_true", help="compare instead of writing; exit 1 on a difference")
     args = parser.parse_args()
+    full = load_full_run()
     with open(SOURCE, encoding="utf-8") as f:
         block, readme_phrase = figures(json.load(f))
     with open(RENDER_CACHE_SOURCE, encoding="utf-8") as f:
         render_cache_run = json.load(f)
     rc_block, rc_phrase = render_cache_figures(render_cache_run)
-    with open(PERFORMANCE, encoding="utf-8") as f:
-        performance = f.read()
-    expected = replace_block(performance, block, PERFORMANCE)
-    expected = replace_block(expected, rc_block, PERFORMANCE, RENDER_CACHE_BEGIN)
-    expected = replace_rows(expected, render_cache_goal_rows(render_cache_run), PERFORMANCE)
+    tables_block, tables_rows, cdct_readme = tables_figures(full)
+    harness_block, fill_rows, harness_readme = harness_figures(full)
+    dynamic_block, dynamic_rows, dynamic_readme = dynamic_figures(full)
+    grids_block, grids_rows, grids_readme = grids_figures(full)
+    core_table, core_avx2, core_rows, core_readme = core_figures(load_bench_runs("core_speed"))
+    cct_block, cct_rows, cct_readme_filled, cct_readme_moving = cct_figures(load_bench_runs("cct_speed"))
+
+    def blocks(*pairs):
+        return [(f"the block {begin}", lambda t, b=b, begin=begin: replace_block(t, b, PERFORMANCE, begin))
+                for begin, b in pairs]
+
+    def rows(table):
+        return [(f"the row \"{start}…\"", lambda t, start=start, row=row: replace_rows(t, {start: row}, PERFORMANCE))
+                for start, row in table.items()]
+
     failures = []
-    with open(README, encoding="utf-8") as f:
-        readme = f.read()
-    if expected != performance:
-        if args.check:
-            failures.append(f"{PERFORMANCE}: a generated block differs from {SOURCE} or {RENDER_CACHE_SOURCE}")
-        else:
-            with open(PERFORMANCE, "w", encoding="utf-8") as f:
-                f.write(expected)
-    new_readme = readme_row_phrase(readme, "| `--cache-policy auto`", readme_phrase, 2, args.check, failures)
-    new_readme = readme_row_phrase(new_readme, "| Render Cache", rc_phrase, 2, args.check, failures)
-    if new_readme != readme and not args.check:
-        with open(README, "w", encoding="utf-8") as f:
-            f.write(new_readme)
+    regenerate(PERFORMANCE, blocks((BEGIN, block), (RENDER_CACHE_BEGIN, rc_block), (TABLES_BEGIN, tables_block),
+                                   (DYNAMIC_BEGIN, dynamic_block), (GRIDS_BEGIN, grids_block),
+                                   (HARNESS_BEGIN, harness_block), (CORE_BEGIN, core_table),
+                                   (CORE_AVX2_BEGIN, core_avx2), (CCT_BEGIN, cct_block))
+               + rows(render_cache_goal_rows(render_cache_run)) + rows(tables_rows) + rows(fill_rows)
+               + rows(dynamic_rows) + rows(grids_rows) + rows(core_rows) + rows(cct_rows), args.check, failures)
+    regenerate(DYNAMIC_SCENES, [(f"the block {ORACLE_BEGIN}",
+                                 lambda t: replace_block(t, oracle_block(full), DYNAMIC_SCENES, ORACLE_BEGIN))],
+               args.check, failures)
+    readme_rows = [
+        ("| Whitted ray tracing", lambda t: row_cells(t, "| Whitted ray tracing", core_readme, README)),
+        ("| CCT, caches filled", lambda t: row_cells(t, "| CCT, caches filled", cct_readme_filled, README)),
+        ("| CCT, camera moving", lambda t: row_cells(t, "| CCT, camera moving", cct_readme_moving, README)),
+        ("| `--cache-policy auto`", lambda t: row_phrase(t, "| `--cache-policy auto`", readme_phrase, 2, README)),
+        ("| Render Cache", lambda t: row_phrase(t, "| Render Cache", rc_phrase, 2, README)),
+        ("| CDCT, parallax-correct", lambda t: row_cells(t, "| CDCT, parallax-correct", cdct_readme, README)),
+        ("| Animated scenes", lambda t: row_cells(t, "| Animated scenes", dynamic_readme, README)),
+        ("| Grids for primary", lambda t: row_cells(t, "| Grids for primary", grids_readme, README)),
+        ("| Experiments harness", lambda t: row_cells(t, "| Experiments harness", harness_readme, README)),
+    ]
+    regenerate(README, [(f"the row \"{start}…\"", edit) for start, edit in readme_rows], args.check, failures)
     for failure in failures:
         print(failure, file=sys.stderr)
     if failures:

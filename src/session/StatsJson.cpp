@@ -47,15 +47,6 @@ nlohmann::json sceneUpdateJson(const SceneUpdateStats& u) {
             {"texels_invalidated", u.texelsInvalidated}};
 }
 
-nlohmann::json stagesJson(const StageTimes& s) {
-    return {{"first_hits_cpu_ms", s.firstHits},     {"surfaces_cpu_ms", s.surfaces},
-            {"shadow_rays_cpu_ms", s.shadowRays},   {"direct_shading_cpu_ms", s.directShading},
-            {"secondary_rays_cpu_ms", s.secondaryRays}, {"reuse_lookups_cpu_ms", s.reuseLookups},
-            {"trace_secondary_cpu_ms", s.traceSecondary}, {"resolve_cpu_ms", s.resolve},
-            {"compose_cpu_ms", s.compose},          {"visible_fill_cpu_ms", s.visibleFill},
-            {"cache_frame_end_ms", s.cacheFrameEnd}, {"hits_shaded", s.hitsShaded}};
-}
-
 nlohmann::json gridsJson(const FrameTraceStats& g, double buildMs) {
     return {{"build_ms", buildMs},
             {"primary_build_ms", g.build.primaryBuildMs},
@@ -79,6 +70,15 @@ nlohmann::json clusterJson(const ClusterStats& c) {
 }
 
 }  // namespace
+
+nlohmann::json stagesJson(const StageTimes& s) {
+    return {{"first_hits_cpu_ms", s.firstHits},     {"surfaces_cpu_ms", s.surfaces},
+            {"shadow_rays_cpu_ms", s.shadowRays},   {"direct_shading_cpu_ms", s.directShading},
+            {"secondary_rays_cpu_ms", s.secondaryRays}, {"reuse_lookups_cpu_ms", s.reuseLookups},
+            {"trace_secondary_cpu_ms", s.traceSecondary}, {"resolve_cpu_ms", s.resolve},
+            {"compose_cpu_ms", s.compose},          {"visible_fill_cpu_ms", s.visibleFill},
+            {"cache_frame_end_ms", s.cacheFrameEnd}, {"hits_shaded", s.hitsShaded}};
+}
 
 nlohmann::json toJson(const BuildInfo& b) {
     return {{"raycache", b.raycacheVersion}, {"git_commit", b.gitCommit},

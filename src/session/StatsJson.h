@@ -14,6 +14,10 @@ namespace raycache {
 nlohmann::json toJson(const BuildInfo& build);
 // {"primary", "shadow", "reflection", "refraction", "prefill", "fill", "total"}.
 nlohmann::json raysJson(const RayCounts& rays);
+// The tile kernel's stages in one frame (render/FrameStats.h StageTimes):
+// each stage's CPU ms ("first_hits_cpu_ms", …, "cache_frame_end_ms", wall
+// time) and "hits_shaded".
+nlohmann::json stagesJson(const StageTimes& stages);
 // A Render Cache frame: its times (ms), sample counts, the budget and the
 // counted bytes with their rates.
 nlohmann::json renderCacheStatsJson(const RenderCacheStats& s);
