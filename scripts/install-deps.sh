@@ -6,7 +6,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 
 packages=(
-  build-essential cmake ninja-build pkg-config git ccache python3
+  build-essential cmake ninja-build pkg-config git ccache lld python3
   libembree-dev libtbb-dev libassimp-dev nlohmann-json3-dev libcli11-dev
   libstb-dev libopenexr-dev
   libgtest-dev libgmock-dev

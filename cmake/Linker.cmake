@@ -1,0 +1,13 @@
+# Link with lld when it is installed (scripts/install-deps.sh installs it).
+# The test suite links some fifty programs in each of its sanitizer builds,
+# and GNU ld spends most of a link reading and writing their debug
+# information, which lld does several times faster (docs/testing.md, "Where
+# the time goes"). The programs' code is the same either way.
+option(RAYCACHE_LLD "Link with lld when it is installed" ON)
+if(RAYCACHE_LLD)
+  include(CheckLinkerFlag)
+  check_linker_flag(CXX "-fuse-ld=lld" RAYCACHE_LINKER_LLD)
+  if(RAYCACHE_LINKER_LLD)
+    add_link_options(-fuse-ld=lld)
+  endif()
+endif()
