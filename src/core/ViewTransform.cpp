@@ -105,12 +105,6 @@ float filmicChannel(float v) {
 
 }  // namespace
 
-std::optional<ViewTransform> viewTransformFromName(std::string_view name) {
-    for (const ViewTransform t : kViewTransforms)
-        if (name == viewTransformName(t)) return t;
-    return std::nullopt;
-}
-
 Rgb applyViewTransform(ViewTransform transform, const Rgb& sceneLinear) {
     if (transform == ViewTransform::Standard) return sceneLinear;
     const Rgb c{lightOrNone(sceneLinear.r), lightOrNone(sceneLinear.g), lightOrNone(sceneLinear.b)};

@@ -4,7 +4,6 @@
 // which linearToSrgb8 (core/ColorSpace.h) then encodes. docs/usage.md
 // describes each and where it comes from.
 #include <array>
-#include <optional>
 #include <string_view>
 
 #include "core/Rgb.h"
@@ -30,7 +29,6 @@ constexpr const char* viewTransformName(ViewTransform transform) {
     }
     return "?";
 }
-std::optional<ViewTransform> viewTransformFromName(std::string_view name);
 
 // The display-linear colour of a scene-linear one, in [0, 1] for every
 // transform but Standard (which returns its input: the 8-bit encoding clamps).

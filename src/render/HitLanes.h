@@ -3,7 +3,7 @@
 // (core/FloatLanes.h), over the wave's structure-of-arrays lanes: surfaces,
 // shadow rays, direct light, albedo and secondary rays. Each lane's result
 // is bit for bit what the scalar rule gives (render/SurfacePoint.h,
-// LocalShading): the same IEEE operations in the same order, on every
+// tests/render/ScalarShadingRule.h): the same IEEE operations in the same order, on every
 // target (AVX-512, AVX2, baseline x86-64; tests/render/HitLanesTest.cpp).
 #include <cstddef>
 #include <cstdint>
@@ -120,14 +120,14 @@ void meshSurfaceLanes16(const RayLanes16& rays, const MeshHitLanes& triangles, c
 void shadowRayLanes16(const Light& light, const SpotCone& spot, const SurfaceLanes16& surfaces, const int* lanes,
                       RayLanes16& rays, PacketLanes& traced, LightLanes16& seen);
 
-// LocalShading::directLight for the selected lanes, all of one material,
-// seen along `viewRays`' directions: out{R,G,B}[k] for each selected k.
+// The scalar shading rule (tests/render/ScalarShadingRule.h) for the
+// selected lanes, all of one material, seen along `viewRays`' directions: out{R,G,B}[k] for each selected k.
 void directLightLanes16(const Material& material, std::span<const Light> lights, const LightLanes16* seen,
                         const SurfaceLanes16& surfaces, const RayLanes16& viewRays, const int* lanes, float* outR,
                         float* outG, float* outB);
 
-// LocalShading::viewIndependentLight for the selected lanes, all of one
-// material (each lane's metallic from `surfaces`), with the surfaces' albedo
+// The scalar rule's view-independent part (scalarViewIndependentLight) for
+// the selected lanes, all of one material (each lane's metallic from `surfaces`), with the surfaces' albedo
 // or, `whiteAlbedo`, an albedo of 1: out{R,G,B}[k] for each selected k. The
 // lights counted are those whose `lit` lane is set (the lit mask is the
 // caller's to take from them).
@@ -135,8 +135,8 @@ void viewIndependentLightLanes16(const Material& material, std::span<const Light
                                  const SurfaceLanes16& surfaces, bool whiteAlbedo, const int* lanes, float* outR,
                                  float* outG, float* outB);
 
-// LocalShading::highlights for the selected lanes, all of one material (each
-// lane's metallic and roughness from `surfaces`), seen along `viewRays`'
+// The scalar rule's highlights (scalarHighlights) for the selected lanes,
+// all of one material (each lane's metallic and roughness from `surfaces`), seen along `viewRays`'
 // directions, from the lights whose `lit` lane is set: out{R,G,B}[k].
 void highlightLanes16(const Material& material, std::span<const Light> lights, const LightLanes16* seen,
                       const SurfaceLanes16& surfaces, const RayLanes16& viewRays, const int* lanes, float* outR,

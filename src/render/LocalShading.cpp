@@ -8,8 +8,6 @@
 #include "core/Errors.h"
 #include "core/Optics.h"
 #include "render/HitLanes.h"
-#include "render/MetallicRoughness.h"
-#include "render/SpecularPower.h"
 
 namespace raycache {
 
@@ -74,82 +72,6 @@ int LocalShading::shadowQueries(const SurfacePoint& sp, ShadowQuery* out) const 
         out[count++] = ShadowQuery{Ray{origin, toLight, 0.0f, distance}, static_cast<int>(i), strength};
     }
     return count;
-}
-
-Rgb LocalShading::directLight(const Material& material, const Rgb& albedo, const SurfacePoint& sp,
-                              const Vec3& toViewer, std::span<const ShadowQuery> queries,
-                              std::span<const unsigned char> occluded) const {
-    if (material.model == ShadingModel::MetallicRoughness) {
-        // The lanes' order (HitLaneKernels.inc, metallicRoughnessLightLanes).
-        Rgb color = material.emission;
-        const Rgb diffuse = albedo * diffuseFactor(material);
-        const bool lobe = hasSpecularLobe(material);
-        for (std::size_t q = 0; q < queries.size(); ++q) {
-            if (occluded[q]) continue;
-            const ShadowQuery& query = queries[q];
-            const Vec3& toLight = query.ray.direction;
-            Rgb lit = diffuse;
-            if (lobe) lit += ggxSpecular(material, albedo, sp.normal, toLight, toViewer);
-            lit *= dot(sp.normal, toLight);
-            color += lit * scene_.lights[static_cast<std::size_t>(query.lightIndex)].intensity * query.strength;
-        }
-        return color;
-    }
-    Rgb color = material.ambient * albedo;
-    for (std::size_t q = 0; q < queries.size(); ++q) {
-        if (occluded[q]) continue;
-        const ShadowQuery& query = queries[q];
-        const Vec3& toLight = query.ray.direction;
-        Rgb lit = albedo * dot(sp.normal, toLight);
-        if (!material.specular.isBlack()) {
-            const float nDotH = std::max(0.0f, dot(sp.normal, normalize(toLight + toViewer)));
-            lit += material.specular * specularPower(nDotH, material.shininess);
-        }
-        color += lit * scene_.lights[static_cast<std::size_t>(query.lightIndex)].intensity * query.strength;
-    }
-    return color;
-}
-
-Rgb LocalShading::viewIndependentLight(const Material& material, const Rgb& albedo, const SurfacePoint& sp,
-                                       std::span<const ShadowQuery> queries, std::span<const unsigned char> occluded,
-                                       std::uint64_t& litMask) const {
-    static_assert(kMaxLights <= 64, "one bit per light");
-    const bool physical = material.model == ShadingModel::MetallicRoughness;
-    Rgb color = physical ? material.emission : material.ambient * albedo;
-    const Rgb diffuse = physical ? albedo * diffuseFactor(material) : albedo;
-    litMask = 0;
-    for (std::size_t q = 0; q < queries.size(); ++q) {
-        if (occluded[q]) continue;
-        const ShadowQuery& query = queries[q];
-        litMask |= std::uint64_t{1} << query.lightIndex;
-        color += diffuse * dot(sp.normal, query.ray.direction) *
-                 scene_.lights[static_cast<std::size_t>(query.lightIndex)].intensity * query.strength;
-    }
-    return color;
-}
-
-Rgb LocalShading::highlights(const Material& material, const Rgb& albedo, const SurfacePoint& sp,
-                             const Vec3& toViewer, std::span<const ShadowQuery> queries,
-                             std::uint64_t litMask) const {
-    Rgb color;
-    if (material.model == ShadingModel::MetallicRoughness) {
-        if (!hasSpecularLobe(material)) return color;
-        for (const ShadowQuery& query : queries) {
-            if (!(litMask >> query.lightIndex & 1u)) continue;
-            const Vec3& toLight = query.ray.direction;
-            color += ggxSpecular(material, albedo, sp.normal, toLight, toViewer) * dot(sp.normal, toLight) *
-                     scene_.lights[static_cast<std::size_t>(query.lightIndex)].intensity * query.strength;
-        }
-        return color;
-    }
-    if (material.specular.isBlack()) return color;
-    for (const ShadowQuery& query : queries) {
-        if (!(litMask >> query.lightIndex & 1u)) continue;
-        const float nDotH = std::max(0.0f, dot(sp.normal, normalize(query.ray.direction + toViewer)));
-        color += material.specular * specularPower(nDotH, material.shininess) *
-                 scene_.lights[static_cast<std::size_t>(query.lightIndex)].intensity * query.strength;
-    }
-    return color;
 }
 
 }  // namespace raycache

@@ -1,8 +1,12 @@
 #pragma once
-// Local shading of Whitted ray tracing (Whitted 1980): Blinn-Phong or glTF's
-// metallic-roughness BRDF (render/MetallicRoughness.h) with one shadow ray per light, and what a ray that hits nothing sees. The rays themselves
-// (shadow, reflected, refracted) are traced by the tile kernel
-// (render/TileKernel.h), a whole wave at a time.
+// Local shading of Whitted ray tracing (Whitted 1980): one shadow ray per
+// light toward the lights that face a surface point, and what a ray that
+// hits nothing sees. The shading itself (Blinn-Phong or glTF's
+// metallic-roughness BRDF, render/MetallicRoughness.h) is computed in lanes
+// (render/HitLanes.h), and its scalar rule, which the lanes are tested
+// against, is tests/render/ScalarShadingRule.h. The rays themselves (shadow,
+// reflected, refracted) are traced by the tile kernel (render/TileKernel.h),
+// a whole wave at a time.
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -59,23 +63,6 @@ public:
     // Writes the shadow rays for lights that face `sp` into `out` (room for
     // one per light, at most kMaxLights) and returns how many were written.
     int shadowQueries(const SurfacePoint& sp, ShadowQuery* out) const;
-    // Ambient plus the lights whose shadow rays came back unoccluded
-    // (occluded[i] answers queries[i]), with the diffuse albedo at the point.
-    Rgb directLight(const Material& material, const Rgb& albedo, const SurfacePoint& sp, const Vec3& toViewer,
-                    std::span<const ShadowQuery> queries, std::span<const unsigned char> occluded) const;
-    // directLight split in two for the Render Cache (rendercache/), which
-    // keeps the first part of a sample and shades the second again when the
-    // eye moves. The first: ambient plus the diffuse term of the unoccluded
-    // lights; bit l of `litMask` is set for every such light l.
-    Rgb viewIndependentLight(const Material& material, const Rgb& albedo, const SurfacePoint& sp,
-                             std::span<const ShadowQuery> queries, std::span<const unsigned char> occluded,
-                             std::uint64_t& litMask) const;
-    // The second: the highlights of the lights in `litMask` seen from
-    // `toViewer` (queries as shadowQueries(sp) writes them); `albedo` is the
-    // base colour that tints a metallic-roughness metal's highlight.
-    Rgb highlights(const Material& material, const Rgb& albedo, const SurfacePoint& sp, const Vec3& toViewer,
-                   std::span<const ShadowQuery> queries, std::uint64_t litMask) const;
-
     const Scene& scene() const { return scene_; }
     // Each light's cone (for spot lights), as shadowQueries uses it.
     std::span<const SpotCone> spotCones() const { return spotCosines_; }

@@ -12,8 +12,8 @@
 namespace raycache {
 
 // What the Render Cache (rendercache/) keeps of a camera ray: its colour, its
-// first hit, and the light there split as LocalShading::viewIndependentLight
-// splits it, so the view-dependent rest can be shaded again from a new eye.
+// first hit, and the light there split in a view-independent part and the
+// highlights (tests/render/ScalarShadingRule.h), so the view-dependent rest can be shaded again from a new eye.
 struct PrimarySample {
     Rgb color;
     TraceHit hit;               // objectId -1: the ray saw the background

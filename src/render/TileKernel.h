@@ -199,7 +199,8 @@ private:
     void recordShadowRays(TileScratch& s, std::size_t p) const;
     void packetDirect(TileScratch& s, std::size_t p) const;
     // The Render Cache's record of camera hits (PrimarySample): the light of
-    // packet p's depth-1 lanes split as LocalShading::viewIndependentLight splits it.
+    // packet p's depth-1 lanes split in a view-independent part and
+    // highlights (tests/render/ScalarShadingRule.h).
     void recordFirstHitLight(TileScratch& s, std::size_t p) const;
     // Reshading (ReshadeRequest): packet p's kept view-independent light plus
     // its lit lights' highlights from the new eye.

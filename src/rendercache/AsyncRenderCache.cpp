@@ -62,11 +62,6 @@ AsyncRenderCache::~AsyncRenderCache() {
     thread_.join();
 }
 
-std::string AsyncRenderCache::description() const {
-    return pipeline_.description() + ", displayed at its own rate (" + std::to_string(threads_.display) +
-           " display, " + std::to_string(threads_.trace) + " trace threads)";
-}
-
 bool AsyncRenderCache::samplesWaiting() const {
     std::lock_guard lock(mutex_);
     return !ready_.empty();

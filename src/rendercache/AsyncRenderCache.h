@@ -87,7 +87,6 @@ public:
     // The maps of the last display frame (its request map empty on frames
     // that issued no request).
     const RenderCacheOverlays* overlays() const { return pipeline_.renderCacheOverlays(); }
-    std::string description() const;
     AsyncRenderCacheThreads threads() const { return threads_; }
     // Display thread: see above; >= 0.
     void setRequestFrames(double frames) { requestFrames_ = frames; }

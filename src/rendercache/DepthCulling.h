@@ -7,10 +7,7 @@
 // sample at a straight silhouette, with three nearer neighbours and five
 // not, is kept.
 #include <cstdint>
-#include <vector>
 
-#include "core/Parallel.h"
-#include "rendercache/PixelState.h"
 #include "rendercache/PointImage.h"
 
 namespace raycache {
@@ -41,20 +38,5 @@ inline bool hiddenByNearerKeys(const std::uint32_t* above, const std::uint32_t* 
 // for bit. Each row is readable one pixel to either side, as above.
 void hiddenByNearerKeysRow(const std::uint32_t* above, const std::uint32_t* row, const std::uint32_t* below, int count,
                            float threshold, unsigned char* hidden);
-
-// Whether the sample at pixel (x, y) of `image` (which must hold one; the
-// margin must be at least 1) is hidden by the rule above.
-inline bool hiddenByNearerNeighbours(const PointImage& image, int x, int y, float threshold) {
-    const std::uint32_t* row = image.keyData() + image.pixelIndex(x, y);  // the margin is at least 1 pixel
-    const auto stride = static_cast<std::size_t>(image.stride());
-    return hiddenByNearerKeys(row - stride, row, row + stride, threshold);
-}
-
-// Turns Reprojected pixels of `state` (width x height of `image`, whose
-// margin must be at least 1) into Culled where the rule above holds;
-// returns how many.
-// `scratch`, when given, is reused from frame to frame (no allocation).
-std::int64_t cullOccludedSamples(const PointImage& image, float threshold, std::vector<PixelState>& state,
-                                 const Parallel& parallel, std::vector<unsigned char>* scratch = nullptr);
 
 }  // namespace raycache

@@ -62,14 +62,12 @@ inline constexpr Fill3x3Neighbour kFill3x3Neighbours[8] = {{0, -1, 1.0f}, {0, 0,
 struct Fill3x3Results {
     std::vector<float> red, green, blue;  // the weighted mean (OneSurface)
     // 0 where the pixel is no hole; else Fill3x3Outcome in bits 0-1; the first neighbour's index into
-    // kFill3x3Neighbours (the group's first sample) in bits 2-4; the number
-    // of neighbouring samples in bits 5-8.
+    // kFill3x3Neighbours (the group's first sample) in bits 2-4.
     std::vector<std::int32_t> info;
 
     void resize(int width);
     static Fill3x3Outcome outcome(std::int32_t info) { return static_cast<Fill3x3Outcome>(info & 3); }
     static int firstNeighbour(std::int32_t info) { return (info >> 2) & 7; }
-    static int samples(std::int32_t info) { return (info >> 5) & 15; }
 };
 
 // The 3x3 filter at every pixel of a row whose bit is set in `holeBits`

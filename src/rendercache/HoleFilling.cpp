@@ -153,11 +153,9 @@ void HoleFill::fill3x3(int y, FillScratch& scratch, FillCounts& row) {
     Fill3x3Results& lanes = scratch.results;
     fill3x3Row(*boxRows[0], *boxRows[1], *boxRows[2], scratch.holeBits.data(), width, lanes);
     composeFilmRow(*boxRows[1], lanes, samples != nullptr, width, filmData + rowStart);
-    std::int64_t samplesRead = 0;  // by the holes' boxes
     forEachPixelSet(scratch.holeBits.data(), width, [&](int x) {
         const auto column = static_cast<std::size_t>(x);
         const std::int32_t info = lanes.info[column];
-        samplesRead += Fill3x3Results::samples(info);
         const std::size_t i = rowStart + column;
         const std::uint64_t bit = std::uint64_t{1} << (x % 64);
         switch (Fill3x3Results::outcome(info)) {
@@ -181,7 +179,6 @@ void HoleFill::fill3x3(int y, FillScratch& scratch, FillCounts& row) {
         filledBits[static_cast<std::size_t>(x / 64)] |= bit;
         ++row.filled3x3;
     });
-    row.samplesRead += samplesRead;
 }
 
 SurfaceClusters HoleFill::groupsAround(const std::array<const FillRow*, 3>& boxRows, int x, int y) const {
@@ -228,11 +225,9 @@ void HoleFill::fill7x7(int y, FillScratch& scratch, FillCounts& row) {
             columnSum[static_cast<std::size_t>(nx - x0)] += Rgb(r->red[column], r->green[column], r->blue[column]);
             ++columnCount[static_cast<std::size_t>(nx - x0)];
         }
-    for (int c : columnCount) row.samplesRead += c;
     Rgb* const filmData = film.pixels().data();
     unsigned char* const outcomeData = outcome.data();
     std::uint64_t* const filledBits = scratch.filledBits.data();
-    std::int64_t sparseReads = 0;  // a local: the row's counts are written once
     forEachPixelSet(wantsBits, width, [&](int x) {
         SurfaceClusters groups;
         const int nx0 = std::max(0, x - kPrefilterRadius), nx1 = std::min(width - 1, x + kPrefilterRadius);
@@ -253,7 +248,6 @@ void HoleFill::fill7x7(int y, FillScratch& scratch, FillCounts& row) {
                     if (!r.sample[column]) continue;
                     groups.add(Rgb(r.red[column], r.green[column], r.blue[column]), 1.0f, r.depth[column],
                                r.object[column], ny * width + nx);
-                    ++sparseReads;
                 }
             }
         }
@@ -269,7 +263,6 @@ void HoleFill::fill7x7(int y, FillScratch& scratch, FillCounts& row) {
         filledBits[static_cast<std::size_t>(x / 64)] |= std::uint64_t{1} << (x % 64);
         ++row.filled7x7;
     });
-    row.samplesRead += sparseReads;
 }
 
 void HoleFill::applyOutcomesRow(int y) {
@@ -306,7 +299,6 @@ FillCounts fillHoles(std::vector<PixelState>& state, Image& film, const Parallel
         total.filled3x3 += c.filled3x3;
         total.filled7x7 += c.filled7x7;
         total.unfilled += c.unfilled;
-        total.samplesRead += c.samplesRead;
     }
     for (unsigned char h : fill.hasHoles) total.rowsWithHoles += h;
     return total;

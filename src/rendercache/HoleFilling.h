@@ -25,7 +25,6 @@ struct FillCounts {
     std::int64_t filled3x3 = 0;
     std::int64_t filled7x7 = 0;
     std::int64_t unfilled = 0;  // left for the caller: state Unfilled, pixel untouched
-    std::int64_t samplesRead = 0;    // the samples the filters took into their means, once per hole
     std::int64_t rowsWithHoles = 0;  // rows whose states the fill rewrites (rendercache/ReconstructionBytes.h)
 };
 

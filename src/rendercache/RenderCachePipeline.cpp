@@ -51,11 +51,6 @@ void RenderCachePipeline::sceneChanged(const SceneChanges& changes) {
     }
 }
 
-void RenderCachePipeline::forget() {
-    pool_.reset(0, 0);
-    previousCamera_.reset();
-}
-
 int RenderCachePipeline::chooseBudget(int pixels) const {
     const RenderCacheSettings& rc = settings_.renderCache;
     if (rc.targetFrameMs > 0.0f && adaptiveBudget_ > 0.0)

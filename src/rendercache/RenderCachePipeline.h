@@ -75,8 +75,6 @@ public:
     void setReshadeInterval(int interval) { settings_.renderCache.reshadeInterval = interval; }
     int reshadeInterval() const { return settings_.renderCache.reshadeInterval; }
 
-    // Drops every sample: the next frame traces every pixel.
-    void forget();
     // Samples follow their object's translation (they are kept relative to
     // its origin); on an object that turns, scales or deforms they would
     // land in the wrong place, so a change of such an object drops them.

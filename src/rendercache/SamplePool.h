@@ -48,8 +48,8 @@ inline constexpr unsigned char kShadedFromAnOlderEye = 2;
 // A textured sample's colour taken apart (only meaningful where
 // SampleLook::textured is set): colour = albedo * lighting + rest, where
 // `lighting` is the light that the albedo multiplies (ambient and the
-// unshadowed lights' diffuse term: LocalShading::viewIndependentLight with a
-// white albedo) and `rest` what it does not (highlights, reflected and
+// unshadowed lights' diffuse term: the view-independent part of the shading
+// rule, tests/render/ScalarShadingRule.h, with a white albedo) and `rest` what it does not (highlights, reflected and
 // refracted light). Reconstruction fetches the albedo where the pixel's
 // centre meets `primitiveId` and multiplies it back
 // (rendercache/SampleRetexturing.h).

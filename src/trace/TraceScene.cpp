@@ -512,10 +512,6 @@ void TraceScene::occludedPacket(RayLanes16& packet, const PacketLanes& lanes, un
     for (std::size_t k = 0; k < kPacketWidth; ++k) occluded[k] = lanes.valid[k] && packet.tFar[k] < 0.0f ? 1 : 0;
 }
 
-void TraceScene::intersectIncoherent(std::span<const Ray> rays, std::span<TraceHit> hits) const {
-    for (std::size_t i = 0; i < rays.size(); ++i) hits[i] = intersect(rays[i]);
-}
-
 void TraceScene::occludedIncoherent(std::span<const Ray> rays, std::span<unsigned char> occluded) const {
     for (std::size_t i = 0; i < rays.size(); ++i) occluded[i] = this->occluded(rays[i]) ? 1 : 0;
 }

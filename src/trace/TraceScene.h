@@ -94,7 +94,6 @@ public:
     // The same for batches of rays that go their own ways (e.g. shadow rays
     // of later bounces): traced one by one, which beats packets whose lanes
     // diverge.
-    void intersectIncoherent(std::span<const Ray> rays, std::span<TraceHit> hits) const;
     void occludedIncoherent(std::span<const Ray> rays, std::span<unsigned char> occluded) const;
 
     // Gets the tracer ready for a frame of `camera` at width x height: with

@@ -18,6 +18,7 @@
 #include "render/LocalShading.h"
 #include "render/MetallicRoughness.h"
 #include "render/RayCone.h"
+#include "render/ScalarShadingRule.h"
 #include "render/SecondaryRayWeights.h"
 #include "render/SurfaceTextures.h"
 
@@ -216,7 +217,7 @@ void expectDirectLightEqualsLocalShading(MaterialOf materialOf) {
                 lit += occluded[q] ? 0 : 1;
             }
             const Rgb albedo{h.lanes.albedoR[k], h.lanes.albedoG[k], h.lanes.albedoB[k]};
-            const Rgb expected = shading.directLight(materialAtLane(material, h.lanes, k), albedo, h.points[k],
+            const Rgb expected = scalarDirectLight(shading, materialAtLane(material, h.lanes, k), albedo, h.points[k],
                                                      -h.scalarRays[k].direction,
                                                      std::span(queries, static_cast<std::size_t>(n)),
                                                      std::span(occluded, static_cast<std::size_t>(n)));
@@ -227,9 +228,9 @@ void expectDirectLightEqualsLocalShading(MaterialOf materialOf) {
             const std::span<const ShadowQuery> seenQueries(queries, static_cast<std::size_t>(n));
             const std::span<const unsigned char> blocked(occluded, static_cast<std::size_t>(n));
             std::uint64_t litMask = 0, whiteLitMask = 0;
-            const Rgb viewIndependent = shading.viewIndependentLight(atLane, albedo, h.points[k], seenQueries,
+            const Rgb viewIndependent = scalarViewIndependentLight(shading, atLane, albedo, h.points[k], seenQueries,
                                                                      blocked, litMask);
-            const Rgb white = shading.viewIndependentLight(atLane, Rgb{1.0f}, h.points[k], seenQueries, blocked,
+            const Rgb white = scalarViewIndependentLight(shading, atLane, Rgb{1.0f}, h.points[k], seenQueries, blocked,
                                                            whiteLitMask);
             expectSameWeight(viewR, viewG, viewB, k, viewIndependent, "view-independent light");
             expectSameWeight(whiteR, whiteG, whiteB, k, white, "view-independent light, white albedo");
@@ -238,7 +239,7 @@ void expectDirectLightEqualsLocalShading(MaterialOf materialOf) {
                 if (seen[l].lit[k]) laneLitMask |= std::uint64_t{1} << l;
             EXPECT_EQ(laneLitMask, litMask) << "lane " << k;
             const Rgb highlights =
-                shading.highlights(atLane, albedo, h.points[k], -h.scalarRays[k].direction, seenQueries, litMask);
+                scalarHighlights(shading, atLane, albedo, h.points[k], -h.scalarRays[k].direction, seenQueries, litMask);
             expectSameWeight(highR, highG, highB, k, highlights, "highlights");
         }
         if (::testing::Test::HasFailure()) return;

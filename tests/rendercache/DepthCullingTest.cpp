@@ -1,16 +1,37 @@
-// cullOccludedSamples(): a reprojected sample is hidden when at least three
-// of its 3x3 neighbours are nearer by the threshold share of its depth and
-// they outnumber the other occupied neighbours.
+// Depth culling's rule (rendercache/DepthCulling.h): a reprojected sample is
+// hidden when at least three of its 3x3 neighbours are nearer by the
+// threshold share of its depth and they outnumber the other occupied
+// neighbours.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "rendercache/DepthCulling.h"
+#include "rendercache/PixelState.h"
 
 using namespace raycache;
 
 namespace {
+
+// The rule over a whole image, as the classification pass applies it
+// (rendercache/PixelClassificationPass.cpp): each Reprojected pixel decided
+// from the depths alone, then the decisions written, so none sees another's
+// result. Returns how many were culled.
+std::int64_t cullOccludedSamples(const PointImage& image, float threshold, std::vector<PixelState>& state) {
+    const auto stride = static_cast<std::size_t>(image.stride());
+    std::vector<std::size_t> hidden;
+    for (int y = 0; y < image.height(); ++y)
+        for (int x = 0; x < image.width(); ++x) {
+            const auto i = static_cast<std::size_t>(y * image.width() + x);
+            const std::uint32_t* row = image.keyData() + image.pixelIndex(x, y);
+            if (state[i] == PixelState::Reprojected && hiddenByNearerKeys(row - stride, row, row + stride, threshold))
+                hidden.push_back(i);
+        }
+    for (std::size_t i : hidden) state[i] = PixelState::Culled;
+    return static_cast<std::int64_t>(hidden.size());
+}
 
 // A 3x3 image (margin 1) whose centre sample is at depth 10; `pattern` gives
 // the 8 neighbours row by row, skipping the centre: 'n' nearer (depth 5),
@@ -34,7 +55,7 @@ bool centreCulled(const std::string& pattern, PixelState centre = PixelState::Re
             state[static_cast<std::size_t>(y * 3 + x)] = PixelState::Reprojected;
         }
     std::vector<PixelState> before = state;
-    const std::int64_t culled = cullOccludedSamples(image, threshold, state, Parallel(1));
+    const std::int64_t culled = cullOccludedSamples(image, threshold, state);
     // Only the centre can change: every neighbour here is not farther than it.
     for (std::size_t i = 0; i < 9; ++i) {
         if (i == 4) continue;
@@ -124,7 +145,7 @@ TEST(DepthCulling, NeighboursInTheMarginCountAndDecisionsReadDepthsNotEarlierDec
     image.place(0, 0, 10.0f);
     image.place(1, 0, 20.0f);
     image.place(2, 0, 40.0f);
-    const std::int64_t culled = cullOccludedSamples(image, 0.1f, state, Parallel(2));
+    const std::int64_t culled = cullOccludedSamples(image, 0.1f, state);
     // Each has 6 nearer margin neighbours: all three culled, whichever is decided first.
     EXPECT_EQ(culled, 3);
     for (int x = 0; x < 3; ++x) EXPECT_EQ(state[static_cast<std::size_t>(x)], PixelState::Culled) << x;

@@ -12,6 +12,7 @@
 
 #include "core/Parallel.h"
 #include "render/FrameRenderer.h"
+#include "render/ScalarShadingRule.h"
 #include "render/TileKernel.h"
 #include "scene/BuiltinScenes.h"
 #include "trace/TraceScene.h"
@@ -103,10 +104,10 @@ TEST_P(RenderCacheKernel, CameraPixelsInAnyOrderMatchTheRayPipelineAndTheTracer)
             if (!occluded[q]) litMask |= std::uint64_t{1} << queries[q].lightIndex;
         }
         EXPECT_EQ(s.litMask, litMask) << p.x << "," << p.y;
-        const Rgb direct = shading.directLight(material, albedo, sp, -ray.direction, std::span(queries.data(), count),
+        const Rgb direct = scalarDirectLight(shading, material, albedo, sp, -ray.direction, std::span(queries.data(), count),
                                                std::span(occluded.data(), count));
         const Rgb highlights =
-            shading.highlights(material, albedo, sp, -ray.direction, std::span(queries.data(), count), s.litMask);
+            scalarHighlights(shading, material, albedo, sp, -ray.direction, std::span(queries.data(), count), s.litMask);
         Rgb split = s.viewIndependent;
         split += highlights;
         EXPECT_TRUE(close(split, direct, 1e-5f, 1e-7f)) << p.x << "," << p.y << ": " << split.r << " vs " << direct.r;
