@@ -192,5 +192,6 @@ PY
 if [ "$out" = docs/bench-runs ]; then
   echo "record-bench-runs: now run scripts/doc-figures.py"
 else
-  echo "record-bench-runs: now run scripts/doc-figures.py --bench-runs $out"
+  echo "record-bench-runs: now run scripts/doc-figures.py --bench-runs $out --docs DIR (DIR: a copy of the tree's" \
+    "README.md and docs/)"
 fi
