@@ -117,6 +117,12 @@ if [ -z "$bin" ]; then
   [ -f build/release/build.ninja ] || cmake --preset release >/dev/null
   cmake --build --preset release --target "${!chosen[@]}"
 fi
+# hybrid_speed needs an OpenGL context: known now rather than after the other programs' runs.
+if [ -n "${chosen[hybrid_speed]:-}" ] &&
+  ! "$bin/hybrid_speed" --size 8 --rounds 1 --warmup 0 --threads 1 --scenes behind-0 --parts a >/dev/null; then
+  echo "record-bench-runs: hybrid_speed cannot run here; leave it out of --programs" >&2
+  exit 1
+fi
 if [ -n "$(git status --porcelain --untracked-files=no)" ]; then
   echo "record-bench-runs: the tree has uncommitted changes; the runs will say so (\"dirty\")"
 fi
