@@ -16,7 +16,6 @@
 #include "bench/BenchmarkRecord.h"
 #include "bench/InterleavedRuns.h"
 #include "bench/ResultsJson.h"
-#include "core/Errors.h"
 #include "core/Parallel.h"
 #include "render/FrameRenderer.h"
 #include "scene/BuiltinScenes.h"
@@ -49,14 +48,6 @@ double documentsGridSpeedup(int n) {
     }
 }
 
-// A path run's times and rays per frame of the path: the table's unit.
-VariantTimes perFrame(VariantTimes t, int frames) {
-    for (double& ms : t.milliseconds) ms /= frames;
-    for (double& ms : t.warmupMilliseconds) ms /= frames;
-    t.work /= static_cast<std::uint64_t>(frames);
-    return t;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -78,13 +69,9 @@ int main(int argc, char** argv) {
     app.add_option("--json", jsonPath, "Also write every figure, the settings, machine and build to this JSON file");
     CLI11_PARSE(app, argc, argv);
     const Parallel parallel(threads);
-    std::optional<BenchmarkRecord> record;
-    try {
-        record.emplace("cct_speed", argc, argv, jsonPath, parallel.threadCount());
-    } catch (const InputError& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return 2;
-    }
+    const std::optional<BenchmarkRecord> record =
+        BenchmarkRecord::open("cct_speed", argc, argv, jsonPath, parallel.threadCount());
+    if (!record) return 2;
     nlohmann::json sceneRecords = nlohmann::json::array();
 
     std::printf("## (a) still camera, caches filled\n\n");
@@ -182,9 +169,9 @@ int main(int argc, char** argv) {
                     r.scene.c_str(), r.uncached.median() / f, r.uncached.min() / f, r.uncached.max() / f,
                     r.cct.median() / f, r.cct.min() / f, r.cct.max() / f, r.ideal.median() / f, r.ideal.min() / f,
                     r.ideal.max() / f, r.uncached.median() / r.cct.median(), r.hitPercentLastFrame, missCost);
-        sceneRecords[i]["path"] = {{"uncached", benchmarkVariantJson(perFrame(r.uncached, pathFrames))},
-                                   {"cct", benchmarkVariantJson(perFrame(r.cct, pathFrames))},
-                                   {"ideal", benchmarkVariantJson(perFrame(r.ideal, pathFrames))},
+        sceneRecords[i]["path"] = {{"uncached", benchmarkVariantJson(r.uncached, pathFrames)},
+                                   {"cct", benchmarkVariantJson(r.cct, pathFrames)},
+                                   {"ideal", benchmarkVariantJson(r.ideal, pathFrames)},
                                    {"speedup", r.uncached.median() / r.cct.median()},
                                    {"ideal_speedup", r.uncached.median() / r.ideal.median()},
                                    {"cct_hit_percent_last_frame", r.hitPercentLastFrame},
@@ -192,20 +179,14 @@ int main(int argc, char** argv) {
                                    {"cct_hits", r.hitsPerPath},
                                    {"miss_over_plain_trace", finiteOrNull(missCost)}};
     }
-    try {
-        record->write({{"size", size},
-                       {"rounds", rounds},
-                       {"warmup", warmup},
-                       {"path_frames", pathFrames},
-                       {"path_rounds", pathRounds},
-                       {"threads", threads},
-                       {"worker_threads", parallel.threadCount()},
-                       {"max_depth", maxDepth},
-                       {"scenes", scenes}},
-                      sceneRecords);
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return 1;
-    }
-    return 0;
+    return record->write({{"size", size},
+                          {"rounds", rounds},
+                          {"warmup", warmup},
+                          {"path_frames", pathFrames},
+                          {"path_rounds", pathRounds},
+                          {"threads", threads},
+                          {"worker_threads", parallel.threadCount()},
+                          {"max_depth", maxDepth},
+                          {"scenes", scenes}},
+                         {{"scenes", sceneRecords}});
 }

@@ -27,7 +27,6 @@
 
 #include "bench/BenchmarkRecord.h"
 #include "bench/InterleavedRuns.h"
-#include "core/Errors.h"
 #include "core/Parallel.h"
 #include "render/CameraRays.h"
 #include "scene/BuiltinScenes.h"
@@ -144,13 +143,9 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
 
     const Parallel parallel(threads);
-    std::optional<BenchmarkRecord> record;
-    try {
-        record.emplace("core_speed", argc, argv, jsonPath, parallel.threadCount());
-    } catch (const InputError& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return 2;
-    }
+    const std::optional<BenchmarkRecord> record =
+        BenchmarkRecord::open("core_speed", argc, argv, jsonPath, parallel.threadCount());
+    if (!record) return 2;
     nlohmann::json sceneRecords = nlohmann::json::array();
     std::printf("| scene | variant | ms/frame median | min-max | Mrays/s | rays/frame | vs plain loop |\n");
     std::printf("| --- | --- | --- | --- | --- | --- | --- |\n");
@@ -209,19 +204,13 @@ int main(int argc, char** argv) {
                                 {"uncached_over_plain_loop", results[2].median() / results[0].median()},
                                 {"ideal_frame_stages", std::move(stages)}});
     }
-    try {
-        record->write({{"size", size},
-                       {"rounds", rounds},
-                       {"warmup", warmup},
-                       {"max_depth", maxDepth},
-                       {"threads", threads},
-                       {"worker_threads", parallel.threadCount()},
-                       {"scenes", scenes},
-                       {"variants", kVariantKeys}},
-                      sceneRecords);
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
-        return 1;
-    }
-    return 0;
+    return record->write({{"size", size},
+                          {"rounds", rounds},
+                          {"warmup", warmup},
+                          {"max_depth", maxDepth},
+                          {"threads", threads},
+                          {"worker_threads", parallel.threadCount()},
+                          {"scenes", scenes},
+                          {"variants", kVariantKeys}},
+                         {{"scenes", sceneRecords}});
 }

@@ -4,14 +4,19 @@
 // rays. Medians with min-max over the rounds. For comparing variants of the
 // grids where `raycache bench grids` (five frames per model, means) is too
 // coarse: run two binaries alternately and compare the medians and ranges.
-// Usage: grids_speed [--model "torus 100k" | cloth | orbit | ...] [--size 1024] [--rounds 15]
+// With --json FILE it also writes every figure it prints, with the run's
+// settings, machine and build, as one JSON document (bench/BenchmarkRecord.h;
+// the docs quote the runs in docs/bench-runs/grids_speed/).
+// Usage: grids_speed [--model "torus 100k" | cloth | orbit | ...] [--size 1024] [--rounds 15] [--json FILE]
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "bench/BenchmarkRecord.h"
 #include "bench/GridsWorkload.h"
 #include "core/Elapsed.h"
 #include "core/Errors.h"
@@ -36,10 +41,14 @@ std::optional<GridsModel> modelNamed(const std::string& name) {
     return GridsModel{name, std::move(*scene), false};
 }
 
-void report(const char* label, const std::vector<double>& samples) {
+// Prints one part's line and returns its JSON.
+nlohmann::json report(const char* label, const std::vector<double>& samples) {
     const SampleSummary s = summarize(samples);
     std::printf("  %-16s %8.2f ms  (%.2f-%.2f)\n", label, s.median, s.min, s.max);
+    return summaryJson(samples);
 }
+
+double median(const std::vector<double>& samples) { return summarize(samples).median; }
 
 }  // namespace
 
@@ -54,6 +63,8 @@ int main(int argc, char** argv) {
         ->capture_default_str()
         ->check(CLI::Range(1, 10000));
     app.add_option("--threads", threads, "Worker threads, 0 = all")->capture_default_str()->check(CLI::Range(0, 1024));
+    std::filesystem::path jsonPath;
+    app.add_option("--json", jsonPath, "Also write every figure, the settings, machine and build to this JSON file");
     CLI11_PARSE(app, argc, argv);
 
     const std::optional<GridsModel> model = modelNamed(modelName);
@@ -62,6 +73,9 @@ int main(int argc, char** argv) {
         return 2;
     }
     const Parallel parallel(threads);
+    const std::optional<BenchmarkRecord> record =
+        BenchmarkRecord::open("grids_speed", argc, argv, jsonPath, parallel.threadCount());
+    if (!record) return 2;
     const Scene& scene = model->scene;
     const Camera& camera = scene.camera;
     GridsFrameRays rays = cameraRaysByTile(camera, size);
@@ -122,16 +136,31 @@ int main(int argc, char** argv) {
                 model->name.c_str(), size, size, shadowCount, parallel.threadCount(), rounds,
                 static_cast<unsigned long long>(stats.shadowRefused));
     std::printf("grids\n");
-    report("build", gridBuild);
-    report("  camera grid", gridCameraBuild);
-    report("  light grids", gridLightBuild);
-    report("primary", gridPrimary);
-    report("shadow", gridShadow);
-    report("total", gridTotal);
+    const nlohmann::json gridsParts = {{"build", report("build", gridBuild)},
+                                       {"camera_grid", report("  camera grid", gridCameraBuild)},
+                                       {"light_grids", report("  light grids", gridLightBuild)},
+                                       {"primary", report("primary", gridPrimary)},
+                                       {"shadow", report("shadow", gridShadow)},
+                                       {"total", report("total", gridTotal)}};
     std::printf("Embree LOW, rebuilt\n");
-    report("build", embreeBuild);
-    report("primary", embreePrimary);
-    report("shadow", embreeShadow);
-    report("total", embreeTotal);
-    return 0;
+    const nlohmann::json embreeParts = {{"build", report("build", embreeBuild)},
+                                        {"primary", report("primary", embreePrimary)},
+                                        {"shadow", report("shadow", embreeShadow)},
+                                        {"total", report("total", embreeTotal)}};
+    // The rays alone: Embree's through the hierarchy it has just built, as through a prebuilt one.
+    const double totalRatio = median(gridTotal) / median(embreeTotal);
+    const double raysRatio =
+        (median(gridPrimary) + median(gridShadow)) / (median(embreePrimary) + median(embreeShadow));
+    std::printf("grids / Embree: total %.2fx, rays alone (primary + shadow) %.2fx\n", totalRatio, raysRatio);
+    return record->write({{"model", model->name},
+                          {"size", size},
+                          {"rounds", rounds},
+                          {"threads", threads},
+                          {"worker_threads", parallel.threadCount()}},
+                         {{"shadow_rays", shadowCount},
+                          {"shadow_refused", stats.shadowRefused},
+                          {"grids", gridsParts},
+                          {"embree", embreeParts},
+                          {"total_over_embree", totalRatio},
+                          {"rays_over_embree", raysRatio}});
 }

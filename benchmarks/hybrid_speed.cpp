@@ -4,13 +4,19 @@
 //  (c) the documents' Table 5.1 in the hybrid pipeline: behind-N with a still
 //      camera, caches filled by the warm-up frames; no cache vs CCT on the main
 //      sphere only (the documents' set-up) vs CCT on every mirror.
-// Usage: hybrid_speed [--size 1024] [--rounds 7] [--warmup 2] [--threads 0] [--scenes a,b] [--parts abc]
+// With --json FILE it also writes every figure of the tables it prints, with
+// the run's settings, machine and build, as one JSON document
+// (bench/BenchmarkRecord.h; the docs quote the runs in docs/bench-runs/hybrid_speed/).
+// Usage: hybrid_speed [--size 1024] [--rounds 7] [--warmup 2] [--threads 0] [--scenes a,b] [--parts abc] [--json FILE]
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "bench/BenchmarkRecord.h"
 #include "bench/InterleavedRuns.h"
 #include "core/Parallel.h"
 #include "core/SampleSummary.h"
@@ -83,8 +89,15 @@ int main(int argc, char** argv) {
     app.add_option("--threads", threads, "Worker threads, 0 = all")->capture_default_str();
     app.add_option("--scenes", scenes, "Built-in scenes for parts (a) and (b)")->delimiter(',');
     app.add_option("--parts", parts, "Which tables: any of a, b, c")->capture_default_str();
+    std::filesystem::path jsonPath;
+    app.add_option("--json", jsonPath, "Also write every figure, the settings, machine and build to this JSON file");
     CLI11_PARSE(app, argc, argv);
     const Parallel parallel(threads);
+    const std::optional<BenchmarkRecord> record =
+        BenchmarkRecord::open("hybrid_speed", argc, argv, jsonPath, parallel.threadCount());
+    if (!record) return 2;
+    nlohmann::json gbufferOnly = nlohmann::json::array(), wholeFrames = nlohmann::json::array(),
+                   table51 = nlohmann::json::array();
     Image film;
 
     std::string whyNot;
@@ -129,6 +142,12 @@ int main(int argc, char** argv) {
                         range(rasterMs).c_str(), range(readbackMs).c_str(), range(times[1]).c_str(),
                         times[0].median() / times[1].median());
             std::fflush(stdout);
+            gbufferOnly.push_back({{"scene", name},
+                                   {"opengl", benchmarkVariantJson(times[0])},
+                                   {"opengl_raster", summaryJson(rasterMs)},
+                                   {"opengl_readback", summaryJson(readbackMs)},
+                                   {"packets", benchmarkVariantJson(times[1])},
+                                   {"opengl_over_packets", times[0].median() / times[1].median()}});
         }
         std::printf("\n");
     }
@@ -174,6 +193,18 @@ int main(int argc, char** argv) {
                         summarize(ph[0]).median, summarize(ph[1]).median, summarize(ph[2]).median,
                         summarize(ph[3]).median, summarize(ph[4]).median);
             std::fflush(stdout);
+            wholeFrames.push_back({{"scene", name},
+                                   {"ray", benchmarkVariantJson(times[0])},
+                                   {"hybrid_opengl", benchmarkVariantJson(times[1])},
+                                   {"hybrid_packets", benchmarkVariantJson(times[2])},
+                                   {"ray_over_hybrid_opengl", times[0].median() / times[1].median()},
+                                   {"ray_over_hybrid_packets", times[0].median() / times[2].median()},
+                                   {"hybrid_opengl_phases",
+                                    {{"raster", summaryJson(ph[0])},
+                                     {"readback", summaryJson(ph[1])},
+                                     {"shadows", summaryJson(ph[2])},
+                                     {"secondary", summaryJson(ph[3])},
+                                     {"compose", summaryJson(ph[4])}}}});
         }
         std::printf("\n");
     }
@@ -210,7 +241,22 @@ int main(int argc, char** argv) {
                         range(times[1]).c_str(), range(times[2]).c_str(), times[0].median() / times[1].median(),
                         times[0].median() / times[2].median(), documentsBehindSpeedup(n), range(times[3]).c_str());
             std::fflush(stdout);
+            table51.push_back({{"n", n},
+                               {"hybrid", benchmarkVariantJson(times[0])},
+                               {"hybrid_cct_main", benchmarkVariantJson(times[1])},
+                               {"hybrid_cct_all", benchmarkVariantJson(times[2])},
+                               {"ray", benchmarkVariantJson(times[3])},
+                               {"speedup_main", times[0].median() / times[1].median()},
+                               {"speedup_all", times[0].median() / times[2].median()},
+                               {"documents_speedup", documentsBehindSpeedup(n)}});
         }
     }
-    return 0;
+    return record->write({{"size", size},
+                          {"rounds", rounds},
+                          {"warmup", warmup},
+                          {"threads", threads},
+                          {"worker_threads", parallel.threadCount()},
+                          {"scenes", scenes},
+                          {"parts", parts}},
+                         {{"gbuffer_only", gbufferOnly}, {"whole_frames", wholeFrames}, {"table_5_1", table51}});
 }

@@ -2,18 +2,36 @@
 // dragon in at most 1.5 s): loadScene() alone, from the file to the Scene the
 // renderer takes (mesh reading, checks, repairs, normals), without building
 // the ray tracing structures. Wall milliseconds per round, median (min-max).
-// Usage: scene_load_speed [--rounds 5] --scenes dragon-hall,scene.json,...
+// With --json FILE it also writes every figure of its table, with the run's
+// settings, machine and build, as one JSON document (bench/BenchmarkRecord.h;
+// the docs quote the runs in docs/bench-runs/scene_load_speed/).
+// Usage: scene_load_speed [--rounds 5] --scenes dragon-hall,scene.json,... [--json FILE]
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
+#include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
+#include "bench/BenchmarkRecord.h"
 #include "core/SampleSummary.h"
 #include "scene/SceneLoader.h"
 
 using namespace raycache;
+
+namespace {
+
+std::size_t triangleCount(const Scene& scene) {
+    std::size_t triangles = 0;
+    for (const SceneObject& object : scene.objects)
+        if (const auto* mesh = std::get_if<MeshShape>(&object.shape)) triangles += mesh->mesh->triangles.size();
+    return triangles;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"Time loading scenes (built-in names or scene files), side by side"};
@@ -21,9 +39,15 @@ int main(int argc, char** argv) {
     std::vector<std::string> scenes{"dragon-hall"};
     app.add_option("--rounds", rounds, "Loads per scene, interleaved")->capture_default_str()->check(CLI::Range(1, 1000));
     app.add_option("--scenes", scenes, "Built-in scenes or scene files (.json, .gltf, .glb)")->delimiter(',')->capture_default_str();
+    std::filesystem::path jsonPath;
+    app.add_option("--json", jsonPath, "Also write every figure, the settings, machine and build to this JSON file");
     CLI11_PARSE(app, argc, argv);
+    // Loading runs on one thread.
+    const std::optional<BenchmarkRecord> record = BenchmarkRecord::open("scene_load_speed", argc, argv, jsonPath, 1);
+    if (!record) return 2;
 
     std::vector<std::vector<double>> ms(scenes.size());
+    std::vector<std::size_t> triangles(scenes.size());
     for (int r = 0; r < rounds; ++r)
         for (std::size_t s = 0; s < scenes.size(); ++s) {
             const auto start = std::chrono::steady_clock::now();
@@ -31,16 +55,20 @@ int main(int argc, char** argv) {
                 const Scene scene = loadScene(scenes[s]);
                 if (r == 0)
                     for (const std::string& note : scene.notes) std::fprintf(stderr, "note: %s\n", note.c_str());
+                triangles[s] = triangleCount(scene);
             } catch (const std::exception& e) {
                 std::fprintf(stderr, "error: %s\n", e.what());
                 return 2;
             }
             ms[s].push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
         }
-    std::printf("| scene | load ms median | min-max | rounds |\n| --- | --- | --- | --- |\n");
+    std::printf("| scene | triangles | load ms median | min-max | rounds |\n| --- | --- | --- | --- | --- |\n");
+    nlohmann::json records = nlohmann::json::array();
     for (std::size_t s = 0; s < scenes.size(); ++s) {
         const SampleSummary sum = summarize(ms[s]);
-        std::printf("| %s | %.1f | %.1f-%.1f | %d |\n", scenes[s].c_str(), sum.median, sum.min, sum.max, rounds);
+        std::printf("| %s | %zu | %.1f | %.1f-%.1f | %d |\n", scenes[s].c_str(), triangles[s], sum.median, sum.min,
+                    sum.max, rounds);
+        records.push_back({{"scene", scenes[s]}, {"triangles", triangles[s]}, {"load", summaryJson(ms[s])}});
     }
-    return 0;
+    return record->write({{"rounds", rounds}, {"scenes", scenes}}, {{"scenes", records}});
 }

@@ -3,13 +3,20 @@
 // (TraceOptions), and every animated built-in with caches off and on.
 // Per variant and frame: the update (pose, tracer, caches) and the render,
 // in wall milliseconds; medians with min-max over the frames of all rounds.
-// Usage: scene_update_speed [--size 1024] [--frames 24] [--rounds 3]
+// With --json FILE it also writes every figure of its table, with the run's
+// settings, machine and build, as one JSON document (bench/BenchmarkRecord.h;
+// the docs quote the runs in docs/bench-runs/scene_update_speed/).
+// Usage: scene_update_speed [--size 1024] [--frames 24] [--rounds 3] [--json FILE]
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "bench/BenchmarkRecord.h"
+#include "core/Parallel.h"
 #include "core/SampleSummary.h"
 #include "scene/BuiltinScenes.h"
 #include "session/RenderSession.h"
@@ -24,7 +31,7 @@ double msSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-struct Variant {
+struct SceneVariant {
     std::string scene;
     std::string label;
     RenderSettings settings;
@@ -40,12 +47,17 @@ int main(int argc, char** argv) {
     app.add_option("--frames", frames, "Frames per round, from time 0 at the scene's fps")->capture_default_str();
     app.add_option("--rounds", rounds, "Rounds; variants interleave within each frame")->capture_default_str();
     app.add_option("--threads", threads, "Worker threads, 0 = all")->capture_default_str();
+    std::filesystem::path jsonPath;
+    app.add_option("--json", jsonPath, "Also write every figure, the settings, machine and build to this JSON file");
     CLI11_PARSE(app, argc, argv);
+    const std::optional<BenchmarkRecord> record =
+        BenchmarkRecord::open("scene_update_speed", argc, argv, jsonPath, Parallel(threads).threadCount());
+    if (!record) return 2;
 
-    std::vector<Variant> variants;
+    std::vector<SceneVariant> variants;
     const auto add = [&](const std::string& scene, const std::string& label, CacheTechnique technique,
                          DeformingMeshUpdate deforming) {
-        Variant v{scene, label, {}, {}, {}, {}};
+        SceneVariant v{scene, label, {}, {}, {}, {}};
         v.settings.width = v.settings.height = size;
         v.settings.threads = threads;
         v.settings.cache.techniqueOverride = technique;
@@ -63,7 +75,7 @@ int main(int argc, char** argv) {
         std::vector<Scene> scenes;
         std::vector<std::unique_ptr<RenderSession>> sessions;
         scenes.reserve(variants.size());
-        for (Variant& v : variants) {
+        for (SceneVariant& v : variants) {
             scenes.push_back(*makeBuiltinScene(v.scene));
             sessions.push_back(std::make_unique<RenderSession>(scenes.back(), v.settings));
         }
@@ -94,11 +106,23 @@ int main(int argc, char** argv) {
         std::snprintf(buffer, sizeof buffer, "%.2f (%.2f–%.2f)", s.median, s.min, s.max);
         return std::string(buffer);
     };
-    for (const Variant& v : variants) {
+    nlohmann::json records = nlohmann::json::array();
+    for (const SceneVariant& v : variants) {
         std::vector<double> share;
         for (std::size_t k = 0; k < v.frameMs.size(); ++k) share.push_back(100.0 * v.updateMs[k] / v.frameMs[k]);
         std::printf("| %s | %s | %s | %s | %s | %s %% |\n", v.scene.c_str(), v.label.c_str(), cell(v.updateMs).c_str(),
                     cell(v.renderMs).c_str(), cell(v.frameMs).c_str(), cell(share).c_str());
+        records.push_back({{"scene", v.scene},
+                           {"variant", v.label},
+                           {"update", summaryJson(v.updateMs)},
+                           {"render", summaryJson(v.renderMs)},
+                           {"frame", summaryJson(v.frameMs)},
+                           {"update_share", summaryJson(share, "percent")}});
     }
-    return 0;
+    return record->write({{"size", size},
+                          {"frames", frames},
+                          {"rounds", rounds},
+                          {"threads", threads},
+                          {"worker_threads", Parallel(threads).threadCount()}},
+                         {{"variants", records}});
 }

@@ -3,11 +3,19 @@
 // sizes every --every frames and, at the end, the growth over the second half
 // (after the cubes have filled); docs/performance.md records a run. The short
 // version with a pass/fail bound is tests/render/MemorySoakTest.cpp.
+// With --json FILE it also writes every figure it prints, with the run's
+// settings, machine and build, as one JSON document (bench/BenchmarkRecord.h;
+// the docs quote the runs in docs/bench-runs/soak/).
 // Usage: soak [--scene room] [--frames 10000] [--size 64] [--cache-res 512] [--technique cct] [--every 500]
+//             [--json FILE]
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <filesystem>
+#include <optional>
 #include <string>
+#include <vector>
 
+#include "bench/BenchmarkRecord.h"
 #include "core/Parallel.h"
 #include "core/ProcessMemory.h"
 #include "render/FramePipeline.h"
@@ -29,6 +37,8 @@ int main(int argc, char** argv) {
     app.add_option("--technique", technique, "cct, cdct or cdct-parity")->capture_default_str();
     app.add_option("--every", every, "Print memory every this many frames")->capture_default_str();
     app.add_option("--threads", threads, "Worker threads, 0 = all")->capture_default_str();
+    std::filesystem::path jsonPath;
+    app.add_option("--json", jsonPath, "Also write every figure, the settings, machine and build to this JSON file");
     CLI11_PARSE(app, argc, argv);
 
     const auto scene = makeBuiltinScene(sceneName);
@@ -37,13 +47,16 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "error: unknown scene or technique, or a non-positive count\n");
         return 2;
     }
+    const Parallel parallel(threads);
+    const std::optional<BenchmarkRecord> record =
+        BenchmarkRecord::open("soak", argc, argv, jsonPath, parallel.threadCount());
+    if (!record) return 2;
     RenderSettings settings;
     settings.width = settings.height = size;
     settings.threads = threads;
     settings.cache.techniqueOverride = *parsedTechnique;
     settings.cache.resolutionOverride = cacheResolution;
     const TraceScene tracer(*scene);
-    const Parallel parallel(threads);
     RayCache cache(*scene, settings.cache);
     const auto pipeline = makeFramePipeline(*scene, tracer, settings, parallel, &cache);
 
@@ -51,6 +64,13 @@ int main(int argc, char** argv) {
                 technique.c_str(), cacheResolution, parallel.threadCount());
     std::printf("%8s %14s %14s %10s %12s\n", "frame", "resident KiB", "heap KiB", "hits %", "invalid %");
     std::size_t residentAtHalf = 0, heapAtHalf = 0;
+    // Kept in memory reserved now, so that recording them grows no heap the soak measures.
+    struct Sample {
+        int frame;
+        double residentKib, heapKib, hitPercent, invalidPercent;
+    };
+    std::vector<Sample> samples;
+    samples.reserve(static_cast<std::size_t>(frames / every + 2));
     for (int f = 0; f < frames; ++f) {
         Image film;
         const FrameStats stats = pipeline->render(scene->cameraPath.cameraAt(scene->camera, f), film);
@@ -61,16 +81,40 @@ int main(int argc, char** argv) {
         if ((f + 1) % every == 0 || f == 0 || f + 1 == frames) {
             const double lookups = stats.cache ? static_cast<double>(stats.cache->lookups()) : 0.0;
             const double hits = stats.cache ? static_cast<double>(stats.cache->hits()) : 0.0;
-            std::printf("%8d %14.0f %14.0f %10.1f %12.2f\n", f + 1, static_cast<double>(residentBytes()) / 1024.0,
-                        static_cast<double>(heapBytesInUse()) / 1024.0, lookups > 0 ? 100.0 * hits / lookups : 0.0,
-                        stats.cache ? stats.cache->invalidPercentBefore() : 0.0);
+            const double residentKib = static_cast<double>(residentBytes()) / 1024.0;
+            const double heapKib = static_cast<double>(heapBytesInUse()) / 1024.0;
+            const double hitPercent = lookups > 0 ? 100.0 * hits / lookups : 0.0;
+            const double invalidPercent = stats.cache ? stats.cache->invalidPercentBefore() : 0.0;
+            std::printf("%8d %14.0f %14.0f %10.1f %12.2f\n", f + 1, residentKib, heapKib, hitPercent, invalidPercent);
             std::fflush(stdout);
+            samples.push_back({f + 1, residentKib, heapKib, hitPercent, invalidPercent});
         }
     }
     const auto kib = [](std::size_t from, std::size_t to) {
         return (static_cast<double>(to) - static_cast<double>(from)) / 1024.0;
     };
+    const double residentGrowth = kib(residentAtHalf, residentBytes()), heapGrowth = kib(heapAtHalf, heapBytesInUse());
     std::printf("growth from frame %d to %d: resident %+.0f KiB, heap %+.0f KiB\n", frames / 2, frames,
-                kib(residentAtHalf, residentBytes()), kib(heapAtHalf, heapBytesInUse()));
-    return 0;
+                residentGrowth, heapGrowth);
+    nlohmann::json sampleRecords = nlohmann::json::array();
+    for (const Sample& s : samples)
+        sampleRecords.push_back({{"frame", s.frame},
+                                 {"resident_kib", s.residentKib},
+                                 {"heap_kib", s.heapKib},
+                                 {"hit_percent", s.hitPercent},
+                                 {"invalid_percent", s.invalidPercent}});
+    return record->write({{"scene", sceneName},
+                          {"frames", frames},
+                          {"size", size},
+                          {"cache_res", cacheResolution},
+                          {"technique", technique},
+                          {"every", every},
+                          {"threads", threads},
+                          {"worker_threads", parallel.threadCount()}},
+                         {{"samples", sampleRecords},
+                          {"second_half",
+                           {{"from_frame", frames / 2},
+                            {"to_frame", frames},
+                            {"resident_growth_kib", residentGrowth},
+                            {"heap_growth_kib", heapGrowth}}}});
 }

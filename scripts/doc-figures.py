@@ -3,6 +3,9 @@
 
     scripts/doc-figures.py            # rewrite the generated blocks
     scripts/doc-figures.py --check    # exit 1 if a doc differs from its source
+    scripts/doc-figures.py --bench-runs DIR --docs TREE
+        # the benchmarks' runs from DIR/<program>/, README.md and docs/*.md of
+        # TREE written or checked (tiny runs tried on a copy of the docs)
 
 Sources and targets:
 - docs/where-caching-pays/results.json (`raycache bench where-caching-pays`,
@@ -25,27 +28,44 @@ Sources and targets:
   experiments harness (figure and, where it judges the figure, status).
   docs/full-run/where-caching-pays/ is copied along but not read: the
   where-caching-pays figures come from the run of their own above;
-- docs/bench-runs/core_speed/*.json and docs/bench-runs/cct_speed/*.json
-  (the standalone benchmarks' `--json` documents, several runs each, written
-  by scripts/record-bench-runs.sh): in docs/performance.md the blocks
-  `bench-core` ("Core frame and floor"), `bench-core-avx2` (the runs at
-  RAYCACHE_LANES=avx2) and `bench-cct` ("CCT against uncached"), and the
-  core and CCT goals rows whose figures come from them; README.md's rows for
-  uncached Whitted ray tracing and CCT filled and moving (status and
-  figure). Times are medians of the runs' medians with min–max over the
-  runs; a ratio is taken within each run, of its medians, and quoted over
-  the runs the same way or as their min–max.
+- docs/bench-runs/<program>/*.json (the standalone benchmarks' `--json`
+  documents, several runs each, written by scripts/record-bench-runs.sh):
+  - core_speed and cct_speed: in docs/performance.md the blocks `bench-core`
+    ("Core frame and floor"), `bench-core-avx2` (the runs at
+    RAYCACHE_LANES=avx2) and `bench-cct` ("CCT against uncached"), and the
+    core and CCT goals rows whose figures come from them; README.md's rows
+    for uncached Whitted ray tracing and CCT filled and moving (status and
+    figure);
+  - hybrid_speed: the block `bench-hybrid` ("Hybrid pipeline") and
+    README.md's hybrid row (status and figure);
+  - moving_cache: the block `bench-moving-cache` ("CCT along a moving
+    camera");
+  - scene_update_speed: the block `bench-scene-update` ("Dynamic scenes")
+    and docs/dynamic-scenes.md's table, the block `bench-scene-update-table`;
+  - grids_speed (torus 100k, and any other model recorded beside it): the
+    block `bench-grids` ("Grids") and the goals row of the rays alone;
+  - soak and scene_load_speed: the blocks `bench-soak` and
+    `bench-scene-load` ("Memory and loading"); with dragon-hall in the runs,
+    the goals row of loading the dragon and README.md's figure for meshes.
+  Times are medians of the runs' medians with min–max over the runs; a
+  ratio is taken within each run, of its medians, and quoted over the runs
+  the same way or as their min–max. The runs of core_speed and cct_speed
+  are committed, and a missing folder of theirs is an error; for the other
+  programs a folder without runs leaves their blocks, rows and README cells
+  as they are, and the script says "not generated: no runs in …" and how to
+  record them (their hand-written text names its source).
 Each block has one provenance line (machine, threads, lane level, size,
 date, commit, from the run's `environment`; for the benchmarks' runs also
 their number); a goals row is replaced whole,
 keyed by its start; a README row must contain its generated phrase (the
 check looks for it in the row) or, for the full run's and the benchmarks'
 rows, hold exactly the generated cells. Judgements ("met?", "slower than …", "not met") are
-generated from the figure and its goal. Sentences and rows whose figures come
-from other benchmarks (`grids_speed`, `scene_update_speed`, …) or from
-`cct_speed` runs on other scenes stay written by hand. A ctest test
-(`doc_figures`) runs the check mode; it fails with one line when
-docs/full-run/ or a folder of docs/bench-runs/ is missing or empty.
+generated from the figure and its goal. Sentences whose figures come from
+elsewhere (a log entry, another machine, `cct_speed` runs on other scenes,
+moving_cache's multi-resolution runs) stay written by hand and name their
+source. A ctest test (`doc_figures`) runs the check mode; it fails with one
+line when docs/full-run/ or a folder of core_speed's or cct_speed's runs is
+missing or empty; `doc_figures_tests` tries the script on --tiny runs.
 """
 import argparse
 import glob
@@ -89,6 +109,17 @@ CORE_PLAIN = 0.5  # uncached frame over the plain Embree Whitted loop's
 CORE_FLOOR = 1.3  # ideal frame over the floor
 CCT_FILLED = 2.0  # CCT with filled caches over uncached
 CCT_MISS = 1.1  # a miss over the plain trace it replaces
+HYBRID_BEGIN = "<!-- figures:bench-hybrid -->"
+MOVING_BEGIN = "<!-- figures:bench-moving-cache -->"
+UPDATE_BEGIN = "<!-- figures:bench-scene-update -->"
+UPDATE_TABLE_BEGIN = "<!-- figures:bench-scene-update-table -->"
+GRIDS_SPEED_BEGIN = "<!-- figures:bench-grids -->"
+SOAK_BEGIN = "<!-- figures:bench-soak -->"
+LOAD_BEGIN = "<!-- figures:bench-scene-load -->"
+GRIDS_SPEED_MODEL = "torus 100k"  # grids_speed's default model, the one its goal names
+GRIDS_RAYS = 1.5  # the grids' rays alone over Embree's through a prebuilt hierarchy
+LOAD_SCENE = "dragon-hall"  # the scene of the loading goal
+LOAD_SECONDS = 1.5
 LANE_LEVEL_NAMES = {"avx512": "AVX-512", "avx2": "AVX2", "baseline": "baseline x86-64"}
 DYNAMIC_ANCHOR = ("results-sample-full.md#dynamic-scenes-cct-with-per-block-invalidation-against-uncached-along-the-"
                   "built-in-animations")
@@ -661,21 +692,30 @@ def grids_figures(run):
     return block, rows, readme
 
 
-def load_bench_runs(program):
-    """Every committed run of one standalone benchmark, docs/bench-runs/<program>/*.json
-    (scripts/record-bench-runs.sh), in file order."""
-    folder = os.path.join(BENCH_RUNS, program)
+def shown(path):
+    """`path` as the messages name it: from the checkout's root when inside it."""
+    relative = os.path.relpath(path, ROOT)
+    return path if relative.startswith("..") else relative
+
+
+def load_bench_runs(bench_runs, program, required=True):
+    """Every run of one standalone benchmark, <bench_runs>/<program>/*.json
+    (scripts/record-bench-runs.sh), in file order. None of them: an exit with
+    one line when `required`, else an empty list."""
+    folder = os.path.join(bench_runs, program)
     files = sorted(glob.glob(os.path.join(folder, "*.json")))
     if not files:
-        sys.exit(f"doc-figures: docs/bench-runs/{program}/ is missing or holds no runs: record them with "
-                 "scripts/record-bench-runs.sh")
+        if not required:
+            return []
+        sys.exit(f"doc-figures: {shown(folder)}/ is missing or holds no runs: record them with "
+                 f"scripts/record-bench-runs.sh --programs {program}")
     runs = []
     for path in files:
         with open(path, encoding="utf-8") as f:
             run = json.load(f)
         if run.get("benchmark") != program:
             sys.exit(f"doc-figures: {os.path.relpath(path, ROOT)} is not a {program} run")
-        run["file"] = os.path.relpath(path, ROOT)
+        run["file"] = shown(path)
         runs.append(run)
     return runs
 
@@ -707,13 +747,16 @@ def same_runs(runs, what):
     return runs
 
 
-def by_lanes(runs, program):
+def by_lanes(runs, program, one_command=True):
     """The runs at the processor's default lane level and those at
-    RAYCACHE_LANES=avx2; any other level is not quoted."""
+    RAYCACHE_LANES=avx2; any other level is not quoted. `one_command`: each
+    group must be of one command (same_runs)."""
     default = [r for r in runs if not r["lanes_requested"]]
     avx2 = [r for r in runs if r["lanes_requested"] == "avx2"]
     if not default:
         sys.exit(f"doc-figures: docs/bench-runs/{program}/ has no run at the default lane level")
+    if not one_command:
+        return default, avx2
     return same_runs(default, program), same_runs(avx2, program) if avx2 else []
 
 
@@ -722,8 +765,8 @@ def runs_provenance(runs):
     env = runs[0]["environment"]
     dates = sorted({r["environment"]["started_at"][:10] for r in runs})
     commits = sorted({r["git_commit"][:7] + (" with uncommitted changes" if r["dirty"] else "") for r in runs})
-    size = runs[0]["settings"]["size"]
-    return (f"{env['cpu_model']}, {plural(env['worker_threads'], 'thread')}, {env['version']['lanes']}, {size}², "
+    size = f"{runs[0]['settings']['size']}², " if "size" in runs[0]["settings"] else ""
+    return (f"{env['cpu_model']}, {plural(env['worker_threads'], 'thread')}, {env['version']['lanes']}, {size}"
             f"{dates[0] if len(dates) == 1 else dates[0] + ' to ' + dates[-1]}, commit {', '.join(commits)}, "
             f"{plural(len(runs), 'run')}")
 
@@ -737,11 +780,12 @@ def scene_label(scene):
     return os.path.splitext(os.path.basename(scene))[0]
 
 
-def per_scene(runs, scene, value):
-    """`value` of `scene` in every run (the first run's scenes are the ones quoted)."""
+def per_scene(runs, scene, value, table="scenes"):
+    """`value` of `scene` in the list `table` of every run (the first run's
+    scenes are the ones quoted)."""
     out = []
     for r in runs:
-        s = next((s for s in r["scenes"] if s["scene"] == scene), None)
+        s = next((s for s in r[table] if s["scene"] == scene), None)
         if s is None:
             sys.exit(f"doc-figures: {r['file']} has no scene {scene} (the other runs have it)")
         out.append(value(s))
@@ -933,6 +977,232 @@ def cct_figures(runs):
     return block, rows, readme_filled, readme_moving
 
 
+def value_cell(values, form):
+    """One value when the runs agree at the precision `form` shows, else the
+    median with min–max over the runs."""
+    lo, mid, hi = (form.format(v) for v in (min(values), statistics.median(values), max(values)))
+    return mid if lo == hi else f"{mid} ({lo}–{hi})"
+
+
+def generated_from(program):
+    return f"generated by `scripts/doc-figures.py` from `docs/bench-runs/{program}/`"
+
+
+def hybrid_figures(runs):
+    """The paragraph of performance.md's "Hybrid pipeline" (hybrid_speed's
+    whole frames, part b) and README.md's hybrid row."""
+    default, _ = by_lanes(runs, "hybrid_speed")
+    first = default[0]
+    if not first["whole_frames"]:
+        sys.exit(f"doc-figures: {first['file']} has no whole frames: record hybrid_speed with --parts b")
+
+    def frames(scene, value):
+        return per_scene(default, scene, value, "whole_frames")
+
+    def ms(variant):
+        return lambda f: f[variant]["median_ms"]
+
+    def scene_text(scene):
+        raster = frames(scene, lambda f: f["hybrid_opengl_phases"]["raster"]["median_ms"])
+        return (f"on {scene} the hybrid frame with the OpenGL G-buffer on llvmpipe takes "
+                f"{ms_cell(frames(scene, ms('hybrid_opengl')))} ms against {ms_cell(frames(scene, ms('ray')))} for the "
+                f"ray frame, {ratio_cell(frames(scene, lambda f: f['ray_over_hybrid_opengl']))} its speed; the "
+                f"llvmpipe raster alone takes {ms_cell(raster)} ms")
+
+    scenes = [f["scene"] for f in first["whole_frames"]]
+    parts = [scene_text(scene) for scene in scenes]
+    text = (f"`{bench_command(first)}` (no caches; {runs_provenance(default)}; {generated_from('hybrid_speed')}), "
+            "medians of the runs' medians (min–max over the runs): " + "; ".join(parts) + ".")
+    scene = scenes[0]
+    ratios = frames(scene, lambda f: f["ray_over_hybrid_opengl"])
+    status = ("works, slower than the ray pipeline" if all(v < 1.0 for v in ratios) else "works"
+              if all(v >= 1.0 for v in ratios) else "works, slower than the ray pipeline in some runs")
+    readme = {1: status, 2: f"{scene}: {span(ratios)} the ray pipeline"}
+    return "\n".join([HYBRID_BEGIN, wrap(text), END]), readme
+
+
+def moving_cache_figures(runs):
+    """The paragraph of performance.md's "CCT along a moving camera"
+    (moving_cache): on grid-32 (or the first scene run), each cached
+    variant's hits at the path's last frame, mean PSNR, cube memory and
+    speed-up over uncached."""
+    default, _ = by_lanes(runs, "moving_cache")
+    first = default[0]
+    frames = first["settings"]["frames"]
+
+    def values(scene, key, value):
+        return per_scene(default, scene, lambda s: value(s["variants"][key]))
+
+    def variant(scene, key, label):
+        if key not in first["scenes"][0]["variants"]:
+            return None
+        hits = value_cell(values(scene, key, lambda v: v["frames"][-1]["hit_percent"]), "{:.1f}")
+        psnr = values(scene, key, lambda v: v["mean_psnr_db"])
+        psnr_text = "identical images" if None in psnr else f"{value_cell(psnr, '{:.2f}')} dB"
+        mib = value_cell(values(scene, key, lambda v: v["frames"][-1]["cache_mib"]), "{:.0f}")
+        speedup = span(values(scene, key, lambda v: v["speedup"]))
+        if key == "cct" and scene == GOAL_SCENE:
+            speedup = f"**{speedup}**"
+        return f"{label} {hits} %, {psnr_text}, {speedup} in {mib} MiB"
+
+    def scene_text(scene):
+        parts = [p for p in (variant(scene, "cct", "CCT"),
+                             variant(scene, "cct_multi_res", "multi-resolution cubes"),
+                             variant(scene, "cct_from_view", "cubes sized from the view")) if p]
+        fills = [values(scene, key, lambda v: v["speedup"]) for key in ("cct_fill", "cct_from_view_fill")
+                 if key in first["scenes"][0]["variants"]]
+        if fills:
+            parts.append(f"with the visible-surface fill {span([v for f in fills for v in f])}")
+        return ", ".join(parts)
+
+    scenes = first["settings"]["scenes"]
+    scene = GOAL_SCENE if GOAL_SCENE in scenes else scenes[0]
+    text = (f"`{bench_command(first)}` ({runs_provenance(default)}; {generated_from('moving_cache')}), {scene}'s "
+            f"orbit from empty caches; per variant its hits at frame {frames}, mean PSNR against uncached over frames "
+            f"2–{frames}, speed-up over uncached (each run's medians) and cubes' memory, min–max over the runs: "
+            f"{scene_text(scene)}.")
+    return "\n".join([MOVING_BEGIN, wrap(text), END])
+
+
+def scene_update_figures(runs):
+    """The sentence of performance.md's "Dynamic scenes" and the table of
+    docs/dynamic-scenes.md (scene_update_speed)."""
+    default, _ = by_lanes(runs, "scene_update_speed")
+    first = default[0]
+    settings = first["settings"]
+    rows = [(v["scene"], v["variant"]) for v in first["variants"]]
+
+    def values(row, value):
+        out = []
+        for r in default:
+            v = next((v for v in r["variants"] if (v["scene"], v["variant"]) == row), None)
+            if v is None:
+                sys.exit(f"doc-figures: {r['file']} has no {row[0]} {row[1]} (the other runs have it)")
+            out.append(value(v))
+        return out
+
+    def cell(row, part, unit="ms"):
+        return value_cell(values(row, lambda v: v[part][f"median_{unit}"]), "{:.2f}")
+
+    refit, rebuild = ("cloth", "refit, uncached"), ("cloth", "rebuild, uncached")
+    for row in (refit, rebuild):
+        if row not in rows:
+            sys.exit(f"doc-figures: {first['file']} has no {row[0]} {row[1]}")
+    shares = {row: statistics.median(values(row, lambda v: v["update_share"]["median_percent"]))
+              for row in rows if row != rebuild}
+    largest = max(shares, key=shares.get)
+    command = f"`{bench_command(first)}` ({runs_provenance(default)}; {generated_from('scene_update_speed')}"
+    text = (f"{command}; the table: [dynamic-scenes.md](dynamic-scenes.md#measured-benchmarksscene_update_speed)): "
+            f"every update but the cloth's rebuild at most {shares[largest]:.1f} % of the frame ({largest[0]}, "
+            f"{largest[1]}: the median over a run's frames, median of the runs); the cloth's refit "
+            f"{cell(refit, 'update')} ms against {cell(rebuild, 'update')} ms for a rebuild.")
+    block = "\n".join([UPDATE_BEGIN, wrap(text), END])
+    summarized = (settings["frames"] - 1) * settings["rounds"]
+    lines = [
+        UPDATE_TABLE_BEGIN,
+        wrap(f"{command}). Variants interleave frame by frame; per run the median over its "
+             f"{plural(summarized, 'frame')} (frame 0 of each round left out), here the median of the runs' "
+             "medians (min–max over the runs):"),
+        "",
+        "| scene | variant | update ms | render ms | frame ms | update share of the frame |",
+        "|---|---|---|---|---|---|",
+    ]
+    lines += [f"| {row[0]} | {row[1]} | {cell(row, 'update')} | {cell(row, 'render')} | {cell(row, 'frame')} | "
+              f"{cell(row, 'update_share', 'percent')} % |" for row in rows]
+    lines += [
+        "",
+        wrap(f"**Refit**: {cell(refit, 'update')} ms against {cell(rebuild, 'update')} ms for a rebuild at MEDIUM; "
+             f"the refitted tree renders in {cell(refit, 'render')} against {cell(rebuild, 'render')} ms."),
+        END,
+    ]
+    return block, "\n".join(lines)
+
+
+def grids_speed_figures(runs):
+    """The paragraph of performance.md's "Grids" (grids_speed, its default
+    model and any other recorded) and the goals row of the rays alone."""
+    default, _ = by_lanes(runs, "grids_speed", one_command=False)
+    models = {}
+    for r in default:
+        models.setdefault(r["settings"]["model"], []).append(r)
+    if GRIDS_SPEED_MODEL not in models:
+        sys.exit(f"doc-figures: docs/bench-runs/grids_speed/ has no run on {GRIDS_SPEED_MODEL}, its goal's model")
+    main = same_runs(models.pop(GRIDS_SPEED_MODEL), "grids_speed")
+
+    def ms(group, tracer, part="total"):
+        return [r[tracer][part]["median_ms"] for r in group]
+
+    rays = [r["rays_over_embree"] for r in main]
+    text = (f"`{bench_command(main[0])}` ({runs_provenance(main)}; {generated_from('grids_speed')}), medians of the "
+            f"runs' medians (min–max over the runs): {GRIDS_SPEED_MODEL} {ms_cell(ms(main, 'grids'))} against "
+            f"{ms_cell(ms(main, 'embree'))} ms for Embree's LOW rebuild and its rays, "
+            f"{ratio_cell([r['total_over_embree'] for r in main])} Embree's time; the rays alone take "
+            f"{ratio_cell(rays)} the time of Embree's through the hierarchy it has just built, against a goal of "
+            f"{GRIDS_RAYS:g}×.")
+    for model, group in sorted(models.items()):
+        group = same_runs(group, "grids_speed")
+        builds = [b for r in group for b in r["embree"]["build"]["samples_ms"]]
+        decided = ", so the ratio there is decided by Embree's build time of the moment" if max(builds) >= 2 * min(
+            builds) else ""
+        text += (f" `{bench_command(group[0])}` ({plural(len(group), 'run')}, taking turns with those above): "
+                 f"{model} {ms_cell(ms(group, 'grids'))} against {ms_cell(ms(group, 'embree'))} ms; Embree's "
+                 f"rebuild alone took {ms_span(builds)} ms from round to round{decided}.")
+    row = (f"| grids | rays alone within {GRIDS_RAYS:g}× of a prebuilt BVH ({GRIDS_SPEED_MODEL}) | "
+           f"{ratio_cell(rays)} (`grids_speed`) | {at_most_over_runs(rays, GRIDS_RAYS)} |")
+    return "\n".join([GRIDS_SPEED_BEGIN, wrap(text), END]), {"| grids | rays alone within": row}
+
+
+def soak_figures(runs):
+    """The sentence of performance.md's "Memory and loading" on soak."""
+    runs, _ = by_lanes(runs, "soak")
+    first = runs[0]
+    settings = first["settings"]
+
+    def sample(run, frame):
+        return next(s for s in run["samples"] if s["frame"] == frame)
+
+    every, frames = settings["every"], settings["frames"]
+    at_every = value_cell([sample(r, every)["resident_kib"] for r in runs], "{:.0f}")
+    at_end = value_cell([sample(r, frames)["resident_kib"] for r in runs], "{:.0f}")
+    resident = [r["second_half"]["resident_growth_kib"] for r in runs]
+    heap = [r["second_half"]["heap_growth_kib"] for r in runs]
+    half = first["second_half"]
+    flat = "flat" if all(round(v) == 0 for v in resident) else "growing"
+    text = (f"`{bench_command(first)}` ({settings['scene']}'s orbit, {settings['technique'].upper()} with "
+            f"{settings['cache_res']}² faces; {runs_provenance(runs)}; {generated_from('soak')}): resident memory "
+            f"{flat} over the second half, {value_cell(resident, '{:+.0f}')} KiB from frame {half['from_frame']} to "
+            f"{half['to_frame']} (the live heap {value_cell(heap, '{:+.0f}')} KiB); {at_every} KiB at frame {every}, "
+            f"{at_end} KiB at frame {frames}.")
+    return "\n".join([SOAK_BEGIN, wrap(text), END])
+
+
+def scene_load_figures(runs):
+    """The sentence of performance.md's "Memory and loading" on loading
+    scenes, the goals row of the loading goal and README.md's meshes row."""
+    default, _ = by_lanes(runs, "scene_load_speed")
+    first = default[0]
+
+    def seconds(scene):
+        return [ms / 1000.0 for ms in per_scene(default, scene, lambda s: s["load"]["median_ms"])]
+
+    def triangles(scene):
+        return f"{per_scene(default, scene, lambda s: s['triangles'])[0] / 1000:.0f}k"
+
+    scenes = first["settings"]["scenes"]
+    loads = ", ".join(f"{scene} ({triangles(scene)} triangles) in {value_cell(seconds(scene), '{:.2f}')} s"
+                      for scene in scenes)
+    text = (f"`{bench_command(first)}` (loading alone, without the ray tracing structures; {runs_provenance(default)}; "
+            f"{generated_from('scene_load_speed')}), medians of the runs' medians (min–max over the runs): {loads}.")
+    rows, readme = {}, {}
+    if LOAD_SCENE in scenes:
+        load = seconds(LOAD_SCENE)
+        rows["| scenes | the"] = (
+            f"| scenes | the {triangles(LOAD_SCENE)}-triangle dragon loads in ≤ {LOAD_SECONDS:g} s | "
+            f"{value_cell(load, '{:.2f}')} s | {at_most_over_runs(load, LOAD_SECONDS)} |")
+        readme = {2: f"the {triangles(LOAD_SCENE)}-triangle Stanford dragon loads in {statistics.median(load):.2f} s"}
+    return "\n".join([LOAD_BEGIN, wrap(text), END]), rows, readme
+
+
 def replace_rows(text, rows, path):
     """`text` with the one line starting with each key of `rows` replaced by
     that key's row."""
@@ -984,7 +1254,7 @@ def regenerate(path, edits, check, failures):
     for what, edit in edits:
         before, new = new, edit(new)
         if check and new != before:
-            failures.append(f"{os.path.relpath(path, ROOT)}: {what} differs from its source")
+            failures.append(f"{shown(path)}: {what} differs from its source")
     if new != text and not check:
         with open(path, "w", encoding="utf-8") as f:
             f.write(new)
@@ -993,7 +1263,14 @@ def regenerate(path, edits, check, failures):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--check", action="store_true", help="compare instead of writing; exit 1 on a difference")
+    parser.add_argument("--bench-runs", default=BENCH_RUNS, metavar="DIR",
+                        help="the standalone benchmarks' runs, DIR/<program>/*.json (default docs/bench-runs)")
+    parser.add_argument("--docs", default=ROOT, metavar="DIR",
+                        help="the tree whose README.md and docs/*.md are written or checked (default this checkout)")
     args = parser.parse_args()
+    performance = os.path.join(args.docs, "docs", "performance.md")
+    dynamic_scenes = os.path.join(args.docs, "docs", "dynamic-scenes.md")
+    readme = os.path.join(args.docs, "README.md")
     full = load_full_run()
     with open(SOURCE, encoding="utf-8") as f:
         block, readme_phrase = figures(json.load(f))
@@ -1004,39 +1281,76 @@ def main():
     harness_block, fill_rows, harness_readme = harness_figures(full)
     dynamic_block, dynamic_rows, dynamic_readme = dynamic_figures(full)
     grids_block, grids_rows, grids_readme = grids_figures(full)
-    core_table, core_avx2, core_rows, core_readme = core_figures(load_bench_runs("core_speed"))
-    cct_block, cct_rows, cct_readme_filled, cct_readme_moving = cct_figures(load_bench_runs("cct_speed"))
+    core_table, core_avx2, core_rows, core_readme = core_figures(load_bench_runs(args.bench_runs, "core_speed"))
+    cct_block, cct_rows, cct_readme_filled, cct_readme_moving = cct_figures(
+        load_bench_runs(args.bench_runs, "cct_speed"))
 
-    def blocks(*pairs):
-        return [(f"the block {begin}", lambda t, b=b, begin=begin: replace_block(t, b, PERFORMANCE, begin))
+    # The benchmarks whose runs are recorded later: without runs their
+    # blocks, rows and README cells stay as they are.
+    not_generated = []
+    performance_blocks = [(BEGIN, block), (RENDER_CACHE_BEGIN, rc_block), (TABLES_BEGIN, tables_block),
+                          (DYNAMIC_BEGIN, dynamic_block), (GRIDS_BEGIN, grids_block), (HARNESS_BEGIN, harness_block),
+                          (CORE_BEGIN, core_table), (CORE_AVX2_BEGIN, core_avx2), (CCT_BEGIN, cct_block)]
+    goal_rows = [render_cache_goal_rows(render_cache_run), tables_rows, fill_rows, dynamic_rows, grids_rows,
+                 core_rows, cct_rows]
+    dynamic_scenes_blocks = [(ORACLE_BEGIN, oracle_block(full))]
+    readme_cells = {"| Whitted ray tracing": core_readme, "| CCT, caches filled": cct_readme_filled,
+                    "| CCT, camera moving": cct_readme_moving, "| CDCT, parallax-correct": cdct_readme,
+                    "| Animated scenes": dynamic_readme, "| Grids for primary": grids_readme,
+                    "| Experiments harness": harness_readme}
+
+    def recorded(program):
+        runs = load_bench_runs(args.bench_runs, program, required=False)
+        if not runs:
+            folder = shown(os.path.join(args.bench_runs, program))
+            not_generated.append(f"doc-figures: not generated: no runs in {folder} (record them: "
+                                 f"scripts/record-bench-runs.sh --programs {program})")
+        return runs
+
+    if runs := recorded("hybrid_speed"):
+        hybrid_block, readme_cells["| Hybrid pipeline"] = hybrid_figures(runs)
+        performance_blocks.append((HYBRID_BEGIN, hybrid_block))
+    if runs := recorded("moving_cache"):
+        performance_blocks.append((MOVING_BEGIN, moving_cache_figures(runs)))
+    if runs := recorded("scene_update_speed"):
+        update_block, update_table = scene_update_figures(runs)
+        performance_blocks.append((UPDATE_BEGIN, update_block))
+        dynamic_scenes_blocks.append((UPDATE_TABLE_BEGIN, update_table))
+    if runs := recorded("grids_speed"):
+        grids_speed_block, grids_speed_rows = grids_speed_figures(runs)
+        performance_blocks.append((GRIDS_SPEED_BEGIN, grids_speed_block))
+        goal_rows.append(grids_speed_rows)
+    if runs := recorded("soak"):
+        performance_blocks.append((SOAK_BEGIN, soak_figures(runs)))
+    if runs := recorded("scene_load_speed"):
+        load_block, load_rows, load_readme = scene_load_figures(runs)
+        performance_blocks.append((LOAD_BEGIN, load_block))
+        goal_rows.append(load_rows)
+        if load_readme:
+            readme_cells["| Meshes and glTF"] = load_readme
+
+    def blocks(path, pairs):
+        return [(f"the block {begin}", lambda t, b=b, begin=begin: replace_block(t, b, path, begin))
                 for begin, b in pairs]
 
     def rows(table):
-        return [(f"the row \"{start}…\"", lambda t, start=start, row=row: replace_rows(t, {start: row}, PERFORMANCE))
+        return [(f"the row \"{start}…\"", lambda t, start=start, row=row: replace_rows(t, {start: row}, performance))
                 for start, row in table.items()]
 
     failures = []
-    regenerate(PERFORMANCE, blocks((BEGIN, block), (RENDER_CACHE_BEGIN, rc_block), (TABLES_BEGIN, tables_block),
-                                   (DYNAMIC_BEGIN, dynamic_block), (GRIDS_BEGIN, grids_block),
-                                   (HARNESS_BEGIN, harness_block), (CORE_BEGIN, core_table),
-                                   (CORE_AVX2_BEGIN, core_avx2), (CCT_BEGIN, cct_block))
-               + rows(render_cache_goal_rows(render_cache_run)) + rows(tables_rows) + rows(fill_rows)
-               + rows(dynamic_rows) + rows(grids_rows) + rows(core_rows) + rows(cct_rows), args.check, failures)
-    regenerate(DYNAMIC_SCENES, [(f"the block {ORACLE_BEGIN}",
-                                 lambda t: replace_block(t, oracle_block(full), DYNAMIC_SCENES, ORACLE_BEGIN))],
+    regenerate(performance, blocks(performance, performance_blocks) + [e for t in goal_rows for e in rows(t)],
                args.check, failures)
-    readme_rows = [
-        ("| Whitted ray tracing", lambda t: row_cells(t, "| Whitted ray tracing", core_readme, README)),
-        ("| CCT, caches filled", lambda t: row_cells(t, "| CCT, caches filled", cct_readme_filled, README)),
-        ("| CCT, camera moving", lambda t: row_cells(t, "| CCT, camera moving", cct_readme_moving, README)),
-        ("| `--cache-policy auto`", lambda t: row_phrase(t, "| `--cache-policy auto`", readme_phrase, 2, README)),
-        ("| Render Cache", lambda t: row_phrase(t, "| Render Cache", rc_phrase, 2, README)),
-        ("| CDCT, parallax-correct", lambda t: row_cells(t, "| CDCT, parallax-correct", cdct_readme, README)),
-        ("| Animated scenes", lambda t: row_cells(t, "| Animated scenes", dynamic_readme, README)),
-        ("| Grids for primary", lambda t: row_cells(t, "| Grids for primary", grids_readme, README)),
-        ("| Experiments harness", lambda t: row_cells(t, "| Experiments harness", harness_readme, README)),
+    regenerate(dynamic_scenes, blocks(dynamic_scenes, dynamic_scenes_blocks), args.check, failures)
+    readme_edits = [(f"the row \"{start}…\"", lambda t, start=start, cells=cells: row_cells(t, start, cells, readme))
+                    for start, cells in readme_cells.items()]
+    readme_edits += [
+        ("the row \"| `--cache-policy auto`…\"",
+         lambda t: row_phrase(t, "| `--cache-policy auto`", readme_phrase, 2, readme)),
+        ("the row \"| Render Cache…\"", lambda t: row_phrase(t, "| Render Cache", rc_phrase, 2, readme)),
     ]
-    regenerate(README, [(f"the row \"{start}…\"", edit) for start, edit in readme_rows], args.check, failures)
+    regenerate(readme, readme_edits, args.check, failures)
+    for line in not_generated:
+        print(line)
     for failure in failures:
         print(failure, file=sys.stderr)
     if failures:

@@ -2,13 +2,16 @@
 
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <system_error>
+#include <vector>
 
 #include "bench/ResultsJson.h"
 #include "core/Errors.h"
 #include "core/LaneLevels.h"
+#include "core/SampleSummary.h"
 
 namespace raycache {
 
@@ -50,13 +53,23 @@ BenchmarkRecord::BenchmarkRecord(std::string benchmark, int argc, const char* co
     if (!path_.empty()) checkWritableJsonPath(path_);
 }
 
-void BenchmarkRecord::write(const nlohmann::json& settings, const nlohmann::json& scenes) const {
-    if (path_.empty()) return;
+std::optional<BenchmarkRecord> BenchmarkRecord::open(std::string benchmark, int argc, const char* const* argv,
+                                                     std::filesystem::path jsonPath, int workerThreads) {
+    try {
+        return BenchmarkRecord(std::move(benchmark), argc, argv, std::move(jsonPath), workerThreads);
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return std::nullopt;
+    }
+}
+
+int BenchmarkRecord::write(const nlohmann::json& settings, const nlohmann::json& figures) const {
+    if (path_.empty()) return 0;
     const std::string& commit = environment_.build.gitCommit;
     const bool dirty = commit.size() > kDirtySuffix.size() && commit.ends_with(kDirtySuffix);
     const char* requested = std::getenv("RAYCACHE_LANES");
     const double others = othersCpuShare(cpuAtStart_, currentCpuSample());
-    const nlohmann::json document = {
+    nlohmann::json document = {
         {"benchmark", benchmark_},
         {"command", command_},
         {"environment", toJson(environment_)},
@@ -67,9 +80,15 @@ void BenchmarkRecord::write(const nlohmann::json& settings, const nlohmann::json
         {"others_cpu_share", others >= 0.0 ? nlohmann::json(others) : nlohmann::json()},
         {"load_average_after", currentLoadAverage().toString()},
         {"settings", settings},
-        {"scenes", scenes},
     };
-    writeJsonFile(path_, document);
+    document.update(figures);
+    try {
+        writeJsonFile(path_, document);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 1;
+    }
+    return 0;
 }
 
 std::string shellCommandLine(int argc, const char* const* argv) {
@@ -90,13 +109,22 @@ std::string shellCommandLine(int argc, const char* const* argv) {
     return line;
 }
 
-nlohmann::json benchmarkVariantJson(const VariantTimes& times) {
+nlohmann::json benchmarkVariantJson(VariantTimes times, int framesPerRun) {
+    for (double& ms : times.milliseconds) ms /= framesPerRun;
+    for (double& ms : times.warmupMilliseconds) ms /= framesPerRun;
+    times.work /= static_cast<std::uint64_t>(framesPerRun);
     nlohmann::json json = toJson(times);
     json["name"] = times.name;
     const double median = times.median();
     json["rays"] = times.work;
     json["mrays_per_s"] = finiteOrNull(static_cast<double>(times.work) / (median * 1e3));
     return json;
+}
+
+nlohmann::json summaryJson(std::span<const double> samples, const std::string& unit) {
+    const SampleSummary s = summarize(samples);
+    return {{"samples_" + unit, std::vector<double>(samples.begin(), samples.end())},
+            {"median_" + unit, s.median}, {"min_" + unit, s.min}, {"max_" + unit, s.max}};
 }
 
 }  // namespace raycache
