@@ -88,6 +88,14 @@ nlohmann::json variantJson(const CacheVariant& v) {
     return json;
 }
 
+// The cubes' face resolution: the one asked for, else the largest the scene's objects ask for.
+int faceResolution(const Scene& scene, std::optional<int> resolution) {
+    if (resolution) return *resolution;
+    int largest = 0;
+    for (const SceneObject& o : scene.objects) largest = std::max(largest, o.material.cache.faceResolution);
+    return largest;
+}
+
 RenderSettings settingsFor(int width, int height, int threads, const CacheVariant& v, std::optional<int> resolution) {
     RenderSettings s;
     s.width = width;
@@ -159,7 +167,7 @@ nlohmann::json quality(const std::string& sceneName, int size, int frames, int t
     return {{"scene", sceneName},
             {"size", size},
             {"frames", frames},
-            {"cache_res", resolution ? nlohmann::json(*resolution) : nlohmann::json()},
+            {"face_resolution", faceResolution(*scene, resolution)},
             {"variants", rows},
             {"improvements_one_by_one", ladder}};
 }
@@ -241,7 +249,7 @@ nlohmann::json speed(int width, int height, int threads, int warmup, int rounds,
         tables.push_back({{"scene", row.scene},
                           {"width", width},
                           {"height", height},
-                          {"cache_res", resolution ? nlohmann::json(*resolution) : nlohmann::json()},
+                          {"face_resolution", faceResolution(*scene, resolution)},
                           {"variants", rows},
                           {"improvements_one_by_one", ladder}});
     }
