@@ -6,15 +6,23 @@
 //           still camera, caches filled by the warm-up frames): CCT,
 //           uncached, CDCT parity at the four delta/epsilon pairs and the
 //           improved CDCT, then the improved CDCT's changes one by one.
-// Usage: cdct_speed [--quality-only | --speed-only] [--width 1920 --height 1080] [--rounds 5]
+// With --json FILE it also writes every figure of the tables it prints, with
+// the run's settings, machine and build, as one JSON document
+// (bench/BenchmarkRecord.h; the docs quote the runs in docs/bench-runs/cdct_speed/).
+// Usage: cdct_speed [--quality-only | --speed-only] [--width 1920 --height 1080] [--rounds 5] [--json FILE]
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "bench/BenchmarkRecord.h"
 #include "bench/InterleavedRuns.h"
+#include "bench/ResultsJson.h"
 #include "core/Parallel.h"
 #include "metrics/ImageMetrics.h"
 #include "render/FrameRenderer.h"
@@ -57,6 +65,37 @@ std::vector<CacheVariant> improvementLadder() {
     return rows;
 }
 
+// A float option as it was written (0.2, not 0.200000003).
+double asWritten(float value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", static_cast<double>(value));
+    return std::strtod(text, nullptr);
+}
+
+// What a variant is, for the JSON: its row's name, its technique, the parity
+// search's steps, and how many of the improved CDCT's changes are on.
+nlohmann::json variantJson(const CacheVariant& v) {
+    nlohmann::json json = {{"name", v.name}, {"technique", cacheTechniqueName(v.technique)}};
+    if (v.technique == CacheTechnique::CdctParity) {
+        json["step"] = asWritten(v.step);
+        json["epsilon"] = asWritten(v.epsilon);
+    }
+    if (v.technique == CacheTechnique::Cdct) {
+        const CdctImprovements& i = v.improvements;
+        json["improvements_on"] = int{i.prefill} + i.texelSteps + i.earlyExit + i.skipEmptySpace + i.errorControl +
+                                  i.filter + i.traceViewDependent + i.traceOwnSurface + i.faceWalk;
+    }
+    return json;
+}
+
+// The cubes' face resolution: the one asked for, else the largest the scene's objects ask for.
+int faceResolution(const Scene& scene, std::optional<int> resolution) {
+    if (resolution) return *resolution;
+    int largest = 0;
+    for (const SceneObject& o : scene.objects) largest = std::max(largest, o.material.cache.faceResolution);
+    return largest;
+}
+
 RenderSettings settingsFor(int width, int height, int threads, const CacheVariant& v, std::optional<int> resolution) {
     RenderSettings s;
     s.width = width;
@@ -70,12 +109,14 @@ RenderSettings settingsFor(int width, int height, int threads, const CacheVarian
     return s;
 }
 
-void quality(const std::string& sceneName, int size, int frames, int threads, std::optional<int> resolution,
-             const Parallel& parallel) {
+// One scene's quality table; returns its rows as printed.
+nlohmann::json quality(const std::string& sceneName, int size, int frames, int threads, std::optional<int> resolution,
+                       const Parallel& parallel) {
     const auto scene = makeBuiltinScene(sceneName);
     if (!scene) throw std::invalid_argument("no built-in scene named '" + sceneName + "'");
     const TraceScene tracer(*scene);
     std::vector<CacheVariant> variants{{"CCT", CacheTechnique::Cct}, {"CDCT parity 0.4/0.05", CacheTechnique::CdctParity}};
+    const std::size_t ladderStart = variants.size();
     for (const CacheVariant& v : improvementLadder()) variants.push_back(v);
 
     const CacheVariant none{"uncached", CacheTechnique::None};
@@ -88,7 +129,9 @@ void quality(const std::string& sceneName, int size, int frames, int threads, st
                 sceneName.c_str(), size, size, frames, resolution ? std::to_string(*resolution).c_str() : "512 (scene)");
     std::printf("| variant | mean PSNR frames 2-%d (dB) | min | last frame | hit rate | rejected |\n", frames);
     std::printf("| --- | --- | --- | --- | --- | --- |\n");
-    for (const CacheVariant& v : variants) {
+    nlohmann::json rows = nlohmann::json::array(), ladder = nlohmann::json::array();
+    for (std::size_t row = 0; row < variants.size(); ++row) {
+        const CacheVariant& v = variants[row];
         const RenderSettings settings = settingsFor(size, size, threads, v, resolution);
         RayCache cache(*scene, settings.cache);
         const FrameRenderer renderer(*scene, tracer, settings, parallel, &cache);
@@ -108,10 +151,25 @@ void quality(const std::string& sceneName, int size, int frames, int threads, st
             rejected += stats.cache->rejected();
         }
         const double n = static_cast<double>(lookups ? lookups : 1);
-        std::printf("| %s | %.2f | %.2f | %.2f | %.1f%% | %.1f%% |\n", v.name.c_str(), sum / (frames - 1), lowest, last,
-                    100.0 * static_cast<double>(hits) / n, 100.0 * static_cast<double>(rejected) / n);
+        const double mean = sum / (frames - 1), hitPercent = 100.0 * static_cast<double>(hits) / n,
+                     rejectedPercent = 100.0 * static_cast<double>(rejected) / n;
+        std::printf("| %s | %.2f | %.2f | %.2f | %.1f%% | %.1f%% |\n", v.name.c_str(), mean, lowest, last, hitPercent,
+                    rejectedPercent);
         std::fflush(stdout);
+        nlohmann::json json = variantJson(v);
+        json.update({{"mean_psnr_db", finiteOrNull(mean)},
+                     {"min_psnr_db", finiteOrNull(lowest)},
+                     {"last_psnr_db", finiteOrNull(last)},
+                     {"hit_percent", hitPercent},
+                     {"rejected_percent", rejectedPercent}});
+        (row < ladderStart ? rows : ladder).push_back(json);
     }
+    return {{"scene", sceneName},
+            {"size", size},
+            {"frames", frames},
+            {"face_resolution", faceResolution(*scene, resolution)},
+            {"variants", rows},
+            {"improvements_one_by_one", ladder}};
 }
 
 // The thesis's Table 5.3, frames per second.
@@ -122,8 +180,10 @@ struct DocumentsRow {
 constexpr DocumentsRow kTable53[] = {{"diffuse-32", {76.0, 69.6, 49.5, 35.3, 30.7, 19.0}},
                                      {"reflective-32", {33.9, 30.1, 19.1, 17.0, 13.5, 13.9}}};
 
-void speed(int width, int height, int threads, int warmup, int rounds, std::optional<int> resolution,
-           const Parallel& parallel) {
+// Table 5.3's speed tables, one a scene; returns their rows as printed.
+nlohmann::json speed(int width, int height, int threads, int warmup, int rounds, std::optional<int> resolution,
+                     const Parallel& parallel) {
+    nlohmann::json tables = nlohmann::json::array();
     for (const DocumentsRow& row : kTable53) {
         const auto scene = makeBuiltinScene(row.scene);
         const TraceScene tracer(*scene);
@@ -165,6 +225,7 @@ void speed(int width, int height, int threads, int warmup, int rounds, std::opti
         std::printf("| variant | ms median (min-max) | fps | speed-up vs uncached | hit rate | documents fps | "
                     "documents speed-up |\n");
         std::printf("| --- | --- | --- | --- | --- | --- | --- |\n");
+        nlohmann::json rows = nlohmann::json::array(), ladder = nlohmann::json::array();
         for (std::size_t i = 0; i < variants.size(); ++i) {
             if (i == tableRows) std::printf("| *improved CDCT, changes one by one* | | | | | | |\n");
             char documents[64] = "", documentsRatio[32] = "";
@@ -176,9 +237,23 @@ void speed(int width, int height, int threads, int warmup, int rounds, std::opti
             std::printf("| %s | %.1f (%.1f-%.1f) | %.1f | %.2fx | %.1f%% | %s | %s |\n", variants[i].name.c_str(),
                         t.median(), t.min(), t.max(), 1000.0 / t.median(), uncached / t.median(), hitPercent[i],
                         documents, documentsRatio);
+            nlohmann::json json = variantJson(variants[i]);
+            json.update(benchmarkVariantJson(t));
+            json.update({{"speedup_vs_uncached", uncached / t.median()},
+                         {"hit_percent", hitPercent[i]},
+                         {"documents_fps", i < 6 ? nlohmann::json(row.fps[i]) : nlohmann::json()},
+                         {"documents_speedup", i < 6 ? nlohmann::json(row.fps[i] / row.fps[1]) : nlohmann::json()}});
+            (i < tableRows ? rows : ladder).push_back(json);
         }
         std::fflush(stdout);
+        tables.push_back({{"scene", row.scene},
+                          {"width", width},
+                          {"height", height},
+                          {"face_resolution", faceResolution(*scene, resolution)},
+                          {"variants", rows},
+                          {"improvements_one_by_one", ladder}});
     }
+    return tables;
 }
 
 }  // namespace
@@ -201,17 +276,43 @@ int main(int argc, char** argv) {
     app.add_option("--threads", threads, "Worker threads, 0 = all")->capture_default_str();
     app.add_flag("--quality-only", qualityOnly, "Only the quality table");
     app.add_flag("--speed-only", speedOnly, "Only the speed tables");
+    std::filesystem::path jsonPath;
+    app.add_option("--json", jsonPath, "Also write every figure, the settings, machine and build to this JSON file");
     CLI11_PARSE(app, argc, argv);
-    const Parallel parallel(threads);
+    // Every scene named is checked before anything is measured.
     if (!speedOnly)
-        for (const std::string& name : qualityScenes) {
+        for (const std::string& name : qualityScenes)
             if (!makeBuiltinScene(name)) {
                 std::fprintf(stderr, "cdct_speed: --quality-scenes: no built-in scene named '%s'\n", name.c_str());
                 return 2;
             }
-            quality(name, qualitySize, qualityFrames, threads, resolution, parallel);
+    const Parallel parallel(threads);
+    const std::optional<BenchmarkRecord> record =
+        BenchmarkRecord::open("cdct_speed", argc, argv, jsonPath, parallel.threadCount());
+    if (!record) return 2;
+    nlohmann::json qualityTables = nlohmann::json::array(), speedTables = nlohmann::json::array();
+    nlohmann::json parts = nlohmann::json::array();
+    if (!speedOnly) {
+        parts.push_back("quality");
+        for (const std::string& name : qualityScenes) {
+            qualityTables.push_back(quality(name, qualitySize, qualityFrames, threads, resolution, parallel));
             std::printf("\n");
         }
-    if (!qualityOnly) speed(width, height, threads, warmup, rounds, resolution, parallel);
-    return 0;
+    }
+    if (!qualityOnly) {
+        parts.push_back("speed");
+        speedTables = speed(width, height, threads, warmup, rounds, resolution, parallel);
+    }
+    return record->write({{"width", width},
+                          {"height", height},
+                          {"rounds", rounds},
+                          {"warmup", warmup},
+                          {"threads", threads},
+                          {"worker_threads", parallel.threadCount()},
+                          {"quality_size", qualitySize},
+                          {"quality_frames", qualityFrames},
+                          {"quality_scenes", qualityScenes},
+                          {"cache_res", resolution ? nlohmann::json(*resolution) : nlohmann::json()},
+                          {"parts", parts}},
+                         {{"quality", qualityTables}, {"speed", speedTables}});
 }

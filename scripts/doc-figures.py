@@ -46,7 +46,10 @@ Sources and targets:
     block `bench-grids` ("Grids") and the goals row of the rays alone;
   - soak and scene_load_speed: the blocks `bench-soak` and
     `bench-scene-load` ("Memory and loading"); with dragon-hall in the runs,
-    the goals row of loading the dragon and README.md's figure for meshes.
+    the goals row of loading the dragon and README.md's figure for meshes;
+  - cdct_speed (a --speed-only and a --quality-only run each round): the
+    block `bench-cdct` ("CDCT"), improved CDCT against uncached and the
+    mean PSNR along the orbits.
   Times are medians of the runs' medians with min–max over the runs; a
   ratio is taken within each run, of its medians, and quoted over the runs
   the same way or as their min–max. The runs of core_speed and cct_speed
@@ -99,6 +102,7 @@ DYNAMIC_CCT = 1.3  # CCT speed-up over uncached along the animations
 GRIDS_1M_MS = 115.0  # the document's Buddha, 1.09M triangles on a GTX 280
 FILL_TRACED = 5.0  # % of lookups traced after frame 2 (Fig 5.9 protocol)
 CDCT_REFLECTIVE = 1.0  # improved CDCT on reflective-32, over uncached
+CDCT_GOAL_SCENE = "reflective-32"  # the scene of that goal
 BENCH_RUNS = os.path.join(ROOT, "docs", "bench-runs")
 CORE_BEGIN = "<!-- figures:bench-core -->"
 CORE_AVX2_BEGIN = "<!-- figures:bench-core-avx2 -->"
@@ -116,6 +120,7 @@ UPDATE_TABLE_BEGIN = "<!-- figures:bench-scene-update-table -->"
 GRIDS_SPEED_BEGIN = "<!-- figures:bench-grids -->"
 SOAK_BEGIN = "<!-- figures:bench-soak -->"
 LOAD_BEGIN = "<!-- figures:bench-scene-load -->"
+CDCT_BEGIN = "<!-- figures:bench-cdct -->"
 GRIDS_SPEED_MODEL = "torus 100k"  # grids_speed's default model, the one its goal names
 GRIDS_RAYS = 1.5  # the grids' rays alone over Embree's through a prebuilt hierarchy
 LOAD_SCENE = "dragon-hall"  # the scene of the loading goal
@@ -1203,6 +1208,61 @@ def scene_load_figures(runs):
     return "\n".join([LOAD_BEGIN, wrap(text), END]), rows, readme
 
 
+def cdct_figures(runs):
+    """The speed and quality sentences of performance.md's "CDCT"
+    (cdct_speed): improved CDCT's speed-up over uncached on Table 5.3's
+    scenes, its and uncached's frame times on the goal's scene, and the mean
+    PSNR of improved CDCT and CCT along each orbit."""
+    default, _ = by_lanes(runs, "cdct_speed", one_command=False)
+    speed = [r for r in default if r["speed"]]
+    quality = [r for r in default if r["quality"]]
+    if not speed or not quality:
+        sys.exit("doc-figures: docs/bench-runs/cdct_speed/ needs runs of both --speed-only and --quality-only "
+                 "(scripts/record-bench-runs.sh --programs cdct_speed)")
+    speed, quality = same_runs(speed, "cdct_speed --speed-only"), same_runs(quality, "cdct_speed --quality-only")
+
+    def row(table, technique):
+        return next(v for v in table["variants"] if v["technique"] == technique)
+
+    def improved(table):
+        """The improved CDCT with every change on: the last of the changes switched on one by one."""
+        return table["improvements_one_by_one"][-1]
+
+    def speed_values(scene, technique, key):
+        return per_scene(speed, scene, lambda t: row(t, technique)[key], "speed")
+
+    def psnr(scene, technique):
+        def value(table):
+            return (improved(table) if technique == "cdct" else row(table, technique))["mean_psnr_db"]
+        values = per_scene(quality, scene, value, "quality")
+        return "identical" if None in values else value_cell(values, "{:.2f}")
+
+    s, q = speed[0]["speed"][0], quality[0]["quality"][0]
+    speed_scenes = [t["scene"] for t in speed[0]["speed"]]
+    quality_scenes = [t["scene"] for t in quality[0]["quality"]]
+    # The frame times of the scene of the CDCT goal, else of the last scene.
+    timed = CDCT_GOAL_SCENE if CDCT_GOAL_SCENE in speed_scenes else speed_scenes[-1]
+
+    def speedup(scene):
+        text = f"**{ratio_cell(speed_values(scene, 'cdct', 'speedup_vs_uncached'))}** on {scene}"
+        if scene != timed:
+            return text
+        return (f"{text} ({ms_cell(speed_values(scene, 'cdct', 'median_ms'))} against "
+                f"{ms_cell(speed_values(scene, 'none', 'median_ms'))} ms)")
+
+    # The quality run's options alone: the same program as the speed run's.
+    options = shlex.join(shlex.split(bench_command(quality[0]))[1:])
+    runs_text = runs_provenance(speed).replace(plural(len(speed), "run"), f"{plural(len(speed), 'run')} of each")
+    text = (f"`{bench_command(speed[0])}` and `{options}` ({runs_text}; {generated_from('cdct_speed')}), medians of "
+            f"the runs' medians (min–max over the runs): {side(s['width'], s['height'])}, {s['face_resolution']}² "
+            f"faces, caches filled, improved CDCT against uncached "
+            + ", ".join(speedup(scene) for scene in speed_scenes)
+            + f"; mean PSNR along the orbits from empty caches ({q['size']}², {q['face_resolution']}² faces, frames "
+            f"2–{q['frames']}): " + ", ".join(f"{scene} {psnr(scene, 'cdct')}" for scene in quality_scenes)
+            + " dB, CCT " + ", ".join(psnr(scene, "cct") for scene in quality_scenes) + ".")
+    return "\n".join([CDCT_BEGIN, wrap(text), END])
+
+
 def replace_rows(text, rows, path):
     """`text` with the one line starting with each key of `rows` replaced by
     that key's row."""
@@ -1328,6 +1388,8 @@ def main():
         goal_rows.append(load_rows)
         if load_readme:
             readme_cells["| Meshes and glTF"] = load_readme
+    if runs := recorded("cdct_speed"):
+        performance_blocks.append((CDCT_BEGIN, cdct_figures(runs)))
 
     def blocks(path, pairs):
         return [(f"the block {begin}", lambda t, b=b, begin=begin: replace_block(t, b, path, begin))

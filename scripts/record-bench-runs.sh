@@ -13,6 +13,8 @@
 #   soak                run-1.json only: it measures memory, which the
 #                       machine's noise does not move,
 #   scene_load_speed    run-K.json,
+#   cdct_speed          run-K-speed.json (--speed-only, Table 5.3's scenes)
+#                       and run-K-quality.json (--quality-only, the orbits),
 # for K = 1 … RUNS. The programs take turns, each round in the reverse order
 # of the one before, so that whatever else the machine does is spread over
 # all of them alike. The folders of the programs recorded are replaced only
@@ -23,8 +25,8 @@
 #       core_speed and cct_speed
 #   --programs LIST   the programs to record instead: comma-separated names
 #       from the list above, or "all"
-#   --tiny            64² images (soak 16²), one round a variant, short
-#       paths, one thread, dragon-mirror left out and scene_load_speed on
+#   --tiny            64² images (soak 16², cdct_speed 64×36 and 32² with
+#       16² faces), one round a variant, short paths, one thread, dragon-mirror left out and scene_load_speed on
 #       bunny-glass when the dragon's mesh is not fetched, grids_speed's large
 #       model at 30k triangles: runs of the same shape in seconds, to try
 #       doc-figures.py on (never to commit)
@@ -41,7 +43,7 @@ usage() {
   exit 2
 }
 
-known=(core_speed cct_speed hybrid_speed moving_cache scene_update_speed grids_speed soak scene_load_speed)
+known=(core_speed cct_speed hybrid_speed moving_cache scene_update_speed grids_speed soak scene_load_speed cdct_speed)
 tiny=0
 programs=core_speed,cct_speed
 out=docs/bench-runs
@@ -87,6 +89,9 @@ if [ "$tiny" = 1 ]; then
   grids=(--size 64 --rounds 1 --threads 1)
   soak=(--frames 20 --size 16 --every 10 --cache-res 16 --threads 1)
   load=(--rounds 1)
+  cdct_speed=(--speed-only --width 64 --height 36 --rounds 1 --warmup 0 --threads 1 --cache-res 16)
+  cdct_quality=(--quality-only --quality-scenes bowl shapes parallax --cache-res 16 --quality-size 32
+    --quality-frames 3 --threads 1)
   large_torus="torus 30k"
   if [ "$dragon_fetched" = 0 ]; then
     echo "record-bench-runs: the Stanford dragon is not fetched: dragon-mirror left out of the tiny runs," \
@@ -103,6 +108,9 @@ else
   grids=(--rounds 7 --threads 2)
   soak=(--frames 10000 --size 256 --every 1000 --threads 2)
   load=(--rounds 5)
+  cdct_speed=(--speed-only --rounds 3 --warmup 2 --threads 2)
+  cdct_quality=(--quality-only --quality-scenes bowl shapes parallax --cache-res 128 --quality-size 256
+    --quality-frames 12 --threads 2)
   if [ "$dragon_fetched" = 0 ] && [ -n "${chosen[core_speed]:-}${chosen[scene_load_speed]:-}" ]; then
     echo "record-bench-runs: $dragon and dragon-hall need the Stanford dragon: fetch it with" \
       "scripts/install-deps.sh" >&2
@@ -155,13 +163,18 @@ run_grids() { step grids_speed "run-$1.json" "${grids[@]}"; }
 run_grids_large() { step grids_speed "run-$1-${large_torus// /-}.json" --model "$large_torus" "${grids[@]}"; }
 run_soak() { if [ "$1" = 1 ]; then step soak "run-$1.json" "${soak[@]}"; fi; }
 run_load() { step scene_load_speed "run-$1.json" "${load[@]}" --scenes "$load_scenes"; }
+run_cdct_speed() { step cdct_speed "run-$1-speed.json" "${cdct_speed[@]}"; }
+run_cdct_quality() { step cdct_speed "run-$1-quality.json" "${cdct_quality[@]}"; }
 
 # The steps in the order of the first round, with the program each records.
-all_steps=(run_core run_cct run_core_avx2 run_hybrid run_moving run_update run_grids run_grids_large run_soak run_load)
+all_steps=(run_core run_cct run_core_avx2 run_hybrid run_moving run_update run_grids run_grids_large run_soak run_load
+  run_cdct_speed run_cdct_quality)
 declare -A program_of=([run_core]=core_speed [run_cct]=cct_speed [run_core_avx2]=core_speed
   [run_hybrid]=hybrid_speed [run_moving]=moving_cache [run_update]=scene_update_speed [run_grids]=grids_speed
-  [run_grids_large]=grids_speed [run_soak]=soak [run_load]=scene_load_speed)
-declare -A labels=([run_core_avx2]="RAYCACHE_LANES=avx2 core_speed" [run_grids_large]="grids_speed $large_torus")
+  [run_grids_large]=grids_speed [run_soak]=soak [run_load]=scene_load_speed [run_cdct_speed]=cdct_speed
+  [run_cdct_quality]=cdct_speed)
+declare -A labels=([run_core_avx2]="RAYCACHE_LANES=avx2 core_speed" [run_grids_large]="grids_speed $large_torus"
+  [run_cdct_speed]="cdct_speed --speed-only" [run_cdct_quality]="cdct_speed --quality-only")
 steps=()
 for s in "${all_steps[@]}"; do [ -n "${chosen[${program_of[$s]}]:-}" ] && steps+=("$s"); done
 

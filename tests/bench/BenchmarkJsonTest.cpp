@@ -335,6 +335,77 @@ TEST_F(BenchmarkJson, SceneLoadSpeedWritesEveryFigureOfItsTable) {
         << result.out;
 }
 
+TEST_F(BenchmarkJson, CdctSpeedWritesEveryFigureOfItsQualityAndSpeedTables) {
+    const fs::path out = dir_.path() / "cdct.json";
+    const std::string options = "--width 32 --height 16 --rounds 2 --warmup 1 --threads 1 --cache-res 16 "
+                                "--quality-scenes parallax --quality-size 16 --quality-frames 3";
+    const auto result = run(benchmark("cdct_speed") + " " + options + " --json " + out.string());
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    const json doc = readJson(out);
+    expectProvenance(doc, "cdct_speed", options);
+    const json& settings = doc["settings"];
+    EXPECT_EQ(settings["parts"], json::array({"quality", "speed"}));
+    EXPECT_EQ(settings["width"], 32);
+    EXPECT_EQ(settings["quality_frames"], 3);
+    EXPECT_EQ(settings["cache_res"], 16);
+
+    ASSERT_EQ(doc["quality"].size(), 1u);
+    const json& quality = doc["quality"][0];
+    EXPECT_EQ(quality["scene"], "parallax");
+    EXPECT_EQ(quality["size"], 16);
+    EXPECT_EQ(quality["face_resolution"], 16);
+    ASSERT_EQ(quality["variants"].size(), 2u);
+    EXPECT_EQ(quality["variants"][0]["technique"], "cct");
+    EXPECT_EQ(quality["variants"][1]["technique"], "cdct-parity");
+    // The improved CDCT's changes switched on one after another: the last row is `cdct` itself.
+    const json& ladder = quality["improvements_one_by_one"];
+    ASSERT_EQ(ladder.size(), 9u);
+    for (std::size_t i = 0; i < ladder.size(); ++i) EXPECT_EQ(ladder[i]["improvements_on"], i + 1) << i;
+    for (const json& v : quality["variants"]) {
+        const double mean = v["mean_psnr_db"].get<double>(), lowest = v["min_psnr_db"].get<double>();
+        EXPECT_LE(lowest, mean) << v["name"];
+        const std::string row = "| " + v["name"].get<std::string>() + " | " + printed("%.2f", mean) + " | " +
+                                printed("%.2f", lowest) + " | " + printed("%.2f", v["last_psnr_db"].get<double>()) +
+                                " | " + printed("%.1f%%", v["hit_percent"].get<double>()) + " | " +
+                                printed("%.1f%%", v["rejected_percent"].get<double>()) + " |";
+        EXPECT_NE(result.out.find(row), std::string::npos) << row << " not in\n" << result.out;
+    }
+
+    ASSERT_EQ(doc["speed"].size(), 2u);
+    EXPECT_EQ(doc["speed"][0]["scene"], "diffuse-32");
+    EXPECT_EQ(doc["speed"][1]["scene"], "reflective-32");
+    for (const json& table : doc["speed"]) {
+        const std::string scene = table["scene"];
+        EXPECT_EQ(table["width"], 32);
+        EXPECT_EQ(table["face_resolution"], 16);
+        const json& variants = table["variants"];
+        ASSERT_EQ(variants.size(), 7u) << scene;
+        EXPECT_EQ(variants[1]["technique"], "none");
+        const json& improved = variants[6];
+        EXPECT_EQ(improved["technique"], "cdct");
+        EXPECT_EQ(improved["improvements_on"], 9);
+        EXPECT_EQ(table["improvements_one_by_one"].size(), 9u) << scene;
+        const double uncached = medianMs(variants[1]);
+        for (const json& v : variants) {
+            expectTimings(v, scene + " " + v["name"].get<std::string>());
+            EXPECT_EQ(v["frame_ms"].size(), 2u);
+            EXPECT_DOUBLE_EQ(v["speedup_vs_uncached"].get<double>(), uncached / medianMs(v)) << v["name"];
+        }
+        EXPECT_TRUE(improved["documents_fps"].is_null());
+        EXPECT_EQ(variants[4]["step"], 0.2);  // CDCT parity 0.2/0.02, as written
+        EXPECT_EQ(variants[4]["epsilon"], 0.02);
+        const std::string row = "| CDCT improved (cdct) | " + printed("%.1f", medianMs(improved)) + " (" +
+                                printed("%.1f", improved["min_ms"].get<double>()) + "-" +
+                                printed("%.1f", improved["max_ms"].get<double>()) + ") | " +
+                                printed("%.1f", 1000.0 / medianMs(improved)) + " | " +
+                                printed("%.2fx", improved["speedup_vs_uncached"].get<double>()) + " | ";
+        EXPECT_NE(result.out.find(row), std::string::npos) << row << " not in\n" << result.out;
+    }
+    // The documents' Table 5.3: CCT and uncached on diffuse-32, frames per second.
+    EXPECT_DOUBLE_EQ(doc["speed"][0]["variants"][0]["documents_fps"].get<double>(), 76.0);
+    EXPECT_DOUBLE_EQ(doc["speed"][0]["variants"][0]["documents_speedup"].get<double>(), 76.0 / 69.6);
+}
+
 TEST_F(BenchmarkJson, AJsonPathThatCannotBeWrittenStopsBeforeMeasuring) {
     const fs::path missing = dir_.path() / "missing" / "run.json";
     const fs::path blocked = dir_.path() / "a-file" / "run.json";
@@ -349,6 +420,8 @@ TEST_F(BenchmarkJson, AJsonPathThatCannotBeWrittenStopsBeforeMeasuring) {
         {"grids_speed", " --model 'torus 10k' --size 16 --rounds 1 --threads 1"},
         {"soak", " --frames 2 --size 8 --every 1 --cache-res 16 --threads 1"},
         {"scene_load_speed", " --rounds 1 --scenes grid-1"},
+        {"cdct_speed", " --width 16 --height 16 --rounds 1 --warmup 0 --threads 1 --cache-res 16 --quality-size 16"
+                       " --quality-frames 2"},
     };
     for (const auto& [program, options] : programs)
         for (const fs::path& path : {missing, blocked, dir_.path()}) {

@@ -24,8 +24,9 @@ using nlohmann::json;
 
 namespace {
 
-const std::vector<std::string> kPrograms = {"core_speed",         "cct_speed",   "hybrid_speed", "moving_cache",
-                                            "scene_update_speed", "grids_speed", "soak",         "scene_load_speed"};
+const std::vector<std::string> kPrograms = {"core_speed",   "cct_speed",          "hybrid_speed",
+                                            "moving_cache", "scene_update_speed", "grids_speed",
+                                            "soak",         "scene_load_speed",   "cdct_speed"};
 
 std::string readText(const fs::path& path) {
     std::ifstream in(path);
@@ -140,7 +141,8 @@ TEST_F(DocFigures, EveryBenchmarkBlockIsGeneratedFromItsTinyRuns) {
                                                                      {"bench-scene-update", "scene_update_speed"},
                                                                      {"bench-grids", "grids_speed"},
                                                                      {"bench-soak", "soak"},
-                                                                     {"bench-scene-load", "scene_load_speed"}};
+                                                                     {"bench-scene-load", "scene_load_speed"},
+                                                                     {"bench-cdct", "cdct_speed"}};
     for (const auto& [name, program] : blocks) {
         if (!recorded(program)) continue;
         const std::string text = oneLine(block(performance, name));
@@ -175,6 +177,29 @@ TEST_F(DocFigures, TimesAreTheMediansOfTheRunsMediansWithTheirRange) {
               std::string::npos)
         << msCell(gridsTotal) << " against " << msCell(embreeTotal) << " not in\n"
         << grids;
+}
+
+TEST_F(DocFigures, CdctFrameTimesAreTheMediansOfTheSpeedRunsMedians) {
+    const fs::path tree = copyOfTheDocs("cdct");
+    ASSERT_EQ(docFigures(runs(), tree).exitCode, 0);
+    const std::string cdct = oneLine(block(readText(tree / "docs/performance.md"), "bench-cdct"));
+    std::vector<double> improved, uncached;
+    for (const json& r : readRuns("cdct_speed"))
+        for (const json& table : r["speed"]) {
+            if (table["scene"] != "reflective-32") continue;
+            for (const json& v : table["variants"]) {
+                if (v["technique"] == "cdct") improved.push_back(v["median_ms"].get<double>());
+                if (v["technique"] == "none") uncached.push_back(v["median_ms"].get<double>());
+            }
+        }
+    ASSERT_EQ(improved.size(), 2u);  // the two --speed-only runs; the --quality-only ones have no speed tables
+    EXPECT_NE(cdct.find("on reflective-32 (" + msCell(improved) + " against " + msCell(uncached) + " ms)"),
+              std::string::npos)
+        << msCell(improved) << " against " << msCell(uncached) << " not in\n"
+        << cdct;
+    EXPECT_NE(cdct.find("mean PSNR along the orbits from empty caches (32², 16² faces, frames 2–3): bowl "),
+              std::string::npos)
+        << cdct;
 }
 
 TEST_F(DocFigures, CheckFailsWhenAGeneratedFigureIsChangedByHand) {
