@@ -27,6 +27,7 @@
 #include "metrics/ImageMetrics.h"
 #include "render/FrameRenderer.h"
 #include "scene/BuiltinScenes.h"
+#include "scene/Material.h"
 #include "trace/TraceScene.h"
 
 using namespace raycache;
@@ -272,7 +273,8 @@ int main(int argc, char** argv) {
     app.add_option("--quality-frames", qualityFrames, "Quality: frames of each scene's camera path")->capture_default_str();
     std::vector<std::string> qualityScenes{"parallax"};
     app.add_option("--quality-scenes", qualityScenes, "Quality: built-in scenes, each its own table")->capture_default_str();
-    app.add_option("--cache-res", resolution, "Face resolution for every cube (default: the scenes' own, 512)");
+    app.add_option("--cache-res", resolution, "Face resolution for every cube (default: the scenes' own, 512)")
+        ->check(CLI::Range(CacheSettings::kMinFaceResolution, CacheSettings::kMaxFaceResolution));
     app.add_option("--threads", threads, "Worker threads, 0 = all")->capture_default_str();
     app.add_flag("--quality-only", qualityOnly, "Only the quality table");
     app.add_flag("--speed-only", speedOnly, "Only the speed tables");

@@ -20,6 +20,7 @@
 #include "core/ProcessMemory.h"
 #include "render/FramePipeline.h"
 #include "scene/BuiltinScenes.h"
+#include "scene/Material.h"
 #include "session/PipelineFactory.h"
 #include "session/RenderJob.h"
 #include "trace/TraceScene.h"
@@ -33,7 +34,9 @@ int main(int argc, char** argv) {
     app.add_option("--scene", sceneName, "Built-in scene with an orbiting camera")->capture_default_str();
     app.add_option("--frames", frames, "Frames to render")->capture_default_str();
     app.add_option("--size", size, "Image width and height")->capture_default_str();
-    app.add_option("--cache-res", cacheResolution, "Caching-cube face resolution")->capture_default_str();
+    app.add_option("--cache-res", cacheResolution, "Caching-cube face resolution")
+        ->check(CLI::Range(CacheSettings::kMinFaceResolution, CacheSettings::kMaxFaceResolution))
+        ->capture_default_str();
     app.add_option("--technique", technique, "cct, cdct or cdct-parity")->capture_default_str();
     app.add_option("--every", every, "Print memory every this many frames")->capture_default_str();
     app.add_option("--threads", threads, "Worker threads, 0 = all")->capture_default_str();

@@ -439,4 +439,18 @@ TEST_F(BenchmarkJson, AJsonPathThatCannotBeWrittenStopsBeforeMeasuring) {
     }
 }
 
+// A face resolution outside the caches' limits is refused on one line
+// before anything runs, as `raycache render` refuses it, not thrown later
+// from inside the first frame.
+TEST_F(BenchmarkJson, AFaceResolutionOutsideTheLimitsIsOneLineBeforeMeasuring) {
+    for (const std::string program : {"soak", "cdct_speed"})
+        for (const std::string resolution : {"8", "4096"}) {
+            const auto result = run(benchmark(program) + " --cache-res " + resolution);
+            EXPECT_NE(result.exitCode, 0) << program << " " << resolution;
+            EXPECT_LT(result.exitCode, 128) << program << " " << resolution << " crashed: " << result.err;
+            EXPECT_NE(result.err.find("--cache-res"), std::string::npos) << result.err;
+            EXPECT_TRUE(result.out.empty()) << program << " measured with --cache-res " << resolution;
+        }
+}
+
 }  // namespace
