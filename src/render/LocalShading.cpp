@@ -6,7 +6,6 @@
 #include <numbers>
 
 #include "core/Errors.h"
-#include "core/Optics.h"
 #include "render/HitLanes.h"
 
 namespace raycache {

@@ -7,7 +7,6 @@
 // against, is tests/render/ScalarShadingRule.h. The rays themselves (shadow,
 // reflected, refracted) are traced by the tile kernel (render/TileKernel.h),
 // a whole wave at a time.
-#include <cstdint>
 #include <span>
 #include <vector>
 
