@@ -1,7 +1,7 @@
 # Link with lld when it is installed (scripts/install-deps.sh installs it).
 # The release and asan presets link some fifty programs each, and lld links
-# a sanitized test program in well under half GNU ld's time (docs/testing.md,
-# "Where the time goes"). The programs' code is the same either way.
+# them faster than GNU ld (measured: docs/testing.md, "Where the time goes").
+# The programs' code is the same either way.
 option(RAYCACHE_LLD "Link with lld when it is installed" ON)
 if(RAYCACHE_LLD)
   include(CheckLinkerFlag)
