@@ -75,6 +75,12 @@ if [ "$quick" = 1 ]; then
   all_techniques="none cct cdct"
 fi
 
+# Embree's instructions stay the processor's widest at every lane level (a
+# narrowed RAYCACHE_LANES would narrow them too: src/trace/EmbreeDeviceConfig.h),
+# so that a frame differs only where the lane code does, and frames compare
+# with builds that never narrowed Embree.
+export RAYCACHE_EMBREE_ISA=avx512
+
 count=0
 for level in $lanes; do
   env_lanes=()

@@ -31,6 +31,20 @@ namespace {
 #endif
 }
 
+// The widest level this processor runs (decided once per process), or
+// Baseline where the build has one level.
+LaneLevel widestLaneLevel() {
+#if defined(RAYCACHE_BASELINE_LANES) || !defined(__x86_64__)
+    return LaneLevel::Baseline;
+#else
+    static const LaneLevel widest = [] {
+        __builtin_cpu_init();
+        return cpuHasLevel4() ? LaneLevel::Avx512 : cpuHasLevel3() ? LaneLevel::Avx2 : LaneLevel::Baseline;
+    }();
+    return widest;
+#endif
+}
+
 }  // namespace
 
 std::string laneInstructionSet() {
@@ -50,20 +64,22 @@ std::string laneInstructionSet() {
 }
 
 LaneLevel laneLevel() {
-#if defined(RAYCACHE_BASELINE_LANES) || !defined(__x86_64__)
-    return LaneLevel::Baseline;
-#else
-    static const LaneLevel level = [] {
-        __builtin_cpu_init();
-        const LaneLevel widest = cpuHasLevel4()   ? LaneLevel::Avx512
-                                 : cpuHasLevel3() ? LaneLevel::Avx2
-                                                  : LaneLevel::Baseline;
-        // RAYCACHE_LANES narrows it (never widens it past the processor):
-        // how the tests compare every level's bits on one machine.
-        const std::optional<LaneLevel> asked = parseLaneLevel(std::getenv("RAYCACHE_LANES"));
-        return asked && *asked < widest ? *asked : widest;
-    }();
+    static const LaneLevel level = narrowedLaneLevel().value_or(widestLaneLevel());
     return level;
+}
+
+std::optional<LaneLevel> narrowedLaneLevel() {
+#if defined(RAYCACHE_BASELINE_LANES) || !defined(__x86_64__)
+    return std::nullopt;
+#else
+    // RAYCACHE_LANES narrows the level (never widens it past the processor):
+    // how the tests compare every level's bits on one machine.
+    static const std::optional<LaneLevel> narrowed = []() -> std::optional<LaneLevel> {
+        const std::optional<LaneLevel> asked = parseLaneLevel(std::getenv("RAYCACHE_LANES"));
+        if (asked && *asked < widestLaneLevel()) return asked;
+        return std::nullopt;
+    }();
+    return narrowed;
 #endif
 }
 

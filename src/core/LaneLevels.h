@@ -25,6 +25,12 @@ enum class LaneLevel { Baseline, Avx2, Avx512 };
 // what the processor runs: the images are the same at every level, and
 // tests/app/LaneLevelsCliTest.cpp holds the program to that.
 LaneLevel laneLevel();
+// The level RAYCACHE_LANES narrowed laneLevel() to, when it is below what
+// the processor runs: the run then stands for a processor without the wider
+// levels, and the tracer asks Embree for no wider instructions either
+// (trace/EmbreeDeviceConfig.h). Nothing when unnarrowed, and always nothing
+// in a build with RAYCACHE_BASELINE_LANES, which has one level.
+std::optional<LaneLevel> narrowedLaneLevel();
 // "avx512", "avx2", "baseline" and back (nothing for another name or null).
 std::optional<LaneLevel> parseLaneLevel(const char* name);
 const char* laneLevelName(LaneLevel level);

@@ -3,6 +3,7 @@
 #include "core/LaneInstructionSet.h"
 #include "core/Parallel.h"
 #include "scene/LibraryVersions.h"
+#include "trace/EmbreeDeviceConfig.h"
 #include "trace/EmbreeVersion.h"
 
 // Generated at every build by cmake/GitCommit.cmake; the other two are
@@ -38,6 +39,7 @@ BuildInfo currentBuildInfo() {
     b.buildType = RAYCACHE_BUILD_TYPE;
     b.compiler = compilerName();
     b.embreeVersion = embreeVersion();
+    b.embreeInstructions = embreeInstructionSet();
     b.tbbVersion = Parallel::libraryVersion();
     b.assimpVersion = assimpVersion();
     b.openExrVersion = openExrVersion();
@@ -51,6 +53,7 @@ std::string formatBuildInfo(const BuildInfo& b) {
            "commit: " + b.gitCommit + "\n" +
            "build: " + b.buildType + ", " + b.compiler + "\n" +
            "Embree: " + b.embreeVersion + "\n" +
+           "Embree instructions: " + b.embreeInstructions + "\n" +
            "oneTBB: " + b.tbbVersion + "\n" +
            "Assimp: " + b.assimpVersion + "\n" +
            "OpenEXR: " + b.openExrVersion + "\n" +

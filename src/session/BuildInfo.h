@@ -12,6 +12,7 @@ struct BuildInfo {
     std::string buildType;            // CMAKE_BUILD_TYPE
     std::string compiler;             // compiler name and version
     std::string embreeVersion;        // built against
+    std::string embreeInstructions;   // what Embree may use here (trace/EmbreeDeviceConfig.h)
     std::string tbbVersion;           // loaded
     std::string assimpVersion;        // loaded
     std::string openExrVersion;       // loaded

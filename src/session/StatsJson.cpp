@@ -83,7 +83,8 @@ nlohmann::json stagesJson(const StageTimes& s) {
 nlohmann::json toJson(const BuildInfo& b) {
     return {{"raycache", b.raycacheVersion}, {"git_commit", b.gitCommit},
             {"build_type", b.buildType},     {"compiler", b.compiler},
-            {"embree", b.embreeVersion},     {"tbb", b.tbbVersion},
+            {"embree", b.embreeVersion},     {"embree_instructions", b.embreeInstructions},
+            {"tbb", b.tbbVersion},
             {"assimp", b.assimpVersion},     {"openexr", b.openExrVersion},
             {"lanes", b.lanes},              {"baseline_lanes_build", b.baselineLanesBuild}};
 }

@@ -5,6 +5,9 @@
 #include <atomic>
 #include <cmath>
 #include <numbers>
+#include <string>
+
+#include "trace/EmbreeDeviceConfig.h"
 
 namespace raycache {
 
@@ -90,7 +93,8 @@ BaselineWhitted::BaselineWhitted(const Scene& scene, const TraceScene* shared)
         impl_->rtcScene = static_cast<RTCScene>(shared->embreeScene());
         return;
     }
-    impl_->device = rtcNewDevice(nullptr);
+    const std::string config = embreeDeviceConfig(0);
+    impl_->device = rtcNewDevice(config.empty() ? nullptr : config.c_str());
     impl_->rtcScene = rtcNewScene(impl_->device);
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
         RTCGeometry geom;

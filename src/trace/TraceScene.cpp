@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/Errors.h"
+#include "trace/EmbreeDeviceConfig.h"
 #include "trace/SphereIntersection.h"
 #include "trace/SphereLanes.h"
 
@@ -244,7 +245,7 @@ Representation representationOf(const Scene& scene, std::size_t object) {
 TraceScene::TraceScene(const Scene& scene, const TraceOptions& options) : impl_(std::make_unique<Impl>()) {
     impl_->accelerator = options.accelerator;
     if (options.accelerator == Accelerator::Grids) impl_->grids = std::make_unique<GridAccelerator>(options.grids);
-    const std::string config = options.buildThreads > 0 ? "threads=" + std::to_string(options.buildThreads) : "";
+    const std::string config = embreeDeviceConfig(options.buildThreads);
     impl_->device = rtcNewDevice(config.empty() ? nullptr : config.c_str());
     if (!impl_->device) throw RuntimeError("Embree could not create a device");
     impl_->scene = rtcNewScene(impl_->device);

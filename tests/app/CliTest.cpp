@@ -104,7 +104,7 @@ TEST_F(Cli, VersionPrintsTheBuildWithoutASubcommand) {
     // "unknown" only outside a git checkout.
     EXPECT_TRUE(std::regex_match(lineValue(r.out, "commit"), std::regex("[0-9a-f]{12}(-dirty)?|unknown"))) << r.out;
     EXPECT_TRUE(std::regex_match(lineValue(r.out, "Embree"), std::regex("3\\.[0-9]+\\.[0-9]+"))) << r.out;
-    for (const char* key : {"build", "oneTBB", "Assimp", "OpenEXR", "lanes"})
+    for (const char* key : {"build", "Embree instructions", "oneTBB", "Assimp", "OpenEXR", "lanes"})
         EXPECT_NE(lineValue(r.out, key), "") << key << " in " << r.out;
     EXPECT_TRUE(std::regex_search(lineValue(r.out, "lanes"), std::regex("^x86-64"))) << r.out;
 }
@@ -123,6 +123,7 @@ TEST_F(Cli, StatsCarryTheVersionThatVersionPrints) {
     EXPECT_EQ(v.at("build_type").get<std::string>() + ", " + v.at("compiler").get<std::string>(),
               lineValue(version, "build"));
     EXPECT_EQ(v.at("embree"), lineValue(version, "Embree"));
+    EXPECT_EQ(v.at("embree_instructions"), lineValue(version, "Embree instructions"));
     EXPECT_EQ(v.at("tbb"), lineValue(version, "oneTBB"));
     EXPECT_EQ(v.at("assimp"), lineValue(version, "Assimp"));
     EXPECT_EQ(v.at("openexr"), lineValue(version, "OpenEXR"));

@@ -108,8 +108,8 @@ TEST_F(Experiments, EveryExperimentWritesWellFormedJsonMarkdownAndSvg) {
         EXPECT_EQ(j.at("size"), "tiny");
         EXPECT_FALSE(j.at("environment").at("cpu_model").get<std::string>().empty());
         // The same "version" object as `raycache render --stats` (bench/BuildInfo).
-        for (const char* key : {"raycache", "git_commit", "build_type", "compiler", "embree", "tbb", "assimp",
-                                "openexr", "lanes"})
+        for (const char* key : {"raycache", "git_commit", "build_type", "compiler", "embree", "embree_instructions",
+                                "tbb", "assimp", "openexr", "lanes"})
             EXPECT_FALSE(j.at("environment").at("version").at(key).get<std::string>().empty()) << key;
         EXPECT_EQ(j.at("environment").at("worker_threads"), 2);
         int numbers = 0;
