@@ -3,7 +3,6 @@
 #include <iostream>
 #include <optional>
 #include <ostream>
-#include <ranges>
 
 #include "ChoiceOption.h"
 #include "app/BenchCommand.h"
@@ -124,8 +123,7 @@ void addRenderJobOptions(CLI::App& command, raycache::RenderJobOptions& job) {
         ->capture_default_str();
     raycache::addChoiceOption(
         command, "--technique", job.technique,
-        raycache::kCacheTechniques | std::views::transform(&raycache::CacheTechniqueInfo::technique),
-        raycache::cacheTechniqueName,
+        raycache::kCacheTechniqueValues, raycache::cacheTechniqueName,
         "Secondary-ray caching for every mirror/glass object: " + raycache::cacheTechniqueNameList() +
             " (default: each material's own setting; see docs/caching.md)");
     command.add_option("--cdct-step", job.cdctStep,

@@ -29,6 +29,13 @@ inline constexpr std::array<CacheTechniqueInfo, 4> kCacheTechniques{{
     {CacheTechnique::CdctParity, "cdct-parity", "color and depth caching cube, the thesis's search as specified"},
 }};
 
+// The techniques alone, in kCacheTechniques's order: the choices of an option.
+inline constexpr std::array<CacheTechnique, kCacheTechniques.size()> kCacheTechniqueValues = [] {
+    std::array<CacheTechnique, kCacheTechniques.size()> values{};
+    for (std::size_t i = 0; i < values.size(); ++i) values[i] = kCacheTechniques[i].technique;
+    return values;
+}();
+
 // The name a technique has on the command line and in scene files.
 constexpr const char* cacheTechniqueName(CacheTechnique technique) {
     for (const CacheTechniqueInfo& info : kCacheTechniques)

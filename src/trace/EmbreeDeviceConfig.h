@@ -13,10 +13,10 @@ namespace raycache {
 //   an avx2 run would trace with AVX-512 and shade with AVX2, and its timings
 //   would describe no real processor;
 // - by RAYCACHE_EMBREE_ISA (avx512, avx2 or baseline), which bounds Embree
-//   alone, apart from the lanes: Embree's kernels at different widths find
-//   slightly different hits (a few pixels in a thousand differ by up to half
-//   a colour step), so the tests that compare the lane code's levels pin
-//   Embree to one level for all of them.
+//   alone, apart from the lanes: Embree's kernels at different widths do not
+//   always agree on a ray that grazes an edge (it hits in one, misses in the
+//   other), so the tests that compare the lane code's levels pin Embree to
+//   one level for all of them.
 std::string embreeDeviceConfig(int buildThreads);
 
 // What Embree may use here: "the processor's widest", or e.g. "at most avx2

@@ -3,8 +3,9 @@
 // avx2 and to baseline writes byte-identical images to its widest run, for
 // scenes with spheres, meshes, textures, glass, concave mirrors and every
 // light kind, uncached and with CCT. Embree is pinned to one level for these
-// runs (RAYCACHE_EMBREE_ISA): its kernels at different widths find slightly
-// different hits, and a narrowed RAYCACHE_LANES narrows Embree too. On a
+// runs (RAYCACHE_EMBREE_ISA): its kernels at different widths disagree on a
+// rare ray that grazes an edge, and a narrowed RAYCACHE_LANES narrows Embree
+// too. On a
 // processor without AVX-512 the narrower runs are the same run, and the test
 // still checks the rest; in a build with RAYCACHE_BASELINE_LANES (asan, tsan,
 // fuzz) every run is the baseline one.
@@ -57,9 +58,10 @@ TEST_F(LaneLevelsCli, EveryLevelWritesTheSameImage) {
 // A narrowed lane level stands for a processor without the wider
 // instructions, so Embree gets no wider ones either: the image of an avx2 run
 // is the image of the widest lanes with Embree bounded to avx2. On an AVX-512
-// processor the room's image differs in a few pixels when Embree keeps
-// AVX-512 (the test fails if the narrowing stops reaching Embree).
+// processor this room image differs in 4 pixels when Embree keeps AVX-512,
+// so the test fails if the narrowing stops reaching Embree.
 TEST_F(LaneLevelsCli, NarrowedLanesNarrowEmbreeToo) {
+    if (raycache::builtWithBaselineLanes()) GTEST_SKIP() << "one lane level in this build: nothing narrows";
     const std::string args = "--scene room --width 83 --height 61 --frames 1 --path static";
     const std::string narrowed = render("RAYCACHE_LANES=avx2 ", args);
     ASSERT_FALSE(narrowed.empty());

@@ -212,12 +212,12 @@ TEST(Cdct, ParallaxAlongTheCameraPathAgainstCctAndUncached) {
         double minCdctHitPercent;
     };
     constexpr Expected kExpected[] = {{16, 21.8, 87.0}, {32, 25.8, 33.0}, {64, 41.0, 0.5}, {512, 0.0, 0.0}};
-    constexpr int kFrames = 6;
-    const PathRender plain = renderPath("parallax", CacheTechnique::None, kFrames, false, 128, 2, 16);
+    constexpr int kPathFrames = 6;
+    const PathRender plain = renderPath("parallax", CacheTechnique::None, kPathFrames, false, 128, 2, 16);
     for (const Expected& expected : kExpected) {
         const int resolution = expected.resolution;
-        const PathRender cct = renderPath("parallax", CacheTechnique::Cct, kFrames, false, 128, 2, resolution);
-        const PathRender cdct = renderPath("parallax", CacheTechnique::CdctParity, kFrames, false, 128, 2, resolution);
+        const PathRender cct = renderPath("parallax", CacheTechnique::Cct, kPathFrames, false, 128, 2, resolution);
+        const PathRender cdct = renderPath("parallax", CacheTechnique::CdctParity, kPathFrames, false, 128, 2, resolution);
         const double cctDb = psnr(cct.frames.back(), plain.frames.back());
         const double cdctDb = psnr(cdct.frames.back(), plain.frames.back());
         RecordProperty("cct_psnr_db_" + std::to_string(resolution), std::to_string(cctDb));
@@ -229,7 +229,7 @@ TEST(Cdct, ParallaxAlongTheCameraPathAgainstCctAndUncached) {
         std::printf(
             "parallax 128x128, %d^2 faces, frame %d vs uncached: CCT %.2f dB (hits %.0f%%), CDCT parity "
             "%.2f dB (hits %.0f%%)\n",
-            resolution, kFrames, cctDb, rate(cct), cdctDb, rate(cdct));
+            resolution, kPathFrames, cctDb, rate(cct), cdctDb, rate(cdct));
         for (const Image& frame : cdct.frames) EXPECT_TRUE(allFinite(frame));
         EXPECT_FALSE(std::isnan(cdctDb));
         if (resolution == 512) {

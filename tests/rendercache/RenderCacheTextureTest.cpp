@@ -241,18 +241,18 @@ TEST(RenderCacheTexture, CentreRetexturingMatchesRetexturedColourBitForBit) {
 // where the primitive changes within a block, on the sphere too.
 TEST(RenderCacheTexture, RowRetexturingMatchesRetexturedColourBitForBit) {
     const std::vector<SceneObject> objects = retexturedObjects();
-    constexpr int kWidth = 37, kHeight = 29;  // blocks of 16, 16 and 5
-    const CameraRays rays(Camera{{0.3f, 0.2f, 6.0f}, {0.0f, 0.5f, 0.0f}, {0, 1, 0}, 60.0f}, kWidth, kHeight);
+    constexpr int kOddWidth = 37, kOddHeight = 29;  // blocks of 16, 16 and 5
+    const CameraRays rays(Camera{{0.3f, 0.2f, 6.0f}, {0.0f, 0.5f, 0.0f}, {0, 1, 0}, 60.0f}, kOddWidth, kOddHeight);
     std::uint64_t state = 777;
     const auto uniform = [&state](float lo, float hi) {
         state = state * 6364136223846793005ull + 1442695040888963407ull;
         return lo + (hi - lo) * static_cast<float>(state >> 40) * 0x1.0p-24f;
     };
     int hits = 0, misses = 0;
-    for (int y = 0; y < kHeight; ++y) {
+    for (int y = 0; y < kOddHeight; ++y) {
         RowRetexturing row(objects, rays, y);
         int object = 0, primitive = 0;
-        for (int x = 0; x < kWidth; ++x) {
+        for (int x = 0; x < kOddWidth; ++x) {
             // Runs of one primitive, as along an image row.
             if (uniform(0.0f, 1.0f) < 0.2f) {
                 const float pick = uniform(0.0f, 1.0f);

@@ -30,16 +30,16 @@ void scribble(SamplePool& pool, std::size_t slot) {
 
 TEST(SamplePool, ResetEmptiesEveryPixelSlotOnAnyThreadCount) {
     // More slots than one chunk of the parallel reset, and not a multiple of it.
-    constexpr std::size_t kPixelSlots = (std::size_t{1} << 17) + 123;
+    constexpr std::size_t kSlots = (std::size_t{1} << 17) + 123;
     for (const int threads : {0, 1, 2}) {
         SamplePool pool;
-        pool.reset(kPixelSlots, 10);
-        for (std::size_t slot = 0; slot < kPixelSlots; slot += 997) scribble(pool, slot);
+        pool.reset(kSlots, 10);
+        for (std::size_t slot = 0; slot < kSlots; slot += 997) scribble(pool, slot);
         const Parallel parallel(threads == 0 ? 1 : threads);
-        pool.reset(kPixelSlots, 10, threads == 0 ? nullptr : &parallel);
-        EXPECT_EQ(pool.capacity(), kPixelSlots + 10);
-        EXPECT_EQ(pool.used(), kPixelSlots);
-        for (std::size_t slot = 0; slot < kPixelSlots; ++slot) {
+        pool.reset(kSlots, 10, threads == 0 ? nullptr : &parallel);
+        EXPECT_EQ(pool.capacity(), kSlots + 10);
+        EXPECT_EQ(pool.used(), kSlots);
+        for (std::size_t slot = 0; slot < kSlots; ++slot) {
             expectFresh(pool, slot);
             if (::testing::Test::HasFailure()) return;
         }
