@@ -22,7 +22,8 @@ enum class LaneLevel { Baseline, Avx2, Avx512 };
 // The widest level this processor runs (decided once per process), or
 // Baseline in a build with RAYCACHE_BASELINE_LANES. The environment
 // variable RAYCACHE_LANES (avx512, avx2 or baseline) narrows it, never past
-// what the processor runs: the images are the same at every level, and
+// what the processor runs: the lane code's images are the same at every
+// level (with Embree held at one level: trace/EmbreeDeviceConfig.h), and
 // tests/app/LaneLevelsCliTest.cpp holds the program to that.
 LaneLevel laneLevel();
 // The level RAYCACHE_LANES narrowed laneLevel() to, when it is below what
