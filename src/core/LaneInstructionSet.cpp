@@ -51,10 +51,10 @@ std::string laneInstructionSet() {
 #if defined(RAYCACHE_BASELINE_LANES)
     return "x86-64 (baseline; built with RAYCACHE_BASELINE_LANES)";
 #elif defined(__x86_64__)
-    __builtin_cpu_init();
-    const std::string widest = cpuHasLevel4()   ? "x86-64-v4 (AVX-512)"
-                               : cpuHasLevel3() ? "x86-64-v3 (AVX2)"
-                                                : "x86-64 (baseline)";
+    const LaneLevel level = widestLaneLevel();
+    const std::string widest = level == LaneLevel::Avx512 ? "x86-64-v4 (AVX-512)"
+                               : level == LaneLevel::Avx2 ? "x86-64-v3 (AVX2)"
+                                                          : "x86-64 (baseline)";
     if (std::getenv("RAYCACHE_LANES"))
         return widest + "; lanes " + laneLevelName(laneLevel()) + " (RAYCACHE_LANES)";
     return widest;
