@@ -288,7 +288,9 @@ void TileKernel::shadePackets(TileScratch& s, CacheWorker* cache, bool surfacesK
             } else {
                 for (std::size_t p = 0; p < s.wave.packets.size(); ++p) packetShadowRays(s, p);
             }
-            if (s.caching.countTreeRays || s.caching.trackTrees)
+            // A camera hit's node is a root: no cube stores its tree and
+            // no parent sums its rays, and roots are never tracked.
+            if (shadows == WaveShadows::Traced && (s.caching.countTreeRays || s.caching.trackTrees))
                 for (std::size_t p = 0; p < s.wave.packets.size(); ++p) recordShadowRays(s, p);
         }
         StageTimer timer(settings_.stageTimes, s.stages.directShading);
