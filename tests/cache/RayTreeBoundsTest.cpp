@@ -128,7 +128,7 @@ TEST(RayTreeBounds, RaysTestNeverMissesASampledMeeting) {
 // the parameter, so the pairs (s, x) with x in the slice at s form a convex
 // set, and the distance from the centre to the slice is a convex function of
 // s: a golden-section search finds its minimum, to far below the 1e-3 margin,
-// in a hundred evaluations where sampling needed twenty thousand. A ball
+// in under two hundred evaluations where sampling needed twenty thousand. A ball
 // nearer than its radius must be reported, one farther than its radius plus
 // 1e-3 must not (the tests exist to be tighter than the box tests).
 struct BallCase {
