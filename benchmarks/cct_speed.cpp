@@ -7,12 +7,12 @@
 // build, as one JSON document (bench/BenchmarkRecord.h; the docs quote the
 // committed runs in docs/bench-runs/cct_speed/).
 // Usage: cct_speed [--size 1024] [--rounds 7] [--path-frames 10] [--path-rounds 3] [--scenes a,b] [--json FILE]
-#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <optional>
 
+#include "BenchmarkOptions.h"
 #include "bench/BenchmarkRecord.h"
 #include "bench/InterleavedRuns.h"
 #include "bench/ResultsJson.h"
@@ -51,23 +51,22 @@ double documentsGridSpeedup(int n) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"CCT vs uncached ray tracing, interleaved frame timing"};
+    BenchmarkOptions options{"CCT vs uncached ray tracing, interleaved frame timing"};
     int size = 1024, rounds = 7, warmup = 2, pathFrames = 10, pathRounds = 3, threads = 0, maxDepth = 5;
     std::vector<std::string> scenes;
     for (const char* family : {"behind-", "grid-"})
         for (int n : {1, 2, 4, 8, 16, 32}) scenes.push_back(family + std::to_string(n));
-    app.add_option("--size", size, "Image width and height")->capture_default_str();
-    app.add_option("--rounds", rounds, "Timed still frames per variant")->capture_default_str();
-    app.add_option("--warmup", warmup, "Untimed still frames per variant first (they fill the caches)")
-        ->capture_default_str();
-    app.add_option("--path-frames", pathFrames, "Frames of the moving camera path")->capture_default_str();
-    app.add_option("--path-rounds", pathRounds, "Timed runs of the whole path per variant")->capture_default_str();
-    app.add_option("--threads", threads, "Worker threads, 0 = all")->capture_default_str();
-    app.add_option("--max-depth", maxDepth, "Longest ray path")->capture_default_str();
-    app.add_option("--scenes", scenes, "Built-in scenes")->delimiter(',');
+    options.add("--size", size, "Image width and height");
+    options.add("--rounds", rounds, "Timed still frames per variant");
+    options.add("--warmup", warmup, "Untimed still frames per variant first (they fill the caches)");
+    options.add("--path-frames", pathFrames, "Frames of the moving camera path");
+    options.add("--path-rounds", pathRounds, "Timed runs of the whole path per variant");
+    options.addThreads(threads);
+    options.add("--max-depth", maxDepth, "Longest ray path");
+    options.add("--scenes", scenes, "Built-in scenes");
     std::filesystem::path jsonPath;
-    app.add_option("--json", jsonPath, "Also write every figure, the settings, machine and build to this JSON file");
-    CLI11_PARSE(app, argc, argv);
+    options.addJson(jsonPath);
+    if (const std::optional<int> exitCode = options.parse(argc, argv)) return *exitCode;
     const Parallel parallel(threads);
     const std::optional<BenchmarkRecord> record =
         BenchmarkRecord::open("cct_speed", argc, argv, jsonPath, parallel.threadCount());

@@ -10,7 +10,6 @@
 // the run's settings, machine and build, as one JSON document
 // (bench/BenchmarkRecord.h; the docs quote the runs in docs/bench-runs/cdct_speed/).
 // Usage: cdct_speed [--quality-only | --speed-only] [--width 1920 --height 1080] [--rounds 5] [--json FILE]
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -20,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "BenchmarkOptions.h"
 #include "bench/BenchmarkRecord.h"
 #include "bench/InterleavedRuns.h"
 #include "bench/ResultsJson.h"
@@ -260,27 +260,26 @@ nlohmann::json speed(int width, int height, int threads, int warmup, int rounds,
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"CDCT: quality on parallax and Table 5.3 speed, every variant side by side"};
+    BenchmarkOptions options{"CDCT: quality on parallax and Table 5.3 speed, every variant side by side"};
     int width = 1920, height = 1080, rounds = 5, warmup = 2, threads = 0, qualitySize = 256, qualityFrames = 25;
     std::optional<int> resolution;
     bool qualityOnly = false, speedOnly = false;
-    app.add_option("--width", width, "Speed: image width")->capture_default_str();
-    app.add_option("--height", height, "Speed: image height")->capture_default_str();
-    app.add_option("--rounds", rounds, "Speed: timed frames per variant")->capture_default_str();
-    app.add_option("--warmup", warmup, "Speed: untimed frames per variant first (they fill the caches)")
-        ->capture_default_str();
-    app.add_option("--quality-size", qualitySize, "Quality: image width and height")->capture_default_str();
-    app.add_option("--quality-frames", qualityFrames, "Quality: frames of each scene's camera path")->capture_default_str();
+    options.add("--width", width, "Speed: image width");
+    options.add("--height", height, "Speed: image height");
+    options.add("--rounds", rounds, "Speed: timed frames per variant");
+    options.add("--warmup", warmup, "Speed: untimed frames per variant first (they fill the caches)");
+    options.add("--quality-size", qualitySize, "Quality: image width and height");
+    options.add("--quality-frames", qualityFrames, "Quality: frames of each scene's camera path");
     std::vector<std::string> qualityScenes{"parallax"};
-    app.add_option("--quality-scenes", qualityScenes, "Quality: built-in scenes, each its own table")->capture_default_str();
-    app.add_option("--cache-res", resolution, "Face resolution for every cube (default: the scenes' own, 512)")
-        ->check(CLI::Range(CacheSettings::kMinFaceResolution, CacheSettings::kMaxFaceResolution));
-    app.add_option("--threads", threads, "Worker threads, 0 = all")->capture_default_str();
-    app.add_flag("--quality-only", qualityOnly, "Only the quality table");
-    app.add_flag("--speed-only", speedOnly, "Only the speed tables");
+    options.add("--quality-scenes", qualityScenes, "Quality: built-in scenes, each its own table");
+    options.add("--cache-res", resolution, "Face resolution for every cube (default: the scenes' own, 512)",
+                BenchmarkOptions::Range{CacheSettings::kMinFaceResolution, CacheSettings::kMaxFaceResolution});
+    options.addThreads(threads);
+    options.flag("--quality-only", qualityOnly, "Only the quality table");
+    options.flag("--speed-only", speedOnly, "Only the speed tables");
     std::filesystem::path jsonPath;
-    app.add_option("--json", jsonPath, "Also write every figure, the settings, machine and build to this JSON file");
-    CLI11_PARSE(app, argc, argv);
+    options.addJson(jsonPath);
+    if (const std::optional<int> exitCode = options.parse(argc, argv)) return *exitCode;
     // Every scene named is checked before anything is measured.
     if (!speedOnly)
         for (const std::string& name : qualityScenes)

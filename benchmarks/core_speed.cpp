@@ -18,13 +18,13 @@
 // settings, machine and build, as one JSON document (bench/BenchmarkRecord.h;
 // the docs quote the committed runs in docs/bench-runs/core_speed/).
 // Usage: core_speed [--size 1024] [--rounds 15] [--scenes grid-32,behind-32,reflective-32,benchmarks/scenes/bunny-mirror.json] [--json FILE]
-#include <CLI/CLI.hpp>
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
 #include <vector>
 
+#include "BenchmarkOptions.h"
 #include "bench/BenchmarkRecord.h"
 #include "bench/InterleavedRuns.h"
 #include "core/Parallel.h"
@@ -129,18 +129,20 @@ nlohmann::json printStages(const std::string& name, RenderSession& idealTimed, c
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"Renderer vs plain Embree Whitted loop and the primary + shadow ray floor, interleaved frame timing"};
+    BenchmarkOptions options{
+        "Renderer vs plain Embree Whitted loop and the primary + shadow ray floor, interleaved frame timing"};
     int size = 1024, rounds = 15, warmup = 3, maxDepth = 5, threads = 0;
     std::vector<std::string> scenes{"grid-32", "behind-32", "reflective-32"};
-    app.add_option("--size", size, "Image width and height")->capture_default_str();
-    app.add_option("--rounds", rounds, "Timed frames per variant")->capture_default_str();
-    app.add_option("--warmup", warmup, "Untimed frames per variant first")->capture_default_str();
-    app.add_option("--max-depth", maxDepth, "Longest ray path")->capture_default_str();
-    app.add_option("--threads", threads, "Worker threads, 0 = all")->capture_default_str();
-    app.add_option("--scenes", scenes, "Built-in scenes (real meshes too: bunny-glass, teapot-mirrors, dragon-hall) or scene files (.json)")->delimiter(',');
+    options.add("--size", size, "Image width and height");
+    options.add("--rounds", rounds, "Timed frames per variant");
+    options.add("--warmup", warmup, "Untimed frames per variant first");
+    options.add("--max-depth", maxDepth, "Longest ray path");
+    options.addThreads(threads);
+    options.add("--scenes", scenes,
+                "Built-in scenes (real meshes too: bunny-glass, teapot-mirrors, dragon-hall) or scene files (.json)");
     std::filesystem::path jsonPath;
-    app.add_option("--json", jsonPath, "Also write every figure, the settings, machine and build to this JSON file");
-    CLI11_PARSE(app, argc, argv);
+    options.addJson(jsonPath);
+    if (const std::optional<int> exitCode = options.parse(argc, argv)) return *exitCode;
 
     const Parallel parallel(threads);
     const std::optional<BenchmarkRecord> record =

@@ -8,7 +8,6 @@
 // settings, machine and build, as one JSON document (bench/BenchmarkRecord.h;
 // the docs quote the runs in docs/bench-runs/grids_speed/).
 // Usage: grids_speed [--model "torus 100k" | cloth | orbit | ...] [--size 1024] [--rounds 15] [--json FILE]
-#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -16,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "BenchmarkOptions.h"
 #include "bench/BenchmarkRecord.h"
 #include "bench/GridsWorkload.h"
 #include "core/Elapsed.h"
@@ -53,19 +53,16 @@ double median(const std::vector<double>& samples) { return summarize(samples).me
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app("Grids vs Embree rebuilt, one model, many interleaved rounds (medians with min-max)");
+    BenchmarkOptions options{"Grids vs Embree rebuilt, one model, many interleaved rounds (medians with min-max)"};
     std::string modelName = "torus 100k";
     int size = 1024, rounds = 15, threads = 0;
-    app.add_option("--model", modelName, "\"torus <N>k\" (N thousand triangles, 1-4000) or a built-in scene")
-        ->capture_default_str();
-    app.add_option("--size", size, "Image side in pixels")->capture_default_str()->check(CLI::Range(16, 8192));
-    app.add_option("--rounds", rounds, "Rounds, each timing every part once")
-        ->capture_default_str()
-        ->check(CLI::Range(1, 10000));
-    app.add_option("--threads", threads, "Worker threads, 0 = all")->capture_default_str()->check(CLI::Range(0, 1024));
+    options.add("--model", modelName, "\"torus <N>k\" (N thousand triangles, 1-4000) or a built-in scene");
+    options.add("--size", size, "Image side in pixels", BenchmarkOptions::Range{16, 8192});
+    options.add("--rounds", rounds, "Rounds, each timing every part once", BenchmarkOptions::Range{1, 10000});
+    options.addThreads(threads);
     std::filesystem::path jsonPath;
-    app.add_option("--json", jsonPath, "Also write every figure, the settings, machine and build to this JSON file");
-    CLI11_PARSE(app, argc, argv);
+    options.addJson(jsonPath);
+    if (const std::optional<int> exitCode = options.parse(argc, argv)) return *exitCode;
 
     const std::optional<GridsModel> model = modelNamed(modelName);
     if (!model) {

@@ -8,7 +8,6 @@
 // the run's settings, machine and build, as one JSON document
 // (bench/BenchmarkRecord.h; the docs quote the runs in docs/bench-runs/hybrid_speed/).
 // Usage: hybrid_speed [--size 1024] [--rounds 7] [--warmup 2] [--threads 0] [--scenes a,b] [--parts abc] [--json FILE]
-#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -16,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "BenchmarkOptions.h"
 #include "bench/BenchmarkRecord.h"
 #include "bench/InterleavedRuns.h"
 #include "core/Parallel.h"
@@ -77,21 +77,20 @@ Scene cachingOnly(Scene scene, const std::string& only) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"Hybrid raster + ray tracing pipeline vs ray pipeline, interleaved frame timing"};
+    BenchmarkOptions options{"Hybrid raster + ray tracing pipeline vs ray pipeline, interleaved frame timing"};
     int size = 1024, rounds = 7, warmup = 2, threads = 0;
     std::string parts = "abc";
     std::vector<std::string> scenes;
     for (const BuiltinSceneInfo& info : builtinScenes()) scenes.push_back(info.name);
-    app.add_option("--size", size, "Image width and height")->capture_default_str();
-    app.add_option("--rounds", rounds, "Timed frames per variant")->capture_default_str();
-    app.add_option("--warmup", warmup, "Untimed frames per variant first (they fill the caches)")
-        ->capture_default_str();
-    app.add_option("--threads", threads, "Worker threads, 0 = all")->capture_default_str();
-    app.add_option("--scenes", scenes, "Built-in scenes for parts (a) and (b)")->delimiter(',');
-    app.add_option("--parts", parts, "Which tables: any of a, b, c")->capture_default_str();
+    options.add("--size", size, "Image width and height");
+    options.add("--rounds", rounds, "Timed frames per variant");
+    options.add("--warmup", warmup, "Untimed frames per variant first (they fill the caches)");
+    options.addThreads(threads);
+    options.add("--scenes", scenes, "Built-in scenes for parts (a) and (b)");
+    options.add("--parts", parts, "Which tables: any of a, b, c");
     std::filesystem::path jsonPath;
-    app.add_option("--json", jsonPath, "Also write every figure, the settings, machine and build to this JSON file");
-    CLI11_PARSE(app, argc, argv);
+    options.addJson(jsonPath);
+    if (const std::optional<int> exitCode = options.parse(argc, argv)) return *exitCode;
     const Parallel parallel(threads);
     const std::optional<BenchmarkRecord> record =
         BenchmarkRecord::open("hybrid_speed", argc, argv, jsonPath, parallel.threadCount());

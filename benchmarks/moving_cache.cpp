@@ -12,7 +12,6 @@
 // the docs quote the runs in docs/bench-runs/moving_cache/).
 // Usage: moving_cache [--size 1024] [--frames 10] [--rounds 3] [--levels 6] [--scenes grid-32,behind-32]
 //                     [--no-multi-res] [--view] [--fill] [--view-fill] [--json FILE]
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -21,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "BenchmarkOptions.h"
 #include "bench/BenchmarkRecord.h"
 #include "bench/InterleavedRuns.h"
 #include "bench/ResultsJson.h"
@@ -78,23 +78,23 @@ std::vector<Setup> variantsFor(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"Caching along a moving camera from empty caches: uncached, CCT, multi-resolution CCT"};
+    BenchmarkOptions options{"Caching along a moving camera from empty caches: uncached, CCT, multi-resolution CCT"};
     Options o;
-    app.add_option("--size", o.size, "Image width and height")->capture_default_str();
-    app.add_option("--frames", o.frames, "Frames of each scene's camera path")->capture_default_str();
-    app.add_option("--rounds", o.rounds, "Timed runs of the whole path per variant")->capture_default_str();
-    app.add_option("--threads", o.threads, "Worker threads, 0 = all")->capture_default_str();
-    app.add_option("--max-depth", o.maxDepth, "Longest ray path")->capture_default_str();
-    app.add_option("--levels", o.levels, "Resolution levels of the multi-resolution cubes")->capture_default_str();
-    app.add_option("--level-error", o.levelError, "RayCacheSettings::levelErrorBound")->capture_default_str();
-    app.add_option("--scenes", o.scenes, "Built-in scenes")->delimiter(',');
-    app.add_flag("!--no-multi-res", o.multiRes, "Leave out the multi-resolution cubes");
-    app.add_flag("--view", o.view, "Add CCT with cubes sized from the view (--cache-res-from-view)");
-    app.add_flag("--fill", o.fill, "Add CCT filled from visible surfaces (--cache-fill exact)");
-    app.add_flag("--view-fill", o.viewFill, "Add CCT sized from the view and filled from visible surfaces");
+    options.add("--size", o.size, "Image width and height");
+    options.add("--frames", o.frames, "Frames of each scene's camera path");
+    options.add("--rounds", o.rounds, "Timed runs of the whole path per variant");
+    options.addThreads(o.threads);
+    options.add("--max-depth", o.maxDepth, "Longest ray path");
+    options.add("--levels", o.levels, "Resolution levels of the multi-resolution cubes");
+    options.add("--level-error", o.levelError, "RayCacheSettings::levelErrorBound");
+    options.add("--scenes", o.scenes, "Built-in scenes");
+    options.flag("!--no-multi-res", o.multiRes, "Leave out the multi-resolution cubes");
+    options.flag("--view", o.view, "Add CCT with cubes sized from the view (--cache-res-from-view)");
+    options.flag("--fill", o.fill, "Add CCT filled from visible surfaces (--cache-fill exact)");
+    options.flag("--view-fill", o.viewFill, "Add CCT sized from the view and filled from visible surfaces");
     std::filesystem::path jsonPath;
-    app.add_option("--json", jsonPath, "Also write every figure, the settings, machine and build to this JSON file");
-    CLI11_PARSE(app, argc, argv);
+    options.addJson(jsonPath);
+    if (const std::optional<int> exitCode = options.parse(argc, argv)) return *exitCode;
     const Parallel parallel(o.threads);
     const std::optional<BenchmarkRecord> record =
         BenchmarkRecord::open("moving_cache", argc, argv, jsonPath, parallel.threadCount());

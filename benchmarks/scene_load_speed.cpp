@@ -6,7 +6,6 @@
 // settings, machine and build, as one JSON document (bench/BenchmarkRecord.h;
 // the docs quote the runs in docs/bench-runs/scene_load_speed/).
 // Usage: scene_load_speed [--rounds 5] --scenes dragon-hall,scene.json,... [--json FILE]
-#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
 #include <exception>
@@ -16,6 +15,7 @@
 #include <variant>
 #include <vector>
 
+#include "BenchmarkOptions.h"
 #include "bench/BenchmarkRecord.h"
 #include "core/SampleSummary.h"
 #include "scene/SceneLoader.h"
@@ -34,14 +34,14 @@ std::size_t triangleCount(const Scene& scene) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"Time loading scenes (built-in names or scene files), side by side"};
+    BenchmarkOptions options{"Time loading scenes (built-in names or scene files), side by side"};
     int rounds = 5;
     std::vector<std::string> scenes{"dragon-hall"};
-    app.add_option("--rounds", rounds, "Loads per scene, interleaved")->capture_default_str()->check(CLI::Range(1, 1000));
-    app.add_option("--scenes", scenes, "Built-in scenes or scene files (.json, .gltf, .glb)")->delimiter(',')->capture_default_str();
+    options.add("--rounds", rounds, "Loads per scene, interleaved", BenchmarkOptions::Range{1, 1000});
+    options.add("--scenes", scenes, "Built-in scenes or scene files (.json, .gltf, .glb)");
     std::filesystem::path jsonPath;
-    app.add_option("--json", jsonPath, "Also write every figure, the settings, machine and build to this JSON file");
-    CLI11_PARSE(app, argc, argv);
+    options.addJson(jsonPath);
+    if (const std::optional<int> exitCode = options.parse(argc, argv)) return *exitCode;
     // Loading runs on one thread.
     const std::optional<BenchmarkRecord> record = BenchmarkRecord::open("scene_load_speed", argc, argv, jsonPath, 1);
     if (!record) return 2;

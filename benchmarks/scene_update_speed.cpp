@@ -7,7 +7,6 @@
 // settings, machine and build, as one JSON document (bench/BenchmarkRecord.h;
 // the docs quote the runs in docs/bench-runs/scene_update_speed/).
 // Usage: scene_update_speed [--size 1024] [--frames 24] [--rounds 3] [--json FILE]
-#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "BenchmarkOptions.h"
 #include "bench/BenchmarkRecord.h"
 #include "core/Parallel.h"
 #include "core/SampleSummary.h"
@@ -41,15 +41,15 @@ struct SceneVariant {
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app("Per-frame update cost of animated scenes: refit vs rebuild, caches off vs on");
+    BenchmarkOptions options{"Per-frame update cost of animated scenes: refit vs rebuild, caches off vs on"};
     int size = 1024, frames = 24, rounds = 3, threads = 0;
-    app.add_option("--size", size, "Image side in pixels")->capture_default_str();
-    app.add_option("--frames", frames, "Frames per round, from time 0 at the scene's fps")->capture_default_str();
-    app.add_option("--rounds", rounds, "Rounds; variants interleave within each frame")->capture_default_str();
-    app.add_option("--threads", threads, "Worker threads, 0 = all")->capture_default_str();
+    options.add("--size", size, "Image side in pixels");
+    options.add("--frames", frames, "Frames per round, from time 0 at the scene's fps");
+    options.add("--rounds", rounds, "Rounds; variants interleave within each frame");
+    options.addThreads(threads);
     std::filesystem::path jsonPath;
-    app.add_option("--json", jsonPath, "Also write every figure, the settings, machine and build to this JSON file");
-    CLI11_PARSE(app, argc, argv);
+    options.addJson(jsonPath);
+    if (const std::optional<int> exitCode = options.parse(argc, argv)) return *exitCode;
     const std::optional<BenchmarkRecord> record =
         BenchmarkRecord::open("scene_update_speed", argc, argv, jsonPath, Parallel(threads).threadCount());
     if (!record) return 2;

@@ -8,13 +8,13 @@
 // the docs quote the runs in docs/bench-runs/soak/).
 // Usage: soak [--scene room] [--frames 10000] [--size 64] [--cache-res 512] [--technique cct] [--every 500]
 //             [--json FILE]
-#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "BenchmarkOptions.h"
 #include "bench/BenchmarkRecord.h"
 #include "core/Parallel.h"
 #include "core/ProcessMemory.h"
@@ -28,21 +28,20 @@
 using namespace raycache;
 
 int main(int argc, char** argv) {
-    CLI::App app{"Memory over a long camera path with caching on"};
+    BenchmarkOptions options{"Memory over a long camera path with caching on"};
     std::string sceneName = "room", technique = "cct";
     int frames = 10000, size = 64, cacheResolution = 512, every = 500, threads = 0;
-    app.add_option("--scene", sceneName, "Built-in scene with an orbiting camera")->capture_default_str();
-    app.add_option("--frames", frames, "Frames to render")->capture_default_str();
-    app.add_option("--size", size, "Image width and height")->capture_default_str();
-    app.add_option("--cache-res", cacheResolution, "Caching-cube face resolution")
-        ->check(CLI::Range(CacheSettings::kMinFaceResolution, CacheSettings::kMaxFaceResolution))
-        ->capture_default_str();
-    app.add_option("--technique", technique, "cct, cdct or cdct-parity")->capture_default_str();
-    app.add_option("--every", every, "Print memory every this many frames")->capture_default_str();
-    app.add_option("--threads", threads, "Worker threads, 0 = all")->capture_default_str();
+    options.add("--scene", sceneName, "Built-in scene with an orbiting camera");
+    options.add("--frames", frames, "Frames to render");
+    options.add("--size", size, "Image width and height");
+    options.add("--cache-res", cacheResolution, "Caching-cube face resolution",
+                BenchmarkOptions::Range{CacheSettings::kMinFaceResolution, CacheSettings::kMaxFaceResolution});
+    options.add("--technique", technique, "cct, cdct or cdct-parity");
+    options.add("--every", every, "Print memory every this many frames");
+    options.addThreads(threads);
     std::filesystem::path jsonPath;
-    app.add_option("--json", jsonPath, "Also write every figure, the settings, machine and build to this JSON file");
-    CLI11_PARSE(app, argc, argv);
+    options.addJson(jsonPath);
+    if (const std::optional<int> exitCode = options.parse(argc, argv)) return *exitCode;
 
     const auto scene = makeBuiltinScene(sceneName);
     const auto parsedTechnique = parseCacheTechnique(technique);
