@@ -80,9 +80,10 @@ TEST_F(LaneLevelsCli, VersionSaysWhatEmbreeMayUse) {
     if (raycache::builtWithBaselineLanes()) return;  // one level: nothing narrows
     const std::string narrowed = version("RAYCACHE_LANES=baseline ");
     const bool processorIsBaseline = narrowed.find("lanes: x86-64 (baseline)") != std::string::npos;
-    if (!processorIsBaseline)
+    if (!processorIsBaseline) {
         EXPECT_NE(narrowed.find("Embree instructions: at most baseline (RAYCACHE_LANES)"), std::string::npos)
             << narrowed;
+    }
     EXPECT_NE(version("").find("Embree instructions: the processor's widest"), std::string::npos);
 }
 

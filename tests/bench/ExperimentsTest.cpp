@@ -8,9 +8,9 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <regex>
 #include <sstream>
 
+#include "TextPattern.h"
 #include "XmlCheck.h"
 #include "app/BenchCommand.h"
 #include "bench/ExperimentRegistry.h"
@@ -442,13 +442,9 @@ TEST_F(Experiments, ReportLinksResolveAndStateTheSize) {
     EXPECT_NE(report.find("Size: tiny"), std::string::npos);
     EXPECT_NE(report.find("Machine and build"), std::string::npos);
     for (const auto& e : allExperiments()) EXPECT_NE(report.find("## " + e->title()), std::string::npos);
-    const std::regex link(R"(\]\(([^)]+)\))");
-    int links = 0;
-    for (auto it = std::sregex_iterator(report.begin(), report.end(), link); it != std::sregex_iterator(); ++it) {
-        ++links;
-        EXPECT_TRUE(fs::exists(dir_ / (*it)[1].str())) << (*it)[1].str();
-    }
-    EXPECT_GT(links, 20);
+    const std::vector<std::vector<std::string>> links = test::TextPattern(R"(\]\(([^)]+)\))").everyMatch(report);
+    for (const std::vector<std::string>& link : links) EXPECT_TRUE(fs::exists(dir_ / link[1])) << link[1];
+    EXPECT_GT(links.size(), 20u);
     checkMarkdownTables(report, "report.md");
 }
 

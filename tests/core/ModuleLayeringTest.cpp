@@ -8,11 +8,12 @@
 #include <array>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <string>
 #include <string_view>
+#include <optional>
 #include <vector>
 
+#include "TextPattern.h"
 #include "scene/SourceTreePaths.h"
 
 namespace raycache {
@@ -52,7 +53,7 @@ TEST(ModuleLayering, EveryModuleOfSrcHasALayer) {
 
 TEST(ModuleLayering, NoIncludePointsToAHigherModule) {
     const std::filesystem::path src = sourceTreeDir() / "src";
-    const std::regex include(R"(^\s*#\s*include\s*"([a-z]+)/[^"]+")");
+    const test::TextPattern include(R"(^\s*#\s*include\s*"([a-z]+)/[^"]+")");
     std::vector<std::string> upward;
     std::size_t filesRead = 0;
     for (const auto& entry : std::filesystem::recursive_directory_iterator(src)) {
@@ -65,12 +66,13 @@ TEST(ModuleLayering, NoIncludePointsToAHigherModule) {
         std::ifstream in(entry.path());
         std::string line;
         for (int number = 1; std::getline(in, line); ++number) {
-            std::smatch m;
-            if (!std::regex_search(line, m, include)) continue;
-            const int target = layerOf(m[1].str());
+            const std::optional<std::vector<std::string>> m = include.firstMatch(line);
+            if (!m) continue;
+            const std::string& included = (*m)[1];
+            const int target = layerOf(included);
             if (target > own)
                 upward.push_back(std::filesystem::relative(entry.path(), src).string() + ":" +
-                                 std::to_string(number) + " includes " + m[1].str() + "/ (above " + module + ")");
+                                 std::to_string(number) + " includes " + included + "/ (above " + module + ")");
         }
     }
     EXPECT_GT(filesRead, 100u) << "the source tree was not found where expected: " << src;

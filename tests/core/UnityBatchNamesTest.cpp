@@ -9,12 +9,13 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
+#include <optional>
 #include <vector>
 
+#include "TextPattern.h"
 #include "scene/SourceTreePaths.h"
 
 namespace raycache {
@@ -31,8 +32,8 @@ std::string readSourceText(const std::filesystem::path& p) {
 // (constants, functions, types); aliases are left out, since repeating an
 // alias of the same thing is allowed.
 std::set<std::string> anonymousNames(const std::string& text) {
-    static const std::regex type(R"(^(?:template\s*<[^>]*>\s*)?(?:struct|class|enum class|enum)\s+(\w+))");
-    static const std::regex value(
+    static const test::TextPattern type(R"(^(?:template\s*<[^>]*>\s*)?(?:struct|class|enum class|enum)\s+(\w+))");
+    static const test::TextPattern value(
         R"(^(?:constexpr\s+|const\s+|static\s+|inline\s+)*[\w:<>,\s\*&]+?\s+[\*&]?(\w+)\s*(?:=|\(|\{|\[))");
     std::set<std::string> names;
     std::size_t at = 0;
@@ -50,8 +51,9 @@ std::set<std::string> anonymousNames(const std::string& text) {
         while (std::getline(block, line)) {
             if (line.empty() || std::string(" \t}/#").find(line[0]) != std::string::npos) continue;
             if (line.rfind("using ", 0) == 0 || line.rfind("namespace ", 0) == 0) continue;
-            std::smatch m;
-            if (std::regex_search(line, m, type) || std::regex_search(line, m, value)) names.insert(m[1].str());
+            std::optional<std::vector<std::string>> m = type.firstMatch(line);
+            if (!m) m = value.firstMatch(line);
+            if (m) names.insert((*m)[1]);
         }
         at = j;
     }
@@ -94,14 +96,12 @@ TEST(UnityBatchNames, NoTwoFilesOfATestTargetShareAnAnonymousName) {
     const std::filesystem::path tests = sourceTreeDir() / "tests";
     const std::string cmake = readSourceText(tests / "CMakeLists.txt");
     // raycache_add_test(<target> ... SOURCES a.cpp b.cpp) and target_sources(<target> PRIVATE ...).
-    static const std::regex call(R"((?:raycache_add_test|target_sources)\((\w+)([^)]*)\))");
-    static const std::regex cpp(R"([\w/]+\.cpp)");
+    static const test::TextPattern call(R"((?:raycache_add_test|target_sources)\((\w+)([^)]*)\))");
+    static const test::TextPattern cpp(R"([\w/]+\.cpp)");
     std::map<std::string, std::vector<std::filesystem::path>> targets;
-    for (auto it = std::sregex_iterator(cmake.begin(), cmake.end(), call); it != std::sregex_iterator(); ++it) {
-        const std::string args = (*it)[2].str();
-        for (auto f = std::sregex_iterator(args.begin(), args.end(), cpp); f != std::sregex_iterator(); ++f)
-            if (std::filesystem::exists(tests / f->str())) targets[(*it)[1].str()].push_back(tests / f->str());
-    }
+    for (const std::vector<std::string>& c : call.everyMatch(cmake))
+        for (const std::vector<std::string>& file : cpp.everyMatch(c[2]))
+            if (std::filesystem::exists(tests / file[0])) targets[c[1]].push_back(tests / file[0]);
     ASSERT_GT(targets.size(), 10u);
     for (const auto& [target, files] : targets)
         for (const std::string& m : repeatedNames(target, files))

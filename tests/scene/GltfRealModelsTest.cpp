@@ -10,10 +10,10 @@
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
-#include <regex>
 #include <string>
 #include <vector>
 
+#include "TextPattern.h"
 #include "core/Errors.h"
 #include "scene/GltfScene.h"
 
@@ -27,9 +27,9 @@ const fs::path kAssimpModels = "/usr/share/assimp/models";
 // The files `dpkg -L assimp-testmodels | grep -i -E 'gltf2?/.*\.(gltf|glb)$'` lists.
 std::vector<fs::path> gltfModels() {
     std::vector<fs::path> files;
-    const std::regex pattern("gltf2?/.*\\.(gltf|glb)$", std::regex::icase);
+    const test::TextPattern pattern("gltf2?/.*\\.(gltf|glb)$", true);
     for (const auto& entry : fs::recursive_directory_iterator(kAssimpModels))
-        if (entry.is_regular_file() && std::regex_search(entry.path().string(), pattern)) files.push_back(entry.path());
+        if (entry.is_regular_file() && pattern.occursIn(entry.path().string())) files.push_back(entry.path());
     std::sort(files.begin(), files.end());
     return files;
 }
