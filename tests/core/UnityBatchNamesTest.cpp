@@ -9,10 +9,10 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
-#include <optional>
 #include <vector>
 
 #include "TextPattern.h"
