@@ -223,67 +223,6 @@ void TileKernel::runWaves(TileScratch& s, CacheWorker* cache) const {
     }
 }
 
-void TileKernel::emitSecondaryRay(TileScratch& s, CacheWorker* cache, int parent, float parentPathWeight,
-                                  int parentDepth, int objectId, const Ray& ray, const RayCone& cone,
-                                  TileWave::Kind kind, const Rgb& weight, bool leavesObject,
-                                  const SpawnedRayLookup& lookup) const {
-    // Every secondary ray gets a node of its own, whether a cache answers it
-    // or not, so caching never changes how the colours are summed.
-    const int node = static_cast<int>(s.wave.nodes.size());
-    const bool parentTracked = s.wave.nodes[static_cast<std::size_t>(parent)].tracked;
-    TileWave::Node& added = s.wave.nodes.emplace_back();
-    if (s.caching.trackTrees) {
-        // A fresh record for the node, whether it ends up tracked or not (beginWaves).
-        if (s.caching.nodeBounds.size() < s.wave.nodes.size())
-            s.caching.nodeBounds.resize(s.wave.nodes.size());
-        else
-            s.caching.nodeBounds[static_cast<std::size_t>(node)] = RayTreeBounds{};
-    }
-    added.parent = parent;
-    added.weightInParent = weight;
-    const float pathWeight = parentPathWeight * weight.maxComponent();
-    // A cube that stands aside this frame (cache/CachePolicy.h), or a ray
-    // out of a sampling cube's sample, is not asked: such rays go straight
-    // to tracing, as without a cache, and cost no lookup, no miss
-    // bookkeeping and no store.
-    const bool cached = leavesObject && cache && cache_->cachesObject(objectId);
-    if (cached && lookup.answered >= 0) {
-        // Looked up already, in lanes: what the lookup batch would have done.
-        added.tracked = s.caching.trackTrees;
-        if (lookup.answered) {
-            added.direct = lookup.color;
-            return;
-        }
-        queueMissedLeavingRay(s, objectId, lookup.texel, {ray, node, pathWeight, parentDepth + 1, kind, cone});
-        return;
-    }
-    if (cached && cache_->admits(objectId, ray.direction, lookup.texel)) {
-        s.caching.leaving.push_back({node, pathWeight, parentDepth + 1, kind, cone});
-        // Field by field: a whole-struct assignment was built on the stack
-        // with narrow stores and copied with wide loads, a store-forwarding
-        // stall per query.
-        RayCache::Query& q = s.caching.cacheQueries.emplace_back();
-        q.objectId = objectId;
-        q.origin = ray.origin;
-        q.direction = ray.direction;
-        q.spread = cone.spread;
-        // A cube that sees past its object's surface would answer a ray that
-        // meets that surface (a concave mirror seeing itself) with what lies
-        // behind it: such a ray is traced.
-        q.meetsOwnSurface = cache_->seesPastOwnSurface(objectId) && tracer_.meetsObject(objectId, ray);
-        q.texel = lookup.texel;
-        added.tracked = s.caching.trackTrees;
-    } else {
-        if (cached) {
-            cache_->countBypassedRay(objectId, *cache);
-            // Asked nothing, so traced: what the level record shows for it.
-            if (s.levelRecord.on) noteRootLevel(s, node, pathWeight, CacheLevelImage::kTraced);
-        }
-        s.wave.pending.push_back({ray, node, pathWeight, parentDepth + 1, kind, cone});
-        added.tracked = parentTracked;
-    }
-}
-
 void TileKernel::lookupReuse(TileScratch& s, CacheWorker& cache) const {
     StageTimer timer(settings_.stageTimes, s.stages.reuseLookups);
     TileCacheBookkeeping& caching = s.caching;
@@ -388,10 +327,11 @@ void TileKernel::resolveNodes(TileScratch& s, CacheWorker* cache, std::uint64_t 
     StageTimer timer(settings_.stageTimes, s.stages.resolve);
     if (cache) cache->beginBatch(tileKey);
     // Nodes are created after their parents, so walking backwards finishes
-    // every node's colour before it is stored or passed up.
+    // every node's colour before it is stored or passed up. The roots come
+    // first (beginTile), so the first root met ends the walk.
     for (std::size_t i = s.wave.nodes.size(); i-- > 0;) {
         const TileWave::Node& node = s.wave.nodes[i];
-        if (node.parent < 0) continue;
+        if (node.parent < 0) break;
         const Rgb color = node.color();
         if (node.store >= 0 && cache) {
             const TileCacheBookkeeping::NodeStore& st = s.caching.stores[static_cast<std::size_t>(node.store)];

@@ -7,8 +7,11 @@
 // time under a mask, so that a material and a sphere are read once per
 // packet. What each lane computes is the scalar rule's arithmetic,
 // operation for operation (render/HitLanes.h).
+#include <emmintrin.h>
+
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstring>
 
 #include "cache/CubeAddressingLanes.h"
@@ -21,21 +24,50 @@ namespace raycache {
 
 namespace {
 
-// Selects, among the lanes `remaining` still holds, those of the object of
-// the first one; removes them from `remaining`. Returns that object, or -1
-// when no lane remains.
+// Selects, among the lanes `remaining` still holds (nonzero), those of the
+// object of the first one; removes them from `remaining`. Returns that
+// object, or -1 when no lane remains. Four lanes at a time with SSE2, which
+// every x86-64 has: it runs once per object of every packet and stage, and
+// its scalar form branched lane by lane.
 int takeObjectLanes(const int* objectId, int* remaining, int* selected) {
-    int object = -1;
-    for (int k = 0; k < kFloatLanes; ++k)
-        if (remaining[k]) {
-            object = objectId[k];
-            break;
-        }
-    for (int k = 0; k < kFloatLanes; ++k) {
-        selected[k] = remaining[k] && objectId[k] == object ? -1 : 0;
-        if (selected[k]) remaining[k] = 0;
+    static_assert(kFloatLanes == 16);
+    const __m128i zero = _mm_setzero_si128();
+    __m128i unused[4];
+    unsigned unusedBits = 0;
+    for (int q = 0; q < 4; ++q) {
+        unused[q] = _mm_cmpeq_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(remaining + 4 * q)), zero);
+        unusedBits |= static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(unused[q]))) << (4 * q);
+    }
+    if (unusedBits == 0xFFFFu) return -1;
+    const int object = objectId[std::countr_one(unusedBits)];
+    const __m128i target = _mm_set1_epi32(object);
+    for (int q = 0; q < 4; ++q) {
+        const __m128i same =
+            _mm_cmpeq_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(objectId + 4 * q)), target);
+        const __m128i taken = _mm_andnot_si128(unused[q], same);
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(selected + 4 * q), taken);
+        auto* lanes = reinterpret_cast<__m128i*>(remaining + 4 * q);
+        _mm_storeu_si128(lanes, _mm_andnot_si128(taken, _mm_loadu_si128(lanes)));
     }
     return object;
+}
+
+// -1 in the first `count` lanes, 0 past them: the lanes a packet traces.
+void setLanesBelow(int count, int* lanes) {
+    for (int k = 0; k < kFloatLanes; ++k) lanes[k] = -static_cast<int>(k < count);
+}
+
+// Marks the lanes of `packet`'s first `count` whose rays hit something
+// (hits.valid -1, else 0); returns how many did.
+int markHitLanes(TileWave::HitPacket& packet) {
+    const int count = packet.count;
+    int hits = 0;
+    for (int k = 0; k < kFloatLanes; ++k) {
+        const int hit = -static_cast<int>((k < count) & (packet.objectId[k] >= 0));
+        packet.hits.valid[k] = hit;
+        hits -= hit;
+    }
+    return hits;
 }
 
 TraceHit laneHit(const RayHitLanes16& packet, const int* objectId, int k) {
@@ -127,24 +159,25 @@ void TileKernel::traceCameraRaysInLanes(const CameraRays& cameraRays, const Tile
             }
     }
     std::uint64_t hits = 0;
+    const bool notesVisiblePoints = cache && fill_.active();
     for (TileWave::HitPacket& packet : s.wave.packets) {
         if (!grids) {
             PacketLanes traced;
-            for (int k = 0; k < kFloatLanes; ++k) traced.valid[k] = k < packet.count ? -1 : 0;
+            setLanesBelow(packet.count, traced.valid);
             tracer_.intersectPacket(packet.rays, traced, packet.objectId);
         }
         s.counts.primary += static_cast<std::uint64_t>(packet.count);
-        for (int k = 0; k < kFloatLanes; ++k) {
-            const bool hit = k < packet.count && packet.objectId[k] >= 0;
-            packet.hits.valid[k] = hit ? -1 : 0;
-            if (k >= packet.count) continue;
+        const int packetHits = markHitLanes(packet);
+        hits += static_cast<std::uint64_t>(packetHits);
+        // Lane by lane only where a ray missed or a hit may fill a cube.
+        if (packetHits == packet.count && !notesVisiblePoints) continue;
+        for (int k = 0; k < packet.count; ++k) {
             const auto node = static_cast<std::size_t>(packet.node[k]);
-            if (!hit) {
+            if (!packet.hits.valid[k]) {
                 s.wave.nodes[node].direct = shading_.background(laneRay(packet.rays.ray, k));
                 continue;
             }
-            ++hits;
-            if (cache && fill_.active()) {
+            if (notesVisiblePoints) {
                 const Ray ray = laneRay(packet.rays.ray, k);
                 noteVisiblePoint(s, static_cast<int>(node), packet.objectId[k],
                                  ray.origin + ray.direction * packet.rays.ray.tFar[k]);
@@ -249,7 +282,6 @@ void TileKernel::traceSecondaryRaysInLanes(TileScratch& s) const {
             // Lanes past the last ray repeat it, not traced.
             const TileWave::PendingRay& ray =
                 s.wave.pending[base + static_cast<std::size_t>(std::min(k, packet.count - 1))];
-            traced.valid[k] = k < packet.count ? -1 : 0;
             setLaneRay(packet.rays.ray, k, ray.ray);
             packet.node[k] = ray.node;
             packet.pathWeight[k] = ray.pathWeight;
@@ -257,14 +289,12 @@ void TileKernel::traceSecondaryRaysInLanes(TileScratch& s) const {
             packet.coneWidth[k] = ray.cone.width;
             packet.coneSpread[k] = ray.cone.spread;
         }
+        setLanesBelow(packet.count, traced.valid);
         tracer_.intersectPacket(packet.rays, traced, packet.objectId);
-        for (int k = 0; k < kFloatLanes; ++k) {
-            const bool hit = k < packet.count && packet.objectId[k] >= 0;
-            packet.hits.valid[k] = hit ? -1 : 0;
-            if (k >= packet.count) continue;
-            recordTracedRay(s, s.wave.pending[base + static_cast<std::size_t>(k)], hit, packet.rays.ray.tFar[k]);
-            if (hit) ++hits;
-        }
+        hits += static_cast<std::uint64_t>(markHitLanes(packet));
+        for (int k = 0; k < packet.count; ++k)
+            recordTracedRay(s, s.wave.pending[base + static_cast<std::size_t>(k)], packet.hits.valid[k] != 0,
+                            packet.rays.ray.tFar[k]);
     }
     s.stages.hitsShaded += hits;
 }
@@ -580,8 +610,9 @@ void TileKernel::packetSpawnLanes(const TileWave::HitPacket& packet, SecondaryRa
     // Hits whose path may go on (the rest are done: their light is all they bring).
     alignas(64) int remaining[kFloatLanes], selected[kFloatLanes];
     bool any = false;
+    const int maxDepth = settings_.maxDepth;
     for (int k = 0; k < kFloatLanes; ++k) {
-        remaining[k] = packet.hits.valid[k] && packet.depth[k] < settings_.maxDepth ? -1 : 0;
+        remaining[k] = packet.hits.valid[k] & (packet.depth[k] < maxDepth ? -1 : 0);
         spawned.reflects[k] = spawned.refracts[k] = 0;
         spawned.reflectedTexel[k] = spawned.refractedTexel[k] = -1;
         spawned.reflectedAnswered[k] = spawned.refractedAnswered[k] = -1;
@@ -621,6 +652,71 @@ void TileKernel::packetSpawnLanes(const TileWave::HitPacket& packet, SecondaryRa
                 cache_->prefetchValidity(id, spawned.refractedTexel[k]);
             }
         }
+    }
+}
+
+// Inlined into packetEmit, its one caller: a ray a cube answered in lanes
+// takes only its first lines, and the call (a dozen arguments) cost more.
+[[gnu::always_inline]] inline void TileKernel::emitSecondaryRay(TileScratch& s, CacheWorker* cache, int parent,
+                                                                float parentPathWeight, int parentDepth, int objectId,
+                                                                const Ray& ray, const RayCone& cone,
+                                                                TileWave::Kind kind, const Rgb& weight,
+                                                                bool leavesObject,
+                                                                const SpawnedRayLookup& lookup) const {
+    // Every secondary ray gets a node of its own, whether a cache answers it
+    // or not, so caching never changes how the colours are summed.
+    const int node = static_cast<int>(s.wave.nodes.size());
+    const bool parentTracked = s.wave.nodes[static_cast<std::size_t>(parent)].tracked;
+    TileWave::Node& added = s.wave.nodes.emplace_back();
+    if (s.caching.trackTrees) {
+        // A fresh record for the node, whether it ends up tracked or not (beginWaves).
+        if (s.caching.nodeBounds.size() < s.wave.nodes.size())
+            s.caching.nodeBounds.resize(s.wave.nodes.size());
+        else
+            s.caching.nodeBounds[static_cast<std::size_t>(node)] = RayTreeBounds{};
+    }
+    added.parent = parent;
+    added.weightInParent = weight;
+    const float pathWeight = parentPathWeight * weight.maxComponent();
+    // A cube that stands aside this frame (cache/CachePolicy.h), or a ray
+    // out of a sampling cube's sample, is not asked: such rays go straight
+    // to tracing, as without a cache, and cost no lookup, no miss
+    // bookkeeping and no store.
+    const bool cached = leavesObject && cache && cache_->cachesObject(objectId);
+    if (cached && lookup.answered >= 0) {
+        // Looked up already, in lanes: what the lookup batch would have done.
+        added.tracked = s.caching.trackTrees;
+        if (lookup.answered) {
+            added.direct = lookup.color;
+            return;
+        }
+        queueMissedLeavingRay(s, objectId, lookup.texel, {ray, node, pathWeight, parentDepth + 1, kind, cone});
+        return;
+    }
+    if (cached && cache_->admits(objectId, ray.direction, lookup.texel)) {
+        s.caching.leaving.push_back({node, pathWeight, parentDepth + 1, kind, cone});
+        // Field by field: a whole-struct assignment was built on the stack
+        // with narrow stores and copied with wide loads, a store-forwarding
+        // stall per query.
+        RayCache::Query& q = s.caching.cacheQueries.emplace_back();
+        q.objectId = objectId;
+        q.origin = ray.origin;
+        q.direction = ray.direction;
+        q.spread = cone.spread;
+        // A cube that sees past its object's surface would answer a ray that
+        // meets that surface (a concave mirror seeing itself) with what lies
+        // behind it: such a ray is traced.
+        q.meetsOwnSurface = cache_->seesPastOwnSurface(objectId) && tracer_.meetsObject(objectId, ray);
+        q.texel = lookup.texel;
+        added.tracked = s.caching.trackTrees;
+    } else {
+        if (cached) {
+            cache_->countBypassedRay(objectId, *cache);
+            // Asked nothing, so traced: what the level record shows for it.
+            if (s.levelRecord.on) noteRootLevel(s, node, pathWeight, CacheLevelImage::kTraced);
+        }
+        s.wave.pending.push_back({ray, node, pathWeight, parentDepth + 1, kind, cone});
+        added.tracked = parentTracked;
     }
 }
 
