@@ -57,8 +57,8 @@ void setLanesBelow(int count, int* lanes) {
     for (int k = 0; k < kFloatLanes; ++k) lanes[k] = -static_cast<int>(k < count);
 }
 
-// Marks the lanes of `packet`'s first `count` whose rays hit something
-// (hits.valid -1, else 0); returns how many did.
+// Marks which of `packet`'s first `count` lanes hit something (hits.valid
+// -1; 0 for the others and for the lanes past `count`); returns how many hit.
 int markHitLanes(TileWave::HitPacket& packet) {
     const int count = packet.count;
     int hits = 0;
